@@ -1,0 +1,56 @@
+#ifndef MESHGAP_MESH_MESH_H
+#define MESHGAP_MESH_MESH_H
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace meshgap
+{
+    /** \brief Index of a triangle's three vertices. */
+    using Triangle = std::array<std::uint32_t, 3>;
+
+    /** \brief A triangle surface mesh in its body frame: the paper's node matrix N (#V rows) and facet matrix F
+        (#F rows of three node indices), Section II-A.1. Plain data; Body makes it immutable. */
+    struct Mesh
+    {
+        std::vector<Eigen::Vector3d> vertices;  ///< #V node positions
+        std::vector<Triangle> triangles;        ///< #F triangles, indices into vertices
+        std::string source;                     ///< file it came from, or a generator's name (for messages)
+
+        /** \brief Axis-aligned bounding box of the vertices (empty box for an empty mesh). */
+        Eigen::AlignedBox3d bounds() const;
+
+        /** \brief Length of the bounding box diagonal: the body's size, to which tolerances and the default grid
+            size are relative. */
+        double size() const;
+
+        /** \brief Throws meshgap::Exception naming \e source if the mesh has no triangles, a NaN/Inf coordinate or
+            an index out of range. Degenerate triangles are not checked here (see removeDegenerate()). */
+        void validate() const;
+    };
+
+    /** \brief What cleaning a mesh removed. */
+    struct CleanReport
+    {
+        std::size_t degenerate{0};  ///< zero-area triangles (repeated index, or collinear corners)
+        std::size_t duplicates{0};  ///< triangles with the same three vertices as an earlier one (either winding)
+        std::size_t unused{0};      ///< vertices no triangle uses
+    };
+
+    /** \brief Weld vertices at identical positions, drop degenerate and duplicated triangles and unused vertices.
+        Welding is by exact position (normals, UVs and colours play no part), so flat-shaded files that repeat a
+        vertex per face become one connected surface. Triangle order and winding are kept. */
+    CleanReport cleanMesh(Mesh &mesh);
+
+    /** \brief Number of connected components of the mesh's vertex-edge graph (vertices used by no triangle are
+        components of their own). */
+    std::size_t countComponents(const Mesh &mesh);
+
+    /** \brief Length of the longest triangle edge. */
+    double longestEdge(const Mesh &mesh);
+}  // namespace meshgap
+
+#endif

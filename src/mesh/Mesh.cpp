@@ -1,0 +1,178 @@
+#include "meshgap/mesh/Mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <unordered_map>
+
+#include "meshgap/Exception.h"
+
+namespace meshgap
+{
+    Eigen::AlignedBox3d Mesh::bounds() const
+    {
+        Eigen::AlignedBox3d box;
+        for (const Eigen::Vector3d &v : vertices)
+            box.extend(v);
+        return box;
+    }
+
+    double Mesh::size() const
+    {
+        const Eigen::AlignedBox3d box = bounds();
+        return box.isEmpty() ? 0.0 : box.diagonal().norm();
+    }
+
+    void Mesh::validate() const
+    {
+        const std::string where = source.empty() ? std::string("mesh") : source;
+        if (triangles.empty())
+            throw Exception(where, "no triangles (an empty scene, a point cloud or only lines?)");
+        for (std::size_t i = 0; i < vertices.size(); ++i)
+            if (!vertices[i].allFinite())
+                throw Exception(where, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
+        for (std::size_t t = 0; t < triangles.size(); ++t)
+            for (std::uint32_t index : triangles[t])
+                if (index >= vertices.size())
+                    throw Exception(where, "triangle " + std::to_string(t) + " uses vertex index " +
+                                               std::to_string(index) + " but there are only " +
+                                               std::to_string(vertices.size()) + " vertices");
+    }
+
+    namespace
+    {
+        struct PositionHash
+        {
+            std::size_t operator()(const Eigen::Vector3d &p) const
+            {
+                std::size_t h = 1469598103934665603ull;
+                for (int k = 0; k < 3; ++k)
+                {
+                    double c = p[k] == 0.0 ? 0.0 : p[k];  // -0 and +0 weld together
+                    std::uint64_t bits;
+                    std::memcpy(&bits, &c, sizeof bits);
+                    h = (h ^ bits) * 1099511628211ull;
+                    h ^= h >> 29;
+                }
+                return h;
+            }
+        };
+        struct PositionEqual
+        {
+            bool operator()(const Eigen::Vector3d &a, const Eigen::Vector3d &b) const { return a == b; }
+        };
+        struct TriangleKeyHash
+        {
+            std::size_t operator()(const Triangle &t) const
+            {
+                return (std::size_t(t[0]) * 73856093u) ^ (std::size_t(t[1]) * 19349663u) ^ (std::size_t(t[2]) * 83492791u);
+            }
+        };
+
+        bool isDegenerate(const Mesh &mesh, const Triangle &t)
+        {
+            if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+                return true;
+            const Eigen::Vector3d &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+            const Eigen::Vector3d e0 = b - a, e1 = c - a, e2 = c - b;
+            const double longest2 = std::max({e0.squaredNorm(), e1.squaredNorm(), e2.squaredNorm()});
+            // Relative test: twice the area against the longest edge squared (1e-12: collinear within rounding).
+            return e0.cross(e1).norm() <= 1e-12 * longest2;
+        }
+    }  // namespace
+
+    CleanReport cleanMesh(Mesh &mesh)
+    {
+        CleanReport report;
+        // 1. Weld identical positions.
+        std::unordered_map<Eigen::Vector3d, std::uint32_t, PositionHash, PositionEqual> firstAt;
+        firstAt.reserve(mesh.vertices.size());
+        std::vector<std::uint32_t> weldTo(mesh.vertices.size());
+        for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+            weldTo[i] = firstAt.emplace(mesh.vertices[i], static_cast<std::uint32_t>(i)).first->second;
+        for (Triangle &t : mesh.triangles)
+            for (std::uint32_t &index : t)
+                index = weldTo[index];
+
+        // 2. Drop degenerate and duplicated triangles (same vertex set, either winding).
+        std::unordered_map<Triangle, std::uint32_t, TriangleKeyHash> seen;
+        seen.reserve(mesh.triangles.size());
+        std::vector<Triangle> kept;
+        kept.reserve(mesh.triangles.size());
+        for (const Triangle &t : mesh.triangles)
+        {
+            if (isDegenerate(mesh, t))
+            {
+                ++report.degenerate;
+                continue;
+            }
+            Triangle key = t;
+            std::sort(key.begin(), key.end());
+            if (!seen.emplace(key, 0u).second)
+            {
+                ++report.duplicates;
+                continue;
+            }
+            kept.push_back(t);
+        }
+        mesh.triangles.swap(kept);
+
+        // 3. Compact: keep used vertices, in their original order.
+        std::vector<std::uint32_t> newIndex(mesh.vertices.size(), UINT32_MAX);
+        for (const Triangle &t : mesh.triangles)
+            for (std::uint32_t index : t)
+                newIndex[index] = 0;
+        std::vector<Eigen::Vector3d> used;
+        used.reserve(mesh.vertices.size());
+        for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+            if (newIndex[i] == 0)
+            {
+                newIndex[i] = static_cast<std::uint32_t>(used.size());
+                used.push_back(mesh.vertices[i]);
+            }
+        report.unused = mesh.vertices.size() - used.size();
+        // Welded-away copies are not "unused" vertices of the input: count only those no triangle referenced.
+        std::size_t welded = 0;
+        for (std::size_t i = 0; i < weldTo.size(); ++i)
+            welded += weldTo[i] != i;
+        report.unused -= std::min(report.unused, welded);
+        mesh.vertices.swap(used);
+        for (Triangle &t : mesh.triangles)
+            for (std::uint32_t &index : t)
+                index = newIndex[index];
+        return report;
+    }
+
+    std::size_t countComponents(const Mesh &mesh)
+    {
+        std::vector<std::uint32_t> parent(mesh.vertices.size());
+        std::iota(parent.begin(), parent.end(), 0u);
+        auto find = [&parent](std::uint32_t x) {
+            while (parent[x] != x)
+                x = parent[x] = parent[parent[x]];
+            return x;
+        };
+        std::size_t components = mesh.vertices.size();
+        for (const Triangle &t : mesh.triangles)
+            for (int k = 0; k < 2; ++k)
+            {
+                const std::uint32_t a = find(t[k]), b = find(t[k + 1]);
+                if (a != b)
+                {
+                    parent[a] = b;
+                    --components;
+                }
+            }
+        return components;
+    }
+
+    double longestEdge(const Mesh &mesh)
+    {
+        double longest2 = 0.0;
+        for (const Triangle &t : mesh.triangles)
+            for (int k = 0; k < 3; ++k)
+                longest2 = std::max(longest2, (mesh.vertices[t[k]] - mesh.vertices[t[(k + 1) % 3]]).squaredNorm());
+        return std::sqrt(longest2);
+    }
+}  // namespace meshgap
