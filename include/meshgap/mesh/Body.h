@@ -1,0 +1,93 @@
+#ifndef MESHGAP_MESH_BODY_H
+#define MESHGAP_MESH_BODY_H
+
+#include <Eigen/Core>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "meshgap/ClassForward.h"
+#include "meshgap/mesh/Mesh.h"
+#include "meshgap/mesh/MeshDistances.h"
+#include "meshgap/mesh/Refine.h"
+#include "meshgap/mesh/SurfaceGraph.h"
+
+namespace meshgap
+{
+    MESHGAP_CLASS_FORWARD(Body);
+
+    /** \brief How to turn a mesh into a body. */
+    struct BodyOptions
+    {
+        /** \brief Default grid size as a fraction of the body's size (bounding-box diagonal). */
+        static constexpr double DEFAULT_GRID_FRACTION = 1.0 / 25.0;
+
+        /** \brief Target grid size h: edges longer than h are split (see refineMesh()). A negative value means
+            DEFAULT_GRID_FRACTION times the body's size; 0 (or +infinity) keeps the mesh as it is. */
+        double gridSize{-1.0};
+        /** \brief Mesh distances (built on first use of distances()). */
+        MeshDistancesOptions distances;
+    };
+
+    /** \brief A group of nearby nodes with a bounding sphere, for exact pruning in enumeration. */
+    struct NodeCluster
+    {
+        Eigen::Vector3d center;  ///< body frame
+        double radius;           ///< every node of the cluster is within radius of center
+        std::uint32_t begin, end;  ///< range in Body::clusterOrder()
+    };
+
+    /** \brief A rigid body for distance queries: its (refined) surface mesh, the surface graph Pi, mesh distances
+        D/P, and node data laid out for fast enumeration. Immutable once built and safe to share between threads;
+        the mesh distances are computed on first request (once, thread-safely), since enumeration and hill climbing
+        do not need them. */
+    class Body
+    {
+    public:
+        /** \brief Build a body from a mesh in its own frame. The mesh must be valid (see Mesh::validate()). */
+        static BodyPtr build(Mesh mesh, const BodyOptions &options = BodyOptions());
+
+        const std::string &name() const { return mesh_.source; }
+        const Mesh &mesh() const { return mesh_; }
+        const SurfaceGraph &graph() const { return *graph_; }
+        const RefineReport &refinement() const { return refinement_; }
+        /** \brief The grid size used (0 when not refined). */
+        double gridSize() const { return gridSize_; }
+        std::uint32_t numNodes() const { return static_cast<std::uint32_t>(mesh_.vertices.size()); }
+        const Eigen::Vector3d &node(std::uint32_t i) const { return mesh_.vertices[i]; }
+
+        /** \brief Mesh distances D and P, built on the first call. */
+        const MeshDistances &distances() const;
+
+        /** \brief Leaf clusters of nodes (at most 32 nodes each), and the node order they index. Node coordinates in
+            that order are given as separate x, y, z arrays (structure of arrays). */
+        const std::vector<NodeCluster> &clusters() const { return clusters_; }
+        const std::vector<std::uint32_t> &clusterOrder() const { return order_; }
+        const std::vector<double> &xs() const { return xs_; }
+        const std::vector<double> &ys() const { return ys_; }
+        const std::vector<double> &zs() const { return zs_; }
+
+        /** \brief Radius of the smallest origin-centred ball holding every node (bounds how far a node moves under a
+            rotation about the body origin). */
+        double radiusAboutOrigin() const { return originRadius_; }
+
+    private:
+        Body() = default;
+        void buildClusters();
+
+        Mesh mesh_;
+        RefineReport refinement_;
+        double gridSize_{0.0};
+        std::shared_ptr<const SurfaceGraph> graph_;
+        MeshDistancesOptions distanceOptions_;
+        mutable std::once_flag distancesOnce_;
+        mutable MeshDistancesConstPtr distances_;
+        std::vector<NodeCluster> clusters_;
+        std::vector<std::uint32_t> order_;
+        std::vector<double> xs_, ys_, zs_;
+        double originRadius_{0.0};
+    };
+}  // namespace meshgap
+
+#endif

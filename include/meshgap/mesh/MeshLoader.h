@@ -1,0 +1,40 @@
+#ifndef MESHGAP_MESH_MESH_LOADER_H
+#define MESHGAP_MESH_MESH_LOADER_H
+
+#include <Eigen/Core>
+#include <string>
+
+#include "meshgap/mesh/Mesh.h"
+
+namespace meshgap
+{
+    /** \brief What loading a file found and changed. */
+    struct LoadReport
+    {
+        std::size_t rawVertices{0};   ///< vertices assimp returned, over all sub-meshes (before welding)
+        std::size_t rawTriangles{0};  ///< three-index faces assimp returned
+        std::size_t skippedPrimitives{0};  ///< points and lines (e.g. SketchUp edge lines), not surfaces
+        CleanReport clean;                 ///< degenerate and duplicated triangles dropped
+        std::size_t components{0};         ///< connected components of the welded surface
+        /** \brief OMPL.app's robot centre: the mean of every vertex assimp returned (duplicates and line-mesh
+            vertices included) after node transforms, accumulated in single precision exactly as OMPL.app's
+            scene::sceneCenter does. OMPL.app shifts a robot mesh by this point. */
+        Eigen::Vector3d omplAppCenter{Eigen::Vector3d::Zero()};
+    };
+
+    /** \brief Load a triangle mesh (OBJ, STL ASCII/binary, PLY, COLLADA and anything else assimp reads).
+
+        The file is imported with OMPL.app's post-processing (Triangulate, JoinIdenticalVertices, SortByPType,
+        OptimizeGraph, GenNormals) and default importer settings, so COLLADA's up-axis rotation applies and vertex
+        positions are bit-for-bit those OMPL.app uses. Every node transform is applied (in assimp's single precision
+        arithmetic, as OMPL.app does) and all sub-meshes are merged; only three-index faces are kept. Then vertices
+        at identical positions are welded regardless of normals or texture coordinates (so flat-shaded files that
+        repeat each vertex per face stay one connected surface), and degenerate and duplicated triangles are
+        dropped (counted in the report, with a warning).
+
+        Throws meshgap::Exception naming \e path for: a missing or unreadable file, a file assimp cannot parse,
+        no triangles, a NaN or infinite coordinate, an index out of range. */
+    Mesh loadMesh(const std::string &path, LoadReport *report = nullptr);
+}  // namespace meshgap
+
+#endif

@@ -1,0 +1,25 @@
+#ifndef MESHGAP_MESH_REFINE_H
+#define MESHGAP_MESH_REFINE_H
+
+#include "meshgap/mesh/Mesh.h"
+
+namespace meshgap
+{
+    /** \brief What refinement did. */
+    struct RefineReport
+    {
+        std::size_t nodesBefore{0}, nodesAfter{0};
+        std::size_t trianglesBefore{0}, trianglesAfter{0};
+        double longestEdge{0.0};  ///< longest edge after refinement (<= h unless h was not positive)
+    };
+
+    /** \brief Refine \e mesh so no edge is longer than \e h: longest-edge bisection (Rivara). The globally longest
+        edge above h is split at its midpoint in every triangle that shares it, so the result is conforming (a shared
+        edge is split the same way on both sides and the surface graph stays connected), the surface is the same
+        point set (new nodes lie on the original edges), and triangle shapes stay bounded (each triangle is always cut
+        across its own longest edge). Non-manifold edges are split in all their triangles. With \e h <= 0 or
+        infinite, the mesh is returned unchanged. */
+    Mesh refineMesh(const Mesh &mesh, double h, RefineReport *report = nullptr);
+}  // namespace meshgap
+
+#endif

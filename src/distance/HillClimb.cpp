@@ -1,0 +1,79 @@
+#include "meshgap/distance/HillClimb.h"
+
+#include <chrono>
+#include <random>
+
+#include "meshgap/Exception.h"
+
+namespace meshgap
+{
+    namespace
+    {
+        // Steepest descent of one node of the pair while the other stays fixed. Returns the moves made.
+        template <bool MoveA>
+        std::size_t descend(PairEvaluator &evaluator, const SurfaceGraph &graph, NodePair &pair, double &d2)
+        {
+            std::size_t moves = 0;
+            for (;;)
+            {
+                const std::uint32_t here = MoveA ? pair.a : pair.b;
+                std::uint32_t bestNode = here;
+                double best = d2;
+                for (const std::uint32_t *n = graph.beginNeighbours(here); n != graph.endNeighbours(here); ++n)
+                {
+                    const double d = MoveA ? evaluator.d2(*n, pair.b) : evaluator.d2(pair.a, *n);
+                    if (d < best)
+                    {
+                        best = d;
+                        bestNode = *n;
+                    }
+                }
+                if (bestNode == here)
+                    return moves;
+                (MoveA ? pair.a : pair.b) = bestNode;
+                d2 = best;
+                ++moves;
+            }
+        }
+    }  // namespace
+
+    std::size_t hillClimb(PairEvaluator &evaluator, NodePair &pair, double &d2)
+    {
+        std::size_t total = 0;
+        for (;;)
+        {
+            const std::size_t onA = descend<true>(evaluator, evaluator.a().graph(), pair, d2);
+            const std::size_t onB = descend<false>(evaluator, evaluator.b().graph(), pair, d2);
+            total += onA + onB;
+            // B's descent ended with no improving move for B; if it moved at all, A may improve again.
+            if (onB == 0)
+                return total;
+        }
+    }
+
+    void HillClimb::solve(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, const DistanceRequest &request,
+                          DistanceResult &result) const
+    {
+        const auto start = std::chrono::steady_clock::now();
+        result = DistanceResult();
+        NodePair pair;
+        if (request.start)
+        {
+            pair = *request.start;
+            if (pair.a >= a.numNodes() || pair.b >= b.numNodes())
+                throw Exception("hill-climb", "start node pair out of range");
+        }
+        else
+        {
+            std::mt19937_64 rng(request.seed);
+            pair.a = std::uniform_int_distribution<std::uint32_t>(0, a.numNodes() - 1)(rng);
+            pair.b = std::uniform_int_distribution<std::uint32_t>(0, b.numNodes() - 1)(rng);
+        }
+        PairEvaluator evaluator(a, b, X_AB);
+        double d2 = evaluator.d2(pair);
+        result.localSteps = hillClimb(evaluator, pair, d2);
+        evaluator.fill(pair, d2, result);
+        result.iterations = 1;
+        result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+}  // namespace meshgap

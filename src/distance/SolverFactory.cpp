@@ -1,0 +1,42 @@
+#include "meshgap/distance/SolverFactory.h"
+
+#include <functional>
+#include <map>
+
+#include "meshgap/Exception.h"
+#include "meshgap/distance/Enumeration.h"
+#include "meshgap/distance/HillClimb.h"
+
+namespace meshgap
+{
+    namespace
+    {
+        const std::map<std::string, std::function<DistanceSolverPtr()>> &registry()
+        {
+            static const std::map<std::string, std::function<DistanceSolverPtr()>> solvers = {
+                {"enumeration", [] { return std::make_shared<Enumeration>(); }},
+                {"hill-climb", [] { return std::make_shared<HillClimb>(); }},
+            };
+            return solvers;
+        }
+    }  // namespace
+
+    std::vector<std::string> solverNames()
+    {
+        std::vector<std::string> names;
+        for (const auto &entry : registry())
+            names.push_back(entry.first);
+        return names;
+    }
+
+    DistanceSolverPtr allocSolver(const std::string &name)
+    {
+        const auto it = registry().find(name);
+        if (it != registry().end())
+            return it->second();
+        std::string valid;
+        for (const std::string &n : solverNames())
+            valid += (valid.empty() ? "" : ", ") + n;
+        throw Exception("algorithm", "unknown algorithm '" + name + "'; valid names: " + valid);
+    }
+}  // namespace meshgap

@@ -1,0 +1,85 @@
+#include "meshgap/mesh/Body.h"
+
+#include <algorithm>
+#include <cmath>
+#include <ompl/util/Console.h>
+
+namespace meshgap
+{
+    BodyPtr Body::build(Mesh mesh, const BodyOptions &options)
+    {
+        mesh.validate();
+        BodyPtr body(new Body());
+        double h = options.gridSize;
+        if (h < 0.0)
+            h = BodyOptions::DEFAULT_GRID_FRACTION * mesh.size();
+        if (!std::isfinite(h))
+            h = 0.0;
+        body->gridSize_ = h;
+        body->mesh_ = refineMesh(mesh, h, &body->refinement_);
+        body->graph_ = std::make_shared<const SurfaceGraph>(body->mesh_);
+        body->distanceOptions_ = options.distances;
+        body->buildClusters();
+        for (const Eigen::Vector3d &v : body->mesh_.vertices)
+            body->originRadius_ = std::max(body->originRadius_, v.norm());
+        return body;
+    }
+
+    const MeshDistances &Body::distances() const
+    {
+        std::call_once(distancesOnce_, [this] {
+            distances_ = MeshDistances::build(graph_, distanceOptions_);
+            OMPL_INFORM("%s: mesh distances for %u nodes %s", mesh_.source.c_str(), numNodes(),
+                        distances_->isDense() ? (distances_->fromCache() ? "read from cache" : "computed (all pairs)") :
+                                                "answered on demand");
+        });
+        return *distances_;
+    }
+
+    void Body::buildClusters()
+    {
+        constexpr std::uint32_t LEAF = 32;
+        const std::uint32_t n = numNodes();
+        order_.resize(n);
+        for (std::uint32_t i = 0; i < n; ++i)
+            order_[i] = i;
+        // Recursive median split along the longest axis of each range's box, leaves of at most LEAF nodes.
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> stack{{0u, n}};
+        while (!stack.empty())
+        {
+            const auto [begin, end] = stack.back();
+            stack.pop_back();
+            Eigen::AlignedBox3d box;
+            for (std::uint32_t k = begin; k < end; ++k)
+                box.extend(mesh_.vertices[order_[k]]);
+            if (end - begin <= LEAF)
+            {
+                const Eigen::Vector3d center = box.center();
+                double r2 = 0.0;
+                for (std::uint32_t k = begin; k < end; ++k)
+                    r2 = std::max(r2, (mesh_.vertices[order_[k]] - center).squaredNorm());
+                // Pad by a relative epsilon so rounding in the bound never prunes a node that is inside it.
+                clusters_.push_back({center, std::sqrt(r2) * (1.0 + 1e-12) + 1e-300, begin, end});
+                continue;
+            }
+            int axis;
+            box.sizes().maxCoeff(&axis);
+            const std::uint32_t mid = begin + (end - begin) / 2;
+            std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                             [&](std::uint32_t i, std::uint32_t j) {
+                                 return mesh_.vertices[i][axis] < mesh_.vertices[j][axis];
+                             });
+            stack.emplace_back(begin, mid);
+            stack.emplace_back(mid, end);
+        }
+        xs_.resize(n);
+        ys_.resize(n);
+        zs_.resize(n);
+        for (std::uint32_t k = 0; k < n; ++k)
+        {
+            xs_[k] = mesh_.vertices[order_[k]].x();
+            ys_[k] = mesh_.vertices[order_[k]].y();
+            zs_[k] = mesh_.vertices[order_[k]].z();
+        }
+    }
+}  // namespace meshgap

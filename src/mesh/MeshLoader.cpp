@@ -1,0 +1,120 @@
+#include "meshgap/mesh/MeshLoader.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <filesystem>
+#include <fstream>
+#include <ompl/util/Console.h>
+
+#include "meshgap/Exception.h"
+
+namespace meshgap
+{
+    namespace
+    {
+        struct Collector
+        {
+            const aiScene *scene;
+            const std::string &path;
+            Mesh &mesh;
+            LoadReport &report;
+            aiVector3D centerSum{0.f, 0.f, 0.f};
+
+            // Depth-first over the node tree in the order OMPL.app's extractVerticesAux uses, with the same
+            // float matrix products, so positions and the centre match it exactly.
+            void visit(const aiNode *node, aiMatrix4x4 transform)
+            {
+                transform *= node->mTransformation;
+                for (unsigned int i = 0; i < node->mNumMeshes; ++i)
+                {
+                    const aiMesh *m = scene->mMeshes[node->mMeshes[i]];
+                    const auto offset = static_cast<std::uint32_t>(mesh.vertices.size());
+                    for (unsigned int k = 0; k < m->mNumVertices; ++k)
+                    {
+                        const aiVector3D p = transform * m->mVertices[k];
+                        centerSum += p;
+                        mesh.vertices.emplace_back(p.x, p.y, p.z);
+                    }
+                    report.rawVertices += m->mNumVertices;
+                    for (unsigned int f = 0; f < m->mNumFaces; ++f)
+                    {
+                        const aiFace &face = m->mFaces[f];
+                        if (face.mNumIndices != 3)
+                        {
+                            ++report.skippedPrimitives;
+                            continue;
+                        }
+                        Triangle t;
+                        for (int c = 0; c < 3; ++c)
+                        {
+                            if (face.mIndices[c] >= m->mNumVertices)
+                                throw Exception(path, "face " + std::to_string(f) + " of mesh '" + m->mName.C_Str() +
+                                                          "' uses vertex index " + std::to_string(face.mIndices[c]) +
+                                                          " but the mesh has " + std::to_string(m->mNumVertices) +
+                                                          " vertices");
+                            t[c] = offset + face.mIndices[c];
+                        }
+                        mesh.triangles.push_back(t);
+                        ++report.rawTriangles;
+                    }
+                }
+                for (unsigned int c = 0; c < node->mNumChildren; ++c)
+                    visit(node->mChildren[c], transform);
+            }
+        };
+    }  // namespace
+
+    Mesh loadMesh(const std::string &path, LoadReport *reportOut)
+    {
+        namespace fs = std::filesystem;
+        std::error_code ec;
+        if (!fs::exists(path, ec))
+            throw Exception(path, "no such file");
+        if (!fs::is_regular_file(path, ec))
+            throw Exception(path, "not a regular file");
+        if (!std::ifstream(path).good())
+            throw Exception(path, "cannot open the file for reading");
+        if (fs::file_size(path, ec) == 0)
+            throw Exception(path, "the file is empty");
+
+        Assimp::Importer importer;
+        const unsigned int flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+                                   aiProcess_OptimizeGraph | aiProcess_GenNormals;
+        const aiScene *scene = importer.ReadFile(path, flags);
+        if (scene == nullptr)
+        {
+            std::string why = importer.GetErrorString();
+            throw Exception(path, "cannot read the mesh (" + (why.empty() ? std::string("unknown format") : why) + ")");
+        }
+        if (scene->mRootNode == nullptr || !scene->HasMeshes())
+            throw Exception(path, "no triangles (the file holds no mesh)");
+
+        Mesh mesh;
+        mesh.source = path;
+        LoadReport report;
+        Collector collector{scene, path, mesh, report};
+        collector.visit(scene->mRootNode, aiMatrix4x4());
+        if (report.rawVertices > 0)
+        {
+            aiVector3D c = collector.centerSum;
+            c /= static_cast<float>(report.rawVertices);
+            report.omplAppCenter = Eigen::Vector3d(c.x, c.y, c.z);
+        }
+
+        mesh.validate();  // NaN/Inf, indices, and "no triangles" (e.g. a point cloud or lines only)
+        report.clean = cleanMesh(mesh);
+        if (mesh.triangles.empty())
+            throw Exception(path, "no triangles left: all " + std::to_string(report.rawTriangles) +
+                                      " triangles are degenerate (zero area)");
+        if (report.clean.degenerate > 0)
+            OMPL_WARN("%s: dropped %zu degenerate (zero-area) triangles", path.c_str(), report.clean.degenerate);
+        if (report.clean.duplicates > 0)
+            OMPL_INFORM("%s: dropped %zu duplicated triangles (same three vertices)", path.c_str(),
+                        report.clean.duplicates);
+        report.components = countComponents(mesh);
+        if (reportOut)
+            *reportOut = report;
+        return mesh;
+    }
+}  // namespace meshgap
