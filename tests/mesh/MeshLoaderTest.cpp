@@ -1,0 +1,118 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "meshgap/Exception.h"
+#include "meshgap/mesh/MeshLoader.h"
+
+using namespace meshgap;
+
+namespace
+{
+    const std::string RES = MESHGAP_TEST_RESOURCES_DIR;
+
+    void expectUnitCube(const std::string &file)
+    {
+        LoadReport report;
+        const Mesh m = loadMesh(RES + "/" + file, &report);
+        EXPECT_EQ(m.vertices.size(), 8u) << file;
+        EXPECT_EQ(m.triangles.size(), 12u) << file;
+        EXPECT_EQ(report.components, 1u) << file;
+        EXPECT_EQ(countComponents(m), 1u) << file;
+        EXPECT_EQ(m.bounds().min(), Eigen::Vector3d(0, 0, 0)) << file;
+        EXPECT_EQ(m.bounds().max(), Eigen::Vector3d(1, 1, 1)) << file;
+        EXPECT_TRUE(report.omplAppCenter.isApprox(Eigen::Vector3d(0.5, 0.5, 0.5), 1e-6)) << file;
+        // Outward winding survives: positive enclosed volume of 1.
+        double volume = 0.0;
+        for (const Triangle &t : m.triangles)
+            volume += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
+        EXPECT_NEAR(volume, 1.0, 1e-12) << file;
+    }
+}  // namespace
+
+TEST(MeshLoader, EveryFormatGivesTheWeldedCube)
+{
+    expectUnitCube("cube.obj");         // quads: triangulated
+    expectUnitCube("cube_ascii.stl");   // a vertex per facet corner: welded
+    expectUnitCube("cube_binary.stl");
+    expectUnitCube("cube.ply");
+}
+
+TEST(MeshLoader, ColladaNodeTransformAndUpAxisAreApplied)
+{
+    const Mesh m = loadMesh(RES + "/cube.dae");
+    std::ifstream in(RES + "/cube.dae.expected");
+    std::vector<Eigen::Vector3d> expected;
+    double x, y, z;
+    while (in >> x >> y >> z)
+        expected.emplace_back(x, y, z);
+    ASSERT_EQ(expected.size(), 8u);
+    ASSERT_EQ(m.vertices.size(), 8u);
+    for (const Eigen::Vector3d &e : expected)
+    {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const Eigen::Vector3d &v : m.vertices)
+            nearest = std::min(nearest, (v - e).norm());
+        EXPECT_LT(nearest, 1e-5) << e.transpose();
+    }
+}
+
+TEST(MeshLoader, SeparatePartsAreSeparateComponents)
+{
+    LoadReport report;
+    const Mesh m = loadMesh(RES + "/two_parts.obj", &report);
+    EXPECT_EQ(m.vertices.size(), 8u);
+    EXPECT_EQ(m.triangles.size(), 8u);
+    EXPECT_EQ(report.components, 2u);
+}
+
+TEST(MeshLoader, DegenerateTrianglesAreDroppedNotFatal)
+{
+    LoadReport report;
+    const Mesh m = loadMesh(RES + "/bad/degenerate.obj", &report);
+    EXPECT_EQ(m.triangles.size(), 12u);
+    EXPECT_EQ(report.clean.degenerate, 2u);
+    EXPECT_EQ(m.vertices.size(), 8u);
+}
+
+TEST(MeshLoader, BadFilesThrowOneErrorNamingTheFile)
+{
+    const std::map<std::string, std::string> expectedWords = {
+        {"nan.obj", "NaN"}, {"inf.obj", "NaN or infinite"}, {"empty.obj", ""}, {"points.ply", "triangles"},
+        {"badindex.obj", ""}, {"garbage.obj", ""}, {"truncated.stl", ""}, {"corrupt.dae", ""}};
+    int tried = 0;
+    for (const auto &entry : std::filesystem::directory_iterator(RES + "/bad"))
+    {
+        const std::string name = entry.path().filename().string();
+        if (name == "degenerate.obj" || entry.path().extension() == ".cfg")
+            continue;
+        ++tried;
+        try
+        {
+            loadMesh(entry.path().string());
+            ADD_FAILURE() << name << " loaded without error";
+        }
+        catch (const Exception &e)
+        {
+            const std::string what = e.what();
+            EXPECT_EQ(what.rfind(entry.path().string() + ": ", 0), 0u) << what;
+            const auto it = expectedWords.find(name);
+            if (it != expectedWords.end())
+            {
+                EXPECT_NE(what.find(it->second), std::string::npos) << what;
+            }
+        }
+    }
+    EXPECT_GE(tried, 8);
+    try
+    {
+        loadMesh("/nonexistent/thing.stl");
+        FAIL();
+    }
+    catch (const Exception &e)
+    {
+        EXPECT_STREQ(e.what(), "/nonexistent/thing.stl: no such file");
+    }
+}
