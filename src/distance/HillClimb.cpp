@@ -1,6 +1,7 @@
 #include "meshgap/distance/HillClimb.h"
 
 #include <chrono>
+#include <limits>
 #include <random>
 
 #include "meshgap/Exception.h"
@@ -9,9 +10,11 @@ namespace meshgap
 {
     namespace
     {
-        // Steepest descent of one node of the pair while the other stays fixed. Returns the moves made.
+        // Steepest descent of one node of the pair while the other stays fixed. Returns the moves made; sets
+        // \e stopped when the evaluation cap prevented an evaluation (the best pair so far is kept).
         template <bool MoveA>
-        std::size_t descend(PairEvaluator &evaluator, const SurfaceGraph &graph, NodePair &pair, double &d2)
+        std::size_t descend(PairEvaluator &evaluator, const SurfaceGraph &graph, NodePair &pair, double &d2,
+                            std::size_t cap, bool &stopped)
         {
             std::size_t moves = 0;
             for (;;)
@@ -21,6 +24,11 @@ namespace meshgap
                 double best = d2;
                 for (const std::uint32_t *n = graph.beginNeighbours(here); n != graph.endNeighbours(here); ++n)
                 {
+                    if (evaluator.evaluations() >= cap)
+                    {
+                        stopped = true;
+                        break;
+                    }
                     const double d = MoveA ? evaluator.d2(*n, pair.b) : evaluator.d2(pair.a, *n);
                     if (d < best)
                     {
@@ -28,25 +36,32 @@ namespace meshgap
                         bestNode = *n;
                     }
                 }
-                if (bestNode == here)
+                if (bestNode != here)
+                {
+                    (MoveA ? pair.a : pair.b) = bestNode;
+                    d2 = best;
+                    ++moves;
+                }
+                if (stopped || bestNode == here)
                     return moves;
-                (MoveA ? pair.a : pair.b) = bestNode;
-                d2 = best;
-                ++moves;
             }
         }
     }  // namespace
 
-    std::size_t hillClimb(PairEvaluator &evaluator, NodePair &pair, double &d2)
+    std::size_t hillClimb(PairEvaluator &evaluator, NodePair &pair, double &d2, std::size_t maxEvaluations)
     {
+        const std::size_t cap = maxEvaluations == 0 ? std::numeric_limits<std::size_t>::max() : maxEvaluations;
         std::size_t total = 0;
+        bool stopped = false;
         for (;;)
         {
-            const std::size_t onA = descend<true>(evaluator, evaluator.a().graph(), pair, d2);
-            const std::size_t onB = descend<false>(evaluator, evaluator.b().graph(), pair, d2);
-            total += onA + onB;
+            total += descend<true>(evaluator, evaluator.a().graph(), pair, d2, cap, stopped);
+            if (stopped)
+                return total;
+            const std::size_t onB = descend<false>(evaluator, evaluator.b().graph(), pair, d2, cap, stopped);
+            total += onB;
             // B's descent ended with no improving move for B; if it moved at all, A may improve again.
-            if (onB == 0)
+            if (stopped || onB == 0)
                 return total;
         }
     }
@@ -71,7 +86,7 @@ namespace meshgap
         }
         PairEvaluator evaluator(a, b, X_AB);
         double d2 = evaluator.d2(pair);
-        result.localSteps = hillClimb(evaluator, pair, d2);
+        result.localSteps = hillClimb(evaluator, pair, d2, request.maxEvaluations);
         evaluator.fill(pair, d2, result);
         result.iterations = 1;
         result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

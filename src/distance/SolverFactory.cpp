@@ -4,6 +4,8 @@
 #include <map>
 
 #include "meshgap/Exception.h"
+#include "meshgap/distance/CombGA.h"
+#include "meshgap/distance/CombSA.h"
 #include "meshgap/distance/Enumeration.h"
 #include "meshgap/distance/HillClimb.h"
 
@@ -14,6 +16,10 @@ namespace meshgap
         const std::map<std::string, std::function<DistanceSolverPtr()>> &registry()
         {
             static const std::map<std::string, std::function<DistanceSolverPtr()>> solvers = {
+                {"comb-GA-nl", [] { return std::make_shared<CombGA>(false); }},
+                {"comb-GA-wl", [] { return std::make_shared<CombGA>(true); }},
+                {"comb-SA-nl", [] { return std::make_shared<CombSA>(false); }},
+                {"comb-SA-wl", [] { return std::make_shared<CombSA>(true); }},
                 {"enumeration", [] { return std::make_shared<Enumeration>(); }},
                 {"hill-climb", [] { return std::make_shared<HillClimb>(); }},
             };
