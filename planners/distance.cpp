@@ -53,7 +53,7 @@ namespace
         options.distances = distances;
         BodyPtr body = Body::build(mesh, options);
         const Eigen::AlignedBox3d box = mesh.bounds();
-        OMPL_INFORM("%s: %s: %zu vertices, %zu triangles, %zu components, box [%g %g %g]..[%g %g %g]", label,
+        OMPL_INFORM("%s: %s: %zu vertices, %zu triangles, components: %zu, box [%g %g %g]..[%g %g %g]", label,
                     mesh.source.c_str(), mesh.vertices.size(), mesh.triangles.size(), report.components,
                     box.min().x(), box.min().y(), box.min().z(), box.max().x(), box.max().y(), box.max().z());
         if (body->gridSize() > 0.0)

@@ -1,0 +1,873 @@
+// meshgap_makemap: writes the paper's three test scenes (Carretero & Nahon, Section IV) as meshes, poses and
+// OMPL.app problem files:
+//
+//   battery_fixture  ORU battery (B) near an insertion pose on its fixture (A), two poses (cm, Table II)
+//   hand_bowl        a hand (B) whose middle fingertip is about to touch a bowl's rim (A) (mm, Table IV)
+//   handshake        two hands about to shake, B's thumb tip nearest to A's index tip (mm)
+//
+// Each body is built from planar-faced polyhedra (meshgap/mesh/Shapes.h) gridded at the paper's grid sizes. Each
+// pose is designed by hand and then slid along one direction until the exact (triangle-triangle) distance between
+// the meshes equals the paper's "exact" minimum distance for that example (Tables III, V, VI).
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <boost/program_options.hpp>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "CliMain.h"
+#include "meshgap/Exception.h"
+#include "meshgap/mesh/Mesh.h"
+#include "meshgap/mesh/MeshLoader.h"
+#include "meshgap/mesh/MeshWriter.h"
+#include "meshgap/mesh/Shapes.h"
+
+namespace po = boost::program_options;
+
+namespace
+{
+    using meshgap::Mesh;
+    using meshgap::Polygon2d;
+    using meshgap::Polyhedron;
+    using Eigen::Vector2d;
+    using Eigen::Vector3d;
+
+    constexpr double pi = 3.14159265358979323846;
+
+    double radians(double degrees)
+    {
+        return degrees * pi / 180.0;
+    }
+
+    // ---------------------------------------------------------------------------------------------------------
+    // Exact distance between two triangle meshes (both in the same frame), with a bounding-volume hierarchy.
+    // ---------------------------------------------------------------------------------------------------------
+
+    /** \brief Closest point to p on triangle abc (Ericson, Real-Time Collision Detection, 5.1.5). */
+    Vector3d closestOnTriangle(const Vector3d &p, const Vector3d &a, const Vector3d &b, const Vector3d &c)
+    {
+        const Vector3d ab = b - a, ac = c - a, ap = p - a;
+        const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+        if (d1 <= 0.0 && d2 <= 0.0)
+            return a;
+        const Vector3d bp = p - b;
+        const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+        if (d3 >= 0.0 && d4 <= d3)
+            return b;
+        const double vc = d1 * d4 - d3 * d2;
+        if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
+            return a + ab * (d1 / (d1 - d3));
+        const Vector3d cp = p - c;
+        const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+        if (d6 >= 0.0 && d5 <= d6)
+            return c;
+        const double vb = d5 * d2 - d1 * d6;
+        if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
+            return a + ac * (d2 / (d2 - d6));
+        const double va = d3 * d6 - d5 * d4;
+        if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+            return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+        const double denom = 1.0 / (va + vb + vc);
+        return a + ab * (vb * denom) + ac * (vc * denom);
+    }
+
+    /** \brief Closest points of segments p1q1 and p2q2 (Ericson 5.1.9). */
+    std::pair<Vector3d, Vector3d> closestOnSegments(const Vector3d &p1, const Vector3d &q1, const Vector3d &p2,
+                                                    const Vector3d &q2)
+    {
+        const Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+        const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+        double s = 0.0, t = 0.0;
+        if (a <= 0.0 && e <= 0.0)
+            return {p1, p2};
+        if (a <= 0.0)
+            t = std::clamp(f / e, 0.0, 1.0);
+        else
+        {
+            const double c = d1.dot(r);
+            if (e <= 0.0)
+                s = std::clamp(-c / a, 0.0, 1.0);
+            else
+            {
+                const double b = d1.dot(d2), denom = a * e - b * b;
+                s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+                t = (b * s + f) / e;
+                if (t < 0.0)
+                {
+                    t = 0.0;
+                    s = std::clamp(-c / a, 0.0, 1.0);
+                }
+                else if (t > 1.0)
+                {
+                    t = 1.0;
+                    s = std::clamp((b - c) / a, 0.0, 1.0);
+                }
+            }
+        }
+        return {p1 + d1 * s, p2 + d2 * t};
+    }
+
+    /** \brief Does segment pq cross triangle abc (not merely lie in its plane)? */
+    bool segmentCrossesTriangle(const Vector3d &p, const Vector3d &q, const Vector3d &a, const Vector3d &b,
+                                const Vector3d &c, Vector3d &hit)
+    {
+        const Vector3d n = (b - a).cross(c - a);
+        const double dp = n.dot(p - a), dq = n.dot(q - a);
+        if ((dp > 0.0 && dq > 0.0) || (dp < 0.0 && dq < 0.0) || dp == dq)
+            return false;
+        hit = p + (q - p) * (dp / (dp - dq));
+        return n.dot((b - a).cross(hit - a)) >= 0.0 && n.dot((c - b).cross(hit - b)) >= 0.0 &&
+               n.dot((a - c).cross(hit - c)) >= 0.0;
+    }
+
+    struct Closest
+    {
+        double distance{std::numeric_limits<double>::infinity()};
+        Vector3d onA{Vector3d::Zero()}, onB{Vector3d::Zero()};
+        std::size_t triangleA{0}, triangleB{0};
+    };
+
+    /** \brief Exact distance between triangles (0 when they intersect). */
+    void triangleDistance(const std::array<Vector3d, 3> &s, const std::array<Vector3d, 3> &t, Closest &best,
+                          std::size_t i, std::size_t j)
+    {
+        auto consider = [&](const Vector3d &x, const Vector3d &y) {
+            const double d = (x - y).norm();
+            if (d < best.distance)
+                best = {d, x, y, i, j};
+        };
+        Vector3d hit;
+        for (int k = 0; k < 3; ++k)
+        {
+            if (segmentCrossesTriangle(s[k], s[(k + 1) % 3], t[0], t[1], t[2], hit) ||
+                segmentCrossesTriangle(t[k], t[(k + 1) % 3], s[0], s[1], s[2], hit))
+            {
+                consider(hit, hit);
+                return;
+            }
+        }
+        for (int k = 0; k < 3; ++k)
+        {
+            consider(s[k], closestOnTriangle(s[k], t[0], t[1], t[2]));
+            consider(closestOnTriangle(t[k], s[0], s[1], s[2]), t[k]);
+            for (int l = 0; l < 3; ++l)
+            {
+                const auto [x, y] = closestOnSegments(s[k], s[(k + 1) % 3], t[l], t[(l + 1) % 3]);
+                consider(x, y);
+            }
+        }
+    }
+
+    class Bvh
+    {
+    public:
+        explicit Bvh(const Mesh &mesh) : mesh_(mesh)
+        {
+            order_.resize(mesh.triangles.size());
+            for (std::size_t i = 0; i < order_.size(); ++i)
+                order_[i] = i;
+            build(0, order_.size());
+        }
+
+        /** \brief Exact distance between this mesh and \e other's (0 if their surfaces intersect). */
+        Closest distance(const Bvh &other) const
+        {
+            Closest best;
+            std::vector<std::pair<int, int>> stack{{0, 0}};
+            while (!stack.empty())
+            {
+                const auto [a, b] = stack.back();
+                stack.pop_back();
+                const Node &na = nodes_[a], &nb = other.nodes_[b];
+                if (boxDistance(na.box, nb.box) >= best.distance)
+                    continue;
+                const bool leafA = na.left < 0, leafB = nb.left < 0;
+                if (leafA && leafB)
+                {
+                    for (std::size_t i = na.begin; i < na.end; ++i)
+                        for (std::size_t j = nb.begin; j < nb.end; ++j)
+                            triangleDistance(corners(order_[i]), other.corners(other.order_[j]), best, order_[i],
+                                             other.order_[j]);
+                    if (best.distance == 0.0)
+                        return best;
+                    continue;
+                }
+                if (leafB || (!leafA && na.box.diagonal().norm() >= nb.box.diagonal().norm()))
+                {
+                    const double dl = boxDistance(nodes_[na.left].box, nb.box);
+                    const double dr = boxDistance(nodes_[na.right].box, nb.box);
+                    stack.emplace_back(dl < dr ? na.right : na.left, b);
+                    stack.emplace_back(dl < dr ? na.left : na.right, b);
+                }
+                else
+                {
+                    const double dl = boxDistance(na.box, other.nodes_[nb.left].box);
+                    const double dr = boxDistance(na.box, other.nodes_[nb.right].box);
+                    stack.emplace_back(a, dl < dr ? nb.right : nb.left);
+                    stack.emplace_back(a, dl < dr ? nb.left : nb.right);
+                }
+            }
+            return best;
+        }
+
+    private:
+        struct Node
+        {
+            Eigen::AlignedBox3d box;
+            int left{-1}, right{-1};
+            std::size_t begin{0}, end{0};
+        };
+
+        std::array<Vector3d, 3> corners(std::size_t t) const
+        {
+            const meshgap::Triangle &f = mesh_.triangles[t];
+            return {mesh_.vertices[f[0]], mesh_.vertices[f[1]], mesh_.vertices[f[2]]};
+        }
+
+        static double boxDistance(const Eigen::AlignedBox3d &a, const Eigen::AlignedBox3d &b)
+        {
+            const Vector3d gap = (a.min() - b.max()).cwiseMax(b.min() - a.max()).cwiseMax(0.0);
+            return gap.norm();
+        }
+
+        int build(std::size_t begin, std::size_t end)
+        {
+            const int index = static_cast<int>(nodes_.size());
+            nodes_.emplace_back();
+            Eigen::AlignedBox3d box;
+            for (std::size_t i = begin; i < end; ++i)
+                for (const Vector3d &p : corners(order_[i]))
+                    box.extend(p);
+            nodes_[index].box = box;
+            nodes_[index].begin = begin;
+            nodes_[index].end = end;
+            if (end - begin <= 4)
+                return index;
+            int axis = 0;
+            box.diagonal().maxCoeff(&axis);
+            const std::size_t mid = (begin + end) / 2;
+            auto centroid = [&](std::size_t t) {
+                const auto c = corners(t);
+                return c[0][axis] + c[1][axis] + c[2][axis];
+            };
+            std::nth_element(order_.begin() + static_cast<long>(begin), order_.begin() + static_cast<long>(mid),
+                             order_.begin() + static_cast<long>(end),
+                             [&](std::size_t x, std::size_t y) { return centroid(x) < centroid(y); });
+            const int left = build(begin, mid);
+            const int right = build(mid, end);
+            nodes_[index].left = left;
+            nodes_[index].right = right;
+            return index;
+        }
+
+        const Mesh &mesh_;
+        std::vector<std::size_t> order_;
+        std::vector<Node> nodes_;
+    };
+
+    Mesh posed(const Mesh &body, const Eigen::Isometry3d &X)
+    {
+        Mesh m = body;
+        meshgap::transformMesh(m, X);
+        return m;
+    }
+
+    /** \brief Exact distance between A (its hierarchy) and B placed at X. */
+    Closest distanceAt(const Bvh &bvhA, const Mesh &b, const Eigen::Isometry3d &X)
+    {
+        const Mesh moved = posed(b, X);
+        const Bvh bvhB(moved);
+        return bvhA.distance(bvhB);
+    }
+
+    /** \brief Slide B from pose X along the unit direction w until its exact distance to A is \e gap. Moving B by
+        delta changes the distance by at most |delta|, so each step of (distance - gap) along w never overshoots;
+        the iteration converges when w has a component along the separating direction. */
+    Eigen::Isometry3d placeAtGap(const Bvh &bvhA, const Mesh &b, Eigen::Isometry3d X,
+                                 const Vector3d &w, double gap, const std::string &what)
+    {
+        for (int step = 0; step < 20000; ++step)
+        {
+            const double d = distanceAt(bvhA, b, X).distance;
+            if (d == 0.0)
+                throw meshgap::Exception(what, "the designed pose already intersects the fixed body");
+            if (std::abs(d - gap) <= 1e-12 * (1.0 + gap))
+                return X;
+            X.pretranslate((d - gap) * w);
+        }
+        throw meshgap::Exception(what, "placing at the target gap did not converge");
+    }
+
+    // ---------------------------------------------------------------------------------------------------------
+    // Bodies
+    // ---------------------------------------------------------------------------------------------------------
+
+    /** \brief Index of the face of p with outward normal n whose plane passes through point q. */
+    std::size_t findFace(const Polyhedron &p, const Vector3d &n, const Vector3d &q)
+    {
+        for (std::size_t f = 0; f < p.faces().size(); ++f)
+            if (p.faceNormal(f).dot(n) > 1.0 - 1e-9 &&
+                std::abs((p.corners()[p.faces()[f].loops[0][0]] - q).dot(n)) < 1e-9)
+                return f;
+        throw meshgap::Exception("meshgap_makemap", "internal error: no face found for a feature");
+    }
+
+    /** \brief A hexagon ("round, linearised with 6 sides") on the plane x = x0, centred at (y, z), a corner
+        pointing along +y. */
+    std::vector<Vector3d> hexagonOnX(double x0, double y, double z, double circumradius)
+    {
+        std::vector<Vector3d> points;
+        for (const Vector2d &q : meshgap::regularPolygon({y, z}, circumradius, 6))
+            points.emplace_back(x0, q.x(), q.y());
+        return points;
+    }
+
+    // Battery and fixture, in cm (Table II: 92 x 74 x 31 and 62 x 86 x 99).
+    // The paper's "grid size" g is read as the spacing of a square grid cut into right triangles: edges g and
+    // g * sqrt(2). So bodies are meshed with edges at most sqrt(2) g (they then average about g).
+    const double sqrt2 = std::sqrt(2.0);
+    const double batteryGrid = 5.0 * sqrt2;     // Table II's 0.05 m = 5 cm (see maps/README.md)
+    constexpr double holeRadius = 3.0;          // alignment holes: hexagons of circumradius 3, 12 deep
+    constexpr double holeDepth = 12.0;
+    constexpr double pegRadius = 2.5;           // pegs: hexagons of circumradius 2.5, 10 long
+    constexpr double pegLength = 10.0;
+    constexpr double shelfTop = 6.0;            // the battery sits on the fixture's shelf
+    const Vector2d pegAt[2] = {{-24.0, 24.0}, {24.0, 72.0}};  // (y, z) of the pegs on the fixture plate
+
+    /** \brief Battery (body frame): box x in [0, 31] (x = 0 the back face, towards the fixture), y in [-37, 37],
+        z in [0, 92], with two blind hexagonal alignment holes in the back face. */
+    Mesh battery()
+    {
+        Polyhedron p = meshgap::prismPolyhedron({{0.0, -37.0}, {31.0, -37.0}, {31.0, 37.0}, {0.0, 37.0}}, {}, 92.0);
+        const std::size_t back = findFace(p, -Vector3d::UnitX(), Vector3d::Zero());
+        for (const Vector2d &peg : pegAt)
+            p.addBoss(back, hexagonOnX(0.0, peg.x(), peg.y() - shelfTop, holeRadius), -holeDepth);
+        return p.mesh(meshgap::uniformSizing(batteryGrid), "battery");
+    }
+
+    /** \brief Fixture (world frame): an L bracket, back plate x in [-8, 0], z in [0, 99] and shelf x in [-8, 54],
+        z in [0, 6], y in [-43, 43], with a lip along the shelf's front edge (x in [48, 54], up to z = 14); two
+        hexagonal pegs on the plate's front face (x = 0) and two guide rails on the shelf either side of the
+        battery. */
+    Mesh fixture()
+    {
+        Polyhedron p = meshgap::prismPolyhedron(
+            {{-8.0, 0.0}, {54.0, 0.0}, {54.0, 14.0}, {48.0, 14.0}, {48.0, shelfTop}, {0.0, shelfTop}, {0.0, 99.0},
+             {-8.0, 99.0}},
+            {}, 86.0);
+        // Profile drawn in (x, z), extruded along -y: (X, Y, Z) -> (X, 43 - Z, Y).
+        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+        X.linear() << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+        X.translation() = Vector3d(0.0, 43.0, 0.0);
+        p.transform(X);
+        const std::size_t plate = findFace(p, Vector3d::UnitX(), Vector3d::Zero());
+        for (const Vector2d &peg : pegAt)
+            p.addBoss(plate, hexagonOnX(0.0, peg.x(), peg.y(), pegRadius), pegLength);
+        const std::size_t shelf = findFace(p, Vector3d::UnitZ(), Vector3d(0.0, 0.0, shelfTop));
+        for (double side : {-1.0, 1.0})
+        {
+            const double y0 = side * 38.5, y1 = side * 42.0;
+            p.addBoss(shelf, {{10.0, y0, shelfTop}, {44.0, y0, shelfTop}, {44.0, y1, shelfTop}, {10.0, y1, shelfTop}},
+                      6.0);
+        }
+        return p.mesh(meshgap::uniformSizing(batteryGrid), "fixture");
+    }
+
+    // Hand and bowl, in mm (Table IV: hand 130 x 185 x 90, grid 3 to 30; bowl 300 x 60, grid 10, 36 segments).
+
+    // Hand grid (before the sqrt(2)): 3 mm within 6 mm of a fingertip, growing slowly along the fingers (by
+    // handGrading per mm) and fast (0.35 per mm more) beyond 70 mm from the nearest tip, up to 30 mm on the back.
+    constexpr double handGrading = 0.055;
+
+    struct Finger
+    {
+        std::string name;
+        Vector3d base;                  // knuckle, inside the palm
+        std::array<double, 3> lengths;  // phalanges
+        std::array<double, 3> flex;     // bend at each joint towards the palm (degrees), cumulative
+        double splay;                   // sideways angle (degrees, + towards the little finger)
+        double radius;
+    };
+
+    struct Hand
+    {
+        Mesh mesh;
+        std::vector<std::pair<std::string, Vector3d>> tips;    // fingertip points (body frame)
+        std::vector<std::pair<std::string, std::size_t>> parts;  // part name, first triangle
+    };
+
+    /** \brief A right hand (body frame): back of the hand towards +z, palm towards -z, fingers along +y, thumb on
+        the -x side, wrist at y = 0. Palm slab plus five bent fingers, each one closed shell (six components that
+        overlap where the fingers enter the palm). Grid 3 mm at the fingertips growing to 30 mm away from them. */
+    Hand hand()
+    {
+        const std::vector<Finger> fingers = {
+            {"index", {-29.0, 84.0, 1.0}, {47.0, 28.0, 21.0}, {18.0, 32.0, 20.0}, -6.0, 9.0},
+            {"middle", {-8.0, 88.0, 1.0}, {54.0, 32.0, 24.0}, {14.0, 30.0, 18.0}, 0.0, 9.5},
+            {"ring", {13.0, 86.0, 1.0}, {48.0, 29.0, 21.0}, {18.0, 32.0, 20.0}, 5.0, 9.0},
+            {"little", {32.0, 80.0, 1.0}, {38.0, 23.0, 19.0}, {22.0, 34.0, 20.0}, 11.0, 8.0},
+        };
+        std::vector<std::pair<std::string, std::vector<Vector3d>>> paths;
+        std::vector<double> radii;
+        for (const Finger &f : fingers)
+        {
+            const Vector3d forward(std::sin(radians(f.splay)), std::cos(radians(f.splay)), 0.0);
+            std::vector<Vector3d> path{f.base};
+            double bend = 0.0;
+            for (int k = 0; k < 3; ++k)
+            {
+                bend += radians(f.flex[k]);
+                path.push_back(path.back() + f.lengths[k] * (std::cos(bend) * forward - std::sin(bend) *
+                                                                                            Vector3d::UnitZ()));
+            }
+            paths.emplace_back(f.name, path);
+            radii.push_back(f.radius);
+        }
+        // Thumb: from the base of the palm's thumb side outwards, forwards and under the palm.
+        paths.emplace_back("thumb", std::vector<Vector3d>{{-30.0, 22.0, -2.0},
+                                                          {-60.0, 46.0, -20.0},
+                                                          {-71.0, 72.0, -36.0},
+                                                          {-70.0, 92.0, -57.0}});
+        radii.push_back(10.5);
+
+        Hand result;
+        for (std::size_t i = 0; i < paths.size(); ++i)
+        {
+            const auto &path = paths[i].second;
+            const Vector3d tangent = (path.back() - path[path.size() - 2]).normalized();
+            result.tips.emplace_back(paths[i].first, path.back() + radii[i] * tangent);
+        }
+        std::vector<Vector3d> tipPoints;
+        for (const auto &tip : result.tips)
+            tipPoints.push_back(tip.second);
+        const meshgap::SizingFunction sizing = [tipPoints](const Vector3d &p) {
+            double d = std::numeric_limits<double>::infinity();
+            for (const Vector3d &t : tipPoints)
+                d = std::min(d, (p - t).norm());
+            return sqrt2 *
+                   std::min(30.0, 3.0 + handGrading * std::max(0.0, d - 6.0) + 0.35 * std::max(0.0, d - 70.0));
+        };
+        std::vector<Mesh> parts;
+        Polyhedron palm = meshgap::prismPolyhedron({{-38.0, 0.0},
+                                                    {36.0, 0.0},
+                                                    {45.0, 18.0},
+                                                    {46.0, 78.0},
+                                                    {40.0, 92.0},
+                                                    {-36.0, 97.0},
+                                                    {-45.0, 86.0},
+                                                    {-47.0, 30.0}},
+                                                   {}, 34.0);
+        Eigen::Isometry3d down = Eigen::Isometry3d::Identity();
+        down.translation().z() = -17.0;
+        palm.transform(down);
+        result.parts.emplace_back("palm", 0);
+        parts.push_back(palm.mesh(sizing, "hand palm"));
+        std::size_t triangles = parts.back().triangles.size();
+        for (std::size_t i = 0; i < paths.size(); ++i)
+        {
+            result.parts.emplace_back(paths[i].first, triangles);
+            parts.push_back(meshgap::tubePolyhedron(paths[i].second, radii[i], 12, 4)
+                                .mesh(sizing, "hand " + paths[i].first));
+            triangles += parts.back().triangles.size();
+        }
+        result.mesh = meshgap::mergeMeshes(parts, "hand");
+        return result;
+    }
+
+    constexpr double bowlGrid = 11.6;  // grid giving Table IV's node count (see maps/README.md)
+
+    /** \brief Bowl (body frame): outer diameter 300, height 60, wall 6, rim at z = 60, foot on z = 0; the circle
+        linearised with 36 segments, grid 10. */
+    Mesh bowl()
+    {
+        std::vector<Vector2d> profile{{0.0, 0.0}, {80.0, 0.0}};
+        const int wall = 12;
+        for (int k = 1; k <= wall; ++k)  // outer wall: quarter ellipse from (80, 0) to (150, 60)
+        {
+            const double t = 0.5 * pi * k / wall;
+            profile.emplace_back(80.0 + 70.0 * std::sin(t), 60.0 * (1.0 - std::cos(t)));
+        }
+        for (int k = wall; k >= 0; --k)  // inner wall: from (144, 60) down to (80, 6)
+        {
+            const double t = 0.5 * pi * k / wall;
+            profile.emplace_back(80.0 + 64.0 * std::sin(t), 6.0 + 54.0 * (1.0 - std::cos(t)));
+        }
+        profile.emplace_back(0.0, 6.0);
+        return meshgap::revolutionPolyhedron(profile, 36).mesh(meshgap::uniformSizing(bowlGrid), "bowl");
+    }
+
+    // ---------------------------------------------------------------------------------------------------------
+    // Scenes
+    // ---------------------------------------------------------------------------------------------------------
+
+    struct Parts
+    {
+        std::vector<std::string> names;
+        std::vector<std::size_t> label;  // per triangle, an index into names
+    };
+
+    struct Scene
+    {
+        std::string name, units, description;
+        Mesh a, b;                               // A in the world frame; B in its body frame (not yet centred)
+        std::vector<Eigen::Isometry3d> poses;    // B's body frame in A's frame
+        Eigen::Isometry3d goal;                  // a pose clear of A (for the planning problem)
+        Parts partsA, partsB;                    // named groups of triangles (for the report)
+    };
+
+    Eigen::Isometry3d pose(const Vector3d &translation, const Eigen::Matrix3d &rotation = Eigen::Matrix3d::Identity())
+    {
+        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+        X.linear() = rotation;
+        X.translation() = translation;
+        return X;
+    }
+
+    Eigen::Matrix3d rotation(const Vector3d &axis, double degrees)
+    {
+        return Eigen::AngleAxisd(radians(degrees), axis.normalized()).toRotationMatrix();
+    }
+
+    /** \brief The triangles of one part (all vertices kept). */
+    Mesh partMesh(const Mesh &m, const Parts &parts, std::size_t i)
+    {
+        Mesh part = m;
+        part.triangles.clear();
+        for (std::size_t t = 0; t < m.triangles.size(); ++t)
+            if (parts.label[t] == i)
+                part.triangles.push_back(m.triangles[t]);
+        return part;
+    }
+
+    /** \brief Parts of a body whose triangles come in consecutive runs (name, first triangle). */
+    Parts partsByRuns(const std::vector<std::pair<std::string, std::size_t>> &runs, std::size_t triangles)
+    {
+        Parts parts;
+        parts.label.assign(triangles, 0);
+        for (std::size_t i = 0; i < runs.size(); ++i)
+        {
+            parts.names.push_back(runs[i].first);
+            for (std::size_t t = runs[i].second; t < triangles; ++t)
+                parts.label[t] = i;
+        }
+        return parts;
+    }
+
+    /** \brief Parts of a body told apart by where each triangle's centroid is. */
+    Parts partsByPlace(const Mesh &m, std::vector<std::string> names,
+                       const std::function<std::size_t(const Vector3d &)> &classify)
+    {
+        Parts parts;
+        parts.names = std::move(names);
+        for (const meshgap::Triangle &t : m.triangles)
+            parts.label.push_back(classify((m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0));
+        return parts;
+    }
+
+    Scene batteryFixture()
+    {
+        Scene s;
+        s.name = "battery_fixture";
+        s.units = "cm";
+        s.a = fixture();
+        s.b = battery();
+        const Bvh bvh(s.a);
+        // Position 1: battery 4 cm off the plate (pegs 6 cm into the holes), 0.3 cm above the shelf, rolled 0.1
+        // degrees; slid sideways (-y) until a peg is 0.0747 from its hole's wall (Table III, exact).
+        const Eigen::Isometry3d p1 =
+            pose(Vector3d(4.0, 0.0, shelfTop + 0.3), rotation(Vector3d::UnitX(), 0.1));
+        s.poses.push_back(placeAtGap(bvh, s.b, p1, -Vector3d::UnitY(), 0.0747, "battery_fixture position 1"));
+        // Position 2: 2.5 cm off the plate, yawed 0.3 degrees, 0.25 above the shelf; slid +y to 0.0987.
+        const Eigen::Isometry3d p2 =
+            pose(Vector3d(2.5, 0.0, shelfTop + 0.25), rotation(Vector3d::UnitZ(), 0.3));
+        s.poses.push_back(placeAtGap(bvh, s.b, p2, Vector3d::UnitY(), 0.0987, "battery_fixture position 2"));
+        s.goal = pose(s.poses.front().translation() + Vector3d(40.0, 0.0, 30.0));
+        auto near = [](double x, double y) { return std::abs(x - y) < 1e-9; };
+        auto nearAxis = [](const Vector3d &c, const Vector2d &axis, double radius) {
+            return (Vector2d(c.y(), c.z()) - axis).norm() <= radius + 1e-9;
+        };
+        s.partsA = partsByPlace(s.a, {"peg1", "peg2", "plate", "shelf", "rails", "other"}, [&](const Vector3d &c) {
+            for (std::size_t i = 0; i < 2; ++i)
+                if (c.x() > 1e-9 && c.x() <= pegLength + 1e-9 && nearAxis(c, pegAt[i], pegRadius))
+                    return i;
+            if (near(c.x(), 0.0))
+                return std::size_t(2);
+            if (near(c.z(), shelfTop))
+                return std::size_t(3);
+            if (c.z() > shelfTop + 1e-9 && std::abs(c.y()) >= 38.5 - 1e-9 && c.x() > 1e-9)
+                return std::size_t(4);
+            return std::size_t(5);
+        });
+        s.partsB = partsByPlace(s.b, {"hole1", "hole2", "back", "bottom", "other"}, [&](const Vector3d &c) {
+            for (std::size_t i = 0; i < 2; ++i)
+                if (c.x() > 1e-9 && c.x() <= holeDepth + 1e-9 &&
+                    nearAxis(c, pegAt[i] - Vector2d(0.0, shelfTop), holeRadius))
+                    return i;
+            if (near(c.x(), 0.0))
+                return std::size_t(2);
+            if (near(c.z(), 0.0))
+                return std::size_t(3);
+            return std::size_t(4);
+        });
+        return s;
+    }
+
+    Scene handBowl()
+    {
+        Scene s;
+        s.name = "hand_bowl";
+        s.units = "mm";
+        s.a = bowl();
+        Hand h = hand();
+        s.b = h.mesh;
+        const Bvh bvh(s.a);
+        // Hand over the rim at +x, fingers pointing at the bowl's axis (-x), palm down; tilted so the middle
+        // fingertip hangs lowest, then lowered until it is 4.7527 from the rim (Table V, exact).
+        const Eigen::Matrix3d R = rotation(Vector3d::UnitZ(), 90.0) * rotation(Vector3d::UnitX(), -8.0);
+        Vector3d middleTip = Vector3d::Zero();
+        for (const auto &tip : h.tips)
+            if (tip.first == "middle")
+                middleTip = tip.second;
+        const Vector3d start = Vector3d(147.0, 4.0, 60.0 + 20.0) - R * middleTip;  // between rim nodes
+        s.poses.push_back(placeAtGap(bvh, s.b, pose(start, R), -Vector3d::UnitZ(), 4.7527, "hand_bowl"));
+        s.goal = pose(s.poses.front().translation() + Vector3d(60.0, 0.0, 150.0), R);
+        s.partsA = partsByRuns({{"bowl", 0}}, s.a.triangles.size());
+        s.partsB = partsByRuns(h.parts, s.b.triangles.size());
+        return s;
+    }
+
+    Scene handshake()
+    {
+        Scene s;
+        s.name = "handshake";
+        s.units = "mm";
+        Hand h = hand();
+        // A: right hand, fingers along +y, palm facing -x, thumb up (body z -> world x, body x -> world -z).
+        Eigen::Matrix3d RA;
+        RA << 0, 0, 1, 0, 1, 0, -1, 0, 0;
+        s.a = posed(h.mesh, pose(Vector3d::Zero(), RA));
+        s.b = h.mesh;
+        // B: the other person's right hand, turned half about the vertical to face A, a little higher and tilted.
+        const Eigen::Matrix3d RB = rotation(Vector3d::UnitY(), 25.0) * rotation(Vector3d::UnitZ(), 180.0) * RA;
+        Vector3d indexA = Vector3d::Zero(), thumbB = Vector3d::Zero();
+        for (const auto &tip : h.tips)
+        {
+            if (tip.first == "index")
+                indexA = RA * tip.second;
+            if (tip.first == "thumb")
+                thumbB = RB * tip.second;
+        }
+        // B's thumb tip placed beside and above A's index tip, then slid along that offset to 18.95 (Table VI).
+        const Vector3d offset = Vector3d(-0.8, 0.45, 0.3).normalized();
+        const Vector3d start = indexA + 45.0 * offset - thumbB;
+        const Bvh bvh(s.a);
+        s.poses.push_back(placeAtGap(bvh, s.b, pose(start, RB), -offset, 18.95, "handshake"));
+        s.goal = pose(s.poses.front().translation() + Vector3d(-150.0, 0.0, 0.0), RB);
+        s.partsA = partsByRuns(h.parts, s.a.triangles.size());
+        s.partsB = partsByRuns(h.parts, s.b.triangles.size());
+        return s;
+    }
+
+    // ---------------------------------------------------------------------------------------------------------
+    // Output
+    // ---------------------------------------------------------------------------------------------------------
+
+    std::string number(double x)
+    {
+        char buffer[64];
+        std::snprintf(buffer, sizeof buffer, "%.17g", x);
+        return buffer;
+    }
+
+    void writeText(const std::filesystem::path &path, const std::string &text)
+    {
+        const std::filesystem::path temporary = path.string() + ".tmp";
+        std::FILE *file = std::fopen(temporary.c_str(), "w");
+        if (file == nullptr)
+            throw meshgap::Exception(path.string(), "cannot open for writing");
+        const bool ok = std::fputs(text.c_str(), file) >= 0;
+        if (std::fclose(file) != 0 || !ok)
+            throw meshgap::Exception(path.string(), "write failed");
+        std::filesystem::rename(temporary, path);
+    }
+
+    std::size_t closedEdgeFaults(const Mesh &m)
+    {
+        std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+        for (const meshgap::Triangle &t : m.triangles)
+            for (int k = 0; k < 3; ++k)
+                ++uses[std::minmax(t[k], t[(k + 1) % 3])];
+        std::size_t faults = 0;
+        for (const auto &entry : uses)
+            faults += entry.second != 2;
+        return faults;
+    }
+
+    double meanEdge(const Mesh &m)
+    {
+        double sum = 0.0;
+        for (const meshgap::Triangle &t : m.triangles)
+            for (int k = 0; k < 3; ++k)
+                sum += (m.vertices[t[k]] - m.vertices[t[(k + 1) % 3]]).norm();
+        return m.triangles.empty() ? 0.0 : sum / (3.0 * static_cast<double>(m.triangles.size()));
+    }
+
+    double minVertexDistance(const Mesh &a, const Mesh &b)
+    {
+        double best = std::numeric_limits<double>::infinity();
+        for (const Vector3d &p : a.vertices)
+            for (const Vector3d &q : b.vertices)
+                best = std::min(best, (p - q).squaredNorm());
+        return std::sqrt(best);
+    }
+
+    void writeScene(Scene s, const std::filesystem::path &directory)
+    {
+        std::filesystem::create_directories(directory);
+        // B is stored with the mean of its unique vertices at the origin; the .poses file holds B's pose in A's frame.
+        const Vector3d centre = meshgap::vertexMean(s.b);
+        meshgap::transformMesh(s.b, pose(-centre));
+        for (Eigen::Isometry3d &X : s.poses)
+            X = X * pose(centre);
+        s.goal = s.goal * pose(centre);
+        s.a.source = s.name + "_a";
+        s.b.source = s.name + "_b";
+        meshgap::writeObj(s.a, (directory / (s.name + "_a.obj")).string());
+        meshgap::writeObj(s.b, (directory / (s.name + "_b.obj")).string());
+
+        std::ostringstream poses;
+        for (const Eigen::Isometry3d &X : s.poses)
+        {
+            const Eigen::Quaterniond q(X.linear());
+            poses << number(X.translation().x()) << ' ' << number(X.translation().y()) << ' '
+                  << number(X.translation().z()) << ' ' << number(q.x()) << ' ' << number(q.y()) << ' '
+                  << number(q.z()) << ' ' << number(q.w()) << '\n';
+        }
+        writeText(directory / (s.name + ".poses"), poses.str());
+
+        Eigen::AlignedBox3d volume = s.a.bounds();
+        volume.extend(s.poses.front().translation());
+        volume.extend(s.goal.translation());
+        const double margin = 0.25 * volume.diagonal().norm();
+        std::ostringstream cfg;
+        cfg << "[problem]\nname = " << s.name << "\nrobot = " << s.name << "_b.obj\nworld = " << s.name
+            << "_a.obj\n";
+        auto state = [&cfg](const std::string &prefix, const Eigen::Isometry3d &X) {
+            Eigen::AngleAxisd aa(X.linear());
+            Vector3d axis = aa.axis();
+            if (aa.angle() == 0.0)
+                axis = Vector3d::UnitZ();
+            cfg << prefix << ".x = " << number(X.translation().x()) << '\n'
+                << prefix << ".y = " << number(X.translation().y()) << '\n'
+                << prefix << ".z = " << number(X.translation().z()) << '\n'
+                << prefix << ".theta = " << number(aa.angle()) << '\n'
+                << prefix << ".axis.x = " << number(axis.x()) << '\n'
+                << prefix << ".axis.y = " << number(axis.y()) << '\n'
+                << prefix << ".axis.z = " << number(axis.z()) << '\n';
+        };
+        // The .cfg holds OMPL.app states. OMPL.app shifts a robot by the mean of every vertex assimp returns for the
+        // file (its per-face copies included), c, which is not B's origin: p = R (v - c) + x. So the state that puts
+        // B where its pose X does is X * translate(c), read from the file just written with meshgap's own loader.
+        meshgap::LoadReport robotReport;
+        meshgap::loadMesh((directory / (s.name + "_b.obj")).string(), &robotReport);
+        const Eigen::Isometry3d toState = pose(robotReport.omplAppCenter);
+        state("start", s.poses.front() * toState);
+        state("goal", s.goal * toState);
+        const char *axes = "xyz";
+        for (int k = 0; k < 3; ++k)
+            cfg << "volume.min." << axes[k] << " = " << number(std::floor(volume.min()[k] - margin)) << '\n';
+        for (int k = 0; k < 3; ++k)
+            cfg << "volume.max." << axes[k] << " = " << number(std::ceil(volume.max()[k] + margin)) << '\n';
+        writeText(directory / (s.name + ".cfg"), cfg.str());
+
+        // Report (and check) what was written.
+        auto describe = [](const char *label, const Mesh &m) {
+            const Eigen::Vector3d extent = m.bounds().diagonal();
+            std::printf("  %s: %zu nodes, %zu triangles, %zu components, %zu open edges, volume %.6g, "
+                        "extent %.4g x %.4g x %.4g, edges %.4g mean %.4g longest\n",
+                        label, m.vertices.size(), m.triangles.size(), meshgap::countComponents(m),
+                        closedEdgeFaults(m), meshgap::signedVolume(m), extent.x(), extent.y(), extent.z(),
+                        meanEdge(m), meshgap::longestEdge(m));
+        };
+        std::printf("%s (%s) -> %s\n", s.name.c_str(), s.units.c_str(), directory.string().c_str());
+        describe("A", s.a);
+        describe("B", s.b);
+        const Bvh bvh(s.a);
+        auto check = [&](const char *label, const Eigen::Isometry3d &X) {
+            const Closest c = distanceAt(bvh, s.b, X);
+            if (!(c.distance > 0.0))
+                throw meshgap::Exception(s.name, std::string(label) + ": B touches A");
+            const Mesh moved = posed(s.b, X);
+            std::printf("  %s: exact distance %.10g (A %s at %.4f %.4f %.4f, B %s), nearest nodes %.6g\n", label,
+                        c.distance, s.partsA.names[s.partsA.label[c.triangleA]].c_str(), c.onA.x(), c.onA.y(),
+                        c.onA.z(), s.partsB.names[s.partsB.label[c.triangleB]].c_str(),
+                        minVertexDistance(s.a, moved));
+            if (s.partsA.names.size() * s.partsB.names.size() == 1)
+                return;
+            // Distance between each part of A and each of B: each is (at least) one local minimum.
+            std::vector<std::pair<double, std::string>> pairs;
+            for (std::size_t i = 0; i < s.partsA.names.size(); ++i)
+            {
+                const Mesh partA = partMesh(s.a, s.partsA, i);
+                const Bvh bvhPart(partA);
+                for (std::size_t j = 0; j < s.partsB.names.size(); ++j)
+                    pairs.emplace_back(bvhPart.distance(Bvh(partMesh(moved, s.partsB, j))).distance,
+                                       s.partsA.names[i] + "-" + s.partsB.names[j]);
+            }
+            std::sort(pairs.begin(), pairs.end());
+            std::printf("    closest part pairs (A-B):");
+            const std::size_t shown = std::min<std::size_t>(8, pairs.size());
+            for (std::size_t k = 0; k < shown; ++k)
+                std::printf(" %s %.4g%s", pairs[k].second.c_str(), pairs[k].first, k + 1 < shown ? "," : "\n");
+        };
+        for (std::size_t i = 0; i < s.poses.size(); ++i)
+            check(("pose " + std::to_string(i + 1)).c_str(), s.poses[i]);
+        check("goal", s.goal);
+    }
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    return meshgap::cli::runMain(argc, argv, [](int ac, char **av) {
+        const std::vector<std::pair<std::string, std::function<Scene()>>> scenes = {
+            {"battery_fixture", batteryFixture}, {"hand_bowl", handBowl}, {"handshake", handshake}};
+        po::options_description options("meshgap_makemap: write the paper's test scenes (meshes, poses, OMPL.app "
+                                        "problems)");
+        std::string out, which;
+        options.add_options()("help,h", "show this help")(
+            "out", po::value<std::string>(&out)->required(), "output directory (one sub-directory per scene)")(
+            "scene", po::value<std::string>(&which)->default_value("all"),
+            "battery_fixture, hand_bowl, handshake or all");
+        po::variables_map vm;
+        po::store(po::parse_command_line(ac, av, options), vm);
+        if (vm.count("help"))
+        {
+            std::cout << options << '\n';
+            return 0;
+        }
+        po::notify(vm);
+        std::string names;
+        bool found = false;
+        for (const auto &scene : scenes)
+        {
+            names += (names.empty() ? "" : ", ") + scene.first;
+            found = found || scene.first == which;
+        }
+        if (which != "all" && !found)
+            throw meshgap::Exception("--scene", "unknown scene '" + which + "' (valid: " + names + ", all)");
+        for (const auto &scene : scenes)
+            if (which == "all" || which == scene.first)
+                writeScene(scene.second(), std::filesystem::path(out) / scene.first);
+        return 0;
+    });
+}
