@@ -9,6 +9,7 @@
 
 #include <boost/program_options.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <ompl/util/Console.h>
@@ -16,6 +17,7 @@
 
 #include "CliMain.h"
 #include "meshgap/Exception.h"
+#include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/SolverFactory.h"
 #include "meshgap/mesh/Body.h"
 #include "meshgap/mesh/MeshLoader.h"
@@ -77,7 +79,9 @@ namespace
         out << "{\"algorithm\": \"" << algorithm << "\", \"distance\": " << r.distance << ", \"nodes\": [" << r.nodes.a
             << ", " << r.nodes.b << "], \"witness_a\": [" << vec(r.onA, ", ") << "], \"witness_b\": ["
             << vec(r.onB, ", ") << "], \"evaluations\": " << r.evaluations << ", \"time_us\": " << r.seconds * 1e6
-            << ", \"node_optimal\": " << (r.nodeOptimal ? "true" : "false") << "}";
+            << ", \"node_optimal\": " << (r.nodeOptimal ? "true" : "false") << ", \"in_collision\": "
+            << (r.inCollision ? "true" : "false") << ", \"certified\": " << (r.certified ? "true" : "false")
+            << ", \"node_distance\": " << (std::isfinite(r.nodeDistance) ? r.nodeDistance : r.distance) << "}";
         return out.str();
     }
 
@@ -100,6 +104,7 @@ namespace
             ("grid-b", po::value(&gridB), "grid size for body B only")
             ("cache", po::value(&cacheDir), "folder for cached mesh-distance tables")
             ("memory-budget", po::value(&budgetMiB), "largest all-pairs mesh-distance table, MiB (default 512)")
+            ("exact", "refine the answer to the exact, certified surface distance (triangles + BVH)")
             ("json", "print JSON instead of text or CSV")
             ("quiet,q", "print warnings and errors only");
         po::options_description hidden;
@@ -165,33 +170,48 @@ namespace
 
         DistanceRequest request;
         request.seed = seed;
-        const bool many = !posesFile.empty(), asJson = vm.count("json") > 0;
+        const bool many = !posesFile.empty(), asJson = vm.count("json") > 0, exact = vm.count("exact") > 0;
         if (many)
             std::cout << (asJson ? "[\n" : "index,distance,evaluations,time_us,node_a,node_b,"
-                                           "witness_a_x,witness_a_y,witness_a_z,witness_b_x,witness_b_y,witness_b_z\n");
+                                           "witness_a_x,witness_a_y,witness_a_z,witness_b_x,witness_b_y,witness_b_z,"
+                                           "in_collision,certified,node_distance\n");
         auto lastReport = std::chrono::steady_clock::now();
         for (std::size_t i = 0; i < poses.size(); ++i)
         {
             DistanceResult result;
+            const auto queryStart = std::chrono::steady_clock::now();
             solver->solve(*a, *b, poses[i], request, result);
+            if (exact && !result.certified)
+                refineExact(*a, *b, poses[i], result);
+            else if (!result.certified)
+                result.inCollision = inCollision(*a, *b, poses[i]);  // collision is always decided exactly
+            result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - queryStart).count();
             if (!many)
             {
                 if (asJson)
                     std::cout << json(result, algorithm) << "\n";
                 else
-                    std::printf("algorithm      %s\ndistance       %.10g\nnode pair      A %u, B %u\n"
-                                "witness on A   %s\nwitness on B   %s\nevaluations    %zu\ntime           %.3f ms\n",
-                                algorithm.c_str(), result.distance, result.nodes.a, result.nodes.b,
+                {
+                    std::printf("algorithm      %s%s\ndistance       %.10g (%s)\n", algorithm.c_str(),
+                                exact && algorithm != "exact" ? " + exact" : "", result.distance,
+                                result.certified ? "exact, certified" : "node to node: an upper bound");
+                    if (result.certified && std::isfinite(result.nodeDistance))
+                        std::printf("node distance  %.10g\n", result.nodeDistance);
+                    std::printf("in collision   %s\nnode pair      A %u, B %u\nwitness on A   %s\nwitness on B   %s\n"
+                                "evaluations    %zu\ntime           %.3f ms\n",
+                                result.inCollision ? "yes" : "no", result.nodes.a, result.nodes.b,
                                 vec(result.onA, " ").c_str(), vec(result.onB, " ").c_str(), result.evaluations,
                                 result.seconds * 1e3);
+                }
                 continue;
             }
             if (asJson)
                 std::cout << "  " << json(result, algorithm) << (i + 1 < poses.size() ? ",\n" : "\n");
             else
-                std::printf("%zu,%.17g,%zu,%.3f,%u,%u,%s,%s\n", i, result.distance, result.evaluations,
+                std::printf("%zu,%.17g,%zu,%.3f,%u,%u,%s,%s,%d,%d,%.17g\n", i, result.distance, result.evaluations,
                             result.seconds * 1e6, result.nodes.a, result.nodes.b, vec(result.onA, ",").c_str(),
-                            vec(result.onB, ",").c_str());
+                            vec(result.onB, ",").c_str(), result.inCollision ? 1 : 0, result.certified ? 1 : 0,
+                            std::isfinite(result.nodeDistance) ? result.nodeDistance : result.distance);
             const auto now = std::chrono::steady_clock::now();
             if (now - lastReport > std::chrono::seconds(2))
             {

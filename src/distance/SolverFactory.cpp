@@ -7,6 +7,7 @@
 #include "meshgap/distance/CombGA.h"
 #include "meshgap/distance/CombSA.h"
 #include "meshgap/distance/Enumeration.h"
+#include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/HillClimb.h"
 
 namespace meshgap
@@ -21,6 +22,7 @@ namespace meshgap
                 {"comb-SA-nl", [] { return std::make_shared<CombSA>(false); }},
                 {"comb-SA-wl", [] { return std::make_shared<CombSA>(true); }},
                 {"enumeration", [] { return std::make_shared<Enumeration>(); }},
+                {"exact", [] { return std::make_shared<ExactSolver>(); }},
                 {"hill-climb", [] { return std::make_shared<HillClimb>(); }},
             };
             return solvers;

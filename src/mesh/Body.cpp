@@ -16,7 +16,11 @@ namespace meshgap
         if (!std::isfinite(h))
             h = 0.0;
         body->gridSize_ = h;
-        body->mesh_ = refineMesh(mesh, h, &body->refinement_);
+        std::vector<std::uint32_t> parent;
+        body->mesh_ = refineMesh(mesh, h, &body->refinement_, &parent);
+        body->surface_ = std::move(mesh);
+        body->bvh_ = std::make_unique<TriangleBvh>(body->surface_);
+        body->buildSurfaceMaps(parent);
         body->graph_ = std::make_shared<const SurfaceGraph>(body->mesh_);
         body->distanceOptions_ = options.distances;
         body->buildClusters();
@@ -34,6 +38,61 @@ namespace meshgap
                                                 "answered on demand");
         });
         return *distances_;
+    }
+
+    namespace
+    {
+        /** \brief Compressed rows from (row, value) pairs, values sorted and unique per row. */
+        void toRows(std::vector<std::pair<std::uint32_t, std::uint32_t>> &pairs, std::size_t rows,
+                    std::vector<std::uint32_t> &offsets, std::vector<std::uint32_t> &values)
+        {
+            std::sort(pairs.begin(), pairs.end());
+            pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+            offsets.assign(rows + 1, 0);
+            values.resize(pairs.size());
+            for (std::size_t k = 0; k < pairs.size(); ++k)
+            {
+                ++offsets[pairs[k].first + 1];
+                values[k] = pairs[k].second;
+            }
+            for (std::size_t i = 0; i < rows; ++i)
+                offsets[i + 1] += offsets[i];
+        }
+    }  // namespace
+
+    void Body::buildSurfaceMaps(const std::vector<std::uint32_t> &parent)
+    {
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+        pairs.reserve(3 * mesh_.triangles.size());
+        for (std::size_t t = 0; t < mesh_.triangles.size(); ++t)
+            for (std::uint32_t v : mesh_.triangles[t])
+                pairs.emplace_back(v, parent[t]);
+        toRows(pairs, mesh_.vertices.size(), nodeTriangleOffsets_, nodeTriangles_);
+
+        // Triangles around each surface vertex, then each triangle's corner-sharing neighbours.
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> corner;
+        for (std::uint32_t t = 0; t < surface_.triangles.size(); ++t)
+            for (std::uint32_t v : surface_.triangles[t])
+                corner.emplace_back(v, t);
+        std::vector<std::uint32_t> vertexOffsets, vertexTriangles;
+        toRows(corner, surface_.vertices.size(), vertexOffsets, vertexTriangles);
+        pairs.clear();
+        for (std::uint32_t t = 0; t < surface_.triangles.size(); ++t)
+            for (std::uint32_t v : surface_.triangles[t])
+                for (std::uint32_t k = vertexOffsets[v]; k < vertexOffsets[v + 1]; ++k)
+                    if (vertexTriangles[k] != t)
+                        pairs.emplace_back(t, vertexTriangles[k]);
+        toRows(pairs, surface_.triangles.size(), triangleNeighbourOffsets_, triangleNeighbours_);
+
+        // Closed: every undirected edge in exactly two triangles.
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+        for (const Triangle &f : surface_.triangles)
+            for (int k = 0; k < 3; ++k)
+                edges.push_back(std::minmax(f[k], f[(k + 1) % 3]));
+        std::sort(edges.begin(), edges.end());
+        closed_ = !edges.empty();
+        for (std::size_t i = 0; i < edges.size() && closed_; i += 2)
+            closed_ = i + 1 < edges.size() && edges[i] == edges[i + 1] && (i + 2 >= edges.size() || edges[i + 2] != edges[i]);
     }
 
     void Body::buildClusters()

@@ -19,9 +19,12 @@ namespace meshgap
         }
     }  // namespace
 
-    Mesh refineMesh(const Mesh &input, double h, RefineReport *report)
+    Mesh refineMesh(const Mesh &input, double h, RefineReport *report, std::vector<std::uint32_t> *parentOut)
     {
         Mesh mesh = input;
+        std::vector<std::uint32_t> parent(mesh.triangles.size());
+        for (std::uint32_t t = 0; t < parent.size(); ++t)
+            parent[t] = t;
         if (report)
         {
             report->nodesBefore = input.vertices.size();
@@ -83,6 +86,7 @@ namespace meshgap
                     const auto u = static_cast<std::uint32_t>(mesh.triangles.size());
                     mesh.triangles[t] = {p, m, r};
                     mesh.triangles.push_back({m, q, r});
+                    parent.push_back(parent[t]);
                     removeFromEdge(q, r, t);
                     addEdge(q, r, u);
                     addEdge(p, m, t);
@@ -92,6 +96,8 @@ namespace meshgap
                 }
             }
         }
+        if (parentOut)
+            parentOut->swap(parent);
         if (report)
         {
             report->nodesAfter = mesh.vertices.size();

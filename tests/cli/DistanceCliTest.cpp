@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -119,13 +120,63 @@ TEST(DistanceCli, PosesGiveCsvRowsThatMatchTheGeometry)
     fs::remove(poses);
 }
 
+TEST(DistanceCli, ExactAndCollisionColumns)
+{
+    // Cube [0,1]^3 against the same cube turned 45 degrees about z: B's corner edge (0,0,z) stays put and its
+    // corner (0,1,z) swings to (-c, c, z), c = sqrt(1/2), B's leading (leftmost) vertical edge. Moved by
+    // (x0 + c, 0.5 - c, 0) that edge stands at x = x0, y = 0.5, facing A's face x = 1 edge-on: the exact gap is
+    // x0 - 1 (node pairs: at least that). x0 = 1.5, then 0.9
+    // (the edge cuts into A: collision).
+    const double c = std::sqrt(0.5);
+    const std::string poses = (fs::temp_directory_path() / ("meshgap_cli_x" + std::to_string(::getpid()) + ".path")).string();
+    std::ofstream(poses) << std::setprecision(17) << 1.5 + c << " " << 0.5 - c << " 0 0 0 " << std::sin(M_PI / 8)
+                         << " " << std::cos(M_PI / 8) << "\n"
+                         << 0.9 + c << " " << 0.5 - c << " 0 0 0 " << std::sin(M_PI / 8) << " " << std::cos(M_PI / 8)
+                         << "\n";
+    for (const char *extra : {"", " --exact"})
+    {
+        const CliRun r = run(RES + "/cube.obj " + RES + "/cube.obj --grid 0 --poses " + poses + extra);
+        ASSERT_EQ(r.status, 0) << r.err;
+        std::istringstream in(r.out);
+        std::string header, row;
+        std::getline(in, header);
+        EXPECT_NE(header.find(",in_collision,certified,node_distance"), std::string::npos) << header;
+        std::vector<std::vector<std::string>> rows;
+        while (std::getline(in, row))
+        {
+            std::vector<std::string> cells;
+            std::istringstream split(row);
+            std::string cell;
+            while (std::getline(split, cell, ','))
+                cells.push_back(cell);
+            rows.push_back(cells);
+        }
+        ASSERT_EQ(rows.size(), 2u);
+        const std::size_t collision = rows[0].size() - 3, certified = rows[0].size() - 2;
+        EXPECT_EQ(rows[0][collision], "0") << extra;
+        EXPECT_EQ(rows[1][collision], "1") << extra;  // decided exactly even without --exact
+        EXPECT_EQ(rows[0][certified], *extra ? "1" : "0");
+        if (*extra)
+        {
+            // B's corner (0,0) turned by 45 degrees about z sits at x = 1.5 (its leading edge): gap 0.5 to x = 1.
+            EXPECT_NEAR(std::stod(rows[0][1]), 0.5, 1e-12);
+            EXPECT_EQ(std::stod(rows[1][1]), 0.0);
+        }
+        else
+        {
+            EXPECT_GE(std::stod(rows[0][1]), 0.5);  // a node answer is never below the exact one
+        }
+    }
+    fs::remove(poses);
+}
+
 TEST(DistanceCli, JsonAndTextAgree)
 {
     const std::string meshes = RES + "/cube.obj " + RES + "/cube.obj --pose '3 0 0 0 0 0 1' --grid 0";
     const CliRun text = run(meshes), json = run(meshes + " --json");
     ASSERT_EQ(text.status, 0) << text.err;
     ASSERT_EQ(json.status, 0) << json.err;
-    EXPECT_NE(text.out.find("distance       2\n"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("distance       2 (node to node"), std::string::npos) << text.out;
     EXPECT_NE(json.out.find("\"distance\": 2,"), std::string::npos) << json.out;
     EXPECT_NE(text.out.find("witness on A   1 "), std::string::npos) << text.out;
 }

@@ -43,7 +43,25 @@ TEST(Refine, ClosedBoxStaysClosedOrientedAndOnItsSurface)
     for (double h : {2.0, 0.7, 0.25})
     {
         RefineReport report;
-        const Mesh fine = refineMesh(box, h, &report);
+        std::vector<std::uint32_t> parent;
+        const Mesh fine = refineMesh(box, h, &report, &parent);
+        // Every fine triangle lies in its parent: its corners are on the parent's plane and inside it.
+        ASSERT_EQ(parent.size(), fine.triangles.size());
+        for (std::size_t t = 0; t < fine.triangles.size(); ++t)
+        {
+            const Triangle &P = box.triangles[parent[t]];
+            const Eigen::Vector3d &p0 = box.vertices[P[0]], &p1 = box.vertices[P[1]], &p2 = box.vertices[P[2]];
+            const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
+            for (std::uint32_t v : fine.triangles[t])
+            {
+                const Eigen::Vector3d x = fine.vertices[v];
+                EXPECT_NEAR(n.normalized().dot(x - p0), 0.0, 1e-12);
+                // Inside: the three sub-areas add up to the whole.
+                const double whole = n.norm(), parts = (p1 - x).cross(p2 - x).norm() + (p2 - x).cross(p0 - x).norm() +
+                                                       (p0 - x).cross(p1 - x).norm();
+                EXPECT_NEAR(parts, whole, 1e-9 * whole);
+            }
+        }
         EXPECT_LE(longestEdge(fine), h) << h;
         EXPECT_DOUBLE_EQ(report.longestEdge, longestEdge(fine));
         EXPECT_EQ(report.nodesAfter, fine.vertices.size());

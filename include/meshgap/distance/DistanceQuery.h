@@ -49,6 +49,17 @@ namespace meshgap
         double seconds{0.0};         ///< wall time of the query
         /** \brief True only when the answer is proven to be the minimum over all node pairs (enumeration). */
         bool nodeOptimal{false};
+
+        // Filled by the exact stage (refineExact(), the "exact" solver); untouched by node-level solvers.
+        /** \brief The node-to-node distance the exact stage started from (infinity if it had no seed). */
+        double nodeDistance{std::numeric_limits<double>::infinity()};
+        /** \brief distance is the exact surface distance, proven by a completed bounding-volume traversal (or, for
+            a collision, by an intersecting triangle pair or a contained body). */
+        bool certified{false};
+        /** \brief The bodies intersect, touch, or one (closed) body lies inside the other. distance is then 0. */
+        bool inCollision{false};
+        std::uint32_t triangleA{0}, triangleB{0};  ///< closest surface triangles (Body::surface() indices)
+        std::size_t triangleTests{0};              ///< exact triangle-pair tests made
         /** \brief Best value after each iteration, when DistanceRequest::recordHistory is set. */
         std::vector<double> history;
 

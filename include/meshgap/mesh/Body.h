@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "meshgap/ClassForward.h"
+#include "meshgap/geometry/TriangleBvh.h"
 #include "meshgap/mesh/Mesh.h"
 #include "meshgap/mesh/MeshDistances.h"
 #include "meshgap/mesh/Refine.h"
@@ -38,8 +39,9 @@ namespace meshgap
         std::uint32_t begin, end;  ///< range in Body::clusterOrder()
     };
 
-    /** \brief A rigid body for distance queries: its (refined) surface mesh, the surface graph Pi, mesh distances
-        D/P, and node data laid out for fast enumeration. Immutable once built and safe to share between threads;
+    /** \brief A rigid body for distance queries: its surface as given (with a triangle BVH, for exact distance and
+        collision), the refined mesh whose nodes the combinatorial solvers search, the surface graph Pi, mesh
+        distances D/P, and node data laid out for fast enumeration. Immutable once built and safe to share between threads;
         the mesh distances are computed on first request (once, thread-safely), since enumeration and hill climbing
         do not need them. */
     class Body
@@ -49,7 +51,33 @@ namespace meshgap
         static BodyPtr build(Mesh mesh, const BodyOptions &options = BodyOptions());
 
         const std::string &name() const { return mesh_.source; }
+        /** \brief The refined mesh: its vertices are the nodes the combinatorial solvers search. */
         const Mesh &mesh() const { return mesh_; }
+        /** \brief The surface as given (cleaned, not refined): what exact distance and collision use. */
+        const Mesh &surface() const { return surface_; }
+        /** \brief BVH over surface()'s triangles. */
+        const TriangleBvh &bvh() const { return *bvh_; }
+        /** \brief Surface triangles that contain node \e i (at a corner, on an edge or inside). */
+        const std::uint32_t *beginNodeTriangles(std::uint32_t i) const
+        {
+            return nodeTriangles_.data() + nodeTriangleOffsets_[i];
+        }
+        const std::uint32_t *endNodeTriangles(std::uint32_t i) const
+        {
+            return nodeTriangles_.data() + nodeTriangleOffsets_[i + 1];
+        }
+        /** \brief Surface triangles sharing a corner with surface triangle \e t (t excluded). */
+        const std::uint32_t *beginTriangleNeighbours(std::uint32_t t) const
+        {
+            return triangleNeighbours_.data() + triangleNeighbourOffsets_[t];
+        }
+        const std::uint32_t *endTriangleNeighbours(std::uint32_t t) const
+        {
+            return triangleNeighbours_.data() + triangleNeighbourOffsets_[t + 1];
+        }
+        /** \brief True when every surface edge is shared by exactly two triangles (a closed surface), so inside and
+            outside are defined. */
+        bool isClosed() const { return closed_; }
         const SurfaceGraph &graph() const { return *graph_; }
         const RefineReport &refinement() const { return refinement_; }
         /** \brief The grid size used (0 when not refined). */
@@ -75,8 +103,14 @@ namespace meshgap
     private:
         Body() = default;
         void buildClusters();
+        void buildSurfaceMaps(const std::vector<std::uint32_t> &parent);
 
+        Mesh surface_;
+        std::unique_ptr<TriangleBvh> bvh_;
         Mesh mesh_;
+        std::vector<std::uint32_t> nodeTriangleOffsets_, nodeTriangles_;
+        std::vector<std::uint32_t> triangleNeighbourOffsets_, triangleNeighbours_;
+        bool closed_{false};
         RefineReport refinement_;
         double gridSize_{0.0};
         std::shared_ptr<const SurfaceGraph> graph_;

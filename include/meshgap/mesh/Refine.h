@@ -18,8 +18,10 @@ namespace meshgap
         edge is split the same way on both sides and the surface graph stays connected), the surface is the same
         point set (new nodes lie on the original edges), and triangle shapes stay bounded (each triangle is always cut
         across its own longest edge). Non-manifold edges are split in all their triangles. With \e h <= 0 or
-        infinite, the mesh is returned unchanged. */
-    Mesh refineMesh(const Mesh &mesh, double h, RefineReport *report = nullptr);
+        infinite, the mesh is returned unchanged. If \e parent is given, it receives for every output triangle the
+        index of the input triangle it lies in. */
+    Mesh refineMesh(const Mesh &mesh, double h, RefineReport *report = nullptr,
+                    std::vector<std::uint32_t> *parent = nullptr);
 }  // namespace meshgap
 
 #endif

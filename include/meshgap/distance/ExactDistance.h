@@ -1,0 +1,48 @@
+#ifndef MESHGAP_DISTANCE_EXACT_DISTANCE_H
+#define MESHGAP_DISTANCE_EXACT_DISTANCE_H
+
+#include "meshgap/distance/DistanceSolver.h"
+
+namespace meshgap
+{
+    /** \brief The exact stage after a node-level search (the paper's future work, Section V): turn \e result's node
+        answer into the exact distance between the two surfaces, with a certificate.
+
+        1. Seed: the surface triangles around the result's two nodes; exact triangle distances over those pairs, then
+           a descent over corner-sharing neighbouring triangles while the distance improves. (No seed when
+           result.distance is infinite: the traversal starts from infinity, as a cold exact query.)
+        2. Certificate: a BVH traversal (bvhDistance()) with the seed's value as upper bound either proves nothing is
+           closer or finds the closer pair. certified is set when it completed.
+        3. Collision: an intersecting or touching triangle pair gives distance 0 and inCollision. If no surface pair
+           touches, one body may still lie wholly inside the other: for a closed body, one point of the other body
+           is tested with the generalised winding number (FCL misses this case). Open bodies have no inside, so only
+           surface contact counts for them.
+
+        Overwrites distance, onA/onB, triangleA/B, certified, inCollision, nodeDistance and adds to triangleTests;
+        keeps nodes and the node-level counters. */
+    void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result);
+
+    /** \brief Exact collision test alone: a touching or intersecting surface triangle pair (bvhCollide()), or one
+        closed body wholly inside the other. Cheaper than refineExact(); the same verdict. */
+    bool inCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB);
+
+    /** \brief True when \e p (in the body's frame) is inside the closed body \e body (generalised winding number
+        over its surface triangles > 1/2). Always false for an open body. */
+    bool containsPoint(const Body &body, const Eigen::Vector3d &p);
+
+    /**
+       @anchor mgExact
+       @par Short description
+       Exact, certified distance and collision between two bodies: a hill climb from DistanceRequest::start (a warm
+       start) when given, then refineExact(); without a start, the BVH traversal alone (a cold exact query).
+    */
+    class ExactSolver : public DistanceSolver
+    {
+    public:
+        ExactSolver() : DistanceSolver("exact") {}
+        void solve(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, const DistanceRequest &request,
+                   DistanceResult &result) const override;
+    };
+}  // namespace meshgap
+
+#endif

@@ -1,0 +1,72 @@
+#ifndef MESHGAP_GEOMETRY_TRIANGLE_BVH_H
+#define MESHGAP_GEOMETRY_TRIANGLE_BVH_H
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "meshgap/mesh/Mesh.h"
+
+namespace meshgap
+{
+    /** \brief A bounding-volume hierarchy over a mesh's triangles: a binary tree of axis-aligned boxes in the body
+        frame (each with a bounding sphere about the box centre), built top-down by median split of the triangle
+        centroids along the longest axis, leaves of at most LEAF_SIZE triangles. Between two trees at a relative
+        pose, a box pair is bounded from below by the largest separating-axis gap (the boxes are oriented boxes in
+        each other's frame) and by the gap of the spheres. Immutable; the mesh must outlive the tree. */
+    class TriangleBvh
+    {
+    public:
+        static constexpr std::uint32_t LEAF_SIZE = 4;
+
+        struct Node
+        {
+            Eigen::Vector3d center{Eigen::Vector3d::Zero()};  ///< box centre, body frame
+            Eigen::Vector3d half{Eigen::Vector3d::Zero()};    ///< box half extents
+            double radius{0.0};      ///< every triangle corner of the node lies within radius of center
+            std::uint32_t first{0};  ///< leaf: first index in order(); inner: index of the left child
+            std::uint32_t count{0};  ///< leaf: number of triangles (> 0); inner: 0 (right child is first + 1)
+            bool isLeaf() const { return count > 0; }
+        };
+
+        explicit TriangleBvh(const Mesh &mesh);
+
+        const Mesh &mesh() const { return *mesh_; }
+        const std::vector<Node> &nodes() const { return nodes_; }
+        /** \brief Triangle indices in leaf order. */
+        const std::vector<std::uint32_t> &order() const { return order_; }
+
+    private:
+        const Mesh *mesh_;
+        std::vector<Node> nodes_;
+        std::vector<std::uint32_t> order_;
+    };
+
+    /** \brief What a distance traversal found and what it cost. */
+    struct BvhDistanceResult
+    {
+        /** \brief The smallest triangle-pair distance below the upper bound given, or the upper bound itself when no
+            pair beats it (then found is false and the pair fields are untouched). */
+        double distance{std::numeric_limits<double>::infinity()};
+        bool found{false};
+        std::uint32_t triangleA{0}, triangleB{0};
+        Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};  ///< A's frame
+        std::size_t boxTests{0}, triangleTests{0};
+    };
+
+    /** \brief Exact minimum distance between the triangles of \e a (frame A) and of \e b placed by \e X_AB, searching
+        only for pairs closer than \e upperBound (pass a distance some real pair achieves to prune with it, or
+        infinity). Completes the whole traversal unless \e stopBelow is reached (a pair at or below it ends the
+        search early; pass a negative value to never stop). A completed traversal with found == false proves no pair
+        is closer than \e upperBound. Intersecting triangles have distance 0. */
+    void bvhDistance(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, double upperBound,
+                     double stopBelow, BvhDistanceResult &result);
+
+    /** \brief True when some triangle of \e a intersects (or touches) some triangle of \e b placed by \e X_AB;
+        stops at the first such pair, which is reported through \e hitA / \e hitB when given. */
+    bool bvhCollide(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB,
+                    std::uint32_t *hitA = nullptr, std::uint32_t *hitB = nullptr);
+}  // namespace meshgap
+
+#endif

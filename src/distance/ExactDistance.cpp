@@ -1,0 +1,156 @@
+#include "meshgap/distance/ExactDistance.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "meshgap/Exception.h"
+#include "meshgap/distance/HillClimb.h"
+#include "meshgap/geometry/TriangleDistance.h"
+
+namespace meshgap
+{
+    namespace
+    {
+        struct TriangleCandidate
+        {
+            double d{std::numeric_limits<double>::infinity()};
+            std::uint32_t ta{0}, tb{0};
+            Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};
+        };
+
+        /** \brief Exact distance of surface triangle ta of A to surface triangle tb of B (B's corners into A's frame). */
+        double pairDistance(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, std::uint32_t ta,
+                            std::uint32_t tb, Eigen::Vector3d &onA, Eigen::Vector3d &onB)
+        {
+            const Mesh &sa = a.surface(), &sb = b.surface();
+            const Triangle &fa = sa.triangles[ta], &fb = sb.triangles[tb];
+            return triangleDistance(sa.vertices[fa[0]], sa.vertices[fa[1]], sa.vertices[fa[2]],
+                                    X_AB * sb.vertices[fb[0]], X_AB * sb.vertices[fb[1]], X_AB * sb.vertices[fb[2]],
+                                    onA, onB);
+        }
+
+        void consider(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, std::uint32_t ta, std::uint32_t tb,
+                      TriangleCandidate &best, std::size_t &tests)
+        {
+            Eigen::Vector3d onA, onB;
+            ++tests;
+            const double d = pairDistance(a, b, X_AB, ta, tb, onA, onB);
+            if (d < best.d)
+                best = {d, ta, tb, onA, onB};
+        }
+
+        /** \brief Seed from a node pair: all pairs of surface triangles around the two nodes, then descend over
+            corner-sharing neighbours of the current pair while the distance improves. */
+        TriangleCandidate seedFromNodes(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB,
+                                        const NodePair &nodes, std::size_t &tests)
+        {
+            TriangleCandidate best;
+            for (const std::uint32_t *ta = a.beginNodeTriangles(nodes.a); ta != a.endNodeTriangles(nodes.a); ++ta)
+                for (const std::uint32_t *tb = b.beginNodeTriangles(nodes.b); tb != b.endNodeTriangles(nodes.b); ++tb)
+                    consider(a, b, X_AB, *ta, *tb, best, tests);
+            for (bool improved = std::isfinite(best.d); improved && best.d > 0.0;)
+            {
+                const TriangleCandidate before = best;
+                for (const std::uint32_t *n = a.beginTriangleNeighbours(before.ta);
+                     n != a.endTriangleNeighbours(before.ta); ++n)
+                    consider(a, b, X_AB, *n, before.tb, best, tests);
+                for (const std::uint32_t *n = b.beginTriangleNeighbours(before.tb);
+                     n != b.endTriangleNeighbours(before.tb); ++n)
+                    consider(a, b, X_AB, before.ta, *n, best, tests);
+                improved = best.d < before.d;
+            }
+            return best;
+        }
+
+        /** \brief Solid angle of triangle (a, b, c) seen from the origin (Van Oosterom and Strackee, 1983). */
+        double solidAngle(const Eigen::Vector3d &a, const Eigen::Vector3d &b, const Eigen::Vector3d &c)
+        {
+            const double la = a.norm(), lb = b.norm(), lc = c.norm();
+            const double numerator = a.dot(b.cross(c));
+            const double denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+            return 2.0 * std::atan2(numerator, denominator);
+        }
+    }  // namespace
+
+    bool containsPoint(const Body &body, const Eigen::Vector3d &p)
+    {
+        if (!body.isClosed())
+            return false;
+        const TriangleBvh::Node &root = body.bvh().nodes()[0];
+        if (((p - root.center).cwiseAbs() - root.half).maxCoeff() > 0.0)
+            return false;  // outside the bounding box
+        const Mesh &m = body.surface();
+        double total = 0.0;
+        for (const Triangle &f : m.triangles)
+            total += solidAngle(m.vertices[f[0]] - p, m.vertices[f[1]] - p, m.vertices[f[2]] - p);
+        return std::abs(total) > 2.0 * M_PI;  // winding number |total / 4 pi| > 1/2
+    }
+
+    namespace
+    {
+        /** \brief One body wholly inside the other (they have no surface contact): one point of each decides. */
+        bool oneInsideTheOther(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)
+        {
+            const Eigen::Vector3d &pb = b.surface().vertices[b.surface().triangles[0][0]];
+            const Eigen::Vector3d &pa = a.surface().vertices[a.surface().triangles[0][0]];
+            return containsPoint(a, X_AB * pb) || containsPoint(b, X_AB.inverse() * pa);
+        }
+    }  // namespace
+
+    bool inCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)
+    {
+        return bvhCollide(a.bvh(), b.bvh(), X_AB) || oneInsideTheOther(a, b, X_AB);
+    }
+
+    void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result)
+    {
+        result.nodeDistance = result.distance;
+        TriangleCandidate best;
+        if (std::isfinite(result.distance) && result.nodes.a < a.numNodes() && result.nodes.b < b.numNodes())
+            best = seedFromNodes(a, b, X_AB, result.nodes, result.triangleTests);
+
+        BvhDistanceResult traversal;
+        bvhDistance(a.bvh(), b.bvh(), X_AB, best.d, 0.0, traversal);
+        result.triangleTests += traversal.triangleTests;
+        if (traversal.found)
+            best = {traversal.distance, traversal.triangleA, traversal.triangleB, traversal.onA, traversal.onB};
+        if (!std::isfinite(best.d))
+            throw Exception("exact distance", "a body has no triangles");
+
+        result.distance = best.d;
+        result.onA = best.onA;
+        result.onB = best.onB;
+        result.triangleA = best.ta;
+        result.triangleB = best.tb;
+        result.certified = true;  // the traversal ran to its end, or stopped at a touching pair (distance 0)
+        result.inCollision = best.d <= 0.0;
+        if (!result.inCollision)
+        {
+            if (oneInsideTheOther(a, b, X_AB))
+            {
+                result.inCollision = true;
+                result.distance = 0.0;
+            }
+        }
+    }
+
+    void ExactSolver::solve(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, const DistanceRequest &request,
+                            DistanceResult &result) const
+    {
+        const auto start = std::chrono::steady_clock::now();
+        result = DistanceResult();
+        if (request.start)
+        {
+            NodePair pair = *request.start;
+            if (pair.a >= a.numNodes() || pair.b >= b.numNodes())
+                throw Exception(name_, "start node pair out of range");
+            PairEvaluator evaluator(a, b, X_AB);
+            double d2 = evaluator.d2(pair);
+            result.localSteps = hillClimb(evaluator, pair, d2, request.maxEvaluations);
+            evaluator.fill(pair, d2, result);
+        }
+        refineExact(a, b, X_AB, result);
+        result.iterations = 1;
+        result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+}  // namespace meshgap

@@ -1,0 +1,275 @@
+#include "meshgap/geometry/TriangleBvh.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "meshgap/geometry/TriangleDistance.h"
+
+namespace meshgap
+{
+    TriangleBvh::TriangleBvh(const Mesh &mesh) : mesh_(&mesh)
+    {
+        const auto n = static_cast<std::uint32_t>(mesh.triangles.size());
+        order_.resize(n);
+        std::vector<Eigen::Vector3d> centroid(n);
+        for (std::uint32_t t = 0; t < n; ++t)
+        {
+            order_[t] = t;
+            const Triangle &f = mesh.triangles[t];
+            centroid[t] = (mesh.vertices[f[0]] + mesh.vertices[f[1]] + mesh.vertices[f[2]]) / 3.0;
+        }
+        if (n == 0)
+            return;
+        nodes_.reserve(2 * n / LEAF_SIZE + 2);
+        // Build top-down; each stack entry is (node index, first, count).
+        struct Work
+        {
+            std::uint32_t node, first, count;
+        };
+        nodes_.push_back(Node());
+        std::vector<Work> stack{{0u, 0u, n}};
+        while (!stack.empty())
+        {
+            const Work w = stack.back();
+            stack.pop_back();
+            Eigen::AlignedBox3d box, centres;
+            for (std::uint32_t k = w.first; k < w.first + w.count; ++k)
+            {
+                const Triangle &f = mesh.triangles[order_[k]];
+                for (std::uint32_t v : f)
+                    box.extend(mesh.vertices[v]);
+                centres.extend(centroid[order_[k]]);
+            }
+            Node node;
+            node.center = box.center();
+            node.half = 0.5 * box.sizes();
+            double r2 = 0.0;
+            for (std::uint32_t k = w.first; k < w.first + w.count; ++k)
+                for (std::uint32_t v : mesh.triangles[order_[k]])
+                    r2 = std::max(r2, (mesh.vertices[v] - node.center).squaredNorm());
+            // Rounding slack: bounds must never cut into the geometry they bound.
+            const double slack = 1e-12 * (node.center.norm() + node.half.norm());
+            node.radius = std::sqrt(r2) + slack;
+            node.half.array() += slack;
+            if (w.count <= LEAF_SIZE)
+            {
+                node.first = w.first;
+                node.count = w.count;
+                nodes_[w.node] = node;
+                continue;
+            }
+            int axis;
+            centres.sizes().maxCoeff(&axis);
+            const std::uint32_t half = w.count / 2;
+            std::nth_element(order_.begin() + w.first, order_.begin() + w.first + half,
+                             order_.begin() + w.first + w.count,
+                             [&](std::uint32_t i, std::uint32_t j) { return centroid[i][axis] < centroid[j][axis]; });
+            const auto left = static_cast<std::uint32_t>(nodes_.size());
+            nodes_.push_back(Node());
+            nodes_.push_back(Node());
+            node.first = left;
+            node.count = 0;
+            nodes_[w.node] = node;
+            stack.push_back({left, w.first, half});
+            stack.push_back({left + 1, w.first + half, w.count - half});
+        }
+    }
+
+    namespace
+    {
+        /** \brief The pose of B in A with |R| precomputed (padded so parallel axes never make a bound too large). */
+        struct RelativePose
+        {
+            Eigen::Matrix3d R, absR;
+            Eigen::Vector3d t;
+            explicit RelativePose(const Eigen::Isometry3d &X)
+              : R(X.linear()), absR(R.cwiseAbs().array() + 1e-12), t(X.translation())
+            {
+            }
+        };
+
+        /** \brief Lower bound on the distance between anything in box \e a and anything in box \e b (B's frame),
+            from the six face-axis gaps and the sphere gap; <= 0 means the boxes may touch. */
+        double lowerBound(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X)
+        {
+            const Eigen::Vector3d T = X.R * b.center + X.t - a.center;
+            double bound = T.norm() - a.radius - b.radius;
+            const Eigen::Vector3d rb = X.absR * b.half;             // B's box projected on A's axes
+            bound = std::max(bound, (T.cwiseAbs() - a.half - rb).maxCoeff());
+            const Eigen::Vector3d s = X.R.transpose() * T;          // T on B's axes
+            const Eigen::Vector3d ra = X.absR.transpose() * a.half;  // A's box projected on B's axes
+            bound = std::max(bound, (s.cwiseAbs() - ra - b.half).maxCoeff());
+            return bound;
+        }
+
+        /** \brief Full separating-axis test of the two oriented boxes (15 axes): true if they are disjoint. */
+        bool separated(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X)
+        {
+            if (lowerBound(a, b, X) > 0.0)
+                return true;
+            const Eigen::Vector3d T = X.R * b.center + X.t - a.center;
+            const Eigen::Vector3d &ea = a.half, &eb = b.half;
+            for (int i = 0; i < 3; ++i)
+            {
+                const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+                for (int j = 0; j < 3; ++j)
+                {
+                    const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+                    const double ra = ea[i1] * X.absR(i2, j) + ea[i2] * X.absR(i1, j);
+                    const double rb = eb[j1] * X.absR(i, j2) + eb[j2] * X.absR(i, j1);
+                    if (std::abs(T[i2] * X.R(i1, j) - T[i1] * X.R(i2, j)) > ra + rb)
+                        return true;
+                }
+            }
+            return false;
+        }
+
+        struct PairEntry
+        {
+            std::uint32_t a, b;
+        };
+
+        /** \brief Split the pair on the node with the larger sphere (a leaf cannot be split). */
+        bool splitA(const TriangleBvh::Node &a, const TriangleBvh::Node &b)
+        {
+            return !a.isLeaf() && (b.isLeaf() || a.radius >= b.radius);
+        }
+    }  // namespace
+
+    void bvhDistance(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, double upperBound,
+                     double stopBelow, BvhDistanceResult &result)
+    {
+        result = BvhDistanceResult();
+        result.distance = upperBound;
+        if (a.nodes().empty() || b.nodes().empty())
+            return;
+        const RelativePose X(X_AB);
+        const Mesh &ma = a.mesh(), &mb = b.mesh();
+        std::vector<PairEntry> stack{{0u, 0u}};
+        std::vector<double> bounds{lowerBound(a.nodes()[0], b.nodes()[0], X)};
+        ++result.boxTests;
+        Eigen::Vector3d pb[3], onA, onB;
+        while (!stack.empty())
+        {
+            const PairEntry e = stack.back();
+            const double bound = bounds.back();
+            stack.pop_back();
+            bounds.pop_back();
+            if (bound >= result.distance)
+                continue;  // nothing in this pair can beat the best so far
+            const TriangleBvh::Node &na = a.nodes()[e.a], &nb = b.nodes()[e.b];
+            if (na.isLeaf() && nb.isLeaf())
+            {
+                for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
+                {
+                    const std::uint32_t tb = b.order()[j];
+                    for (int k = 0; k < 3; ++k)
+                        pb[k] = X.R * mb.vertices[mb.triangles[tb][k]] + X.t;
+                    for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
+                    {
+                        const std::uint32_t ta = a.order()[i];
+                        const Triangle &fa = ma.triangles[ta];
+                        ++result.triangleTests;
+                        const double d = triangleDistance(ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]],
+                                                          pb[0], pb[1], pb[2], onA, onB);
+                        if (d < result.distance)
+                        {
+                            result.distance = d;
+                            result.found = true;
+                            result.triangleA = ta;
+                            result.triangleB = tb;
+                            result.onA = onA;
+                            result.onB = onB;
+                            if (d <= stopBelow)
+                                return;
+                        }
+                    }
+                }
+                continue;
+            }
+            // Descend; push the farther child first so the nearer one is explored first.
+            PairEntry c1, c2;
+            if (splitA(na, nb))
+            {
+                c1 = {na.first, e.b};
+                c2 = {na.first + 1, e.b};
+            }
+            else
+            {
+                c1 = {e.a, nb.first};
+                c2 = {e.a, nb.first + 1};
+            }
+            double b1 = lowerBound(a.nodes()[c1.a], b.nodes()[c1.b], X);
+            double b2 = lowerBound(a.nodes()[c2.a], b.nodes()[c2.b], X);
+            result.boxTests += 2;
+            if (b1 < b2)
+            {
+                std::swap(c1, c2);
+                std::swap(b1, b2);
+            }
+            if (b1 < result.distance)
+            {
+                stack.push_back(c1);
+                bounds.push_back(b1);
+            }
+            if (b2 < result.distance)
+            {
+                stack.push_back(c2);
+                bounds.push_back(b2);
+            }
+        }
+    }
+
+    bool bvhCollide(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, std::uint32_t *hitA,
+                    std::uint32_t *hitB)
+    {
+        if (a.nodes().empty() || b.nodes().empty())
+            return false;
+        const RelativePose X(X_AB);
+        const Mesh &ma = a.mesh(), &mb = b.mesh();
+        std::vector<PairEntry> stack{{0u, 0u}};
+        Eigen::Vector3d pb[3];
+        while (!stack.empty())
+        {
+            const PairEntry e = stack.back();
+            stack.pop_back();
+            const TriangleBvh::Node &na = a.nodes()[e.a], &nb = b.nodes()[e.b];
+            if (separated(na, nb, X))
+                continue;
+            if (na.isLeaf() && nb.isLeaf())
+            {
+                for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
+                {
+                    const std::uint32_t tb = b.order()[j];
+                    for (int k = 0; k < 3; ++k)
+                        pb[k] = X.R * mb.vertices[mb.triangles[tb][k]] + X.t;
+                    for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
+                    {
+                        const Triangle &fa = ma.triangles[a.order()[i]];
+                        if (trianglesIntersect(ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]], pb[0],
+                                               pb[1], pb[2]))
+                        {
+                            if (hitA)
+                                *hitA = a.order()[i];
+                            if (hitB)
+                                *hitB = tb;
+                            return true;
+                        }
+                    }
+                }
+                continue;
+            }
+            if (splitA(na, nb))
+            {
+                stack.push_back({na.first, e.b});
+                stack.push_back({na.first + 1, e.b});
+            }
+            else
+            {
+                stack.push_back({e.a, nb.first});
+                stack.push_back({e.a, nb.first + 1});
+            }
+        }
+        return false;
+    }
+}  // namespace meshgap

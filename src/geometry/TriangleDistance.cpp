@@ -1,0 +1,480 @@
+#include "meshgap/geometry/TriangleDistance.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace meshgap
+{
+    namespace
+    {
+        using Vec = Eigen::Vector3d;
+
+        /* A triangle whose height over its longest edge is at most this fraction of that edge (about five units of
+           roundoff) is treated as the union of its edges: dropping its face moves no distance by more than that
+           height, far below kTriangleContactTolerance, and keeps the plane frame below well defined. */
+        constexpr double kFlatHeight2 = 1e-30;
+
+        /* Slack of the slab certificate that ends the search early, relative to the scale of
+           kTriangleContactTolerance: a few units of roundoff, so an early answer is never more than that above the
+           minimum, and exact ties (parallel faces, whose corners lie on the slab's planes) still certify. */
+        constexpr double kCertificateSlack = 4e-16;
+
+        /** \brief Squared distance from \e p to the segment [a, a + e], ee = e.e; \e t gets the closest point's
+            parameter in [0, 1]. A zero-length segment is its start point. */
+        inline double pointSegment2(const Vec &p, const Vec &a, const Vec &e, double ee, double &t)
+        {
+            const Vec d = p - a;
+            t = 0.0;
+            if (ee > 0.0)
+            {
+                const double de = d.dot(e);
+                if (de >= ee)
+                    t = 1.0;
+                else if (de > 0.0)
+                    t = de / ee;
+            }
+            return (d - t * e).squaredNorm();
+        }
+
+        /** \brief Interior candidate of the segments [p, p + d1] and [q, q + d2] (ee2 = d2.d2): s is the first line's
+            parameter of the lines' closest pair, t the projection of p + s d1 onto the second segment. False unless
+            both lie strictly inside (0, 1); then the boundary candidates (endpoint to segment) contain the minimum.
+
+            s = ((q - p) x d2).n / n.n with n = d1 x d2 is accurate to about eps / sin(angle), which moves p + s d1
+            along a valley whose distance to the second line grows only with sin(angle): the candidate distance is
+            accurate to roundoff times the extent even for nearly parallel segments. Any s in (0, 1) gives a valid
+            pair of points, so a poor s can only overestimate, and the boundary candidates bound that. */
+        inline bool segmentInterior2(const Vec &p, const Vec &d1, const Vec &q, const Vec &d2, double ee2, double &s,
+                                     double &t, double &dist2)
+        {
+            const Vec n = d1.cross(d2);
+            const double nn = n.squaredNorm();
+            if (!(nn > 0.0))
+                return false;
+            const Vec r = q - p;
+            s = r.cross(d2).dot(n) / nn;
+            if (!(s > 0.0 && s < 1.0))
+                return false;
+            const Vec w = r - s * d1;  // q - (p + s d1)
+            t = -w.dot(d2) / ee2;
+            if (!(t > 0.0 && t < 1.0))
+                return false;
+            dist2 = (w + t * d2).squaredNorm();
+            return true;
+        }
+
+        /** \brief Orthonormal frame of a triangle's plane built on its longest edge ab by Gram-Schmidt (twice, so u
+            and v are orthogonal to roundoff even for slivers): the triangle is (0,0), (L,0), (cx,cy) in (u, v),
+            counter-clockwise, cy > 0, and n = u x v. \e face is false for a flat triangle (height at most
+            sqrt(kFlatHeight2) L, collinear corners, or a point). */
+        struct Frame
+        {
+            Vec o, u, v, n;
+            double L{0.0}, cx{0.0}, cy{0.0};
+            int k{0};  ///< the frame's corners (0,0), (L,0), (cx,cy) are the triangle's corners k, k+1, k+2 (mod 3)
+            bool face{false};
+        };
+
+        inline void makeFrame(const Vec t[3], Frame &f)
+        {
+            const double l0 = (t[1] - t[0]).squaredNorm(), l1 = (t[2] - t[1]).squaredNorm(),
+                         l2 = (t[0] - t[2]).squaredNorm();
+            int k = 0;
+            double lk = l0;
+            if (l1 > lk)
+            {
+                k = 1;
+                lk = l1;
+            }
+            if (l2 > lk)
+            {
+                k = 2;
+                lk = l2;
+            }
+            const Vec &a = t[k], &b = t[(k + 1) % 3], &c = t[(k + 2) % 3];
+            f.k = k;
+            f.o = a;
+            f.face = false;
+            if (!(lk > 0.0))
+                return;
+            f.L = std::sqrt(lk);
+            f.u = (b - a) / f.L;
+            const Vec g = c - a;
+            Vec w = g - g.dot(f.u) * f.u;
+            w -= w.dot(f.u) * f.u;
+            const double h2 = w.squaredNorm();
+            if (!(h2 > kFlatHeight2 * lk))
+                return;
+            f.cy = std::sqrt(h2);
+            f.v = w / f.cy;
+            f.n = f.u.cross(f.v);
+            f.cx = g.dot(f.u);
+            f.face = true;
+        }
+
+        /** \brief Whether (x, y) in the frame's plane coordinates is in the closed 2-D triangle. */
+        inline bool insideFace(const Frame &f, double x, double y)
+        {
+            return y >= 0.0 && (f.cx - f.L) * y - f.cy * (x - f.L) >= 0.0 && f.cy * x - f.cx * y >= 0.0;
+        }
+
+        inline bool lexLess(const Vec &a, const Vec &b)
+        {
+            if (a.x() != b.x())
+                return a.x() < b.x();
+            if (a.y() != b.y())
+                return a.y() < b.y();
+            return a.z() < b.z();
+        }
+
+        /** \brief Copy a triangle's corners into \e out in lexicographic order. */
+        inline void sortedCorners(const Vec &c0, const Vec &c1, const Vec &c2, Vec out[3])
+        {
+            const Vec *p[3] = {&c0, &c1, &c2};
+            if (lexLess(*p[1], *p[0]))
+                std::swap(p[0], p[1]);
+            if (lexLess(*p[2], *p[1]))
+                std::swap(p[1], p[2]);
+            if (lexLess(*p[1], *p[0]))
+                std::swap(p[0], p[1]);
+            out[0] = *p[0];
+            out[1] = *p[1];
+            out[2] = *p[2];
+        }
+
+        /** \brief Whether corner-sorted triangle \e b comes before \e a. */
+        inline bool triangleLess(const Vec b[3], const Vec a[3])
+        {
+            for (int i = 0; i < 3; ++i)
+            {
+                if (lexLess(b[i], a[i]))
+                    return true;
+                if (lexLess(a[i], b[i]))
+                    return false;
+            }
+            return false;
+        }
+
+        /** \brief The pair in canonical order (corners sorted, then the triangles), so every result is a function
+            of the two point sets only. \e swapped tells the caller to swap the witnesses back. */
+        struct Canonical
+        {
+            Vec A[3], B[3];
+            bool swapped{false};
+
+            Canonical(const Vec &a0, const Vec &a1, const Vec &a2, const Vec &b0, const Vec &b1, const Vec &b2)
+            {
+                sortedCorners(a0, a1, a2, A);
+                sortedCorners(b0, b1, b2, B);
+                if (triangleLess(B, A))
+                {
+                    swapped = true;
+                    for (int i = 0; i < 3; ++i)
+                        std::swap(A[i], B[i]);
+                }
+            }
+        };
+
+        /** \brief Whether the axis \e n separates A from B by more than tol |n|: their projections on it are disjoint
+            intervals that far apart. A proof of separation whatever the accuracy of n (it only has to be the same
+            vector for all six corners); with a triangle's (unnormalised) normal it is the plane test. */
+        inline bool separatedAlong(const Vec &n, const Vec A[3], const Vec B[3], double tol)
+        {
+            const double pa[3] = {0.0, (A[1] - A[0]).dot(n), (A[2] - A[0]).dot(n)};
+            const double pb[3] = {(B[0] - A[0]).dot(n), (B[1] - A[0]).dot(n), (B[2] - A[0]).dot(n)};
+            const double aLo = std::min({pa[0], pa[1], pa[2]}), aHi = std::max({pa[0], pa[1], pa[2]});
+            const double bLo = std::min({pb[0], pb[1], pb[2]}), bHi = std::max({pb[0], pb[1], pb[2]});
+            const double margin = tol * n.norm();
+            return bLo - aHi > margin || aLo - bHi > margin;
+        }
+
+        /** \brief Whether the slab between the planes through \e onA and \e onB normal to v = onB - onA holds A on
+            one side and B on the other, each corner allowed \e slack (a length) across: then no pair of points is
+            closer than |v| - 2 slack, so the candidate is the minimum. */
+        inline bool certified(const Vec A[3], const Vec B[3], const Vec &onA, const Vec &onB, double slack)
+        {
+            const Vec v = onB - onA;
+            const double s = slack * v.norm();
+            for (int i = 0; i < 3; ++i)
+                if ((A[i] - onA).dot(v) > s || (B[i] - onB).dot(v) < -s)
+                    return false;
+            return true;
+        }
+
+        /** \brief Result of solve(). */
+        struct Solution
+        {
+            double distance2{std::numeric_limits<double>::infinity()};  ///< squared distance, 0 when intersecting
+            Vec onA, onB;
+            bool intersect{false};  ///< as documented for trianglesIntersect()
+        };
+
+        /** \brief The scale of kTriangleContactTolerance for the pair. */
+        inline double contactScale(const Vec A[3], const Vec B[3])
+        {
+            Vec lo = A[0], hi = A[0];
+            for (int i = 1; i < 3; ++i)
+            {
+                lo = lo.cwiseMin(A[i]);
+                hi = hi.cwiseMax(A[i]);
+            }
+            for (int i = 0; i < 3; ++i)
+            {
+                lo = lo.cwiseMin(B[i]);
+                hi = hi.cwiseMax(B[i]);
+            }
+            return std::max((hi - lo).maxCoeff(), std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()));
+        }
+
+        /** \brief Whether either triangle's plane separates them by more than \e tol: then they cannot intersect. */
+        inline bool planeSeparated(const Vec A[3], const Vec B[3], double tol)
+        {
+            return separatedAlong((A[1] - A[0]).cross(A[2] - A[0]), A, B, tol) ||
+                   separatedAlong((B[1] - B[0]).cross(B[2] - B[0]), A, B, tol);
+        }
+
+        /** \brief Distance, witnesses and intersection of the canonically ordered triangles A and B, given their
+            contactScale() and planeSeparated() at the contact tolerance. Both public triangle-pair functions decide
+            with exactly this, so they always agree. */
+        Solution solve(const Vec A[3], const Vec B[3], double scale, bool separated)
+        {
+            Solution out;
+            const double tol = kTriangleContactTolerance * scale;
+            const double tol2 = tol * tol;
+            const double slack = kCertificateSlack * scale;
+
+            Frame fa, fb;
+            makeFrame(A, fa);
+            makeFrame(B, fb);
+
+            // Each triangle's corners in the other's plane frame; the three edge orientations (>= 0: inner side).
+            double xa[3], ya[3], za[3], xb[3], yb[3], zb[3];
+            double oa[3][3], ob[3][3];  // oa[i]: corner i of A against fb's three edges
+            bool inB[3] = {false, false, false}, inA[3] = {false, false, false};  // foot inside the other face
+            auto place = [](const Frame &f, const Vec &p, double &x, double &y, double &z, double o[3]) {
+                const Vec d = p - f.o;
+                x = d.dot(f.u);
+                y = d.dot(f.v);
+                z = d.dot(f.n);
+                o[0] = y;
+                o[1] = (f.cx - f.L) * y - f.cy * (x - f.L);
+                o[2] = f.cy * x - f.cx * y;
+                return o[0] >= 0.0 && o[1] >= 0.0 && o[2] >= 0.0;
+            };
+            for (int i = 0; i < 3; ++i)
+            {
+                if (fb.face)
+                    inB[i] = place(fb, A[i], xa[i], ya[i], za[i], oa[i]);
+                if (fa.face)
+                    inA[i] = place(fa, B[i], xb[i], yb[i], zb[i], ob[i]);
+            }
+
+            // An edge of one triangle crossing the other's face: they intersect, the crossing point is common.
+            if (!separated)
+                for (int side = 0; side < 2; ++side)
+                {
+                    const Frame &f = side ? fa : fb;
+                    if (!f.face)
+                        continue;
+                    const Vec *P = side ? B : A;
+                    const double *x = side ? xb : xa, *y = side ? yb : ya, *z = side ? zb : za;
+                    for (int i = 0; i < 3; ++i)
+                    {
+                        const int j = (i + 1) % 3;
+                        if (!((z[i] <= 0.0 && z[j] >= 0.0) || (z[i] >= 0.0 && z[j] <= 0.0)) || z[i] == z[j])
+                            continue;  // no sign change, or the edge lies in the plane (left to the 2-D features)
+                        const double lambda = z[i] / (z[i] - z[j]);
+                        if (!insideFace(f, x[i] + lambda * (x[j] - x[i]), y[i] + lambda * (y[j] - y[i])))
+                            continue;
+                        out.intersect = true;
+                        out.distance2 = 0.0;
+                        out.onA = out.onB = P[i] + lambda * (P[j] - P[i]);
+                        return out;
+                    }
+                }
+
+            double &best2 = out.distance2;
+            // Finished: a contact within the tolerance, or a candidate the slab certificate proves minimal.
+            auto finished = [&]() {
+                if (!separated && best2 <= tol2)
+                {
+                    out.intersect = true;
+                    best2 = 0.0;
+                    out.onA = out.onB = 0.5 * (out.onA + out.onB);
+                    return true;
+                }
+                return best2 < std::numeric_limits<double>::infinity() && certified(A, B, out.onA, out.onB, slack);
+            };
+
+            // Vertex-face pairs whose foot lies inside the face.
+            for (int side = 0; side < 2; ++side)
+            {
+                const Frame &f = side ? fa : fb;
+                const Vec *P = side ? B : A;
+                const double *x = side ? xb : xa, *y = side ? yb : ya, *z = side ? zb : za;
+                const bool *in = side ? inA : inB;
+                for (int i = 0; i < 3; ++i)
+                    if (in[i] && z[i] * z[i] < best2)
+                    {
+                        best2 = z[i] * z[i];
+                        const Vec foot = f.o + x[i] * f.u + y[i] * f.v;
+                        out.onA = side ? foot : P[i];
+                        out.onB = side ? P[i] : foot;
+                    }
+            }
+            if (finished())
+                return out;
+
+            const Vec eA[3] = {A[1] - A[0], A[2] - A[1], A[0] - A[2]};
+            const Vec eB[3] = {B[1] - B[0], B[2] - B[1], B[0] - B[2]};
+            const double eeA[3] = {eA[0].squaredNorm(), eA[1].squaredNorm(), eA[2].squaredNorm()};
+            const double eeB[3] = {eB[0].squaredNorm(), eB[1].squaredNorm(), eB[2].squaredNorm()};
+
+            // Edge-edge pairs with the closest points inside both edges.
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                {
+                    double s, t, c2;
+                    if (segmentInterior2(A[i], eA[i], B[j], eB[j], eeB[j], s, t, c2) && c2 < best2)
+                    {
+                        best2 = c2;
+                        out.onA = A[i] + s * eA[i];
+                        out.onB = B[j] + t * eB[j];
+                    }
+                }
+            if (finished())
+                return out;
+
+            // Vertex-edge pairs (the boundary of every edge-edge pair). A corner whose foot is inside the other face
+            // has the face closer than its edges; otherwise the closest point is on an edge the foot lies beyond
+            // (orientation < 0). Frame edge m of a triangle is its edge (k + m) % 3, k the frame's first corner.
+            for (int side = 0; side < 2; ++side)
+            {
+                const Frame &f = side ? fa : fb;
+                const Vec *P = side ? B : A, *T = side ? A : B;
+                const Vec *eT = side ? eA : eB;
+                const double *eeT = side ? eeA : eeB;
+                const bool *in = side ? inA : inB;
+                const double(*o)[3] = side ? ob : oa;
+                for (int i = 0; i < 3; ++i)
+                {
+                    if (in[i])
+                        continue;
+                    for (int m = 0; m < 3; ++m)
+                    {
+                        if (f.face && o[i][m] >= 0.0)
+                            continue;
+                        const int j = f.face ? (f.k + m) % 3 : m;
+                        double t;
+                        const double c2 = pointSegment2(P[i], T[j], eT[j], eeT[j], t);
+                        if (c2 < best2)
+                        {
+                            best2 = c2;
+                            const Vec q = T[j] + t * eT[j];
+                            out.onA = side ? q : P[i];
+                            out.onB = side ? P[i] : q;
+                        }
+                    }
+                }
+            }
+            finished();
+            return out;
+        }
+    }  // namespace
+
+    double segmentSegmentDistance(const Eigen::Vector3d &p0, const Eigen::Vector3d &p1, const Eigen::Vector3d &q0,
+                                  const Eigen::Vector3d &q1, Eigen::Vector3d &onP, Eigen::Vector3d &onQ)
+    {
+        const Vec e1 = p1 - p0, e2 = q1 - q0;
+        const double ee1 = e1.squaredNorm(), ee2 = e2.squaredNorm();
+        double t, best2 = pointSegment2(p0, q0, e2, ee2, t);
+        onP = p0;
+        onQ = q0 + t * e2;
+        double c2 = pointSegment2(p1, q0, e2, ee2, t);
+        if (c2 < best2)
+        {
+            best2 = c2;
+            onP = p1;
+            onQ = q0 + t * e2;
+        }
+        c2 = pointSegment2(q0, p0, e1, ee1, t);
+        if (c2 < best2)
+        {
+            best2 = c2;
+            onP = p0 + t * e1;
+            onQ = q0;
+        }
+        c2 = pointSegment2(q1, p0, e1, ee1, t);
+        if (c2 < best2)
+        {
+            best2 = c2;
+            onP = p0 + t * e1;
+            onQ = q1;
+        }
+        double s;
+        if (segmentInterior2(p0, e1, q0, e2, ee2, s, t, c2) && c2 < best2)
+        {
+            best2 = c2;
+            onP = p0 + s * e1;
+            onQ = q0 + t * e2;
+        }
+        return std::sqrt(best2);
+    }
+
+    double pointTriangleDistance(const Eigen::Vector3d &p, const Eigen::Vector3d &a, const Eigen::Vector3d &b,
+                                 const Eigen::Vector3d &c, Eigen::Vector3d &onT)
+    {
+        const Vec T[3] = {a, b, c};
+        Frame f;
+        makeFrame(T, f);
+        if (f.face)
+        {
+            const Vec d = p - f.o;
+            const double x = d.dot(f.u), y = d.dot(f.v);
+            if (insideFace(f, x, y))
+            {
+                onT = f.o + x * f.u + y * f.v;
+                return std::abs(d.dot(f.n));
+            }
+        }
+        // The foot is outside the face (or there is no face): the closest point is on an edge.
+        double best2 = std::numeric_limits<double>::infinity();
+        for (int i = 0; i < 3; ++i)
+        {
+            const Vec e = T[(i + 1) % 3] - T[i];
+            double t;
+            const double c2 = pointSegment2(p, T[i], e, e.squaredNorm(), t);
+            if (c2 < best2)
+            {
+                best2 = c2;
+                onT = T[i] + t * e;
+            }
+        }
+        return std::sqrt(best2);
+    }
+
+    bool trianglesIntersect(const Eigen::Vector3d &a0, const Eigen::Vector3d &a1, const Eigen::Vector3d &a2,
+                            const Eigen::Vector3d &b0, const Eigen::Vector3d &b1, const Eigen::Vector3d &b2)
+    {
+        const Canonical c(a0, a1, a2, b0, b1, b2);
+        const double scale = contactScale(c.A, c.B);
+        if (planeSeparated(c.A, c.B, kTriangleContactTolerance * scale))
+            return false;
+        return solve(c.A, c.B, scale, false).intersect;
+    }
+
+    double triangleDistance(const Eigen::Vector3d &a0, const Eigen::Vector3d &a1, const Eigen::Vector3d &a2,
+                            const Eigen::Vector3d &b0, const Eigen::Vector3d &b1, const Eigen::Vector3d &b2,
+                            Eigen::Vector3d &onA, Eigen::Vector3d &onB)
+    {
+        const Canonical c(a0, a1, a2, b0, b1, b2);
+        const double scale = contactScale(c.A, c.B);
+        const Solution r = solve(c.A, c.B, scale, planeSeparated(c.A, c.B, kTriangleContactTolerance * scale));
+        onA = c.swapped ? r.onB : r.onA;
+        onB = c.swapped ? r.onA : r.onB;
+        return std::sqrt(r.distance2);
+    }
+}  // namespace meshgap
