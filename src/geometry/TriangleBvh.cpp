@@ -18,6 +18,14 @@ namespace meshgap
             const Triangle &f = mesh.triangles[t];
             centroid[t] = (mesh.vertices[f[0]] + mesh.vertices[f[1]] + mesh.vertices[f[2]]) / 3.0;
         }
+        normals_.resize(n);
+        for (std::uint32_t t = 0; t < n; ++t)
+        {
+            const Triangle &f = mesh.triangles[t];
+            const Eigen::Vector3d c = (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
+            const double length = c.norm();
+            normals_[t] = length > 0.0 ? Eigen::Vector3d(c / length) : Eigen::Vector3d::Zero();  // zero: no bound
+        }
         if (n == 0)
             return;
         nodes_.reserve(2 * n / LEAF_SIZE + 2);
@@ -124,6 +132,17 @@ namespace meshgap
             return false;
         }
 
+        /** \brief Lower bound on the distance between triangles p and q from their separation along unit axis n:
+            the gap between the two intervals the corners project to (0 when they overlap or n is zero). */
+        double axisGap(const Eigen::Vector3d &n, const Eigen::Vector3d *p, const Eigen::Vector3d *q)
+        {
+            const double p0 = n.dot(p[0]), p1 = n.dot(p[1]), p2 = n.dot(p[2]);
+            const double q0 = n.dot(q[0]), q1 = n.dot(q[1]), q2 = n.dot(q[2]);
+            const double gap1 = std::min({q0, q1, q2}) - std::max({p0, p1, p2});
+            const double gap2 = std::min({p0, p1, p2}) - std::max({q0, q1, q2});
+            return std::max({gap1, gap2, 0.0});
+        }
+
         struct PairEntry
         {
             std::uint32_t a, b;
@@ -165,10 +184,17 @@ namespace meshgap
                     const std::uint32_t tb = b.order()[j];
                     for (int k = 0; k < 3; ++k)
                         pb[k] = X.R * mb.vertices[mb.triangles[tb][k]] + X.t;
+                    const Eigen::Vector3d normalB = X.R * b.normals()[tb];
                     for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
                     {
                         const std::uint32_t ta = a.order()[i];
                         const Triangle &fa = ma.triangles[ta];
+                        const Eigen::Vector3d pa[3] = {ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]]};
+                        // Cheap exact bound first: separation along either triangle's normal. The slack keeps
+                        // rounding from pruning a pair at exactly the best distance's value.
+                        const double gap = std::max(axisGap(a.normals()[ta], pa, pb), axisGap(normalB, pa, pb));
+                        if (gap > result.distance * (1.0 + 1e-12))
+                            continue;
                         ++result.triangleTests;
                         const double d = triangleDistance(ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]],
                                                           pb[0], pb[1], pb[2], onA, onB);

@@ -18,7 +18,7 @@ namespace meshgap
     class TriangleBvh
     {
     public:
-        static constexpr std::uint32_t LEAF_SIZE = 4;
+        static constexpr std::uint32_t LEAF_SIZE = 1;
 
         struct Node
         {
@@ -36,11 +36,14 @@ namespace meshgap
         const std::vector<Node> &nodes() const { return nodes_; }
         /** \brief Triangle indices in leaf order. */
         const std::vector<std::uint32_t> &order() const { return order_; }
+        /** \brief Unit normal of each triangle (body frame), for the plane-separation bound at the leaves. */
+        const std::vector<Eigen::Vector3d> &normals() const { return normals_; }
 
     private:
         const Mesh *mesh_;
         std::vector<Node> nodes_;
         std::vector<std::uint32_t> order_;
+        std::vector<Eigen::Vector3d> normals_;
     };
 
     /** \brief What a distance traversal found and what it cost. */
