@@ -76,10 +76,27 @@ namespace meshgap
         std::uint32_t target = std::uniform_int_distribution<std::uint32_t>(0, n - 2)(rng);
         if (target >= start)
             ++target;
+        const SurfaceGraph &graph = distances.graph();
+        if (graph.component(target) != graph.component(start))
+        {
+            // Another component is farther than any radius. Jump with probability 2 radius / max(D) (1 at the GA's
+            // fixed r_max = max(D)/2), so comb-SA's cooling also cools the jumps; otherwise redraw the target in
+            // start's own component (a few tries: a tiny component keeps its jump).
+            const double maxD = distances.maxDistance();
+            const double jump = maxD > 0.0 ? std::min(1.0, 2.0 * radius / maxD) : 1.0;
+            if (std::uniform_real_distribution<double>(0.0, 1.0)(rng) < jump)
+                return target;
+            for (int attempt = 0; attempt < 64 && graph.component(target) != graph.component(start); ++attempt)
+            {
+                target = std::uniform_int_distribution<std::uint32_t>(0, n - 2)(rng);
+                if (target >= start)
+                    ++target;
+            }
+            if (graph.component(target) != graph.component(start))
+                return target;
+        }
         std::vector<std::uint32_t> &path = scratch.path;
         distances.path(start, target, path);
-        if (path.empty())
-            return target;  // another component: jump there
         pathDistances(distances.graph(), path, scratch.cumulative);
         // Candidates are path[1 .. k]; at least the first step, even when it is longer than the radius.
         const std::size_t within = countWithin(scratch.cumulative, radius);  // path[0 .. within-1] are in the radius

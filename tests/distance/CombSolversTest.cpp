@@ -210,6 +210,26 @@ TEST(MeshMoves, TwoComponentBodyJumpsBetweenComponentsAtRandom)
     EXPECT_NEAR(double(jumps) / draws, double(n1) / (n - 1), 0.03);
     EXPECT_EQ(landed.size(), n1);  // anywhere in the other component
 
+    // At a tenth of that radius the jumps fade by the same factor (2 radius / max(D) = 0.1): a cooling comb-SA
+    // stays in its component, and the moves that stay are still within the radius.
+    jumps = 0;
+    const double small = 0.05 * D.maxDistance();
+    const SurfaceGraph &g = two->graph();
+    // A move takes at least one edge (the documented rule), so it stays within max(radius, longest edge at 7).
+    const double reach = std::max(small, *std::max_element(g.lengths().begin() + g.offsets()[7],
+                                                           g.lengths().begin() + g.offsets()[8]));
+    for (int k = 0; k < draws; ++k)
+    {
+        const std::uint32_t moved = randomMove(D, 7, small, rng, scratch);
+        if (g.component(moved) == 1)
+            ++jumps;
+        else
+        {
+            EXPECT_LE(D.distance(7, moved), reach);
+        }
+    }
+    EXPECT_NEAR(double(jumps) / draws, 0.1 * double(n1) / (n - 1), 0.015);
+
     // Every solver copes with a body of two components, and finds the closer one's minimum.
     const BodyPtr sphere = body(test::icosphere(0.5, 2));
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();

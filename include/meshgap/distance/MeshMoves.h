@@ -52,9 +52,13 @@ namespace meshgap
         - If even the path's first step is longer than \e radius (comb-SA shrinks its radius as it cools, down below
           one edge), the move takes that first step: the smallest move the mesh allows. Without it the search would
           freeze once the radius drops below the grid size.
-        - If the drawn node lies in another connected component (no path), the move jumps to that node. So a move
-          leaves its component with probability (nodes outside it) / (all nodes but \e start), as DESIGN.md says of
-          moves that need a path: they jump components at random.
+        - If the drawn node lies in another connected component (no path, infinite mesh distance), the move jumps to
+          it with probability min(1, 2 radius / max(D)), else the target is redrawn in \e start's component (up to
+          64 draws; a body whose component is that small keeps the jump). At the GA's fixed r_max = max(D)/2 a move
+          thus leaves its component with probability (nodes outside it) / (all nodes but \e start), as DESIGN.md
+          says of moves that need a path (they jump components at random); comb-SA's shrinking radius makes jumps
+          rarer as it cools, where jumping regardless made it a random restart on many-part bodies (the hand's six
+          shells: 83% of moves).
         - A body of one node returns \e start. */
     std::uint32_t randomMove(const MeshDistances &distances, std::uint32_t start, double radius, QueryRng &rng,
                              MoveScratch &scratch);
