@@ -100,18 +100,20 @@ namespace meshgap
             f.face = false;
             if (!(lk > 0.0))
                 return;
+            const Vec e = b - a, g = c - a;
+            const double inv = 1.0 / lk;
+            const double ge = g.dot(e);
+            Vec w = g - (ge * inv) * e;
+            w -= (w.dot(e) * inv) * e;
             f.L = std::sqrt(lk);
-            f.u = (b - a) / f.L;
-            const Vec g = c - a;
-            Vec w = g - g.dot(f.u) * f.u;
-            w -= w.dot(f.u) * f.u;
+            f.u = e * (1.0 / f.L);
             const double h2 = w.squaredNorm();
             if (!(h2 > kFlatHeight2 * lk))
                 return;
             f.cy = std::sqrt(h2);
-            f.v = w / f.cy;
+            f.v = w * (1.0 / f.cy);
             f.n = f.u.cross(f.v);
-            f.cx = g.dot(f.u);
+            f.cx = ge / f.L;
             f.face = true;
         }
 
@@ -178,19 +180,6 @@ namespace meshgap
             }
         };
 
-        /** \brief Whether the axis \e n separates A from B by more than tol |n|: their projections on it are disjoint
-            intervals that far apart. A proof of separation whatever the accuracy of n (it only has to be the same
-            vector for all six corners); with a triangle's (unnormalised) normal it is the plane test. */
-        inline bool separatedAlong(const Vec &n, const Vec A[3], const Vec B[3], double tol)
-        {
-            const double pa[3] = {0.0, (A[1] - A[0]).dot(n), (A[2] - A[0]).dot(n)};
-            const double pb[3] = {(B[0] - A[0]).dot(n), (B[1] - A[0]).dot(n), (B[2] - A[0]).dot(n)};
-            const double aLo = std::min({pa[0], pa[1], pa[2]}), aHi = std::max({pa[0], pa[1], pa[2]});
-            const double bLo = std::min({pb[0], pb[1], pb[2]}), bHi = std::max({pb[0], pb[1], pb[2]});
-            const double margin = tol * n.norm();
-            return bLo - aHi > margin || aLo - bHi > margin;
-        }
-
         /** \brief Whether the slab between the planes through \e onA and \e onB normal to v = onB - onA holds A on
             one side and B on the other, each corner allowed \e slack (a length) across: then no pair of points is
             closer than |v| - 2 slack, so the candidate is the minimum. */
@@ -229,22 +218,36 @@ namespace meshgap
             return std::max((hi - lo).maxCoeff(), std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()));
         }
 
-        /** \brief Whether either triangle's plane separates them by more than \e tol: then they cannot intersect. */
-        inline bool planeSeparated(const Vec A[3], const Vec B[3], double tol)
+        /** \brief Whether the axis \e n separates A from B by more than tol: their projections on it are intervals
+            more than tol |n| apart. The six corners' projections are compared on the same vector n, so this is a
+            proof of separation whatever the accuracy of n (a sliver's normal is poorly determined); with a
+            triangle's (unnormalised) normal it is the plane test. */
+        inline bool separatedAlong(const Vec &n, const Vec A[3], const Vec B[3], double tol)
         {
-            return separatedAlong((A[1] - A[0]).cross(A[2] - A[0]), A, B, tol) ||
-                   separatedAlong((B[1] - B[0]).cross(B[2] - B[0]), A, B, tol);
+            const double pa1 = (A[1] - A[0]).dot(n), pa2 = (A[2] - A[0]).dot(n);
+            const double pb0 = (B[0] - A[0]).dot(n), pb1 = (B[1] - A[0]).dot(n), pb2 = (B[2] - A[0]).dot(n);
+            const double aLo = std::min({0.0, pa1, pa2}), aHi = std::max({0.0, pa1, pa2});
+            const double bLo = std::min({pb0, pb1, pb2}), bHi = std::max({pb0, pb1, pb2});
+            const double gap = std::max(bLo - aHi, aLo - bHi);
+            return gap > 0.0 && gap * gap > tol * tol * n.squaredNorm();
         }
 
-        /** \brief Distance, witnesses and intersection of the canonically ordered triangles A and B, given their
-            contactScale() and planeSeparated() at the contact tolerance. Both public triangle-pair functions decide
-            with exactly this, so they always agree. */
-        Solution solve(const Vec A[3], const Vec B[3], double scale, bool separated)
+        /** \brief Distance, witnesses and intersection of the canonically ordered triangles A and B. Both public
+            triangle-pair functions decide with exactly this, so they always agree; with \e intersectOnly it returns
+            as soon as a plane separates them (then only \e intersect, false, is meaningful). */
+        Solution solve(const Vec A[3], const Vec B[3], bool intersectOnly)
         {
             Solution out;
+            const double scale = contactScale(A, B);
             const double tol = kTriangleContactTolerance * scale;
             const double tol2 = tol * tol;
             const double slack = kCertificateSlack * scale;
+
+            // Separated by either triangle's plane with more than the contact tolerance: they cannot intersect.
+            const bool separated = separatedAlong((A[1] - A[0]).cross(A[2] - A[0]), A, B, tol) ||
+                                   separatedAlong((B[1] - B[0]).cross(B[2] - B[0]), A, B, tol);
+            if (separated && intersectOnly)
+                return out;
 
             Frame fa, fb;
             makeFrame(A, fa);
@@ -254,7 +257,8 @@ namespace meshgap
             double xa[3], ya[3], za[3], xb[3], yb[3], zb[3];
             double oa[3][3], ob[3][3];  // oa[i]: corner i of A against fb's three edges
             bool inB[3] = {false, false, false}, inA[3] = {false, false, false};  // foot inside the other face
-            auto place = [](const Frame &f, const Vec &p, double &x, double &y, double &z, double o[3]) {
+            auto place = [](const Frame &f, const Vec &p, double &x, double &y, double &z, double o[3])
+            {
                 const Vec d = p - f.o;
                 x = d.dot(f.u);
                 y = d.dot(f.v);
@@ -298,7 +302,8 @@ namespace meshgap
 
             double &best2 = out.distance2;
             // Finished: a contact within the tolerance, or a candidate the slab certificate proves minimal.
-            auto finished = [&]() {
+            auto finished = [&]()
+            {
                 if (!separated && best2 <= tol2)
                 {
                     out.intersect = true;
@@ -308,6 +313,19 @@ namespace meshgap
                 }
                 return best2 < std::numeric_limits<double>::infinity() && certified(A, B, out.onA, out.onB, slack);
             };
+
+            // Corner pairs: a cheap first upper bound for the pruning below.
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                {
+                    const double c2 = (B[j] - A[i]).squaredNorm();
+                    if (c2 < best2)
+                    {
+                        best2 = c2;
+                        out.onA = A[i];
+                        out.onB = B[j];
+                    }
+                }
 
             // Vertex-face pairs whose foot lies inside the face.
             for (int side = 0; side < 2; ++side)
@@ -333,24 +351,11 @@ namespace meshgap
             const double eeA[3] = {eA[0].squaredNorm(), eA[1].squaredNorm(), eA[2].squaredNorm()};
             const double eeB[3] = {eB[0].squaredNorm(), eB[1].squaredNorm(), eB[2].squaredNorm()};
 
-            // Edge-edge pairs with the closest points inside both edges.
-            for (int i = 0; i < 3; ++i)
-                for (int j = 0; j < 3; ++j)
-                {
-                    double s, t, c2;
-                    if (segmentInterior2(A[i], eA[i], B[j], eB[j], eeB[j], s, t, c2) && c2 < best2)
-                    {
-                        best2 = c2;
-                        out.onA = A[i] + s * eA[i];
-                        out.onB = B[j] + t * eB[j];
-                    }
-                }
-            if (finished())
-                return out;
-
             // Vertex-edge pairs (the boundary of every edge-edge pair). A corner whose foot is inside the other face
             // has the face closer than its edges; otherwise the closest point is on an edge the foot lies beyond
-            // (orientation < 0). Frame edge m of a triangle is its edge (k + m) % 3, k the frame's first corner.
+            // (orientation < 0), no closer than z^2 + (distance to the edge's line)^2. Frame edge m of a triangle is
+            // its edge (k + m) % 3, k the frame's first corner; o[0] is the distance to edge 0's line, o[1] and o[2]
+            // that distance times the edge's length.
             for (int side = 0; side < 2; ++side)
             {
                 const Frame &f = side ? fa : fb;
@@ -358,16 +363,17 @@ namespace meshgap
                 const Vec *eT = side ? eA : eB;
                 const double *eeT = side ? eeA : eeB;
                 const bool *in = side ? inA : inB;
+                const double *z = side ? zb : za;
                 const double(*o)[3] = side ? ob : oa;
                 for (int i = 0; i < 3; ++i)
                 {
-                    if (in[i])
+                    if (in[i] || (f.face && z[i] * z[i] >= best2))
                         continue;
                     for (int m = 0; m < 3; ++m)
                     {
-                        if (f.face && o[i][m] >= 0.0)
-                            continue;
                         const int j = f.face ? (f.k + m) % 3 : m;
+                        if (f.face && (o[i][m] >= 0.0 || z[i] * z[i] + o[i][m] * o[i][m] / (m ? eeT[j] : 1.0) >= best2))
+                            continue;
                         double t;
                         const double c2 = pointSegment2(P[i], T[j], eT[j], eeT[j], t);
                         if (c2 < best2)
@@ -377,6 +383,36 @@ namespace meshgap
                             out.onA = side ? q : P[i];
                             out.onB = side ? P[i] : q;
                         }
+                    }
+                }
+            }
+            if (finished())
+                return out;
+
+            // Edge-edge pairs with the closest points inside both edges, skipping pairs that one triangle's plane
+            // keeps at least sqrt(best2) apart (an edge entirely on one side of it, that far away).
+            auto planeBound = [](const Frame &f, const double *z, int i)
+            {
+                const double z0 = z[i], z1 = z[(i + 1) % 3];
+                if (!f.face || (z0 < 0.0) != (z1 < 0.0) || z0 == 0.0 || z1 == 0.0)
+                    return 0.0;
+                const double m = std::min(std::abs(z0), std::abs(z1));
+                return m * m;
+            };
+            for (int i = 0; i < 3; ++i)
+            {
+                if (planeBound(fb, za, i) >= best2)
+                    continue;
+                for (int j = 0; j < 3; ++j)
+                {
+                    if (planeBound(fa, zb, j) >= best2)
+                        continue;
+                    double s, t, c2;
+                    if (segmentInterior2(A[i], eA[i], B[j], eB[j], eeB[j], s, t, c2) && c2 < best2)
+                    {
+                        best2 = c2;
+                        out.onA = A[i] + s * eA[i];
+                        out.onB = B[j] + t * eB[j];
                     }
                 }
             }
@@ -460,10 +496,7 @@ namespace meshgap
                             const Eigen::Vector3d &b0, const Eigen::Vector3d &b1, const Eigen::Vector3d &b2)
     {
         const Canonical c(a0, a1, a2, b0, b1, b2);
-        const double scale = contactScale(c.A, c.B);
-        if (planeSeparated(c.A, c.B, kTriangleContactTolerance * scale))
-            return false;
-        return solve(c.A, c.B, scale, false).intersect;
+        return solve(c.A, c.B, true).intersect;
     }
 
     double triangleDistance(const Eigen::Vector3d &a0, const Eigen::Vector3d &a1, const Eigen::Vector3d &a2,
@@ -471,8 +504,7 @@ namespace meshgap
                             Eigen::Vector3d &onA, Eigen::Vector3d &onB)
     {
         const Canonical c(a0, a1, a2, b0, b1, b2);
-        const double scale = contactScale(c.A, c.B);
-        const Solution r = solve(c.A, c.B, scale, planeSeparated(c.A, c.B, kTriangleContactTolerance * scale));
+        const Solution r = solve(c.A, c.B, false);
         onA = c.swapped ? r.onB : r.onA;
         onB = c.swapped ? r.onA : r.onB;
         return std::sqrt(r.distance2);

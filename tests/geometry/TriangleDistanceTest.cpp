@@ -88,9 +88,15 @@ namespace
         return best;
     }
 
-    HullPair reference(const Tri &a, const Tri &b) { return hullDistance({a[0], a[1], a[2]}, {b[0], b[1], b[2]}); }
+    HullPair reference(const Tri &a, const Tri &b)
+    {
+        return hullDistance({a[0], a[1], a[2]}, {b[0], b[1], b[2]});
+    }
 
-    double distanceToTriangle(const Vector3d &p, const Tri &t) { return hullDistance({p}, {t[0], t[1], t[2]}).distance; }
+    double distanceToTriangle(const Vector3d &p, const Tri &t)
+    {
+        return hullDistance({p}, {t[0], t[1], t[2]}).distance;
+    }
 
     double distanceToSegment(const Vector3d &p, const Vector3d &s0, const Vector3d &s1)
     {
@@ -142,7 +148,10 @@ namespace
         return dist(a, b, onA, onB);
     }
 
-    bool intersect(const Tri &a, const Tri &b) { return trianglesIntersect(a[0], a[1], a[2], b[0], b[1], b[2]); }
+    bool intersect(const Tri &a, const Tri &b)
+    {
+        return trianglesIntersect(a[0], a[1], a[2], b[0], b[1], b[2]);
+    }
 
     /* Everything triangleDistance() and trianglesIntersect() promise for one pair, against the reference:
        - the distance is within tol of the reference (tol = 1e-12 x the largest coordinate), in particular never
@@ -158,10 +167,11 @@ namespace
         const HullPair ref = reference(a, b);
         const double tol = 1e-12 * coordinateScale(a, b);
         const double contact = kTriangleContactTolerance * contactScale(a, b);
-        auto fail = [&](const std::string &what) {
-            return ::testing::AssertionFailure() << what << std::setprecision(17) << ": distance " << d
-                                                 << ", reference " << ref.distance << ", tol " << tol << "; "
-                                                 << describe(a, b);
+        auto fail = [&](const std::string &what)
+        {
+            return ::testing::AssertionFailure()
+                   << what << std::setprecision(17) << ": distance " << d << ", reference " << ref.distance << ", tol "
+                   << tol << "; " << describe(a, b);
         };
         if (!(d >= 0.0) || !std::isfinite(d))
             return fail("not a finite non-negative distance");
@@ -323,8 +333,7 @@ TEST(SegmentSegmentDistance, SkewSegmentsByHand)
 {
     // P(s) = (2s, 0, 0), Q(t) = (1, -1 + 2t, 1 + t): minimising |Q - P|^2 gives s = 1/2, t = 1/5 and 1.8.
     Vector3d onP, onQ;
-    const double d =
-        segmentSegmentDistance({0, 0, 0}, {2, 0, 0}, {1, -1, 1}, {1, 1, 2}, onP, onQ);
+    const double d = segmentSegmentDistance({0, 0, 0}, {2, 0, 0}, {1, -1, 1}, {1, 1, 2}, onP, onQ);
     EXPECT_NEAR(d, std::sqrt(1.8), 1e-15);
     EXPECT_TRUE(onP.isApprox(Vector3d(1, 0, 0), 1e-15));
     EXPECT_TRUE(onQ.isApprox(Vector3d(1, -0.6, 1.2), 1e-15));
@@ -524,10 +533,10 @@ TEST(TriangleDistance, CoplanarSeparated)
 TEST(TriangleDistance, CoplanarOverlappingIsZero)
 {
     const Tri a{Vector3d(0, 0, 0), Vector3d(4, 0, 0), Vector3d(0, 4, 0)};
-    const Tri corner{Vector3d(1, 1, 0), Vector3d(5, 1, 0), Vector3d(1, 5, 0)};      // a corner inside A
-    const Tri inside{Vector3d(1, 1, 0), Vector3d(2, 1, 0), Vector3d(1, 2, 0)};      // all of B inside A
-    const Tri star{Vector3d(3, -1, 0), Vector3d(3, 3, 0), Vector3d(-1, 3, 0)};      // edges cross, no corner inside
-    const Tri strip{Vector3d(-1, 1, 0), Vector3d(5, 1, 0), Vector3d(5, 1.5, 0)};    // cuts through A
+    const Tri corner{Vector3d(1, 1, 0), Vector3d(5, 1, 0), Vector3d(1, 5, 0)};    // a corner inside A
+    const Tri inside{Vector3d(1, 1, 0), Vector3d(2, 1, 0), Vector3d(1, 2, 0)};    // all of B inside A
+    const Tri star{Vector3d(3, -1, 0), Vector3d(3, 3, 0), Vector3d(-1, 3, 0)};    // edges cross, no corner inside
+    const Tri strip{Vector3d(-1, 1, 0), Vector3d(5, 1, 0), Vector3d(5, 1.5, 0)};  // cuts through A
     for (const Tri &b : {corner, inside, star, strip})
     {
         Vector3d onA, onB;
@@ -543,12 +552,12 @@ TEST(TriangleDistance, CoplanarOverlappingIsZero)
 TEST(TriangleDistance, TouchingAtAVertexOrAlongAnEdgeIsZero)
 {
     const Tri a{Vector3d(0, 0, 0), Vector3d(2, 0, 0), Vector3d(0, 2, 0)};
-    const Tri vertex{Vector3d(2, 0, 0), Vector3d(3, 1, 1), Vector3d(3, -1, 1)};             // corner on corner
-    const Tri onEdge{Vector3d(1, 0, 0), Vector3d(1, -1, 1), Vector3d(2, -1, 1)};            // corner on an edge
-    const Tri onFace{Vector3d(0.5, 0.5, 0), Vector3d(1, 1, 3), Vector3d(0, 1, 3)};          // corner on the face
-    const Tri sharedEdge{Vector3d(0, 0, 0), Vector3d(2, 0, 0), Vector3d(1, 0, 3)};          // folded along ab
+    const Tri vertex{Vector3d(2, 0, 0), Vector3d(3, 1, 1), Vector3d(3, -1, 1)};               // corner on corner
+    const Tri onEdge{Vector3d(1, 0, 0), Vector3d(1, -1, 1), Vector3d(2, -1, 1)};              // corner on an edge
+    const Tri onFace{Vector3d(0.5, 0.5, 0), Vector3d(1, 1, 3), Vector3d(0, 1, 3)};            // corner on the face
+    const Tri sharedEdge{Vector3d(0, 0, 0), Vector3d(2, 0, 0), Vector3d(1, 0, 3)};            // folded along ab
     const Tri edgeOnFace{Vector3d(0.5, 0.5, 0), Vector3d(1, 0.5, 0), Vector3d(0.7, 0.6, 2)};  // an edge lies on A
-    const Tri crossEdges{Vector3d(1, -1, 0), Vector3d(1, 1, 0), Vector3d(1, 0, 2)};         // edge across A's edge
+    const Tri crossEdges{Vector3d(1, -1, 0), Vector3d(1, 1, 0), Vector3d(1, 0, 2)};           // edge across A's edge
     for (const Tri &b : {vertex, onEdge, onFace, sharedEdge, edgeOnFace, crossEdges})
     {
         Vector3d onA, onB;
@@ -626,7 +635,7 @@ TEST(TriangleDistance, ExactlyParallelEdges)
             const Vector3d w = e.cross(m);  // perpendicular to both e and m
             for (double sigma : {-3.0, -2.0, -1.5, -1.0, 0.0, 0.5, 1.0, 2.0, 3.0})
                 for (int flip = 0; flip < 2; ++flip)  // B's edge in the same or the opposite direction
-                    for (double lean : {0.0, 1.0})      // A and B both in one plane (lean 0) or not
+                    for (double lean : {0.0, 1.0})    // A and B both in one plane (lean 0) or not
                     {
                         const Tri a{P, P + 2 * e, P + e - m + lean * w};
                         const Vector3d b0 = P + m + sigma * e, b1 = b0 + 2 * e;
@@ -668,8 +677,7 @@ TEST(TriangleDistance, DegenerateTriangles)
     EXPECT_NEAR(dist(s, t, onA, onB), std::sqrt(1.8), 1e-15);
     EXPECT_TRUE(onB.isApprox(Vector3d(1, -0.6, 1.2), 1e-15));
     // Two points.
-    EXPECT_DOUBLE_EQ(dist({kOrigin, kOrigin, kOrigin}, {Vector3d(0, 3, 4), Vector3d(0, 3, 4), Vector3d(0, 3, 4)}),
-                     5.0);
+    EXPECT_DOUBLE_EQ(dist({kOrigin, kOrigin, kOrigin}, {Vector3d(0, 3, 4), Vector3d(0, 3, 4), Vector3d(0, 3, 4)}), 5.0);
     for (const Tri &b : {Tri{Vector3d(1, 1, 3), Vector3d(1, 1, 2), Vector3d(1, 1, 5)},
                          Tri{Vector3d(5, 5, 0), Vector3d(5, 5, 0), Vector3d(5, 5, 0)}, t})
     {

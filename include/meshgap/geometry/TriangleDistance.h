@@ -33,7 +33,7 @@ namespace meshgap
 
         Same frame and unit for all points. The triangle's plane frame is built on its longest edge by
         Gram-Schmidt, so sliver triangles are handled to roundoff; a degenerate triangle (collinear corners, a repeated
-        corner or a single point) is treated as the union of its edges.
+        corner, a single point, or a height below 1e-15 of its longest edge) is treated as the union of its edges.
         \param onT closest point of the triangle (output) */
     double pointTriangleDistance(const Eigen::Vector3d &p, const Eigen::Vector3d &a, const Eigen::Vector3d &b,
                                  const Eigen::Vector3d &c, Eigen::Vector3d &onT);
@@ -54,13 +54,14 @@ namespace meshgap
 
         All points in one frame, the distance in its length unit. The minimum over the 6 vertex-face pairs and the 9
         edge-edge pairs (each computed as in pointTriangleDistance() and segmentSegmentDistance()), which is exact for
-        disjoint triangles. When the triangles intersect (trianglesIntersect() is \c true) the result is exactly 0 and
-        \e onA == \e onB is a common point: a point where an edge crosses the other face, or, when they only touch
-        within the tolerance, the midpoint of the closest pair (at most half the tolerance from each triangle).
-        Otherwise the witnesses are the closest points and the result is their distance (up to roundoff). Symmetric
-        and invariant under corner order like trianglesIntersect(). Pure, allocation-free and thread-safe.
-        \param onA closest point on triangle a (output)
-        \param onB closest point on triangle b (output) */
+        disjoint triangles; the search stops early once the slab between the planes normal to the current closest
+        pair through its points separates the triangles (a proof that nothing is closer). When the triangles intersect
+       (trianglesIntersect() is \c true) the result is exactly 0 and \e onA == \e onB is a common point: a point where
+       an edge crosses the other face, or, when they only touch within the tolerance, the midpoint of the closest pair
+       (at most half the tolerance from each triangle). Otherwise the witnesses are the closest points and the result is
+       their distance (up to roundoff). Symmetric and invariant under corner order like trianglesIntersect(). Pure,
+       allocation-free and thread-safe. \param onA closest point on triangle a (output) \param onB closest point on
+       triangle b (output) */
     double triangleDistance(const Eigen::Vector3d &a0, const Eigen::Vector3d &a1, const Eigen::Vector3d &a2,
                             const Eigen::Vector3d &b0, const Eigen::Vector3d &b1, const Eigen::Vector3d &b2,
                             Eigen::Vector3d &onA, Eigen::Vector3d &onB);
