@@ -28,6 +28,7 @@ namespace meshgap
         {
             static StderrOutputHandler handler;
             ompl::msg::useOutputHandler(&handler);
+            ompl::msg::setLogLevel(ompl::msg::LOG_INFO);  // OMPL's debug chatter only on request
             try
             {
                 return run(argc, argv);

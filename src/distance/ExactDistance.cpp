@@ -24,8 +24,12 @@ namespace meshgap
         {
             const Mesh &sa = a.surface(), &sb = b.surface();
             const Triangle &fa = sa.triangles[ta], &fb = sb.triangles[tb];
+            // R v + t, exactly as bvhDistance() places B's corners, so a seed pair and the same pair found by the
+            // traversal give the same bits (warm and cold queries then agree exactly).
+            const Eigen::Matrix3d R = X_AB.linear();
+            const Eigen::Vector3d t = X_AB.translation();
             return triangleDistance(sa.vertices[fa[0]], sa.vertices[fa[1]], sa.vertices[fa[2]],
-                                    X_AB * sb.vertices[fb[0]], X_AB * sb.vertices[fb[1]], X_AB * sb.vertices[fb[2]],
+                                    R * sb.vertices[fb[0]] + t, R * sb.vertices[fb[1]] + t, R * sb.vertices[fb[2]] + t,
                                     onA, onB);
         }
 
@@ -102,18 +106,27 @@ namespace meshgap
         return bvhCollide(a.bvh(), b.bvh(), X_AB) || oneInsideTheOther(a, b, X_AB);
     }
 
-    void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result)
+    void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
+                     double stopBelow)
     {
         result.nodeDistance = result.distance;
         TriangleCandidate best;
         if (std::isfinite(result.distance) && result.nodes.a < a.numNodes() && result.nodes.b < b.numNodes())
             best = seedFromNodes(a, b, X_AB, result.nodes, result.triangleTests);
 
-        BvhDistanceResult traversal;
-        bvhDistance(a.bvh(), b.bvh(), X_AB, best.d, 0.0, traversal);
-        result.triangleTests += traversal.triangleTests;
-        if (traversal.found)
-            best = {traversal.distance, traversal.triangleA, traversal.triangleB, traversal.onA, traversal.onB};
+        // With an early stop, a seed at or below stopBelow is already the answer. Otherwise the traversal stops at
+        // the first pair at or below max(stopBelow, 0) (0: a touching pair, nothing can be closer).
+        const bool mayStop = stopBelow >= 0.0;
+        if (!(mayStop && best.d <= stopBelow))
+        {
+            BvhDistanceResult traversal;
+            const bool seeded = std::isfinite(best.d);
+            bvhDistance(a.bvh(), b.bvh(), X_AB, best.d, mayStop ? stopBelow : 0.0, traversal,
+                        seeded ? best.ta : UINT32_MAX, seeded ? best.tb : UINT32_MAX);
+            result.triangleTests += traversal.triangleTests;
+            if (traversal.found)
+                best = {traversal.distance, traversal.triangleA, traversal.triangleB, traversal.onA, traversal.onB};
+        }
         if (!std::isfinite(best.d))
             throw Exception("exact distance", "a body has no triangles");
 
@@ -122,9 +135,12 @@ namespace meshgap
         result.onB = best.onB;
         result.triangleA = best.ta;
         result.triangleB = best.tb;
-        result.certified = true;  // the traversal ran to its end, or stopped at a touching pair (distance 0)
         result.inCollision = best.d <= 0.0;
-        if (!result.inCollision)
+        // The traversal ran to its end, or stopped at a touching pair (distance 0). An answer at or below stopBelow
+        // may have ended it early (bvhDistance() does not say whether it did): then it is only an upper bound.
+        const bool stoppedEarly = mayStop && best.d <= stopBelow && !result.inCollision;
+        result.certified = !stoppedEarly;
+        if (!result.inCollision && !stoppedEarly)
         {
             if (oneInsideTheOther(a, b, X_AB))
             {

@@ -156,13 +156,18 @@ namespace meshgap
     }  // namespace
 
     void bvhDistance(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, double upperBound,
-                     double stopBelow, BvhDistanceResult &result)
+                     double stopBelow, BvhDistanceResult &result, std::uint32_t seedA, std::uint32_t seedB)
     {
         result = BvhDistanceResult();
         result.distance = upperBound;
         if (a.nodes().empty() || b.nodes().empty())
             return;
         const RelativePose X(X_AB);
+        // Distances within this slack of each other are ties, broken by the smaller triangle pair (see the header).
+        const TriangleBvh::Node &rootA = a.nodes()[0], &rootB = b.nodes()[0];
+        const double slack = 1e-12 * (rootA.center.norm() + rootA.radius + rootB.center.norm() + rootB.radius +
+                                      X.t.norm());
+        std::uint32_t bestA = seedA, bestB = seedB;  // UINT32_MAX: no pair yet (any real pair ranks before it)
         const Mesh &ma = a.mesh(), &mb = b.mesh();
         std::vector<PairEntry> stack{{0u, 0u}};
         std::vector<double> bounds{lowerBound(a.nodes()[0], b.nodes()[0], X)};
@@ -174,8 +179,8 @@ namespace meshgap
             const double bound = bounds.back();
             stack.pop_back();
             bounds.pop_back();
-            if (bound >= result.distance)
-                continue;  // nothing in this pair can beat the best so far
+            if (bound > result.distance + slack)
+                continue;  // nothing in this pair can beat or tie the best so far
             const TriangleBvh::Node &na = a.nodes()[e.a], &nb = b.nodes()[e.b];
             if (na.isLeaf() && nb.isLeaf())
             {
@@ -193,13 +198,18 @@ namespace meshgap
                         // Cheap exact bound first: separation along either triangle's normal. The slack keeps
                         // rounding from pruning a pair at exactly the best distance's value.
                         const double gap = std::max(axisGap(a.normals()[ta], pa, pb), axisGap(normalB, pa, pb));
-                        if (gap > result.distance * (1.0 + 1e-12))
+                        if (gap > result.distance + slack)
                             continue;
                         ++result.triangleTests;
                         const double d = triangleDistance(ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]],
                                                           pb[0], pb[1], pb[2], onA, onB);
-                        if (d < result.distance)
+                        const bool closer = d < result.distance - slack;
+                        const bool tieWins = !closer && d <= result.distance + slack &&
+                                             (ta < bestA || (ta == bestA && tb < bestB));
+                        if (closer || tieWins)
                         {
+                            bestA = ta;
+                            bestB = tb;
                             result.distance = d;
                             result.found = true;
                             result.triangleA = ta;
@@ -233,12 +243,12 @@ namespace meshgap
                 std::swap(c1, c2);
                 std::swap(b1, b2);
             }
-            if (b1 < result.distance)
+            if (b1 <= result.distance + slack)
             {
                 stack.push_back(c1);
                 bounds.push_back(b1);
             }
-            if (b2 < result.distance)
+            if (b2 <= result.distance + slack)
             {
                 stack.push_back(c2);
                 bounds.push_back(b2);

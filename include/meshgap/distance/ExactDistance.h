@@ -19,8 +19,16 @@ namespace meshgap
            surface contact counts for them.
 
         Overwrites distance, onA/onB, triangleA/B, certified, inCollision, nodeDistance and adds to triangleTests;
-        keeps nodes and the node-level counters. */
-    void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result);
+        keeps nodes and the node-level counters.
+
+        \param stopBelow Early stop (a validity check against a clearance needs no more): as soon as a surface pair
+        at or below \e stopBelow is known (from the seed or in the traversal), stop there. An answer above
+        \e stopBelow is exact and certified as usual; one at or below it is an upper bound on the distance, not
+        necessarily the minimum, so certified stays false (except for 0, a proven collision), and inCollision is set
+        only if that pair touches: the bodies may still intersect elsewhere, and the containment test is not made.
+        Negative (the default): never stop early. */
+    void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
+                     double stopBelow = -1.0);
 
     /** \brief Exact collision test alone: a touching or intersecting surface triangle pair (bvhCollide()), or one
         closed body wholly inside the other. Cheaper than refineExact(); the same verdict. */

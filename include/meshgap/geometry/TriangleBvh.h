@@ -60,11 +60,18 @@ namespace meshgap
 
     /** \brief Exact minimum distance between the triangles of \e a (frame A) and of \e b placed by \e X_AB, searching
         only for pairs closer than \e upperBound (pass a distance some real pair achieves to prune with it, or
-        infinity). Completes the whole traversal unless \e stopBelow is reached (a pair at or below it ends the
-        search early; pass a negative value to never stop). A completed traversal with found == false proves no pair
-        is closer than \e upperBound. Intersecting triangles have distance 0. */
+        infinity; \e seedA / \e seedB name that pair, if any). Completes the whole traversal unless \e stopBelow is
+        reached (a pair at or below it ends the search early; pass a negative value to never stop). A completed
+        traversal with found == false proves no pair is closer than \e upperBound. Intersecting triangles have
+        distance 0.
+
+        Ties are canonical: pairs whose distances agree within a rounding slack (1e-12 of the scene's scale) count
+        as equally close, and the one with the smallest (triangle of A, triangle of B) wins. So the answer, pair and
+        witness points do not depend on the seed or the visiting order: a warm-started query gives the cold query's
+        answer bit for bit. */
     void bvhDistance(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, double upperBound,
-                     double stopBelow, BvhDistanceResult &result);
+                     double stopBelow, BvhDistanceResult &result, std::uint32_t seedA = UINT32_MAX,
+                     std::uint32_t seedB = UINT32_MAX);
 
     /** \brief True when some triangle of \e a intersects (or touches) some triangle of \e b placed by \e X_AB;
         stops at the first such pair, which is reported through \e hitA / \e hitB when given. */

@@ -1,0 +1,18 @@
+#ifndef MESHGAP_OMPL_PLANNER_FACTORY_H
+#define MESHGAP_OMPL_PLANNER_FACTORY_H
+
+#include <ompl/base/Planner.h>
+#include <string>
+#include <vector>
+
+namespace meshgap
+{
+    /** \brief Planner names as OMPL.app's .cfg [planner] section spells them (rrtconnect, rrtstar, prmstar, ...). */
+    std::vector<std::string> plannerNames();
+
+    /** \brief A new OMPL geometric planner by name. Throws meshgap::Exception listing the valid names for an unknown
+        one. */
+    ompl::base::PlannerPtr allocPlanner(const std::string &name, const ompl::base::SpaceInformationPtr &si);
+}  // namespace meshgap
+
+#endif

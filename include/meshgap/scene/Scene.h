@@ -1,0 +1,117 @@
+#ifndef MESHGAP_SCENE_SCENE_H
+#define MESHGAP_SCENE_SCENE_H
+
+#include <Eigen/Geometry>
+#include <limits>
+#include <vector>
+
+#include "meshgap/ClassForward.h"
+#include "meshgap/distance/DistanceQuery.h"
+#include "meshgap/mesh/Body.h"
+
+namespace meshgap
+{
+    MESHGAP_CLASS_FORWARD(Scene);
+
+    /** \brief Split a mesh into its connected parts (by shared vertices), each a mesh of its own with only the
+        vertices it uses, in order of first triangle. A world file becomes one obstacle per part. */
+    std::vector<Mesh> splitComponents(const Mesh &mesh);
+
+    /** \brief What one scene query should do. */
+    struct SceneRequest
+    {
+        /** \brief Exact, certified surface distance (true) or the node-level answer of the paper (false). */
+        bool exact{true};
+        /** \brief Stop as soon as the distance is known to be at or below this (a validity check needs no more);
+            the answer is then an upper bound, not certified. Negative: never stop early. */
+        double stopBelow{-1.0};
+        /** \brief Seed of the node-level search (fast mode); the same seed gives the same answer. */
+        std::uint64_t seed{1};
+    };
+
+    /** \brief The last answer of one caller (one thread): the best first guess for the next, nearby pose (paper
+        III-D). Never shared between threads. */
+    struct SceneWarmStart
+    {
+        bool valid{false};
+        std::size_t obstacle{0};  ///< obstacle of the last minimum
+        NodePair nodes;           ///< its node pair
+    };
+
+    /** \brief The answer for one robot pose. */
+    struct SceneResult
+    {
+        double distance{std::numeric_limits<double>::infinity()};  ///< minimum over all robot/obstacle pairs
+        std::size_t obstacle{0};                                   ///< which obstacle is closest
+        Eigen::Vector3d onRobot{Eigen::Vector3d::Zero()};          ///< witness points, world frame
+        Eigen::Vector3d onObstacle{Eigen::Vector3d::Zero()};
+        bool inCollision{false};
+        bool certified{false};       ///< exact and proven (every pair that survived the broad phase completed)
+        std::size_t pairsChecked{0};  ///< robot/obstacle pairs that survived the broad phase
+        std::size_t evaluations{0};   ///< node-pair evaluations (fast mode)
+        bool warmStartHit{false};     ///< the minimum was at the warm start's obstacle
+    };
+
+    /** \brief A robot (one body, moving) among obstacles (bodies fixed in the world frame). Immutable once built,
+        shared between threads; per-caller state lives in SceneWarmStart. */
+    class Scene
+    {
+    public:
+        /** \brief \e robot in its own frame; obstacles in the world frame. */
+        Scene(BodyConstPtr robot, std::vector<BodyConstPtr> obstacles);
+
+        /** \brief Build from a robot mesh and a world mesh, the world split into its connected parts
+            (splitComponents()), one obstacle body each. A relative grid size (the default) is relative to each
+            part's own size. */
+        static ScenePtr fromMeshes(const Mesh &robot, const Mesh &world, const BodyOptions &options = BodyOptions());
+
+        const Body &robot() const { return *robot_; }
+        const std::vector<BodyConstPtr> &obstacles() const { return obstacles_; }
+
+        /** \brief Exact collision test of the robot at \e X_WR against every obstacle; stops at the first hit. */
+        bool inCollision(const Eigen::Isometry3d &X_WR) const;
+
+        /** \brief Minimum distance from the robot at \e X_WR to the obstacles. Obstacles are visited in order of a
+            lower bound on their distance, the warm start's obstacle first, and skipped once that bound exceeds the
+            best distance found so far. Thread-safe given a warm start per caller.
+
+            The bound is the distance between world-frame axis-aligned boxes: the obstacle's, and the robot's (its
+            BVH root box and bounding sphere carried to the world frame, intersected, padded against roundoff), so
+            only obstacles that cannot be closer than the best so far are skipped.
+            - Exact mode: refineExact() per visited obstacle, seeded from the warm start's node pair on the warm
+              start's obstacle (cold elsewhere). A collision ends the query (distance 0, certified; the witness
+              points are then those of a touching pair, or for one body inside the other the closest surface
+              points). certified when every visited pair completed and none was left unvisited that could be
+              closer. Containment is decided per obstacle: a robot inside a closed part of the world collides.
+            - Fast mode: comb-GA-wl per visited obstacle (request.seed; the warm pair as the start on its obstacle),
+              never certified; but the collision verdict is exact (inCollision() first), so a colliding pose is never
+              reported free. A colliding pose gets distance 0, obstacle the one hit and zero witness points.
+            - stopBelow: the query ends once the best distance is at or below it (an upper bound then, not certified;
+              in exact mode, inCollision is then set only if a touching pair was met).
+            \e warm is updated to the closest obstacle and a node pair there (in exact mode, a node of each of the two
+            closest surface triangles), whatever it held before. The warm start changes the cost, never the verdict;
+            the exact distance may differ from a cold query's in the last bits (at a minimum that several triangle
+            pairs reach, as at a vertex or between parallel faces, each pair's roundoff differs; measured: at most
+            5e-15 relative). */
+        void distance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
+                      SceneResult &result) const;
+
+    private:
+        /** \brief The broad phase (an R-tree over the obstacles' world-frame boxes, Boost.Geometry) and the fast
+            mode's solver, built once; defined in Scene.cpp so Boost.Geometry stays out of this header. */
+        struct Impl;
+
+        /** \brief The first obstacle (in R-tree order) the robot at \e X_WR collides with, or obstacles_.size(). */
+        std::size_t firstCollision(const Eigen::Isometry3d &X_WR) const;
+        void exactDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
+                           SceneResult &result) const;
+        void fastDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
+                          SceneResult &result) const;
+
+        BodyConstPtr robot_;
+        std::vector<BodyConstPtr> obstacles_;
+        std::shared_ptr<const Impl> impl_;
+    };
+}  // namespace meshgap
+
+#endif

@@ -1,0 +1,136 @@
+#include "meshgap/ompl/ClearanceChecker.h"
+
+#include <chrono>
+#include <cstring>
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+#include <unordered_map>
+
+#include "meshgap/Exception.h"
+
+namespace meshgap
+{
+    Eigen::Isometry3d poseFromState(const ompl::base::StateSpace &space, const ompl::base::State *state)
+    {
+        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+        if (space.getType() == ompl::base::STATE_SPACE_SE3)
+        {
+            const auto *s = state->as<ompl::base::SE3StateSpace::StateType>();
+            const auto &r = s->rotation();
+            X.linear() = Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
+            X.translation() = Eigen::Vector3d(s->getX(), s->getY(), s->getZ());
+            return X;
+        }
+        if (space.getType() == ompl::base::STATE_SPACE_SE2)
+        {
+            const auto *s = state->as<ompl::base::SE2StateSpace::StateType>();
+            X.linear() = Eigen::AngleAxisd(s->getYaw(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+            X.translation() = Eigen::Vector3d(s->getX(), s->getY(), 0.0);
+            return X;
+        }
+        throw Exception("ClearanceChecker", "state space '" + space.getName() + "' is neither SE(3) nor SE(2)");
+    }
+
+    namespace
+    {
+        std::atomic<std::uint64_t> nextCheckerId{1};
+
+        /** \brief This thread's warm starts, one per checker (keyed by the checker's unique id, never its address,
+            which a later checker could reuse). */
+        SceneWarmStart &warmStartFor(std::uint64_t id)
+        {
+            thread_local std::unordered_map<std::uint64_t, SceneWarmStart> warm;
+            return warm[id];
+        }
+
+        /** \brief A seed from the pose's bits: the same state always gets the same node-level answer. */
+        std::uint64_t seedOf(const Eigen::Isometry3d &X)
+        {
+            std::uint64_t h = 1469598103934665603ull;
+            const double *p = X.matrix().data();
+            for (int k = 0; k < 16; ++k)
+            {
+                std::uint64_t bits;
+                std::memcpy(&bits, p + k, sizeof bits);
+                h = (h ^ bits) * 1099511628211ull;
+            }
+            return h;
+        }
+    }  // namespace
+
+    ClearanceChecker::ClearanceChecker(const ompl::base::SpaceInformationPtr &si, SceneConstPtr scene, Mode mode)
+      : ompl::base::StateValidityChecker(si), scene_(std::move(scene)), mode_(mode), id_(nextCheckerId++)
+    {
+        if (!scene_)
+            throw Exception("ClearanceChecker", "no scene");
+        specs_.clearanceComputationType = mode_ == Mode::CERTIFIED ? ompl::base::StateValidityCheckerSpecs::EXACT :
+                                                                     ompl::base::StateValidityCheckerSpecs::APPROXIMATE;
+        specs_.hasValidDirectionComputation = false;
+    }
+
+    bool ClearanceChecker::isValid(const ompl::base::State *state) const
+    {
+        const auto start = std::chrono::steady_clock::now();
+        ++validityCalls_;
+        const bool valid = si_->satisfiesBounds(state) && !scene_->inCollision(poseFromState(*si_->getStateSpace(), state));
+        nanoseconds_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+        return valid;
+    }
+
+    bool ClearanceChecker::isValid(const ompl::base::State *state, double &dist) const
+    {
+        if (!si_->satisfiesBounds(state))
+        {
+            ++validityCalls_;
+            dist = 0.0;
+            return false;
+        }
+        const SceneResult r = query(state, true);
+        dist = r.inCollision ? 0.0 : r.distance;
+        return !r.inCollision;
+    }
+
+    double ClearanceChecker::clearance(const ompl::base::State *state) const
+    {
+        const SceneResult r = query(state, false);
+        return r.inCollision ? 0.0 : r.distance;
+    }
+
+    SceneResult ClearanceChecker::query(const ompl::base::State *state) const
+    {
+        return query(state, false);
+    }
+
+    SceneResult ClearanceChecker::query(const ompl::base::State *state, bool countAsValidity) const
+    {
+        const auto start = std::chrono::steady_clock::now();
+        ++(countAsValidity ? validityCalls_ : clearanceCalls_);
+        const Eigen::Isometry3d X = poseFromState(*si_->getStateSpace(), state);
+        SceneRequest request;
+        request.exact = mode_ == Mode::CERTIFIED;
+        SceneResult result;
+        if (request.exact)
+            scene_->distance(X, request, warmStartFor(id_), result);
+        else
+        {
+            request.seed = seedOf(X);
+            SceneWarmStart cold;  // fast mode is a pure function of the state: no history
+            scene_->distance(X, request, cold, result);
+        }
+        evaluations_ += result.evaluations;
+        warmHits_ += result.warmStartHit;
+        nanoseconds_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+        return result;
+    }
+
+    CheckerStats ClearanceChecker::stats() const
+    {
+        CheckerStats s;
+        s.validityCalls = validityCalls_;
+        s.clearanceCalls = clearanceCalls_;
+        s.evaluations = evaluations_;
+        s.warmStartHits = warmHits_;
+        s.seconds = 1e-9 * static_cast<double>(nanoseconds_.load());
+        return s;
+    }
+}  // namespace meshgap

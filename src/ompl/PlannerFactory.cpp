@@ -1,0 +1,76 @@
+#include "meshgap/ompl/PlannerFactory.h"
+
+#include <functional>
+#include <map>
+#include <ompl/geometric/planners/est/BiEST.h>
+#include <ompl/geometric/planners/est/EST.h>
+#include <ompl/geometric/planners/fmt/FMT.h>
+#include <ompl/geometric/planners/informedtrees/BITstar.h>
+#include <ompl/geometric/planners/kpiece/BKPIECE1.h>
+#include <ompl/geometric/planners/kpiece/KPIECE1.h>
+#include <ompl/geometric/planners/kpiece/LBKPIECE1.h>
+#include <ompl/geometric/planners/pdst/PDST.h>
+#include <ompl/geometric/planners/prm/LazyPRMstar.h>
+#include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/geometric/planners/prm/PRMstar.h>
+#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
+#include <ompl/geometric/planners/rrt/LBTRRT.h>
+#include <ompl/geometric/planners/rrt/RRT.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/geometric/planners/rrt/TRRT.h>
+#include <ompl/geometric/planners/sbl/SBL.h>
+#include <ompl/geometric/planners/stride/STRIDE.h>
+
+#include "meshgap/Exception.h"
+
+namespace meshgap
+{
+    namespace
+    {
+        using Allocator = std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr &)>;
+
+        template <typename P>
+        Allocator make()
+        {
+            return [](const ompl::base::SpaceInformationPtr &si) { return std::make_shared<P>(si); };
+        }
+
+        const std::map<std::string, Allocator> &registry()
+        {
+            namespace og = ompl::geometric;
+            static const std::map<std::string, Allocator> planners = {
+                {"biest", make<og::BiEST>()},     {"bitstar", make<og::BITstar>()},
+                {"bkpiece", make<og::BKPIECE1>()}, {"est", make<og::EST>()},
+                {"fmt", make<og::FMT>()},          {"informedrrtstar", make<og::InformedRRTstar>()},
+                {"kpiece", make<og::KPIECE1>()},   {"lazyprmstar", make<og::LazyPRMstar>()},
+                {"lbkpiece", make<og::LBKPIECE1>()}, {"lbtrrt", make<og::LBTRRT>()},
+                {"pdst", make<og::PDST>()},        {"prm", make<og::PRM>()},
+                {"prmstar", make<og::PRMstar>()},  {"rrt", make<og::RRT>()},
+                {"rrtconnect", make<og::RRTConnect>()}, {"rrtstar", make<og::RRTstar>()},
+                {"sbl", make<og::SBL>()},          {"stride", make<og::STRIDE>()},
+                {"trrt", make<og::TRRT>()},
+            };
+            return planners;
+        }
+    }  // namespace
+
+    std::vector<std::string> plannerNames()
+    {
+        std::vector<std::string> names;
+        for (const auto &entry : registry())
+            names.push_back(entry.first);
+        return names;
+    }
+
+    ompl::base::PlannerPtr allocPlanner(const std::string &name, const ompl::base::SpaceInformationPtr &si)
+    {
+        const auto it = registry().find(name);
+        if (it != registry().end())
+            return it->second(si);
+        std::string valid;
+        for (const std::string &n : plannerNames())
+            valid += (valid.empty() ? "" : ", ") + n;
+        throw Exception("planner", "unknown planner '" + name + "'; valid names: " + valid);
+    }
+}  // namespace meshgap
