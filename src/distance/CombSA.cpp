@@ -78,10 +78,7 @@ namespace meshgap
     {
         const auto startTime = std::chrono::steady_clock::now();
         result = DistanceResult();
-        if (a.numNodes() == 0 || b.numNodes() == 0)
-            throw Exception(name_, "a body has no nodes");
-        if (request.start && (request.start->a >= a.numNodes() || request.start->b >= b.numNodes()))
-            throw Exception(name_, "start node pair out of range");
+        checkRequest(a, b, request);
 
         const double kB = boltzmann_, tIni = initialTemperature_;
         const bool localSearch = localSearch_;

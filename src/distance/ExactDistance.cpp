@@ -155,11 +155,10 @@ namespace meshgap
     {
         const auto start = std::chrono::steady_clock::now();
         result = DistanceResult();
+        checkRequest(a, b, request);
         if (request.start)
         {
             NodePair pair = *request.start;
-            if (pair.a >= a.numNodes() || pair.b >= b.numNodes())
-                throw Exception(name_, "start node pair out of range");
             PairEvaluator evaluator(a, b, X_AB);
             double d2 = evaluator.d2(pair);
             result.localSteps = hillClimb(evaluator, pair, d2, request.maxEvaluations);

@@ -71,13 +71,10 @@ namespace meshgap
     {
         const auto start = std::chrono::steady_clock::now();
         result = DistanceResult();
+        checkRequest(a, b, request);
         NodePair pair;
         if (request.start)
-        {
             pair = *request.start;
-            if (pair.a >= a.numNodes() || pair.b >= b.numNodes())
-                throw Exception("hill-climb", "start node pair out of range");
-        }
         else
         {
             std::mt19937_64 rng(request.seed);

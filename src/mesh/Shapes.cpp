@@ -792,6 +792,25 @@ namespace meshgap
         return m;
     }
 
+    namespace
+    {
+        /** \brief Side faces between two consecutive rings of \e segments corners (a ring of one corner is a pole:
+            triangles instead of quads), wound from \e a to \e b. */
+        void stitchRings(Polyhedron &p, const Polyhedron::Loop &a, const Polyhedron::Loop &b, unsigned int segments)
+        {
+            for (unsigned int k = 0; k < segments; ++k)
+            {
+                const unsigned int l = (k + 1) % segments;
+                if (a.size() == 1)
+                    p.addFace({a[0], b[l], b[k]});
+                else if (b.size() == 1)
+                    p.addFace({a[k], a[l], b[0]});
+                else
+                    p.addFace({a[k], a[l], b[l], b[k]});
+            }
+        }
+    }  // namespace
+
     Polyhedron prismPolyhedron(const Polygon2d &outer, const std::vector<Polygon2d> &holes, double height)
     {
         if (outer.size() < 3 || !(height > 0.0) || !std::isfinite(height))
@@ -882,16 +901,7 @@ namespace meshgap
                 p.addHole(f, aOuter ? decreasing(b) : increasing(a));
             }
             else
-                for (unsigned int k = 0; k < segments; ++k)
-                {
-                    const unsigned int l = (k + 1) % segments;
-                    if (a.size() == 1)
-                        p.addFace({a[0], b[l], b[k]});
-                    else if (b.size() == 1)
-                        p.addFace({a[k], a[l], b[0]});
-                    else
-                        p.addFace({a[k], a[l], b[l], b[k]});
-                }
+                stitchRings(p, a, b, segments);
         }
         if (p.volume() < 0.0)
             p.reverse();
@@ -974,17 +984,7 @@ namespace meshgap
         cap(path.back(), tangent.back(), true);
         for (std::size_t i = 0; i + 1 < stations.size(); ++i)
         {
-            const Polyhedron::Loop &a = stations[i], &b = stations[i + 1];
-            for (unsigned int k = 0; k < segments; ++k)
-            {
-                const unsigned int l = (k + 1) % segments;
-                if (a.size() == 1)
-                    p.addFace({a[0], b[l], b[k]});
-                else if (b.size() == 1)
-                    p.addFace({a[k], a[l], b[0]});
-                else
-                    p.addFace({a[k], a[l], b[l], b[k]});
-            }
+            stitchRings(p, stations[i], stations[i + 1], segments);
         }
         if (p.volume() < 0.0)
             p.reverse();

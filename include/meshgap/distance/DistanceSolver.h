@@ -31,6 +31,10 @@ namespace meshgap
         const ompl::base::ParamSet &params() const { return params_; }
 
     protected:
+        /** \brief Throws meshgap::Exception (naming the solver) for a body without nodes or a start pair out of
+            range. */
+        void checkRequest(const Body &a, const Body &b, const DistanceRequest &request) const;
+
         std::string name_;
         ompl::base::ParamSet params_;
     };
