@@ -16,6 +16,7 @@
 
 #include "CliMain.h"
 #include "meshgap/Exception.h"
+#include "meshgap/ompl/ClearanceMotionValidator.h"
 #include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/ProblemSetup.h"
 
@@ -26,7 +27,7 @@ namespace
 {
     int run(int argc, char **argv)
     {
-        std::string cfg, planner = "rrtconnect", objective, mode = "certified", out;
+        std::string cfg, planner = "rrtconnect", objective, mode = "certified", motion = "discrete", out;
         double time = 10.0;
         std::uint32_t seed = 1;
         po::options_description options("meshgap_plan --cfg FILE [options]\n\nOptions");
@@ -35,6 +36,8 @@ namespace
             "time", po::value(&time), "time limit in seconds")(
             "objective", po::value(&objective), "length or max_min_clearance (default: the cfg's, else length)")(
             "mode", po::value(&mode), "clearance: certified (exact) or fast (the paper's node distance)")(
+            "motion", po::value(&motion),
+            "motion validator: discrete (OMPL's, sampled) or clearance (conservative advancement, certified)")(
             "seed", po::value(&seed), "OMPL's random seed")("out", po::value(&out), "write the path here (.path)")(
             "quiet,q", "print warnings and errors only");
         po::variables_map vm;
@@ -51,6 +54,10 @@ namespace
             throw Exception("command line", "--cfg FILE is required; see --help");
         if (mode != "certified" && mode != "fast")
             throw Exception("--mode", "'" + mode + "' is not certified or fast");
+        if (motion != "discrete" && motion != "clearance")
+            throw Exception("--motion", "'" + motion + "' is not discrete or clearance");
+        if (motion == "clearance" && mode != "certified")
+            throw Exception("--motion", "clearance needs --mode certified (it steps by exact clearance)");
         if (!(time > 0.0))
             throw Exception("--time", "must be positive");
         ompl::RNG::setSeed(seed);
@@ -59,6 +66,9 @@ namespace
         OmplProblem problem = setupProblem(config, mode == "certified" ? ClearanceChecker::Mode::CERTIFIED :
                                                                          ClearanceChecker::Mode::FAST,
                                            objective);
+        if (motion == "clearance")
+            problem.setup->getSpaceInformation()->setMotionValidator(
+                std::make_shared<ClearanceMotionValidator>(problem.setup->getSpaceInformation(), problem.checker));
         problem.setup->setPlanner(allocPlanner(planner, problem.setup->getSpaceInformation()));
         problem.setup->setup();
         OMPL_INFORM("%s: %zu obstacles, planner %s, objective %s, clearance %s", config.name.c_str(),

@@ -1,0 +1,106 @@
+// The clearance motion validator never accepts a motion that collides (checked densely at 1/1000 of each motion
+// with the exact collision test), and how it compares with OMPL's DiscreteMotionValidator.
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "TestMeshes.h"
+#include "meshgap/ompl/ClearanceMotionValidator.h"
+
+using namespace meshgap;
+namespace ob = ompl::base;
+
+namespace
+{
+    Eigen::Isometry3d at(double x, double y, double z)
+    {
+        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+        X.translation() = Eigen::Vector3d(x, y, z);
+        return X;
+    }
+}  // namespace
+
+TEST(ClearanceMotionValidator, NeverAcceptsAMotionThatCollides)
+{
+    // Thin walls and posts (easy to jump over between discrete samples) and an L-shaped robot.
+    const Mesh world = test::merged(test::merged(test::transformed(test::box(0.05, 2.0, 2.0, 2), at(0, 0, 0)),
+                                                 test::transformed(test::box(0.1, 0.1, 2.0, 1), at(-2, 1.5, 0))),
+                                    test::transformed(test::box(2.0, 0.05, 2.0, 2), at(0, -2.5, 0)));
+    const Mesh robot = test::merged(test::box(0.5, 0.1, 0.1, 1), test::transformed(test::box(0.1, 0.4, 0.1, 1), at(-0.4, 0.3, 0)));
+    const ScenePtr scene = Scene::fromMeshes(robot, world);
+    auto space = std::make_shared<ob::SE3StateSpace>();
+    ob::RealVectorBounds bounds(3);
+    bounds.setLow(-4);
+    bounds.setHigh(4);
+    space->setBounds(bounds);
+    auto si = std::make_shared<ob::SpaceInformation>(space);
+    auto checker = std::make_shared<ClearanceChecker>(si, scene);
+    si->setStateValidityChecker(checker);
+    si->setup();
+    ClearanceMotionValidator validator(si, checker);
+    ob::DiscreteMotionValidator discrete(si);
+
+    ompl::RNG::setSeed(11);
+    ob::ScopedState<ob::SE3StateSpace> s1(space), s2(space), s(space);
+    int motions = 0, accepted = 0, rejectedFree = 0, discreteMisses = 0;
+    std::uint64_t discreteChecks = 0;
+    const std::uint64_t before = validator.queries();
+    while (motions < 1500)
+    {
+        s1.random();
+        if (!checker->isValid(s1.get()))
+            continue;
+        s2.random();
+        // Mostly short motions (as planners make), some long ones.
+        if (motions % 4 != 0)
+            space->interpolate(s1.get(), s2.get(), 0.15, s2.get());
+        ++motions;
+        // Dense exact check at 1/1000 of the motion: the oracle.
+        bool collides = false;
+        for (int k = 0; k <= 1000 && !collides; ++k)
+        {
+            space->interpolate(s1.get(), s2.get(), k / 1000.0, s.get());
+            collides = scene->inCollision(poseFromState(*space, s.get()));
+        }
+        const bool ok = validator.checkMotion(s1.get(), s2.get());
+        ASSERT_FALSE(ok && collides) << "motion " << motions << " accepted but collides";
+        accepted += ok;
+        rejectedFree += !ok && !collides;
+        const std::uint64_t callsBefore = checker->stats().validityCalls;
+        const bool discreteOk = discrete.checkMotion(s1.get(), s2.get());
+        discreteChecks += checker->stats().validityCalls - callsBefore;
+        discreteMisses += discreteOk && collides;
+        // lastValid: the state reported is collision-free and lies on the motion.
+        std::pair<ob::State *, double> last(s.get(), -1.0);
+        if (!validator.checkMotion(s1.get(), s2.get(), last))
+        {
+            EXPECT_GE(last.second, 0.0);
+            EXPECT_LT(last.second, 1.0);
+            EXPECT_TRUE(checker->isValid(s.get()));
+        }
+    }
+    const std::uint64_t queries = (validator.queries() - before) / 2;  // each motion was validated twice
+    std::printf("motions %d: accepted %d, refused though free %d; clearance queries %llu vs discrete state checks "
+                "%llu; collisions the discrete validator missed: %d\n",
+                motions, accepted, rejectedFree, static_cast<unsigned long long>(queries),
+                static_cast<unsigned long long>(discreteChecks), discreteMisses);
+    EXPECT_GT(accepted, 300);  // it does certify motions, not just refuse them
+}
+
+TEST(ClearanceMotionValidator, NeedsACertifiedChecker)
+{
+    auto space = std::make_shared<ob::SE3StateSpace>();
+    ob::RealVectorBounds bounds(3);
+    bounds.setLow(-1);
+    bounds.setHigh(1);
+    space->setBounds(bounds);
+    auto si = std::make_shared<ob::SpaceInformation>(space);
+    const ScenePtr scene = Scene::fromMeshes(test::box(0.1, 0.1, 0.1, 1), test::transformed(test::box(0.1, 0.1, 0.1, 1), at(1, 0, 0)));
+    auto fast = std::make_shared<ClearanceChecker>(si, scene, ClearanceChecker::Mode::FAST);
+    EXPECT_THROW(ClearanceMotionValidator(si, fast), std::exception);
+}
