@@ -27,6 +27,9 @@
 
 #include "CliMain.h"
 #include "meshgap/Exception.h"
+#include "meshgap/distance/ExactDistance.h"
+#include "meshgap/geometry/TriangleBvh.h"
+#include "meshgap/mesh/Body.h"
 #include "meshgap/mesh/Mesh.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/mesh/MeshWriter.h"
@@ -50,230 +53,8 @@ namespace
     }
 
     // ---------------------------------------------------------------------------------------------------------
-    // Exact distance between two triangle meshes (both in the same frame), with a bounding-volume hierarchy.
+    // Exact distance between two triangle meshes: the library's exact layer (ExactSolver, bvhDistance).
     // ---------------------------------------------------------------------------------------------------------
-
-    /** \brief Closest point to p on triangle abc (Ericson, Real-Time Collision Detection, 5.1.5). */
-    Vector3d closestOnTriangle(const Vector3d &p, const Vector3d &a, const Vector3d &b, const Vector3d &c)
-    {
-        const Vector3d ab = b - a, ac = c - a, ap = p - a;
-        const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-        if (d1 <= 0.0 && d2 <= 0.0)
-            return a;
-        const Vector3d bp = p - b;
-        const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-        if (d3 >= 0.0 && d4 <= d3)
-            return b;
-        const double vc = d1 * d4 - d3 * d2;
-        if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
-            return a + ab * (d1 / (d1 - d3));
-        const Vector3d cp = p - c;
-        const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-        if (d6 >= 0.0 && d5 <= d6)
-            return c;
-        const double vb = d5 * d2 - d1 * d6;
-        if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
-            return a + ac * (d2 / (d2 - d6));
-        const double va = d3 * d6 - d5 * d4;
-        if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
-            return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-        const double denom = 1.0 / (va + vb + vc);
-        return a + ab * (vb * denom) + ac * (vc * denom);
-    }
-
-    /** \brief Closest points of segments p1q1 and p2q2 (Ericson 5.1.9). */
-    std::pair<Vector3d, Vector3d> closestOnSegments(const Vector3d &p1, const Vector3d &q1, const Vector3d &p2,
-                                                    const Vector3d &q2)
-    {
-        const Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-        const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-        double s = 0.0, t = 0.0;
-        if (a <= 0.0 && e <= 0.0)
-            return {p1, p2};
-        if (a <= 0.0)
-            t = std::clamp(f / e, 0.0, 1.0);
-        else
-        {
-            const double c = d1.dot(r);
-            if (e <= 0.0)
-                s = std::clamp(-c / a, 0.0, 1.0);
-            else
-            {
-                const double b = d1.dot(d2), denom = a * e - b * b;
-                s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-                t = (b * s + f) / e;
-                if (t < 0.0)
-                {
-                    t = 0.0;
-                    s = std::clamp(-c / a, 0.0, 1.0);
-                }
-                else if (t > 1.0)
-                {
-                    t = 1.0;
-                    s = std::clamp((b - c) / a, 0.0, 1.0);
-                }
-            }
-        }
-        return {p1 + d1 * s, p2 + d2 * t};
-    }
-
-    /** \brief Does segment pq cross triangle abc (not merely lie in its plane)? */
-    bool segmentCrossesTriangle(const Vector3d &p, const Vector3d &q, const Vector3d &a, const Vector3d &b,
-                                const Vector3d &c, Vector3d &hit)
-    {
-        const Vector3d n = (b - a).cross(c - a);
-        const double dp = n.dot(p - a), dq = n.dot(q - a);
-        if ((dp > 0.0 && dq > 0.0) || (dp < 0.0 && dq < 0.0) || dp == dq)
-            return false;
-        hit = p + (q - p) * (dp / (dp - dq));
-        return n.dot((b - a).cross(hit - a)) >= 0.0 && n.dot((c - b).cross(hit - b)) >= 0.0 &&
-               n.dot((a - c).cross(hit - c)) >= 0.0;
-    }
-
-    struct Closest
-    {
-        double distance{std::numeric_limits<double>::infinity()};
-        Vector3d onA{Vector3d::Zero()}, onB{Vector3d::Zero()};
-        std::size_t triangleA{0}, triangleB{0};
-    };
-
-    /** \brief Exact distance between triangles (0 when they intersect). */
-    void triangleDistance(const std::array<Vector3d, 3> &s, const std::array<Vector3d, 3> &t, Closest &best,
-                          std::size_t i, std::size_t j)
-    {
-        auto consider = [&](const Vector3d &x, const Vector3d &y) {
-            const double d = (x - y).norm();
-            if (d < best.distance)
-                best = {d, x, y, i, j};
-        };
-        Vector3d hit;
-        for (int k = 0; k < 3; ++k)
-        {
-            if (segmentCrossesTriangle(s[k], s[(k + 1) % 3], t[0], t[1], t[2], hit) ||
-                segmentCrossesTriangle(t[k], t[(k + 1) % 3], s[0], s[1], s[2], hit))
-            {
-                consider(hit, hit);
-                return;
-            }
-        }
-        for (int k = 0; k < 3; ++k)
-        {
-            consider(s[k], closestOnTriangle(s[k], t[0], t[1], t[2]));
-            consider(closestOnTriangle(t[k], s[0], s[1], s[2]), t[k]);
-            for (int l = 0; l < 3; ++l)
-            {
-                const auto [x, y] = closestOnSegments(s[k], s[(k + 1) % 3], t[l], t[(l + 1) % 3]);
-                consider(x, y);
-            }
-        }
-    }
-
-    class Bvh
-    {
-    public:
-        explicit Bvh(const Mesh &mesh) : mesh_(mesh)
-        {
-            order_.resize(mesh.triangles.size());
-            for (std::size_t i = 0; i < order_.size(); ++i)
-                order_[i] = i;
-            build(0, order_.size());
-        }
-
-        /** \brief Exact distance between this mesh and \e other's (0 if their surfaces intersect). */
-        Closest distance(const Bvh &other) const
-        {
-            Closest best;
-            std::vector<std::pair<int, int>> stack{{0, 0}};
-            while (!stack.empty())
-            {
-                const auto [a, b] = stack.back();
-                stack.pop_back();
-                const Node &na = nodes_[a], &nb = other.nodes_[b];
-                if (boxDistance(na.box, nb.box) >= best.distance)
-                    continue;
-                const bool leafA = na.left < 0, leafB = nb.left < 0;
-                if (leafA && leafB)
-                {
-                    for (std::size_t i = na.begin; i < na.end; ++i)
-                        for (std::size_t j = nb.begin; j < nb.end; ++j)
-                            triangleDistance(corners(order_[i]), other.corners(other.order_[j]), best, order_[i],
-                                             other.order_[j]);
-                    if (best.distance == 0.0)
-                        return best;
-                    continue;
-                }
-                if (leafB || (!leafA && na.box.diagonal().norm() >= nb.box.diagonal().norm()))
-                {
-                    const double dl = boxDistance(nodes_[na.left].box, nb.box);
-                    const double dr = boxDistance(nodes_[na.right].box, nb.box);
-                    stack.emplace_back(dl < dr ? na.right : na.left, b);
-                    stack.emplace_back(dl < dr ? na.left : na.right, b);
-                }
-                else
-                {
-                    const double dl = boxDistance(na.box, other.nodes_[nb.left].box);
-                    const double dr = boxDistance(na.box, other.nodes_[nb.right].box);
-                    stack.emplace_back(a, dl < dr ? nb.right : nb.left);
-                    stack.emplace_back(a, dl < dr ? nb.left : nb.right);
-                }
-            }
-            return best;
-        }
-
-    private:
-        struct Node
-        {
-            Eigen::AlignedBox3d box;
-            int left{-1}, right{-1};
-            std::size_t begin{0}, end{0};
-        };
-
-        std::array<Vector3d, 3> corners(std::size_t t) const
-        {
-            const meshgap::Triangle &f = mesh_.triangles[t];
-            return {mesh_.vertices[f[0]], mesh_.vertices[f[1]], mesh_.vertices[f[2]]};
-        }
-
-        static double boxDistance(const Eigen::AlignedBox3d &a, const Eigen::AlignedBox3d &b)
-        {
-            const Vector3d gap = (a.min() - b.max()).cwiseMax(b.min() - a.max()).cwiseMax(0.0);
-            return gap.norm();
-        }
-
-        int build(std::size_t begin, std::size_t end)
-        {
-            const int index = static_cast<int>(nodes_.size());
-            nodes_.emplace_back();
-            Eigen::AlignedBox3d box;
-            for (std::size_t i = begin; i < end; ++i)
-                for (const Vector3d &p : corners(order_[i]))
-                    box.extend(p);
-            nodes_[index].box = box;
-            nodes_[index].begin = begin;
-            nodes_[index].end = end;
-            if (end - begin <= 4)
-                return index;
-            int axis = 0;
-            box.diagonal().maxCoeff(&axis);
-            const std::size_t mid = (begin + end) / 2;
-            auto centroid = [&](std::size_t t) {
-                const auto c = corners(t);
-                return c[0][axis] + c[1][axis] + c[2][axis];
-            };
-            std::nth_element(order_.begin() + static_cast<long>(begin), order_.begin() + static_cast<long>(mid),
-                             order_.begin() + static_cast<long>(end),
-                             [&](std::size_t x, std::size_t y) { return centroid(x) < centroid(y); });
-            const int left = build(begin, mid);
-            const int right = build(mid, end);
-            nodes_[index].left = left;
-            nodes_[index].right = right;
-            return index;
-        }
-
-        const Mesh &mesh_;
-        std::vector<std::size_t> order_;
-        std::vector<Node> nodes_;
-    };
 
     Mesh posed(const Mesh &body, const Eigen::Isometry3d &X)
     {
@@ -282,28 +63,38 @@ namespace
         return m;
     }
 
-    /** \brief Exact distance between A (its hierarchy) and B placed at X. */
-    Closest distanceAt(const Bvh &bvhA, const Mesh &b, const Eigen::Isometry3d &X)
+    /** \brief A mesh as a body for exact queries: its surface kept as it is (no refinement), so triangle indices
+        in a DistanceResult are the mesh's own. */
+    meshgap::BodyPtr exactBody(const Mesh &mesh)
     {
-        const Mesh moved = posed(b, X);
-        const Bvh bvhB(moved);
-        return bvhA.distance(bvhB);
+        meshgap::BodyOptions options;
+        options.gridSize = 0.0;
+        return meshgap::Body::build(mesh, options);
+    }
+
+    /** \brief Exact distance between A and B placed at X (B's pose in A's frame): closest triangles and witness
+        points (in A's frame), distance 0 when they intersect or one lies inside the other. */
+    meshgap::DistanceResult distanceAt(const meshgap::Body &a, const meshgap::Body &b, const Eigen::Isometry3d &X)
+    {
+        meshgap::DistanceResult result;
+        meshgap::ExactSolver().solve(a, b, X, meshgap::DistanceRequest(), result);
+        return result;
     }
 
     /** \brief Slide B from pose X along the unit direction w until its exact distance to A is \e gap. Moving B by
         delta changes the distance by at most |delta|, so each step of (distance - gap) along w never overshoots;
         the iteration converges when w has a component along the separating direction. */
-    Eigen::Isometry3d placeAtGap(const Bvh &bvhA, const Mesh &b, Eigen::Isometry3d X,
-                                 const Vector3d &w, double gap, const std::string &what)
+    Eigen::Isometry3d placeAtGap(const meshgap::Body &a, const meshgap::Body &b, Eigen::Isometry3d X, const Vector3d &w,
+                                 double gap, const std::string &what)
     {
         for (int step = 0; step < 20000; ++step)
         {
-            const double d = distanceAt(bvhA, b, X).distance;
-            if (d == 0.0)
+            const meshgap::DistanceResult r = distanceAt(a, b, X);
+            if (r.inCollision || r.distance == 0.0)
                 throw meshgap::Exception(what, "the designed pose already intersects the fixed body");
-            if (std::abs(d - gap) <= 1e-12 * (1.0 + gap))
+            if (std::abs(r.distance - gap) <= 1e-12 * (1.0 + gap))
                 return X;
-            X.pretranslate((d - gap) * w);
+            X.pretranslate((r.distance - gap) * w);
         }
         throw meshgap::Exception(what, "placing at the target gap did not converge");
     }
@@ -581,16 +372,16 @@ namespace
         s.units = "cm";
         s.a = fixture();
         s.b = battery();
-        const Bvh bvh(s.a);
+        const meshgap::BodyPtr bodyA = exactBody(s.a), bodyB = exactBody(s.b);
         // Position 1: battery 4 cm off the plate (pegs 6 cm into the holes), 0.3 cm above the shelf, rolled 0.1
         // degrees; slid sideways (-y) until a peg is 0.0747 from its hole's wall (Table III, exact).
         const Eigen::Isometry3d p1 =
             pose(Vector3d(4.0, 0.0, shelfTop + 0.3), rotation(Vector3d::UnitX(), 0.1));
-        s.poses.push_back(placeAtGap(bvh, s.b, p1, -Vector3d::UnitY(), 0.0747, "battery_fixture position 1"));
+        s.poses.push_back(placeAtGap(*bodyA, *bodyB, p1, -Vector3d::UnitY(), 0.0747, "battery_fixture position 1"));
         // Position 2: 2.5 cm off the plate, yawed 0.3 degrees, 0.25 above the shelf; slid +y to 0.0987.
         const Eigen::Isometry3d p2 =
             pose(Vector3d(2.5, 0.0, shelfTop + 0.25), rotation(Vector3d::UnitZ(), 0.3));
-        s.poses.push_back(placeAtGap(bvh, s.b, p2, Vector3d::UnitY(), 0.0987, "battery_fixture position 2"));
+        s.poses.push_back(placeAtGap(*bodyA, *bodyB, p2, Vector3d::UnitY(), 0.0987, "battery_fixture position 2"));
         s.goal = pose(s.poses.front().translation() + Vector3d(40.0, 0.0, 30.0));
         auto near = [](double x, double y) { return std::abs(x - y) < 1e-9; };
         auto nearAxis = [](const Vector3d &c, const Vector2d &axis, double radius) {
@@ -630,7 +421,7 @@ namespace
         s.a = bowl();
         Hand h = hand();
         s.b = h.mesh;
-        const Bvh bvh(s.a);
+        const meshgap::BodyPtr bodyA = exactBody(s.a), bodyB = exactBody(s.b);
         // Hand over the rim at +x, fingers pointing at the bowl's axis (-x), palm down; tilted so the middle
         // fingertip hangs lowest, then lowered until it is 4.7527 from the rim (Table V, exact).
         const Eigen::Matrix3d R = rotation(Vector3d::UnitZ(), 90.0) * rotation(Vector3d::UnitX(), -8.0);
@@ -639,7 +430,7 @@ namespace
             if (tip.first == "middle")
                 middleTip = tip.second;
         const Vector3d start = Vector3d(147.0, 4.0, 60.0 + 20.0) - R * middleTip;  // between rim nodes
-        s.poses.push_back(placeAtGap(bvh, s.b, pose(start, R), -Vector3d::UnitZ(), 4.7527, "hand_bowl"));
+        s.poses.push_back(placeAtGap(*bodyA, *bodyB, pose(start, R), -Vector3d::UnitZ(), 4.7527, "hand_bowl"));
         s.goal = pose(s.poses.front().translation() + Vector3d(60.0, 0.0, 150.0), R);
         s.partsA = partsByRuns({{"bowl", 0}}, s.a.triangles.size());
         s.partsB = partsByRuns(h.parts, s.b.triangles.size());
@@ -670,8 +461,8 @@ namespace
         // B's thumb tip placed beside and above A's index tip, then slid along that offset to 18.95 (Table VI).
         const Vector3d offset = Vector3d(-0.8, 0.45, 0.3).normalized();
         const Vector3d start = indexA + 45.0 * offset - thumbB;
-        const Bvh bvh(s.a);
-        s.poses.push_back(placeAtGap(bvh, s.b, pose(start, RB), -offset, 18.95, "handshake"));
+        const meshgap::BodyPtr bodyA = exactBody(s.a), bodyB = exactBody(s.b);
+        s.poses.push_back(placeAtGap(*bodyA, *bodyB, pose(start, RB), -offset, 18.95, "handshake"));
         s.goal = pose(s.poses.front().translation() + Vector3d(-150.0, 0.0, 0.0), RB);
         s.partsA = partsByRuns(h.parts, s.a.triangles.size());
         s.partsB = partsByRuns(h.parts, s.b.triangles.size());
@@ -802,28 +593,40 @@ namespace
         std::printf("%s (%s) -> %s\n", s.name.c_str(), s.units.c_str(), directory.string().c_str());
         describe("A", s.a);
         describe("B", s.b);
-        const Bvh bvh(s.a);
+        const meshgap::BodyPtr bodyA = exactBody(s.a), bodyB = exactBody(s.b);
+        // Each part of A and of B as a mesh of its own (all vertices kept) with a BVH over its triangles.
+        std::vector<Mesh> partMeshesA, partMeshesB;
+        for (std::size_t i = 0; i < s.partsA.names.size(); ++i)
+            partMeshesA.push_back(partMesh(s.a, s.partsA, i));
+        for (std::size_t j = 0; j < s.partsB.names.size(); ++j)
+            partMeshesB.push_back(partMesh(s.b, s.partsB, j));
+        std::vector<meshgap::TriangleBvh> partTreesA, partTreesB;  // point into partMeshesA/B, which stay put
+        for (const Mesh &part : partMeshesA)
+            partTreesA.emplace_back(part);
+        for (const Mesh &part : partMeshesB)
+            partTreesB.emplace_back(part);
         auto check = [&](const char *label, const Eigen::Isometry3d &X) {
-            const Closest c = distanceAt(bvh, s.b, X);
+            const meshgap::DistanceResult c = distanceAt(*bodyA, *bodyB, X);
             if (!(c.distance > 0.0))
                 throw meshgap::Exception(s.name, std::string(label) + ": B touches A");
-            const Mesh moved = posed(s.b, X);
             std::printf("  %s: exact distance %.10g (A %s at %.4f %.4f %.4f, B %s), nearest nodes %.6g\n", label,
                         c.distance, s.partsA.names[s.partsA.label[c.triangleA]].c_str(), c.onA.x(), c.onA.y(),
                         c.onA.z(), s.partsB.names[s.partsB.label[c.triangleB]].c_str(),
-                        minVertexDistance(s.a, moved));
+                        minVertexDistance(s.a, posed(s.b, X)));
             if (s.partsA.names.size() * s.partsB.names.size() == 1)
                 return;
-            // Distance between each part of A and each of B: each is (at least) one local minimum.
+            // Distance between each part of A and each of B (surface distance, 0 if they intersect): each is (at
+            // least) one local minimum. A part without triangles is infinitely far.
             std::vector<std::pair<double, std::string>> pairs;
-            for (std::size_t i = 0; i < s.partsA.names.size(); ++i)
-            {
-                const Mesh partA = partMesh(s.a, s.partsA, i);
-                const Bvh bvhPart(partA);
-                for (std::size_t j = 0; j < s.partsB.names.size(); ++j)
-                    pairs.emplace_back(bvhPart.distance(Bvh(partMesh(moved, s.partsB, j))).distance,
-                                       s.partsA.names[i] + "-" + s.partsB.names[j]);
-            }
+            for (std::size_t i = 0; i < partTreesA.size(); ++i)
+                for (std::size_t j = 0; j < partTreesB.size(); ++j)
+                {
+                    meshgap::BvhDistanceResult r;
+                    if (!partMeshesA[i].triangles.empty() && !partMeshesB[j].triangles.empty())
+                        meshgap::bvhDistance(partTreesA[i], partTreesB[j], X,
+                                             std::numeric_limits<double>::infinity(), 0.0, r);
+                    pairs.emplace_back(r.distance, s.partsA.names[i] + "-" + s.partsB.names[j]);
+                }
             std::sort(pairs.begin(), pairs.end());
             std::printf("    closest part pairs (A-B):");
             const std::size_t shown = std::min<std::size_t>(8, pairs.size());
