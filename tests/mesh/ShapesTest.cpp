@@ -441,6 +441,7 @@ TEST(Maps, GeneratedScenesAreClosedAndSeparatedAtTheirPoses)
         {"battery_fixture", {0.0747, 0.0987}, {{62, 86, 99}}, {{31, 74, 92}}, 1e-9},
         {"hand_bowl", {4.7527}, {{60, 300, 300}}, {{90, 130, 185}}, 0.1},
         {"handshake", {18.95}, {{90, 130, 185}}, {{90, 130, 185}}, 0.1},
+        {"slotted_wall", {5.0}, {{10, 150, 200}}, {{8, 20, 30}}, 1e-9},  // start 5 from the wall (not the paper's)
     };
     for (const SceneSpec &spec : scenes)
     {
