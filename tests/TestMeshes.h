@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "meshgap/mesh/Body.h"
 #include "meshgap/mesh/Mesh.h"
 
 namespace meshgap
@@ -144,6 +145,22 @@ namespace meshgap
                 m.triangles.push_back(t);
             }
             return m;
+        }
+
+        /** \brief A pure translation. */
+        inline Eigen::Isometry3d translation(double x, double y, double z)
+        {
+            Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+            X.translation() = Eigen::Vector3d(x, y, z);
+            return X;
+        }
+
+        /** \brief A body of the test mesh as it is (no refinement: gridSize 0). */
+        inline BodyPtr unrefinedBody(const Mesh &m)
+        {
+            BodyOptions options;
+            options.gridSize = 0;
+            return Body::build(m, options);
         }
 
         /** \brief A random rigid pose: uniform rotation, translation uniform in a cube of half-side \e radius. */

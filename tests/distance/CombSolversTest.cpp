@@ -21,13 +21,6 @@ using namespace meshgap;
 
 namespace
 {
-    BodyPtr body(const Mesh &m)
-    {
-        BodyOptions options;
-        options.gridSize = 0;  // the test meshes are used as they are
-        return Body::build(m, options);
-    }
-
     const char *const COMB_SOLVERS[] = {"comb-GA-wl", "comb-GA-nl", "comb-SA-wl", "comb-SA-nl"};
 
     DistanceResult solve(const DistanceSolver &solver, const Body &a, const Body &b, const Eigen::Isometry3d &X_AB,
@@ -65,8 +58,8 @@ namespace
     /** \brief The two bumpy spheres of the concave tests (642 nodes each) and a pose of B at centre distance 2.1. */
     struct BumpyScene
     {
-        BodyPtr a = body(bumpySphere(1.0, 3, 0.3, 16.0, 0.3));
-        BodyPtr b = body(bumpySphere(0.8, 3, 0.3, 16.0, 1.1));
+        BodyPtr a = test::unrefinedBody(bumpySphere(1.0, 3, 0.3, 16.0, 0.3));
+        BodyPtr b = test::unrefinedBody(bumpySphere(0.8, 3, 0.3, 16.0, 1.1));
         static Eigen::Isometry3d pose(std::uint32_t k)
         {
             Eigen::Isometry3d X = test::randomPose(k, 1.0);
@@ -81,7 +74,7 @@ namespace
 
 TEST(MeshMoves, MatingOffspringLiesOnThePathWithinTheRadiusOfTheFitterParent)
 {
-    const BodyPtr box = body(test::box(1.0, 0.7, 0.4, 5));
+    const BodyPtr box = test::unrefinedBody(test::box(1.0, 0.7, 0.4, 5));
     const MeshDistances &D = box->distances();
     QueryRng rng(7);
     MoveScratch scratch;
@@ -121,7 +114,7 @@ TEST(MeshMoves, MatingOffspringLiesOnThePathWithinTheRadiusOfTheFitterParent)
 
 TEST(MeshMoves, RandomMoveWalksThePathWithinTheRadius)
 {
-    const BodyPtr sphere = body(test::icosphere(1.0, 3));
+    const BodyPtr sphere = test::unrefinedBody(test::icosphere(1.0, 3));
     const MeshDistances &D = sphere->distances();
     const SurfaceGraph &graph = sphere->graph();
     double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
@@ -171,7 +164,7 @@ TEST(MeshMoves, TwoComponentBodyJumpsBetweenComponentsAtRandom)
     // Two boxes far apart as one body: no path between them, D infinite.
     Eigen::Isometry3d far = Eigen::Isometry3d::Identity();
     far.translation() = Eigen::Vector3d(10, 0, 0);
-    const BodyPtr two = body(test::merged(test::box(1, 1, 1, 3), test::transformed(test::box(0.5, 0.5, 0.5, 2), far)));
+    const BodyPtr two = test::unrefinedBody(test::merged(test::box(1, 1, 1, 3), test::transformed(test::box(0.5, 0.5, 0.5, 2), far)));
     ASSERT_EQ(two->graph().numComponents(), 2u);
     const MeshDistances &D = two->distances();
     const std::uint32_t n = two->numNodes(), n0 = 6 * 9 + 2, n1 = n - n0;  // box() has 6n^2 + 2 nodes
@@ -231,7 +224,7 @@ TEST(MeshMoves, TwoComponentBodyJumpsBetweenComponentsAtRandom)
     EXPECT_NEAR(double(jumps) / draws, 0.1 * double(n1) / (n - 1), 0.015);
 
     // Every solver copes with a body of two components, and finds the closer one's minimum.
-    const BodyPtr sphere = body(test::icosphere(0.5, 2));
+    const BodyPtr sphere = test::unrefinedBody(test::icosphere(0.5, 2));
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.translation() = Eigen::Vector3d(10, 1.6, 0.2);  // next to the small box
     const DistanceResult truth = enumerate(*two, *sphere, X);
@@ -252,7 +245,7 @@ TEST(MeshMoves, TwoComponentBodyJumpsBetweenComponentsAtRandom)
 
 TEST(HillClimb, EvaluationCapStopsExactlyAndChangesNothingBelowIt)
 {
-    const BodyPtr a = body(test::box(1.0, 2.0, 0.5, 5)), b = body(test::icosphere(0.8, 2));
+    const BodyPtr a = test::unrefinedBody(test::box(1.0, 2.0, 0.5, 5)), b = test::unrefinedBody(test::icosphere(0.8, 2));
     for (std::uint32_t seed = 1; seed <= 20; ++seed)
     {
         const Eigen::Isometry3d X_AB = test::randomPose(seed, 4.0);
@@ -284,7 +277,7 @@ TEST(HillClimb, EvaluationCapStopsExactlyAndChangesNothingBelowIt)
 
 TEST(CombSolvers, NeverBelowEnumerationAndReportConsistentPairs)
 {
-    const BodyPtr a = body(test::box(1.0, 2.0, 0.5, 4)), b = body(test::icosphere(0.8, 2));
+    const BodyPtr a = test::unrefinedBody(test::box(1.0, 2.0, 0.5, 4)), b = test::unrefinedBody(test::icosphere(0.8, 2));
     for (const char *name : COMB_SOLVERS)
     {
         const DistanceSolverPtr solver = allocSolver(name);

@@ -9,13 +9,6 @@ using namespace meshgap;
 
 namespace
 {
-    BodyPtr body(const Mesh &m)
-    {
-        BodyOptions options;
-        options.gridSize = 0;  // the test meshes are used as they are
-        return Body::build(m, options);
-    }
-
     // The oracle: every pair, no pruning.
     double bruteForce(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)
     {
@@ -26,17 +19,11 @@ namespace
         return std::sqrt(best);
     }
 
-    Eigen::Isometry3d translation(double x, double y, double z)
-    {
-        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-        X.translation() = Eigen::Vector3d(x, y, z);
-        return X;
-    }
 }  // namespace
 
 TEST(Enumeration, EqualsBruteForceOverAllPairsAtRandomPoses)
 {
-    const BodyPtr a = body(test::box(1.0, 2.0, 0.5, 6)), b = body(test::icosphere(0.8, 3));
+    const BodyPtr a = test::unrefinedBody(test::box(1.0, 2.0, 0.5, 6)), b = test::unrefinedBody(test::icosphere(0.8, 3));
     const Enumeration enumeration;
     for (std::uint32_t seed = 1; seed <= 30; ++seed)
     {
@@ -56,27 +43,27 @@ TEST(Enumeration, PrunesFarAwayClusters)
 {
     // Two spheres 0.5 apart: one small closest region, so the exact pruning leaves a small share of the pairs
     // (two facing cluster groups, not all 642 x 642 node pairs).
-    const BodyPtr s = body(test::icosphere(1.0, 3));
+    const BodyPtr s = test::unrefinedBody(test::icosphere(1.0, 3));
     DistanceResult r;
-    Enumeration().solve(*s, *s, translation(2.5, 0, 0), DistanceRequest(), r);
-    EXPECT_EQ(r.distance, bruteForce(*s, *s, translation(2.5, 0, 0)));
+    Enumeration().solve(*s, *s, test::translation(2.5, 0, 0), DistanceRequest(), r);
+    EXPECT_EQ(r.distance, bruteForce(*s, *s, test::translation(2.5, 0, 0)));
     EXPECT_LT(r.evaluations, std::size_t(s->numNodes()) * s->numNodes() / 20);
 }
 
 TEST(Enumeration, AnalyticGaps)
 {
     // Parallel faces with aligned grids: the node distance is the gap itself.
-    const BodyPtr box = body(test::box(1.0, 1.0, 1.0, 4));
+    const BodyPtr box = test::unrefinedBody(test::box(1.0, 1.0, 1.0, 4));
     for (double gap : {1e-6, 0.3, 7.0})
     {
         DistanceResult r;
-        Enumeration().solve(*box, *box, translation(2.0 + gap, 0, 0), DistanceRequest(), r);
+        Enumeration().solve(*box, *box, test::translation(2.0 + gap, 0, 0), DistanceRequest(), r);
         EXPECT_NEAR(r.distance, gap, 1e-12);
         EXPECT_NEAR(r.onA.x(), 1.0, 1e-15);
         EXPECT_NEAR(r.onB.x(), 1.0 + gap, 1e-12);
     }
     // Two spheres: node distance is at least the true gap, and within the sagitta of the mesh of it.
-    const BodyPtr s = body(test::icosphere(1.0, 3));
+    const BodyPtr s = test::unrefinedBody(test::icosphere(1.0, 3));
     for (std::uint32_t seed = 1; seed <= 10; ++seed)
     {
         Eigen::Isometry3d X = test::randomPose(seed, 1.0);
@@ -95,7 +82,7 @@ TEST(Enumeration, CornerToCornerEqualsExactDistance)
     Eigen::Isometry3d R = Eigen::Isometry3d::Identity();
     R.linear() = toX.toRotationMatrix();
     const Mesh cube = test::transformed(test::box(1, 1, 1, 3), R);
-    const BodyPtr a = body(cube);
+    const BodyPtr a = test::unrefinedBody(cube);
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     X.translation().x() = 2 * std::sqrt(3.0) + 0.25;
@@ -113,7 +100,7 @@ TEST(Enumeration, NeverBelowFclExactDistance)
 {
     // A node pair is a pair of surface points, so its distance can only be at or above the exact minimum.
     const Mesh ma = test::box(1.0, 0.5, 2.0, 3), mb = test::icosphere(0.7, 2);
-    const BodyPtr a = body(ma), b = body(mb);
+    const BodyPtr a = test::unrefinedBody(ma), b = test::unrefinedBody(mb);
     const auto fa = test::fclModel(ma), fb = test::fclModel(mb);
     int compared = 0;
     for (std::uint32_t seed = 1; seed <= 40; ++seed)

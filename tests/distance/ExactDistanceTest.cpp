@@ -25,19 +25,12 @@ namespace
         return Body::build(m, options);
     }
 
-    Eigen::Isometry3d translation(double x, double y, double z)
-    {
-        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-        X.translation() = Eigen::Vector3d(x, y, z);
-        return X;
-    }
-
     // A concave body: a U of three boxes (not welded: three closed shells).
     Mesh uShape()
     {
-        Mesh m = test::merged(test::transformed(test::box(1.5, 0.2, 0.5, 3), translation(0, -1.0, 0)),
-                              test::transformed(test::box(0.2, 1.0, 0.5, 3), translation(-1.3, 0, 0)));
-        return test::merged(m, test::transformed(test::box(0.2, 1.0, 0.5, 3), translation(1.3, 0, 0)));
+        Mesh m = test::merged(test::transformed(test::box(1.5, 0.2, 0.5, 3), test::translation(0, -1.0, 0)),
+                              test::transformed(test::box(0.2, 1.0, 0.5, 3), test::translation(-1.3, 0, 0)));
+        return test::merged(m, test::transformed(test::box(0.2, 1.0, 0.5, 3), test::translation(1.3, 0, 0)));
     }
 }  // namespace
 
@@ -48,7 +41,7 @@ TEST(ExactDistance, AnalyticGapBetweenBoxesWhatever)
     for (double gap : {1e-9, 0.25, 3.0})
     {
         // Rotate B about x: its face still faces A's at x = 1, the gap is unchanged.
-        Eigen::Isometry3d X = translation(2.0 + gap, 0.3, -0.2);
+        Eigen::Isometry3d X = test::translation(2.0 + gap, 0.3, -0.2);
         X.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitX()).toRotationMatrix();
         DistanceResult r;
         exact.solve(*box, *box, X, DistanceRequest(), r);
@@ -100,7 +93,7 @@ TEST(ExactDistance, BodyInsideAnotherIsCollisionWhereFclSaysFree)
 {
     const Mesh big = test::box(2.0, 2.0, 2.0, 2), small = test::icosphere(0.5, 1);
     const BodyPtr a = body(big), b = body(small);
-    const Eigen::Isometry3d inside = translation(0.3, -0.2, 0.1);
+    const Eigen::Isometry3d inside = test::translation(0.3, -0.2, 0.1);
     DistanceResult r;
     ExactSolver().solve(*a, *b, inside, DistanceRequest(), r);
     EXPECT_TRUE(r.inCollision);
@@ -112,7 +105,7 @@ TEST(ExactDistance, BodyInsideAnotherIsCollisionWhereFclSaysFree)
     EXPECT_TRUE(s.inCollision);
     // Just outside: free.
     DistanceResult t;
-    ExactSolver().solve(*a, *b, translation(3.0, 0, 0), DistanceRequest(), t);
+    ExactSolver().solve(*a, *b, test::translation(3.0, 0, 0), DistanceRequest(), t);
     EXPECT_FALSE(t.inCollision);
     EXPECT_NEAR(t.distance, 0.5, 1e-12);
 }

@@ -18,13 +18,6 @@ namespace ob = ompl::base;
 
 namespace
 {
-    Eigen::Isometry3d at(double x, double y, double z)
-    {
-        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-        X.translation() = Eigen::Vector3d(x, y, z);
-        return X;
-    }
-
     // A world of several separate parts and an L-shaped (concave) robot.
     struct Fixture
     {
@@ -34,10 +27,10 @@ namespace
 
         Fixture()
         {
-            world = test::merged(test::merged(test::transformed(test::box(1, 1, 1, 2), at(3, 0, 0)),
-                                              test::transformed(test::icosphere(1.2, 2), at(-3, 1, 0))),
-                                 test::transformed(test::box(4, 0.3, 2, 3), at(0, -3, 0)));
-            robot = test::merged(test::box(0.8, 0.2, 0.2, 2), test::transformed(test::box(0.2, 0.6, 0.2, 2), at(-0.6, 0.4, 0)));
+            world = test::merged(test::merged(test::transformed(test::box(1, 1, 1, 2), test::translation(3, 0, 0)),
+                                              test::transformed(test::icosphere(1.2, 2), test::translation(-3, 1, 0))),
+                                 test::transformed(test::box(4, 0.3, 2, 3), test::translation(0, -3, 0)));
+            robot = test::merged(test::box(0.8, 0.2, 0.2, 2), test::transformed(test::box(0.2, 0.6, 0.2, 2), test::translation(-0.6, 0.4, 0)));
             scene = Scene::fromMeshes(robot, world);
             auto space = std::make_shared<ob::SE3StateSpace>();
             ob::RealVectorBounds bounds(3);

@@ -15,23 +15,13 @@
 using namespace meshgap;
 namespace ob = ompl::base;
 
-namespace
-{
-    Eigen::Isometry3d at(double x, double y, double z)
-    {
-        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-        X.translation() = Eigen::Vector3d(x, y, z);
-        return X;
-    }
-}  // namespace
-
 TEST(ClearanceMotionValidator, NeverAcceptsAMotionThatCollides)
 {
     // Thin walls and posts (easy to jump over between discrete samples) and an L-shaped robot.
-    const Mesh world = test::merged(test::merged(test::transformed(test::box(0.05, 2.0, 2.0, 2), at(0, 0, 0)),
-                                                 test::transformed(test::box(0.1, 0.1, 2.0, 1), at(-2, 1.5, 0))),
-                                    test::transformed(test::box(2.0, 0.05, 2.0, 2), at(0, -2.5, 0)));
-    const Mesh robot = test::merged(test::box(0.5, 0.1, 0.1, 1), test::transformed(test::box(0.1, 0.4, 0.1, 1), at(-0.4, 0.3, 0)));
+    const Mesh world = test::merged(test::merged(test::transformed(test::box(0.05, 2.0, 2.0, 2), test::translation(0, 0, 0)),
+                                                 test::transformed(test::box(0.1, 0.1, 2.0, 1), test::translation(-2, 1.5, 0))),
+                                    test::transformed(test::box(2.0, 0.05, 2.0, 2), test::translation(0, -2.5, 0)));
+    const Mesh robot = test::merged(test::box(0.5, 0.1, 0.1, 1), test::transformed(test::box(0.1, 0.4, 0.1, 1), test::translation(-0.4, 0.3, 0)));
     const ScenePtr scene = Scene::fromMeshes(robot, world);
     auto space = std::make_shared<ob::SE3StateSpace>();
     ob::RealVectorBounds bounds(3);
@@ -100,7 +90,7 @@ TEST(ClearanceMotionValidator, NeedsACertifiedChecker)
     bounds.setHigh(1);
     space->setBounds(bounds);
     auto si = std::make_shared<ob::SpaceInformation>(space);
-    const ScenePtr scene = Scene::fromMeshes(test::box(0.1, 0.1, 0.1, 1), test::transformed(test::box(0.1, 0.1, 0.1, 1), at(1, 0, 0)));
+    const ScenePtr scene = Scene::fromMeshes(test::box(0.1, 0.1, 0.1, 1), test::transformed(test::box(0.1, 0.1, 0.1, 1), test::translation(1, 0, 0)));
     auto fast = std::make_shared<ClearanceChecker>(si, scene, ClearanceChecker::Mode::FAST);
     EXPECT_THROW(ClearanceMotionValidator(si, fast), std::exception);
 }
