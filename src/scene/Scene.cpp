@@ -130,6 +130,28 @@ namespace meshgap
                         std::max({extent, std::abs(bg::get<0>(p)), std::abs(bg::get<1>(p)), std::abs(bg::get<2>(p))});
         }
 
+        /** \brief The broad phase both query modes share: visit obstacle \e first (the warm start's; none if out of
+            range), then the others in increasing box distance from \e box, until the next box is farther than
+            bestDistance() (nothing there can be closer) or visit() has returned true (the caller needs no more).
+            Returns true if it ended on visit()'s word with an obstacle left that might be closer. */
+        template <typename BestDistance, typename Visit>
+        bool visitNearestFirst(const Box &box, std::size_t first, BestDistance bestDistance, Visit visit) const
+        {
+            const std::size_t count = tree.size();
+            bool ended = first < count && visit(first);
+            for (auto it = tree.qbegin(bgi::nearest(box, static_cast<unsigned>(count))); it != tree.qend(); ++it)
+            {
+                if (it->second == first)
+                    continue;
+                if (bg::distance(box, it->first) > bestDistance())
+                    return false;  // this box and every later one are farther than the best
+                if (ended)
+                    return true;
+                ended = visit(it->second);
+            }
+            return false;
+        }
+
         /** \brief The robot's world-frame box at \e X_WR: its BVH root box (an oriented box in the world) and its
             root sphere, each bounded by an axis-aligned box, intersected, then padded so that roundoff in the
             transform (and in Boost.Geometry's box distance) can never make the box miss part of the robot. */
@@ -253,22 +275,11 @@ namespace meshgap
             return best.inCollision || (mayStop && best.distance <= request.stopBelow);
         };
 
-        const Box box = impl_->robotBox(*robot_, X_WR);
-        bool stopped = warmValid && visit(warm.obstacle);
-        for (auto it = impl_->tree.qbegin(bgi::nearest(box, static_cast<unsigned>(obstacles_.size())));
-             it != impl_->tree.qend(); ++it)
-        {
-            if (warmValid && it->second == warm.obstacle)
-                continue;
-            if (best.inCollision || bg::distance(box, it->first) > best.distance)
-                break;  // nothing can be below 0; this box and all later ones are farther than the best
-            if (stopped)
-            {
-                complete = false;  // stopped early with an obstacle left that might be closer
-                break;
-            }
-            stopped = visit(it->second);
-        }
+        // Ending early (a collision, or the early stop) with an obstacle left that might be closer leaves the
+        // distance uncertified; a collision is certified by its own pair.
+        if (impl_->visitNearestFirst(impl_->robotBox(*robot_, X_WR), warmValid ? warm.obstacle : obstacles_.size(),
+                                     [&] { return best.distance; }, visit))
+            complete = false;
 
         result.distance = best.distance;
         result.obstacle = bestK;
@@ -333,19 +344,10 @@ namespace meshgap
             return mayStop && best.distance <= request.stopBelow;
         };
 
-        const Box box = impl_->robotBox(*robot_, X_WR);
-        bool stopped = warmValid && visit(warm.obstacle);
         // A node distance is never below its pair's exact distance, nor that below the box distance: pruning by
         // box distance against the best node distance skips no obstacle whose node answer could be smaller.
-        for (auto it = impl_->tree.qbegin(bgi::nearest(box, static_cast<unsigned>(obstacles_.size())));
-             it != impl_->tree.qend() && !stopped; ++it)
-        {
-            if (warmValid && it->second == warm.obstacle)
-                continue;
-            if (bg::distance(box, it->first) > best.distance)
-                break;
-            stopped = visit(it->second);
-        }
+        impl_->visitNearestFirst(impl_->robotBox(*robot_, X_WR), warmValid ? warm.obstacle : obstacles_.size(),
+                                 [&] { return best.distance; }, visit);
 
         result.distance = best.distance;
         result.obstacle = bestK;
