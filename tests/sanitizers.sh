@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# The test suite under the sanitizers (issue 7), as CI runs it after the Release suite:
+#   1. AddressSanitizer + UndefinedBehaviorSanitizer: every test, the executables the CLI tests run included;
+#   2. ThreadSanitizer: the tests that query one checker or scene from several threads.
+# Each has its own build directory beside `build`. A sanitizer report fails the run (UBSan does not recover).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=${MESHGAP_JOBS:-2}
+
+# LeakSanitizer: one object allocated inside libassimp and never freed (not ours); everything else counts.
+export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressions=0"
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_init_order=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/tests/sanitizers/tsan.supp"
+
+echo "== AddressSanitizer + UBSan =="
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DMESHGAP_SANITIZE=address -DMESHGAP_BUILD_BENCH=OFF
+cmake --build build-asan -j"$jobs"
+# The install-and-consume test builds an uninstrumented consumer against the instrumented library: Release only.
+ctest --test-dir build-asan --output-on-failure -j"$jobs" -E '^cmake_export'
+
+echo "== ThreadSanitizer =="
+cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=Release -DMESHGAP_SANITIZE=thread -DMESHGAP_BUILD_BENCH=OFF \
+      -DMESHGAP_BUILD_PLANNERS=OFF
+cmake --build build-tsan -j"$jobs" --target meshgap_tests
+ctest --test-dir build-tsan --output-on-failure -j"$jobs" -R 'Thread'
