@@ -6,6 +6,7 @@
 // A is fixed (the world frame); B is placed by the pose. With --cfg, A is the problem's world and B its robot in
 // OMPL.app's conventions (robot shifted by its centre; the pose is the robot's state), and the default pose is the
 // problem's start. Results go to stdout (text, CSV with --poses, or JSON with --json); the log goes to stderr.
+// In collision (always decided exactly) the distance is signed: negative, minus a penetration depth estimate.
 
 #include <boost/program_options.hpp>
 #include <chrono>
@@ -18,6 +19,7 @@
 #include "CliMain.h"
 #include "meshgap/Exception.h"
 #include "meshgap/distance/ExactDistance.h"
+#include "meshgap/distance/PenetrationDepth.h"
 #include "meshgap/distance/SolverFactory.h"
 #include "meshgap/mesh/Body.h"
 #include "meshgap/mesh/MeshLoader.h"
@@ -70,6 +72,21 @@ namespace
         char buffer[128];
         std::snprintf(buffer, sizeof buffer, "%.10g%s%.10g%s%.10g", v.x(), sep, v.y(), sep, v.z());
         return buffer;
+    }
+
+    const char *penetrationText(Penetration kind)
+    {
+        switch (kind)
+        {
+            case Penetration::DeepestNode:
+                return "in collision: minus the depth of the deepest node inside the other body";
+            case Penetration::NoNodeInside:
+                return "in collision: no node inside the other body, depth 0";
+            case Penetration::OpenBodies:
+                return "in collision: open bodies have no depth";
+            default:
+                return "in collision: depth not computed";
+        }
     }
 
     std::string json(const DistanceResult &r, const std::string &algorithm)
@@ -183,8 +200,12 @@ namespace
             solver->solve(*a, *b, poses[i], request, result);
             if (exact && !result.certified)
                 refineExact(*a, *b, poses[i], result);
-            else if (!result.certified)
-                result.inCollision = inCollision(*a, *b, poses[i]);  // collision is always decided exactly
+            else if (!result.certified && inCollision(*a, *b, poses[i]))  // collision is always decided exactly
+            {
+                // ... and then the distance is signed, as in exact mode: minus the penetration depth estimate.
+                result.nodeDistance = result.distance;
+                setPenetration(*a, *b, poses[i], result);
+            }
             result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - queryStart).count();
             if (!many)
             {
@@ -194,7 +215,9 @@ namespace
                 {
                     std::printf("algorithm      %s%s\ndistance       %.10g (%s)\n", algorithm.c_str(),
                                 exact && algorithm != "exact" ? " + exact" : "", result.distance,
-                                result.certified ? "exact, certified" : "node to node: an upper bound");
+                                result.inCollision ? penetrationText(result.penetration)
+                                : result.certified ? "exact, certified"
+                                                   : "node to node: an upper bound");
                     if (result.certified && std::isfinite(result.nodeDistance))
                         std::printf("node distance  %.10g\n", result.nodeDistance);
                     std::printf("in collision   %s\nnode pair      A %u, B %u\nwitness on A   %s\nwitness on B   %s\n"

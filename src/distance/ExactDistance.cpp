@@ -5,6 +5,7 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/distance/HillClimb.h"
+#include "meshgap/distance/PenetrationDepth.h"
 #include "meshgap/geometry/TriangleDistance.h"
 
 namespace meshgap
@@ -93,11 +94,23 @@ namespace meshgap
     namespace
     {
         /** \brief One body wholly inside the other (they have no surface contact): one point of each decides. */
+        /** \brief Whether a part (connected component) of \e inner lies inside the closed body \e outer. Called when
+            no surface pair touches, so each part is wholly inside or wholly outside: one point per part decides.
+            (One point per body is not enough: a robot of several parts, one of them inside an obstacle, collides;
+            found by fuzzing, tests/resources/fuzz/distance/two_parts_one_inside.) */
+        bool anyPartInside(const Body &inner, const Body &outer, const Eigen::Isometry3d &X_outer_inner)
+        {
+            if (!outer.isClosed())
+                return false;
+            for (const std::uint32_t node : inner.componentNodes())
+                if (insideClosedBody(outer, X_outer_inner * inner.node(node)))  // O(log n); containsPoint() is O(n)
+                    return true;
+            return false;
+        }
+
         bool oneInsideTheOther(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)
         {
-            const Eigen::Vector3d &pb = b.surface().vertices[b.surface().triangles[0][0]];
-            const Eigen::Vector3d &pa = a.surface().vertices[a.surface().triangles[0][0]];
-            return containsPoint(a, X_AB * pb) || containsPoint(b, X_AB.inverse() * pa);
+            return anyPartInside(b, a, X_AB) || anyPartInside(a, b, X_AB.inverse());
         }
     }  // namespace
 
@@ -140,14 +153,20 @@ namespace meshgap
         // may have ended it early (bvhDistance() does not say whether it did): then it is only an upper bound.
         const bool stoppedEarly = mayStop && best.d <= stopBelow && !result.inCollision;
         result.certified = !stoppedEarly;
+        result.penetrationDepth = 0.0;
+        result.penetration = Penetration::None;
         if (!result.inCollision && !stoppedEarly)
+            result.inCollision = oneInsideTheOther(a, b, X_AB);  // the witnesses stay the closest surface points
+        if (!result.inCollision)
+            return;
+        // In collision: the signed distance. An early stop asked for the verdict only: no depth then.
+        if (mayStop)
         {
-            if (oneInsideTheOther(a, b, X_AB))
-            {
-                result.inCollision = true;
-                result.distance = 0.0;
-            }
+            result.distance = kContactDistance;
+            result.penetration = Penetration::NotComputed;
         }
+        else
+            setPenetration(a, b, X_AB, result);
     }
 
     void ExactSolver::solve(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, const DistanceRequest &request,

@@ -22,6 +22,9 @@ namespace meshgap
         body->bvh_ = std::make_unique<TriangleBvh>(body->surface_);
         body->buildSurfaceMaps(parent);
         body->graph_ = std::make_shared<const SurfaceGraph>(body->mesh_);
+        body->componentNodes_.assign(body->graph_->numComponents(), UINT32_MAX);
+        for (std::uint32_t i = body->graph_->numNodes(); i-- > 0;)
+            body->componentNodes_[body->graph_->component(i)] = i;  // ends at each component's first node
         body->distanceOptions_ = options.distances;
         body->buildClusters();
         for (const Eigen::Vector3d &v : body->mesh_.vertices)

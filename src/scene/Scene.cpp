@@ -15,6 +15,7 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/distance/ExactDistance.h"
+#include "meshgap/distance/PenetrationDepth.h"
 #include "meshgap/distance/SolverFactory.h"
 
 namespace bg = boost::geometry;
@@ -217,6 +218,35 @@ namespace meshgap
         return obstacles_.size();
     }
 
+    std::size_t Scene::deepestCollision(const Eigen::Isometry3d &X_WR, std::size_t known, DistanceResult &best,
+                                        std::size_t &pairsChecked) const
+    {
+        // Every colliding obstacle has a box overlapping the robot's: test them all, in R-tree order; the order
+        // cannot matter, since the most negative value wins and ties go to the smallest index.
+        const Box box = impl_->robotBox(*robot_, X_WR);
+        std::size_t bestK = obstacles_.size();
+        for (auto it = impl_->tree.qbegin(bgi::intersects(box)); it != impl_->tree.qend(); ++it)
+        {
+            const std::size_t k = it->second;
+            const Body &obstacle = *obstacles_[k];
+            if (k != known)
+            {
+                ++pairsChecked;
+                if (!meshgap::inCollision(obstacle, *robot_, X_WR))
+                    continue;
+            }
+            DistanceResult r;
+            setPenetration(obstacle, *robot_, X_WR, r);
+            r.certified = true;
+            if (bestK == obstacles_.size() || r.distance < best.distance || (r.distance == best.distance && k < bestK))
+            {
+                best = r;
+                bestK = k;
+            }
+        }
+        return bestK;
+    }
+
     bool Scene::inCollision(const Eigen::Isometry3d &X_WR) const
     {
         return firstCollision(X_WR) < obstacles_.size();
@@ -264,7 +294,9 @@ namespace meshgap
                 r.nodes = warm.nodes;
                 r.distance = (obstacle.node(warm.nodes.a) - X_WR * robot_->node(warm.nodes.b)).norm();
             }
-            refineExact(obstacle, *robot_, X_WR, r, request.stopBelow);
+            // Without an early stop, a collision still ends the walk at once (stopBelow 0: no depth yet): the
+            // depth pass below then looks at every obstacle that might collide.
+            refineExact(obstacle, *robot_, X_WR, r, mayStop ? request.stopBelow : 0.0);
             ++result.pairsChecked;
             complete = complete && r.certified;
             if (bestK == obstacles_.size() || r.distance < best.distance)
@@ -280,12 +312,21 @@ namespace meshgap
         if (impl_->visitNearestFirst(impl_->robotBox(*robot_, X_WR), warmValid ? warm.obstacle : obstacles_.size(),
                                      [&] { return best.distance; }, visit))
             complete = false;
+        if (best.inCollision && !mayStop)
+        {
+            // The signed distance: the deepest penetration over all colliding obstacles, whichever was met first.
+            DistanceResult deepest;
+            bestK = deepestCollision(X_WR, bestK, deepest, result.pairsChecked);
+            best = deepest;
+        }
 
         result.distance = best.distance;
         result.obstacle = bestK;
         result.onObstacle = best.onA;
         result.onRobot = best.onB;
         result.inCollision = best.inCollision;
+        result.penetrationDepth = best.penetrationDepth;
+        result.penetration = best.penetration;
         result.certified = best.inCollision ? best.certified : complete;
         result.warmStartHit = warmValid && bestK == warm.obstacle;
         if (bestK == obstacles_.size())
@@ -303,11 +344,27 @@ namespace meshgap
         const bool warmValid = warm.valid && warm.obstacle < obstacles_.size();
         result.certified = false;  // a node-level answer is never proven
 
-        // The collision verdict is exact whatever the node search would say.
-        const std::size_t hit = firstCollision(X_WR);
+        // The collision verdict is exact whatever the node search would say, and the signed distance in collision
+        // is the exact mode's (no depth with an early stop).
+        const bool mayStop = request.stopBelow >= 0.0;
+        DistanceResult deepest;
+        const std::size_t hit = mayStop ? firstCollision(X_WR)
+                                        : deepestCollision(X_WR, obstacles_.size(), deepest, result.pairsChecked);
         if (hit < obstacles_.size())
         {
-            result.distance = 0.0;
+            if (mayStop)
+            {
+                result.distance = kContactDistance;
+                result.penetration = Penetration::NotComputed;
+            }
+            else
+            {
+                result.distance = deepest.distance;
+                result.penetrationDepth = deepest.penetrationDepth;
+                result.penetration = deepest.penetration;
+                result.onObstacle = deepest.onA;
+                result.onRobot = deepest.onB;
+            }
             result.obstacle = hit;
             result.inCollision = true;
             result.warmStartHit = warmValid && hit == warm.obstacle;
@@ -321,7 +378,6 @@ namespace meshgap
             return;
         }
 
-        const bool mayStop = request.stopBelow >= 0.0;
         DistanceResult best;
         std::size_t bestK = obstacles_.size();
         auto visit = [&](std::size_t k)

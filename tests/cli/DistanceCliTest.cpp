@@ -156,11 +156,14 @@ TEST(DistanceCli, ExactAndCollisionColumns)
         EXPECT_EQ(rows[0][collision], "0") << extra;
         EXPECT_EQ(rows[1][collision], "1") << extra;  // decided exactly even without --exact
         EXPECT_EQ(rows[0][certified], *extra ? "1" : "0");
+        // In collision the distance is signed, with or without --exact: negative. Here (no refinement) no corner of
+        // one cube is inside the other: depth 0, the smallest negative normal double.
+        EXPECT_LT(std::stod(rows[1][1]), 0.0) << extra;
+        EXPECT_GT(std::stod(rows[1][1]), -1e-300) << extra;
         if (*extra)
         {
             // B's corner (0,0) turned by 45 degrees about z sits at x = 1.5 (its leading edge): gap 0.5 to x = 1.
             EXPECT_NEAR(std::stod(rows[0][1]), 0.5, 1e-12);
-            EXPECT_EQ(std::stod(rows[1][1]), 0.0);
         }
         else
         {
@@ -168,6 +171,27 @@ TEST(DistanceCli, ExactAndCollisionColumns)
         }
     }
     fs::remove(poses);
+}
+
+TEST(DistanceCli, CollisionDistanceIsMinusThePenetrationDepth)
+{
+    // The collision pose above (B's leading edge 0.1 inside A's face x = 1), refined to grid 0.1: nodes along that
+    // edge are 0.1 deep, the deepest of either cube inside the other: distance -0.1, with or without --exact.
+    const double c = std::sqrt(0.5);
+    std::ostringstream pose;
+    pose << std::setprecision(17) << 0.9 + c << " " << 0.5 - c << " 0 0 0 " << std::sin(M_PI / 8) << " "
+         << std::cos(M_PI / 8);
+    for (const char *extra : {"", " --exact"})
+    {
+        const CliRun r =
+            run(RES + "/cube.obj " + RES + "/cube.obj --grid 0.1 --json --pose '" + pose.str() + "'" + extra);
+        ASSERT_EQ(r.status, 0) << r.err;
+        const std::string key = "\"distance\": ";
+        const std::size_t at = r.out.find(key);
+        ASSERT_NE(at, std::string::npos) << r.out;
+        EXPECT_NEAR(std::stod(r.out.substr(at + key.size())), -0.1, 1e-12) << r.out;
+        EXPECT_NE(r.out.find("\"in_collision\": true"), std::string::npos) << r.out;
+    }
 }
 
 TEST(DistanceCli, JsonAndTextAgree)

@@ -75,7 +75,11 @@ TEST(ExactDistance, EqualsFclOnRandomPosesAndAgreesOnCollision)
         if (fclHit)
         {
             ++collisions;
-            EXPECT_EQ(cold.distance, 0.0);
+            // Signed: negative in collision, and a pure function of the pose (the seed cannot change it).
+            EXPECT_LT(cold.distance, 0.0) << "seed " << seed;
+            EXPECT_EQ(seeded.distance, cold.distance) << "seed " << seed;
+            EXPECT_EQ(seeded.onA, cold.onA) << "seed " << seed;
+            EXPECT_EQ(seeded.onB, cold.onB) << "seed " << seed;
             continue;
         }
         ++separated;
@@ -97,12 +101,14 @@ TEST(ExactDistance, BodyInsideAnotherIsCollisionWhereFclSaysFree)
     DistanceResult r;
     ExactSolver().solve(*a, *b, inside, DistanceRequest(), r);
     EXPECT_TRUE(r.inCollision);
-    EXPECT_EQ(r.distance, 0.0);
+    // Signed: every node of the sphere is at least 2 - 0.3 - 0.5 deep in the box (PenetrationDepthTest has more).
+    EXPECT_LE(r.distance, -1.2 + 1e-12);
     EXPECT_FALSE(test::fclCollide(test::fclModel(big), test::fclModel(small), inside));  // FCL's blind spot
     // And the other way round: the big box around the small sphere.
     DistanceResult s;
     ExactSolver().solve(*b, *a, inside.inverse(), DistanceRequest(), s);
     EXPECT_TRUE(s.inCollision);
+    EXPECT_NEAR(s.distance, r.distance, 1e-12);  // the same nodes, the same surface distances
     // Just outside: free.
     DistanceResult t;
     ExactSolver().solve(*a, *b, test::translation(3.0, 0, 0), DistanceRequest(), t);

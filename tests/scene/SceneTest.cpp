@@ -187,8 +187,18 @@ TEST(Scene, DistanceIsTheMinimumOverAllObstaclesAtRandomPoses)
         if (r.inCollision)
         {
             ++collisions;
-            EXPECT_EQ(r.distance, 0.0);
-            EXPECT_EQ(oracle.perObstacle[r.obstacle], 0.0);  // the obstacle named is one that collides
+            // The signed distance: the most negative over all obstacles (each pair's signed distance as the pair
+            // solver computes it, the same bits), at the smallest index among ties.
+            EXPECT_LT(r.distance, 0.0);
+            EXPECT_EQ(r.distance, oracle.distance);
+            EXPECT_EQ(oracle.perObstacle[r.obstacle], r.distance);
+            for (std::size_t k = 0; k < r.obstacle; ++k)
+                EXPECT_GT(oracle.perObstacle[k], r.distance);
+            EXPECT_EQ(r.distance, r.penetrationDepth > 0.0 ? -r.penetrationDepth : kContactDistance);
+            if (r.penetration == Penetration::DeepestNode)
+            {
+                EXPECT_NEAR((r.onRobot - r.onObstacle).norm(), r.penetrationDepth, 1e-12);
+            }
             continue;
         }
         ++free;
@@ -235,10 +245,16 @@ TEST(Scene, WarmStartNeverChangesTheAnswerAlongAMotion)
         // The same answer bit for bit: ties between triangle pairs are broken canonically (bvhDistance()), so the
         // seed cannot change which pair is reported. Witness points too, when separated.
         EXPECT_EQ(w.distance, c.distance) << "pose " << i;
-        if (!c.inCollision)
+        // Witness points too; in collision the whole answer (signed distance, obstacle, depth) is a pure function
+        // of the pose.
+        EXPECT_EQ(w.onRobot, c.onRobot) << "pose " << i;
+        EXPECT_EQ(w.onObstacle, c.onObstacle) << "pose " << i;
+        if (c.inCollision)
         {
-            EXPECT_EQ(w.onRobot, c.onRobot) << "pose " << i;
-            EXPECT_EQ(w.onObstacle, c.onObstacle) << "pose " << i;
+            EXPECT_LT(c.distance, 0.0) << "pose " << i;
+            EXPECT_EQ(w.obstacle, c.obstacle) << "pose " << i;
+            EXPECT_EQ(w.penetration, c.penetration) << "pose " << i;
+            EXPECT_EQ(w.penetrationDepth, c.penetrationDepth) << "pose " << i;
         }
         EXPECT_TRUE(w.certified);
         EXPECT_FALSE(c.warmStartHit);
@@ -261,6 +277,54 @@ TEST(Scene, WarmStartNeverChangesTheAnswerAlongAMotion)
     EXPECT_GT(collisions, 10u);
     EXPECT_LT(collisions, poses.size() / 2);
     EXPECT_GT(hitRate, 0.9);  // small steps: the closest obstacle rarely changes
+}
+
+TEST(Scene, InCollisionTheDeepestObstacleWinsWhateverTheWarmStartOrOrder)
+{
+    // Two boxes 3 apart; a long robot box bridging them, 0.05 into the first and 0.15 into the second (faces
+    // parallel): signed distance -0.15 at the second, whether the warm start points at the first, the second or
+    // nothing, in both modes. With an early stop (a validity check) no depth: kContactDistance.
+    const Mesh world = test::merged(test::transformed(test::box(1.0, 1.0, 1.0, 2), pose(-2.5, 0, 0)),
+                                    test::transformed(test::box(1.0, 1.0, 1.0, 2), pose(2.5, 0, 0)));
+    BodyOptions options;
+    options.gridSize = 0.25;
+    const ScenePtr scene = Scene::fromMeshes(test::box(1.6, 0.3, 0.3, 4), world, options);
+    ASSERT_EQ(scene->obstacles().size(), 2u);
+    // Robot x range [0.05 - 1.6, 0.05 + 1.6] = [-1.55, 1.65]: 0.05 into the first box (x <= -1.5), 0.15 into the
+    // second (x >= 1.5); its end faces and the boxes' faces are parallel, so those are the depths.
+    const Eigen::Isometry3d Y = pose(0.05, 0.2, -0.1);
+    const std::size_t second = scene->obstacles()[0]->surface().bounds().min().x() > 0 ? 0 : 1;
+    for (bool exact : {true, false})
+    {
+        SceneRequest request;
+        request.exact = exact;
+        std::vector<SceneResult> answers;
+        for (int start = -1; start < 2; ++start)
+        {
+            SceneWarmStart warm;
+            warm.valid = start >= 0;
+            warm.obstacle = start >= 0 ? static_cast<std::size_t>(start) : 0;
+            answers.emplace_back();
+            scene->distance(Y, request, warm, answers.back());
+        }
+        for (const SceneResult &r : answers)
+        {
+            ASSERT_TRUE(r.inCollision);
+            EXPECT_EQ(r.penetration, Penetration::DeepestNode);
+            EXPECT_NEAR(r.distance, -0.15, 1e-12);
+            EXPECT_EQ(r.obstacle, second);
+            EXPECT_EQ(r.distance, answers[0].distance);
+            EXPECT_EQ(r.onRobot, answers[0].onRobot);
+        }
+        SceneRequest validity = request;
+        validity.stopBelow = 0.0;
+        SceneWarmStart warm;
+        SceneResult v;
+        scene->distance(Y, validity, warm, v);
+        EXPECT_TRUE(v.inCollision);
+        EXPECT_EQ(v.distance, kContactDistance);
+        EXPECT_EQ(v.penetration, Penetration::NotComputed);
+    }
 }
 
 TEST(Scene, StopBelowGivesAnUpperBoundAtOrBelowTheThresholdAndTheExactAnswerAbove)
@@ -325,7 +389,11 @@ TEST(Scene, FastModeNeverCallsACollidingPoseFreeAndIsNeverBelowTheExactDistance)
         if (exact.inCollision)
         {
             ++collisions;
-            EXPECT_EQ(r.distance, 0.0);
+            // The exact mode's signed distance, warm or cold.
+            EXPECT_EQ(r.distance, exact.distance);
+            EXPECT_EQ(warmed.distance, exact.distance);
+            EXPECT_EQ(r.obstacle, exact.obstacle);
+            EXPECT_EQ(r.penetration, exact.penetration);
             continue;
         }
         ++free;

@@ -31,13 +31,30 @@ namespace meshgap
         bool recordHistory{false};
     };
 
+    /** \brief What a colliding pair's (negative) distance is: how its penetration depth was found. */
+    enum class Penetration
+    {
+        None,          ///< not in collision (or collision not decided): distance is a distance, >= 0
+        DeepestNode,   ///< depth of the deepest node of one body inside the other, closed, one (PenetrationDepth.h)
+        NoNodeInside,  ///< in collision, no node inside the other body (crossing or touching surfaces): depth 0
+        OpenBodies,    ///< in collision, both bodies open (no inside, so no depth): depth 0
+        NotComputed    ///< in collision, depth not asked for (an early stop, stopBelow >= 0): depth 0
+    };
+
+    /** \brief The distance reported for a collision whose depth is 0 or not known (Penetration other than
+        DeepestNode): the largest double below zero that is normal (-2.2e-308), so that the sign alone says
+        "in collision" (distance < 0 if and only if inCollision) while the magnitude claims no depth. */
+    constexpr double kContactDistance = -std::numeric_limits<double>::min();
+
     /** \brief What one query found, and what it cost. */
     struct DistanceResult
     {
         /** \brief Paper's flop estimate per d^2 evaluation (Section III-A, eq. 4). */
         static constexpr std::size_t FLOPS_PER_EVALUATION = 26;
 
-        double distance{std::numeric_limits<double>::infinity()};  ///< node-to-node distance found
+        /** \brief The distance found: node to node for node-level solvers, the exact surface distance after the
+            exact stage; negative in collision once the exact stage has decided it (see inCollision). */
+        double distance{std::numeric_limits<double>::infinity()};
         NodePair nodes;                                            ///< the node pair at that distance
         /** \brief Witness points on A and on B, both expressed in A's frame (which is the world frame when A is
             the world or any body at the identity pose, as in the command-line tools). */
@@ -56,8 +73,13 @@ namespace meshgap
         /** \brief distance is the exact surface distance, proven by a completed bounding-volume traversal (or, for
             a collision, by an intersecting triangle pair or a contained body). */
         bool certified{false};
-        /** \brief The bodies intersect, touch, or one (closed) body lies inside the other. distance is then 0. */
+        /** \brief The bodies intersect, touch, or one (closed) body lies inside the other. distance is then
+            negative (a signed distance): -penetrationDepth, or kContactDistance when that depth is 0 or not known. */
         bool inCollision{false};
+        /** \brief In collision: the penetration depth estimate (>= 0; a lower bound on the translational penetration
+            depth, see penetrationDepth() in PenetrationDepth.h) and how it was found. Outside collision: 0, None. */
+        double penetrationDepth{0.0};
+        Penetration penetration{Penetration::None};
         std::uint32_t triangleA{0}, triangleB{0};  ///< closest surface triangles (Body::surface() indices)
         std::size_t triangleTests{0};              ///< exact triangle-pair tests made
         /** \brief Best value after each iteration, when DistanceRequest::recordHistory is set. */

@@ -13,20 +13,28 @@ namespace meshgap
            result.distance is infinite: the traversal starts from infinity, as a cold exact query.)
         2. Certificate: a BVH traversal (bvhDistance()) with the seed's value as upper bound either proves nothing is
            closer or finds the closer pair. certified is set when it completed.
-        3. Collision: an intersecting or touching triangle pair gives distance 0 and inCollision. If no surface pair
-           touches, one body may still lie wholly inside the other: for a closed body, one point of the other body
-           is tested with the generalised winding number (FCL misses this case). Open bodies have no inside, so only
-           surface contact counts for them.
+        3. Collision: an intersecting or touching triangle pair, or, if no surface pair touches, one body wholly
+           inside the other: for a closed body, one point of the other body is tested with the generalised winding
+           number (FCL misses this case). Open bodies have no inside, so only surface contact counts for them.
+           In collision inCollision is set, certified too (the verdict is proven), and distance becomes a signed
+           distance, always negative: -penetrationDepth for the depth estimate of penetrationDepth()
+           (PenetrationDepth.h: the deepest node of either body inside the other, closed, body; a lower bound on
+           the translational penetration depth), or kContactDistance (-2.2e-308) when that depth is 0 (surfaces
+           crossing with no node inside, or both bodies open: no inside, no depth). penetration says which; the
+           witness points are then the deepest node and its nearest point on the other surface (onA - onB moves
+           B by the depth to bring that node out), or a touching point. The signed distance does not depend on the
+           seed (a pure function of the pose).
 
-        Overwrites distance, onA/onB, triangleA/B, certified, inCollision, nodeDistance and adds to triangleTests;
-        keeps nodes and the node-level counters.
+        Overwrites distance, onA/onB, triangleA/B, certified, inCollision, penetrationDepth, penetration,
+        nodeDistance and adds to triangleTests; keeps nodes and the node-level counters.
 
         \param stopBelow Early stop (a validity check against a clearance needs no more): as soon as a surface pair
         at or below \e stopBelow is known (from the seed or in the traversal), stop there. An answer above
         \e stopBelow is exact and certified as usual; one at or below it is an upper bound on the distance, not
-        necessarily the minimum, so certified stays false (except for 0, a proven collision), and inCollision is set
+        necessarily the minimum, so certified stays false (except for a proven collision), and inCollision is set
         only if that pair touches: the bodies may still intersect elsewhere, and the containment test is not made.
-        Negative (the default): never stop early. */
+        With stopBelow >= 0 a collision gets no depth (penetration NotComputed, distance kContactDistance): the
+        caller asked for the verdict only. Negative (the default): never stop early. */
     void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
                      double stopBelow = -1.0);
 
@@ -35,7 +43,8 @@ namespace meshgap
     bool inCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB);
 
     /** \brief True when \e p (in the body's frame) is inside the closed body \e body (generalised winding number
-        over its surface triangles > 1/2). Always false for an open body. */
+        over its surface triangles > 1/2, summed over all of them: O(n); insideClosedBody() in PenetrationDepth.h
+        gives the same verdict by ray casting through the BVH). Always false for an open body. */
     bool containsPoint(const Body &body, const Eigen::Vector3d &p);
 
     /**

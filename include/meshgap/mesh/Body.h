@@ -79,6 +79,9 @@ namespace meshgap
             outside are defined. */
         bool isClosed() const { return closed_; }
         const SurfaceGraph &graph() const { return *graph_; }
+        /** \brief One node of each connected component of the surface, in component order: a part with no surface
+            contact with another body lies wholly inside or wholly outside it, so one point per part decides. */
+        const std::vector<std::uint32_t> &componentNodes() const { return componentNodes_; }
         const RefineReport &refinement() const { return refinement_; }
         /** \brief The grid size used (0 when not refined). */
         double gridSize() const { return gridSize_; }
@@ -114,6 +117,7 @@ namespace meshgap
         RefineReport refinement_;
         double gridSize_{0.0};
         std::shared_ptr<const SurfaceGraph> graph_;
+        std::vector<std::uint32_t> componentNodes_;
         MeshDistancesOptions distanceOptions_;
         mutable std::once_flag distancesOnce_;
         mutable MeshDistancesConstPtr distances_;

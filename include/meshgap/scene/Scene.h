@@ -41,11 +41,17 @@ namespace meshgap
     /** \brief The answer for one robot pose. */
     struct SceneResult
     {
-        double distance{std::numeric_limits<double>::infinity()};  ///< minimum over all robot/obstacle pairs
+        /** \brief Minimum over all robot/obstacle pairs; negative in collision (a signed distance). */
+        double distance{std::numeric_limits<double>::infinity()};
         std::size_t obstacle{0};                                   ///< which obstacle is closest
         Eigen::Vector3d onRobot{Eigen::Vector3d::Zero()};          ///< witness points, world frame
         Eigen::Vector3d onObstacle{Eigen::Vector3d::Zero()};
+        /** \brief The robot collides with an obstacle (intersecting, touching or one inside the other, decided
+            exactly). distance is then negative (a signed distance, see Scene::distance()). */
         bool inCollision{false};
+        /** \brief In collision: the penetration depth estimate behind distance (>= 0) and how it was found. */
+        double penetrationDepth{0.0};
+        Penetration penetration{Penetration::None};
         bool certified{false};       ///< exact and proven (every pair that survived the broad phase completed)
         std::size_t pairsChecked{0};  ///< robot/obstacle pairs that survived the broad phase
         std::size_t evaluations{0};   ///< node-pair evaluations (fast mode)
@@ -79,15 +85,24 @@ namespace meshgap
             BVH root box and bounding sphere carried to the world frame, intersected, padded against roundoff), so
             only obstacles that cannot be closer than the best so far are skipped.
             - Exact mode: refineExact() per visited obstacle, seeded from the warm start's node pair on the warm
-              start's obstacle (cold elsewhere). A collision ends the query (distance 0, certified; the witness
-              points are then those of a touching pair, or for one body inside the other the closest surface
-              points). certified when every visited pair completed and none was left unvisited that could be
-              closer. Containment is decided per obstacle: a robot inside a closed part of the world collides.
+              start's obstacle (cold elsewhere). certified when every visited pair completed and none was left
+              unvisited that could be closer. Containment is decided per obstacle: a robot inside a closed part of
+              the world collides.
+            - In collision (both modes) distance is the signed distance, negative: the minimum over every colliding
+              obstacle of its pair's signed distance (setPenetration(): minus the depth of the deepest node of one
+              body inside the other, closed, body, a lower bound on the penetration depth; kContactDistance,
+              -2.2e-308, when that depth is 0 or the bodies are open), ties to the smallest obstacle index. The first
+              collision met ends the distance walk; then every obstacle whose box overlaps the robot's is tested, so
+              the answer (distance, obstacle, penetration, witness points: the deepest node and its nearest surface
+              point) is a pure function of the pose, whatever the warm start or the visiting order. certified (the
+              verdict is proven).
             - Fast mode: comb-GA-wl per visited obstacle (request.seed; the warm pair as the start on its obstacle),
-              never certified; but the collision verdict is exact (inCollision() first), so a colliding pose is never
-              reported free. A colliding pose gets distance 0, obstacle the one hit and zero witness points.
+              never certified; but the collision verdict is exact (decided first), so a colliding pose is never
+              reported free, and its signed distance is the exact mode's.
             - stopBelow: the query ends once the best distance is at or below it (an upper bound then, not certified;
-              in exact mode, inCollision is then set only if a touching pair was met).
+              in exact mode, inCollision is then set only if a touching pair was met). A collision then gets no
+              depth (it is not needed to refuse the pose): distance kContactDistance, penetration NotComputed, and
+              the first collision met ends the query.
             \e warm is updated to the closest obstacle and a node pair there (in exact mode, a node of each of the two
             closest surface triangles), whatever it held before. The warm start changes the cost, never the verdict;
             the exact distance may differ from a cold query's in the last bits (at a minimum that several triangle
@@ -103,6 +118,12 @@ namespace meshgap
 
         /** \brief The first obstacle (in R-tree order) the robot at \e X_WR collides with, or obstacles_.size(). */
         std::size_t firstCollision(const Eigen::Isometry3d &X_WR) const;
+        /** \brief The most negative signed distance (deepest penetration, setPenetration()) over every obstacle the
+            robot at \e X_WR collides with, into \e best (ties: the smallest index); returns that obstacle, or
+            obstacles_.size() if none collides. \e known is an obstacle already known to collide (no test made
+            again), or obstacles_.size(); pairs tested are added to \e pairsChecked. */
+        std::size_t deepestCollision(const Eigen::Isometry3d &X_WR, std::size_t known, DistanceResult &best,
+                                     std::size_t &pairsChecked) const;
         void exactDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
                            SceneResult &result) const;
         void fastDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,

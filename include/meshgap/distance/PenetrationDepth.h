@@ -1,0 +1,78 @@
+#ifndef MESHGAP_DISTANCE_PENETRATION_DEPTH_H
+#define MESHGAP_DISTANCE_PENETRATION_DEPTH_H
+
+#include <Eigen/Geometry>
+#include <cstdint>
+
+#include "meshgap/distance/DistanceQuery.h"
+#include "meshgap/mesh/Body.h"
+
+namespace meshgap
+{
+    /** \brief A penetration-depth estimate for two bodies at a pose, and its evidence. */
+    struct PenetrationEstimate
+    {
+        /** \brief The depth (>= 0): see penetrationDepth(). */
+        double depth{0.0};
+        /** \brief DeepestNode when some node lies inside the other body; otherwise NoNodeInside, or OpenBodies when
+            neither body is closed. */
+        Penetration kind{Penetration::NoNodeInside};
+        /** \brief For DeepestNode: the deepest node (on one body) and the nearest point to it on the other body's
+            surface, as points of A and of B, in A's frame (onA - onB is then the translation of B, of length depth,
+            that brings that node to the surface). Otherwise a point common to two touching triangles (onA == onB),
+            when bvhCollide() finds one. */
+        Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};
+        std::uint32_t triangleA{0}, triangleB{0};  ///< surface triangles holding onA and onB
+        bool witnessFound{false};                  ///< onA/onB/triangleA/triangleB were set
+        std::size_t nodesTested{0};     ///< nodes inside the other body's bounding box (the candidates)
+        std::size_t insideTests{0};     ///< point-in-body tests made (ray casts, with the winding number as fallback)
+        std::size_t triangleTests{0};   ///< point-triangle distances computed
+    };
+
+    /** \brief Penetration depth of two colliding bodies, B placed in A's frame by \e X_AB: the depth of the deepest
+        node of either body that lies inside the other, closed, body.
+
+        Method. For each closed body, the nodes of the other (the refined mesh's vertices: the surface's own
+        vertices plus those refinement added, at most the grid size h apart) that lie in its bounding box are the
+        candidates. A candidate's distance to that body's surface is computed exactly with its BVH
+        (bvhPointDistance(), stopping as soon as a triangle is nearer than the deepest node so far: such a node
+        cannot be the deepest); only a candidate that would be the new deepest is tested for being inside (a ray
+        cast through the BVH counting signed crossings, bvhRayWinding(), with containsPoint()'s winding number
+        when three directions are all ambiguous). Candidates are visited by branch and bound over the node
+        clusters (deepest possible first; a cluster whose ball the surface does not cross takes one inside test),
+        and a local side test at the nearest surface point (angle-weighted pseudonormal) filters the inside tests.
+        Measured per colliding pair (random poses, Release, this machine): 50-100 us on the OMPL.app cubicles and
+        Twistycool problems (open worlds: only world nodes inside the robot count), 2-6 ms on the paper's hand
+        meshes (3,184 robot nodes, thousands of point queries); a verdict-only query (stopBelow >= 0) skips it.
+
+        What it estimates. If a point p of B lies inside closed A at distance d from A's surface, every translation
+        of B shorter than d keeps p inside A, so the bodies still collide: d, and so the returned depth, is a
+        \b lower \b bound on the translational penetration depth (the shortest translation that separates them).
+        It is exact for a box pushed face-first into another box (a node at the deepest corner), and for two
+        spheres it misses the true depth r1 + r2 - c only by the mesh resolution (the deepest point's distance to
+        the nearest node, plus the gap between the sphere and its inscribed mesh). It is 0, with kind
+        NoNodeInside, when the surfaces cross or touch with no node inside the other body (a shallow crossing
+        between two node spacings): a finer grid finds such nodes. Nodes of an open body count when they lie inside
+        a closed one (an open sheet through a closed body has points inside it, which is a collision too).
+
+        Open bodies. An open surface has no inside, so there is no depth to estimate: with both bodies open the
+        result is depth 0, kind OpenBodies, and the witness is a touching triangle pair.
+
+        Call it for colliding bodies only (it does not decide collision: separated bodies get NoNodeInside, depth
+        0, or a node "inside" a body it does not touch when one contains the other, which is a collision). A pure
+        function of the bodies and the pose (no warm start, deterministic ties: the first node found in a fixed
+        order wins). Thread-safe. */
+    PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB);
+
+    /** \brief Fill \e result for a colliding pair from penetrationDepth(): inCollision, distance =
+        -depth (kContactDistance when the depth is 0), penetrationDepth, penetration, and the witness points and
+        triangles when it found some; adds to triangleTests. */
+    void setPenetration(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result);
+
+    /** \brief True when \e p (body frame) is inside the closed \e body: bvhRayWinding() along up to three fixed
+        directions, containsPoint() when all three are ambiguous. Always false for an open body. The same verdict
+        as containsPoint() (both compute the winding number), in O(log n) instead of O(n). */
+    bool insideClosedBody(const Body &body, const Eigen::Vector3d &p);
+}  // namespace meshgap
+
+#endif

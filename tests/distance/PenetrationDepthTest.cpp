@@ -1,0 +1,328 @@
+// The signed distance in collision: the penetration-depth estimate against analytic geometry (spheres, boxes, a body
+// inside another), its lower-bound property, the point queries it is built on against brute force, and its sign
+// against FCL's collision verdict.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <iostream>
+#include <random>
+
+#include "FclOracle.h"
+#include "TestMeshes.h"
+#include "meshgap/distance/ExactDistance.h"
+#include "meshgap/distance/PenetrationDepth.h"
+#include "meshgap/geometry/TriangleDistance.h"
+#include "meshgap/mesh/MeshLoader.h"
+#include "meshgap/scene/ProblemConfig.h"
+#include "meshgap/scene/RobotMesh.h"
+#include "meshgap/scene/Scene.h"
+
+using namespace meshgap;
+namespace fs = std::filesystem;
+
+namespace
+{
+    // A concave body of three overlapping closed shells (a U): winding number 2 where they overlap.
+    Mesh uShape()
+    {
+        Mesh m = test::merged(test::transformed(test::box(1.5, 0.2, 0.5, 3), test::translation(0, -1.0, 0)),
+                              test::transformed(test::box(0.2, 1.0, 0.5, 3), test::translation(-1.3, 0, 0)));
+        return test::merged(m, test::transformed(test::box(0.2, 1.0, 0.5, 3), test::translation(1.3, 0, 0)));
+    }
+
+    DistanceResult exactAt(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)
+    {
+        DistanceResult r;
+        ExactSolver().solve(a, b, X_AB, DistanceRequest(), r);
+        return r;
+    }
+
+    /** \brief Radius of the largest ball about the origin inside a closed convex mesh around it: the nearest face
+        plane. */
+    double inradius(const Mesh &m)
+    {
+        double r = std::numeric_limits<double>::infinity();
+        for (const Triangle &t : m.triangles)
+        {
+            const Eigen::Vector3d n =
+                (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).normalized();
+            r = std::min(r, std::abs(n.dot(m.vertices[t[0]])));
+        }
+        return r;
+    }
+
+    Eigen::Vector3d randomUnit(std::mt19937 &rng)
+    {
+        std::normal_distribution<double> gauss;
+        return Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    }
+}  // namespace
+
+TEST(PenetrationDepth, PointQueriesEqualBruteForce)
+{
+    // bvhPointDistance() against the minimum over all triangles; insideClosedBody() (ray casting through the BVH)
+    // against containsPoint() (the winding number summed over every triangle), on random points in and around a
+    // sphere, a box and three overlapping boxes.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> uni(-2.0, 2.0);
+    std::size_t inside = 0, outside = 0;
+    for (const Mesh &m : {test::icosphere(1.0, 2), test::box(1.0, 0.5, 0.8, 3), uShape()})
+    {
+        const BodyPtr body = test::unrefinedBody(m);
+        for (int i = 0; i < 1000; ++i)
+        {
+            const Eigen::Vector3d p(uni(rng), uni(rng), uni(rng));
+            double brute = std::numeric_limits<double>::infinity();
+            Eigen::Vector3d on;
+            for (const Triangle &t : m.triangles)
+                brute = std::min(brute, pointTriangleDistance(p, m.vertices[t[0]], m.vertices[t[1]],
+                                                              m.vertices[t[2]], on));
+            BvhPointResult r;
+            bvhPointDistance(body->bvh(), p, std::numeric_limits<double>::infinity(), -1.0, r);
+            ASSERT_TRUE(r.found);
+            EXPECT_EQ(r.distance, brute) << i;
+            EXPECT_NEAR((r.closest - p).norm(), r.distance, 1e-12);
+            const bool in = insideClosedBody(*body, p);
+            EXPECT_EQ(in, containsPoint(*body, p)) << m.source << " point " << i;
+            inside += in;
+            outside += !in;
+        }
+    }
+    EXPECT_GT(inside, 100u);
+    EXPECT_GT(outside, 1000u);
+    // Open bodies have no inside.
+    EXPECT_FALSE(insideClosedBody(*test::unrefinedBody(test::grid(1, 1, 2, 2)), Eigen::Vector3d(0.5, 0.5, 0.0)));
+}
+
+TEST(PenetrationDepth, OverlappingSpheresWithinTheMeshResolutionOfTheTrueDepth)
+{
+    // Spheres r1, r2 at centre distance c overlap by r1 + r2 - c, their translational penetration depth. Nodes on
+    // the spheres (unrefined icospheres: vertices on the sphere, faces inside it): a node v of B inside A has depth
+    // at most r1 - |v - cA| <= r1 + r2 - c (A's mesh lies inside its sphere), and the node nearest B's deepest
+    // point p* (within e, the longest edge, of it) has depth at least r_in(A) - |v - cA| >= the true depth minus
+    // (r1 - r_in(A)) minus e, where r_in(A) is the distance from A's centre to its nearest face plane.
+    const double r1 = 1.0, r2 = 0.6;
+    const Mesh ma = test::icosphere(r1, 3), mb = test::icosphere(r2, 3);
+    const BodyPtr a = test::unrefinedBody(ma), b = test::unrefinedBody(mb);
+    const double slack = (r1 - inradius(ma)) + longestEdge(mb);
+    std::mt19937 rng(11);
+    double worst = 0.0;
+    for (double c : {1.55, 1.4, 1.1, 0.7})
+        for (int k = 0; k < 10; ++k)
+        {
+            const Eigen::Vector3d u = randomUnit(rng);
+            Eigen::Isometry3d X = test::translation(c * u.x(), c * u.y(), c * u.z());
+            X.linear() = Eigen::AngleAxisd(0.3 * k, randomUnit(rng)).toRotationMatrix();
+            const double truth = r1 + r2 - c;
+            const DistanceResult r = exactAt(*a, *b, X);
+            ASSERT_TRUE(r.inCollision);
+            EXPECT_EQ(r.penetration, Penetration::DeepestNode);
+            EXPECT_EQ(r.distance, -r.penetrationDepth);
+            EXPECT_LE(r.penetrationDepth, truth + 1e-12) << c;
+            EXPECT_GE(r.penetrationDepth, truth - slack) << c;
+            worst = std::max(worst, truth - r.penetrationDepth);
+            // Witnesses: onA - onB is the translation of B, of length depth, that brings the deepest node out.
+            EXPECT_NEAR((r.onA - r.onB).norm(), r.penetrationDepth, 1e-12);
+            EXPECT_TRUE(r.certified);
+        }
+    std::cout << "[ depth    ] spheres: worst shortfall " << worst << " (bound " << slack << ")\n";
+}
+
+TEST(PenetrationDepth, BoxPushedIntoABoxByAKnownAmount)
+{
+    // B (half 0.5) pushed face-first into A (half 1) by delta along x, shifted and turned about x (its face stays
+    // parallel to A's): B's face nodes at x = 1 - delta are delta deep, exactly the translational penetration depth.
+    const BodyPtr a = test::unrefinedBody(test::box(1.0, 1.0, 1.0, 2));
+    const BodyPtr b = test::unrefinedBody(test::box(0.5, 0.5, 0.5, 2));
+    for (double delta : {1e-3, 0.05, 0.2})
+        for (double angle : {0.0, 0.4})
+        {
+            Eigen::Isometry3d X = test::translation(1.5 - delta, 0.1, -0.05);
+            X.linear() = Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX()).toRotationMatrix();
+            const DistanceResult r = exactAt(*a, *b, X);
+            ASSERT_TRUE(r.inCollision);
+            EXPECT_EQ(r.penetration, Penetration::DeepestNode);
+            EXPECT_NEAR(r.distance, -delta, 1e-12) << delta << " " << angle;
+            EXPECT_NEAR(std::abs((r.onA - r.onB).x()), delta, 1e-12);
+            // And the same from B's side.
+            const DistanceResult s = exactAt(*b, *a, X.inverse());
+            EXPECT_NEAR(s.distance, -delta, 1e-12);
+        }
+}
+
+TEST(PenetrationDepth, SmallBodyWhollyInsideABigOne)
+{
+    // A sphere of radius 0.5 at (0.3, -0.2, 0.1) inside the box [-2, 2]^3: no surface contact (FCL calls it free).
+    // Every node of the sphere is at least 2 - 0.3 - 0.5 = 1.2 from the box's surface; the translational depth is
+    // 2.2 (the nearest face, x = 2, is 1.7 from the centre: the sphere must move 1.7 + 0.5 to clear it).
+    const Mesh big = test::box(2.0, 2.0, 2.0, 2), small = test::icosphere(0.5, 2);
+    const BodyPtr a = test::unrefinedBody(big), b = test::unrefinedBody(small);
+    const Eigen::Isometry3d inside = test::translation(0.3, -0.2, 0.1);
+    for (const DistanceResult &r : {exactAt(*a, *b, inside), exactAt(*b, *a, inside.inverse())})
+    {
+        ASSERT_TRUE(r.inCollision);
+        EXPECT_EQ(r.penetration, Penetration::DeepestNode);
+        EXPECT_GE(r.penetrationDepth, 1.2 - 1e-12);
+        EXPECT_LE(r.penetrationDepth, 2.2 + 1e-12);
+        EXPECT_LT(r.distance, -1.2 + 1e-12);
+    }
+#ifdef MESHGAP_HAVE_FCL
+    EXPECT_FALSE(test::fclCollide(test::fclModel(big), test::fclModel(small), inside));
+#endif
+}
+
+TEST(PenetrationDepth, ShallowCrossingWithNoNodeInsideIsStillNegative)
+{
+    // A long box turned 45 degrees about y, its lowest edge (along y) dipping eps below the top face z = 1 of the
+    // unit box: the surfaces cross, but every corner of each lies outside the other. Unrefined: no node inside,
+    // distance kContactDistance (< 0). Refined: nodes along that edge lie eps deep, the estimate finds them.
+    const double eps = 1e-3;
+    const Mesh ma = test::box(1.0, 1.0, 1.0, 1), mb = test::box(0.5, 3.0, 0.5, 1);
+    Eigen::Isometry3d X = test::translation(0.0, 0.2, 1.0 - eps + 0.5 * std::sqrt(2.0));
+    X.linear() = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    const DistanceResult coarse = exactAt(*test::unrefinedBody(ma), *test::unrefinedBody(mb), X);
+    ASSERT_TRUE(coarse.inCollision);
+    EXPECT_EQ(coarse.penetration, Penetration::NoNodeInside);
+    EXPECT_EQ(coarse.penetrationDepth, 0.0);
+    EXPECT_EQ(coarse.distance, kContactDistance);
+    EXPECT_LT(coarse.distance, 0.0);
+    EXPECT_EQ(coarse.onA, coarse.onB);  // a touching point
+    BodyOptions fine;
+    fine.gridSize = 0.1;
+    const DistanceResult refined = exactAt(*Body::build(ma, fine), *Body::build(mb, fine), X);
+    ASSERT_TRUE(refined.inCollision);
+    EXPECT_EQ(refined.penetration, Penetration::DeepestNode);
+    EXPECT_GT(refined.penetrationDepth, 0.0);
+    EXPECT_LE(refined.penetrationDepth, eps + 1e-12);
+#ifdef MESHGAP_HAVE_FCL
+    EXPECT_TRUE(test::fclCollide(test::fclModel(ma), test::fclModel(mb), X));
+#endif
+    // Touching faces (boxes side by side, no overlap): in collision, depth 0.
+    const BodyPtr cube = test::unrefinedBody(ma);
+    const DistanceResult touching = exactAt(*cube, *cube, test::translation(2.0, 0.3, 0));
+    EXPECT_TRUE(touching.inCollision);
+    EXPECT_LT(touching.distance, 0.0);
+    EXPECT_GE(touching.distance, -1e-12);
+}
+
+TEST(PenetrationDepth, OpenBodies)
+{
+    // Two open sheets crossing: no inside, no depth: kContactDistance, OpenBodies.
+    const Mesh sheet = test::grid(2.0, 1.0, 4, 2);
+    Eigen::Isometry3d X = test::translation(0.5, 0.5, -0.5);
+    X.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();  // the plane y = 0.5
+    const BodyPtr s = test::unrefinedBody(sheet);
+    const DistanceResult r = exactAt(*s, *s, X);
+    ASSERT_TRUE(r.inCollision);
+    EXPECT_EQ(r.penetration, Penetration::OpenBodies);
+    EXPECT_EQ(r.distance, kContactDistance);
+    // A sheet through a closed box: its nodes inside the box count (an open body inside a closed one collides).
+    const BodyPtr box = test::unrefinedBody(test::box(0.5, 0.5, 0.5, 1));
+    const DistanceResult through = exactAt(*box, *s, test::translation(-1.0, -0.5, 0.1));  // sheet at z = 0.1
+    ASSERT_TRUE(through.inCollision);
+    EXPECT_EQ(through.penetration, Penetration::DeepestNode);
+    EXPECT_GT(through.penetrationDepth, 0.0);
+    EXPECT_LE(through.penetrationDepth, 0.4 + 1e-12);  // no sheet point is deeper than the nearest face, z = 0.5
+}
+
+TEST(PenetrationDepth, IsALowerBoundAndNeverNonNegativeInCollision)
+{
+    // Random poses of a sphere around the U: whenever FCL (or containment) says collision the distance is < 0; and
+    // the depth is a lower bound on the translational penetration depth: B moved by 0.999 depth in any direction
+    // still collides.
+    const Mesh ma = uShape(), mb = test::icosphere(0.45, 2);
+    const BodyPtr a = test::unrefinedBody(ma), b = Body::build(mb);
+#ifdef MESHGAP_HAVE_FCL
+    const auto fa = test::fclModel(ma), fb = test::fclModel(mb);
+#endif
+    std::mt19937 rng(3);
+    std::size_t collisions = 0, deep = 0;
+    for (std::uint32_t seed = 1; seed <= 300; ++seed)
+    {
+        const Eigen::Isometry3d X = test::randomPose(seed, 2.0);
+        const DistanceResult r = exactAt(*a, *b, X);
+        EXPECT_EQ(r.inCollision, r.distance < 0.0) << seed;
+#ifdef MESHGAP_HAVE_FCL
+        if (test::fclCollide(fa, fb, X))
+        {
+            EXPECT_TRUE(r.inCollision) << seed;
+            EXPECT_LT(r.distance, 0.0) << seed;
+        }
+#endif
+        if (!r.inCollision)
+            continue;
+        ++collisions;
+        EXPECT_EQ(r.distance, r.penetrationDepth > 0.0 ? -r.penetrationDepth : kContactDistance);
+        if (r.penetration != Penetration::DeepestNode)
+            continue;
+        ++deep;
+        for (int k = 0; k < 5; ++k)
+        {
+            const Eigen::Vector3d t = 0.999 * r.penetrationDepth * randomUnit(rng);
+            Eigen::Isometry3d moved = X;
+            moved.translation() += t;
+            EXPECT_TRUE(inCollision(*a, *b, moved)) << seed;
+        }
+    }
+    EXPECT_GT(collisions, 20u);
+    EXPECT_GT(deep, 20u);
+}
+
+#ifdef MESHGAP_HAVE_FCL
+TEST(PenetrationDepth, OmplAppRandomCollidingPosesAreNegative)
+{
+    // Random poses in the volume of two OMPL.app problems, as scenes (world split into parts): wherever FCL says
+    // collision, the signed distance is negative; it is negative exactly when meshgap says collision; a deepest
+    // node's witness lies inside the obstacle or the robot, at the depth reported from the other's surface.
+    const fs::path dir = fs::path(MESHGAP_SHARED_DATA_DIR) / "omplapp";
+    std::size_t problems = 0;
+    for (const char *name : {"cubicles", "Twistycool"})
+    {
+        const fs::path cfg = dir / (std::string(name) + ".cfg");
+        if (!fs::exists(cfg))
+            continue;
+        ++problems;
+        const ProblemConfig p = readProblemConfig(cfg.string());
+        const Mesh world = loadMesh(p.world), robot = loadRobotMesh(p.robot);
+        const ScenePtr scene = Scene::fromMeshes(robot, world);
+        const auto fw = test::fclModel(world), fr = test::fclModel(robot);
+        const Eigen::AlignedBox3d volume = p.volume.value_or(world.bounds());
+        std::mt19937 rng(99);
+        std::normal_distribution<double> gauss;
+        std::size_t collisions = 0, deep = 0;
+        for (int i = 0; i < 150; ++i)
+        {
+            Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+            Eigen::Quaterniond q(gauss(rng), gauss(rng), gauss(rng), gauss(rng));
+            X.linear() = q.normalized().toRotationMatrix();
+            for (int k = 0; k < 3; ++k)
+                X.translation()[k] = std::uniform_real_distribution<double>(volume.min()[k], volume.max()[k])(rng);
+            SceneWarmStart cold;
+            SceneResult r;
+            scene->distance(X, SceneRequest(), cold, r);
+            EXPECT_EQ(r.inCollision, r.distance < 0.0) << name << " pose " << i;
+            if (test::fclCollide(fw, fr, X))
+            {
+                EXPECT_LT(r.distance, 0.0) << name << " pose " << i;
+            }
+            if (!r.inCollision)
+                continue;
+            ++collisions;
+            EXPECT_TRUE(r.certified);
+            if (r.penetration != Penetration::DeepestNode)
+                continue;
+            ++deep;
+            EXPECT_NEAR((r.onObstacle - r.onRobot).norm(), r.penetrationDepth, 1e-9 * world.size());
+            const Body &o = *scene->obstacles()[r.obstacle];
+            EXPECT_TRUE(containsPoint(o, r.onRobot) || containsPoint(scene->robot(), X.inverse() * r.onObstacle))
+                << name << " pose " << i;
+        }
+        std::cout << "[ depth    ] " << name << ": 150 random poses, " << collisions << " colliding, " << deep
+                  << " with a node inside\n";
+        EXPECT_GT(collisions, 10u);
+    }
+    if (problems == 0)
+        GTEST_SKIP() << "OMPL.app problems (cubicles, Twistycool) not found under " << dir << "; skipping";
+}
+#endif
