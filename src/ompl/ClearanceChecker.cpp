@@ -1,6 +1,7 @@
 #include "meshgap/ompl/ClearanceChecker.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
@@ -27,6 +28,29 @@ namespace meshgap
             X.linear() = Eigen::AngleAxisd(s->getYaw(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
             X.translation() = Eigen::Vector3d(s->getX(), s->getY(), 0.0);
             return X;
+        }
+        throw Exception("ClearanceChecker", "state space '" + space.getName() + "' is neither SE(3) nor SE(2)");
+    }
+
+    void stateFromPose(const ompl::base::StateSpace &space, const Eigen::Isometry3d &X, ompl::base::State *state)
+    {
+        if (space.getType() == ompl::base::STATE_SPACE_SE3)
+        {
+            auto *s = state->as<ompl::base::SE3StateSpace::StateType>();
+            const Eigen::Quaterniond q(X.linear());
+            s->setXYZ(X.translation().x(), X.translation().y(), X.translation().z());
+            s->rotation().x = q.x();
+            s->rotation().y = q.y();
+            s->rotation().z = q.z();
+            s->rotation().w = q.w();
+            return;
+        }
+        if (space.getType() == ompl::base::STATE_SPACE_SE2)
+        {
+            auto *s = state->as<ompl::base::SE2StateSpace::StateType>();
+            s->setXY(X.translation().x(), X.translation().y());
+            s->setYaw(std::atan2(X.linear()(1, 0), X.linear()(0, 0)));
+            return;
         }
         throw Exception("ClearanceChecker", "state space '" + space.getName() + "' is neither SE(3) nor SE(2)");
     }
@@ -65,7 +89,7 @@ namespace meshgap
             throw Exception("ClearanceChecker", "no scene");
         specs_.clearanceComputationType = mode_ == Mode::CERTIFIED ? ompl::base::StateValidityCheckerSpecs::EXACT :
                                                                      ompl::base::StateValidityCheckerSpecs::APPROXIMATE;
-        specs_.hasValidDirectionComputation = false;
+        specs_.hasValidDirectionComputation = true;
     }
 
     bool ClearanceChecker::isValid(const ompl::base::State *state) const
@@ -86,14 +110,58 @@ namespace meshgap
             return false;
         }
         const SceneResult r = query(state, true);
-        dist = r.inCollision ? 0.0 : r.distance;
+        dist = r.distance;
         return !r.inCollision;
     }
 
     double ClearanceChecker::clearance(const ompl::base::State *state) const
     {
+        return query(state, false).distance;
+    }
+
+    double ClearanceChecker::clearance(const ompl::base::State *state, ompl::base::State *validState,
+                                       bool &validStateAvailable) const
+    {
         const SceneResult r = query(state, false);
-        return r.inCollision ? 0.0 : r.distance;
+        validStateAvailable = validState != nullptr && validStateAway(state, r, validState);
+        return r.distance;
+    }
+
+    bool ClearanceChecker::validStateAway(const ompl::base::State *state, const SceneResult &r,
+                                          ompl::base::State *out) const
+    {
+        const ompl::base::StateSpace &space = *si_->getStateSpace();
+        const bool planar = space.getType() == ompl::base::STATE_SPACE_SE2;
+        const Eigen::Isometry3d X = poseFromState(space, state);
+        auto flat = [planar](Eigen::Vector3d v) {
+            if (planar)
+                v.z() = 0.0;  // an SE(2) robot only moves in its plane
+            return v;
+        };
+        Eigen::Vector3d direction = flat(r.inCollision ? r.onObstacle - r.onRobot : r.onRobot - r.onObstacle);
+        const double radius = scene_->robot().radiusAboutOrigin();
+        const double tiny = 1e-12 * (1.0 + radius + X.translation().norm());
+        if (direction.norm() <= tiny)  // touching witnesses give no direction: move from the contact to the origin
+            direction = flat(X.translation() - r.onObstacle);
+        if (direction.norm() <= tiny || !std::isfinite(r.distance))
+            return false;
+        direction.normalize();
+        const bool wasValid = !r.inCollision && si_->satisfiesBounds(state);
+        double step = std::abs(r.distance) + 0.02 * radius;
+        for (int attempt = 0; attempt < 5; ++attempt, step *= 2.0)
+        {
+            si_->copyState(out, state);
+            const Eigen::Vector3d t = X.translation() + step * direction;
+            if (planar)
+                out->as<ompl::base::SE2StateSpace::StateType>()->setXY(t.x(), t.y());
+            else
+                out->as<ompl::base::SE3StateSpace::StateType>()->setXYZ(t.x(), t.y(), t.z());
+            space.enforceBounds(out);
+            double d;
+            if (isValid(out, d) && (!wasValid || d > r.distance))
+                return true;
+        }
+        return false;
     }
 
     SceneResult ClearanceChecker::query(const ompl::base::State *state) const

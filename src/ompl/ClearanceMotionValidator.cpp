@@ -36,7 +36,7 @@ namespace meshgap
             space.interpolate(s1, s2, f, state);
             ++queries_;
             const SceneResult r = checker_->query(state);
-            if (r.inCollision)
+            if (r.inCollision || !(r.distance > 0.0))  // signed: never step on a zero or negative clearance
                 break;
             // The certified distance may exceed the true minimum by the BVH's tie slack (1e-12 relative): step on
             // a slightly smaller clearance so no point ever reaches an obstacle.

@@ -1,7 +1,7 @@
 #include "meshgap/ompl/ProblemSetup.h"
 
-#include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
-#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+#include <sstream>
+#include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 
 #include "meshgap/Exception.h"
@@ -12,62 +12,116 @@ namespace meshgap
 {
     namespace
     {
-        void setState(ompl::base::ScopedState<ompl::base::SE3StateSpace> &s, const Eigen::Isometry3d &X)
+        /** \brief The robot mesh as OMPL.app's 2D problems place it: shifted by its centre's x and y only
+            (RigidBodyGeometry zeroes the centre's z for Motion_2D), subtracting in single precision as
+            loadRobotMesh() does. */
+        Mesh loadPlanarRobotMesh(const std::string &path)
         {
-            const Eigen::Quaterniond q(X.linear());
-            s->setXYZ(X.translation().x(), X.translation().y(), X.translation().z());
-            s->rotation().x = q.x();
-            s->rotation().y = q.y();
-            s->rotation().z = q.z();
-            s->rotation().w = q.w();
+            LoadReport report;
+            Mesh mesh = loadMesh(path, &report);
+            const float cx = static_cast<float>(report.omplAppCenter.x()),
+                        cy = static_cast<float>(report.omplAppCenter.y());
+            for (Eigen::Vector3d &v : mesh.vertices)
+                v = Eigen::Vector3d(static_cast<float>(v.x()) - cx, static_cast<float>(v.y()) - cy, v.z());
+            return mesh;
+        }
+
+        std::string point(const Eigen::Vector3d &p)
+        {
+            std::ostringstream out;
+            out.precision(6);
+            out << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+            return out.str();
+        }
+
+        /** \brief Why a start or goal pose is not free: the obstacle hit, where, and the signed distance. */
+        std::string collisionReport(const Scene &scene, const SceneResult &r)
+        {
+            const Mesh &part = scene.obstacles()[r.obstacle]->surface();
+            Eigen::AlignedBox3d box;
+            for (const Eigen::Vector3d &v : part.vertices)
+                box.extend(v);
+            std::ostringstream text;
+            text.precision(6);
+            text << "is in collision with obstacle " << r.obstacle << " of " << scene.obstacles().size()
+                 << " (the world part whose bounding box is centred at " << point(box.center()) << ")";
+            if (r.onObstacle != Eigen::Vector3d::Zero() || r.onRobot != Eigen::Vector3d::Zero())
+                text << " near " << point(r.onObstacle);
+            if (r.distance < 0.0)
+                text << ": signed distance " << r.distance << " (penetration depth " << -r.distance << ")";
+            else
+                text << ": the surfaces touch or cross (signed distance 0; no penetration depth computed)";
+            return text.str();
         }
     }  // namespace
 
     OmplProblem setupProblem(const ProblemConfig &config, ClearanceChecker::Mode mode, const std::string &objective,
-                             const BodyOptions &bodies)
+                             const BodyOptions &bodies, const ObjectiveOptions &objectiveOptions)
     {
+        namespace ob = ompl::base;
         if (!config.volume)
             throw Exception(config.file, "no volume (volume.min.* and volume.max.*): the planner needs bounds");
         if (!config.goal)
-            throw Exception(config.file, "no goal (goal.x, goal.y, goal.z)");
+            throw Exception(config.file, "no goal (goal.x, goal.y" + std::string(config.planar ? ")" : ", goal.z)"));
         OmplProblem problem;
-        problem.scene = Scene::fromMeshes(loadRobotMesh(config.robot), loadMesh(config.world), bodies);
+        problem.scene = Scene::fromMeshes(config.planar ? loadPlanarRobotMesh(config.robot) : loadRobotMesh(config.robot),
+                                          loadMesh(config.world), bodies);
 
-        auto space = std::make_shared<ompl::base::SE3StateSpace>();
-        ompl::base::RealVectorBounds bounds(3);
-        for (int k = 0; k < 3; ++k)
+        const int dimensions = config.planar ? 2 : 3;
+        ob::RealVectorBounds bounds(dimensions);
+        for (int k = 0; k < dimensions; ++k)
         {
             bounds.setLow(k, config.volume->min()[k]);
             bounds.setHigh(k, config.volume->max()[k]);
         }
-        space->setBounds(bounds);
+        ob::StateSpacePtr space;
+        if (config.planar)
+        {
+            auto se2 = std::make_shared<ob::SE2StateSpace>();
+            se2->setBounds(bounds);
+            space = se2;
+        }
+        else
+        {
+            auto se3 = std::make_shared<ob::SE3StateSpace>();
+            se3->setBounds(bounds);
+            space = se3;
+        }
         problem.setup = std::make_shared<ompl::geometric::SimpleSetup>(space);
-        const ompl::base::SpaceInformationPtr si = problem.setup->getSpaceInformation();
+        const ob::SpaceInformationPtr si = problem.setup->getSpaceInformation();
         problem.checker = std::make_shared<ClearanceChecker>(si, problem.scene, mode);
         problem.setup->setStateValidityChecker(problem.checker);
 
-        ompl::base::ScopedState<ompl::base::SE3StateSpace> start(space), goal(space);
-        setState(start, config.start);
-        setState(goal, *config.goal);
+        ob::ScopedState<> start(space), goal(space);
+        stateFromPose(*space, config.start, start.get());
+        stateFromPose(*space, *config.goal, goal.get());
         for (const auto &[label, state] : {std::make_pair("start", &start), std::make_pair("goal", &goal)})
         {
             if (!si->satisfiesBounds(state->get()))
                 throw Exception(config.file, std::string(label) + " lies outside the volume");
             if (!problem.checker->isValid(state->get()))
-                throw Exception(config.file, std::string(label) + " is in collision");
+            {
+                // Exact answer for the message, whatever the checker's mode.
+                SceneRequest request;
+                SceneWarmStart warm;
+                SceneResult r;
+                problem.scene->distance(poseFromState(*space, state->get()), request, warm, r);
+                throw Exception(config.file, std::string(label) + " " + collisionReport(*problem.scene, r));
+            }
         }
         problem.setup->setStartAndGoalStates(start, goal);
 
         problem.objective = !objective.empty() ? objective : (config.objective.empty() ? "length" : config.objective);
-        if (problem.objective == "length")
-            problem.setup->setOptimizationObjective(std::make_shared<ompl::base::PathLengthOptimizationObjective>(si));
-        else if (problem.objective == "max_min_clearance")
-            problem.setup->setOptimizationObjective(std::make_shared<ompl::base::MaximizeMinClearanceObjective>(si));
-        else
-            throw Exception(config.file, "unknown objective '" + problem.objective +
-                                             "' (valid: length, max_min_clearance)");
+        try
+        {
+            problem.setup->setOptimizationObjective(allocObjective(problem.objective, si, objectiveOptions));
+        }
+        catch (const Exception &e)
+        {
+            throw Exception(config.file, e.what());
+        }
         if (config.objectiveThreshold)
-            problem.setup->getOptimizationObjective()->setCostThreshold(ompl::base::Cost(*config.objectiveThreshold));
+            problem.setup->getOptimizationObjective()->setCostThreshold(ob::Cost(*config.objectiveThreshold));
         return problem;
     }
 }  // namespace meshgap

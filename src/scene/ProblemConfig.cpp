@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <set>
 
 #include "meshgap/Exception.h"
@@ -106,8 +107,17 @@ namespace meshgap
             if (!has(key) || problem[key].first.empty())
                 throw Exception(path, "missing required key '" + key + "' in [problem]");
         };
-        for (const char *key : {"robot", "world", "start.x", "start.y", "start.z"})
+        for (const char *key : {"robot", "world", "start.x", "start.y"})
             require(key);
+        // OMPL.app's 2D problems have no start.z: SE(2), the yaw in start.theta.
+        config.planar = !has("start.z");
+        if (config.planar)
+            for (const char *key : {"goal.z", "start.axis.x", "start.axis.y", "start.axis.z", "goal.axis.x",
+                                    "goal.axis.y", "goal.axis.z", "volume.min.z", "volume.max.z"})
+                if (has(key))
+                    throw Exception(problem[key].second, "'" + std::string(key) +
+                                                             "' in a planar problem (no start.z: SE(2), theta is the "
+                                                             "yaw about z); give start.z for a 3D problem");
 
         const fs::path folder = fs::path(path).parent_path();
         auto meshPath = [&](const std::string &key) {
@@ -125,8 +135,10 @@ namespace meshgap
         auto pose = [&](const std::string &prefix) {
             const Eigen::Vector3d position(num(prefix + ".x", 0), num(prefix + ".y", 0), num(prefix + ".z", 0));
             const double theta = num(prefix + ".theta", 0.0);
-            const Eigen::Vector3d axis(num(prefix + ".axis.x", 1), num(prefix + ".axis.y", 0),
-                                       num(prefix + ".axis.z", 0));
+            const Eigen::Vector3d axis = config.planar ? Eigen::Vector3d::UnitZ() :
+                                                         Eigen::Vector3d(num(prefix + ".axis.x", 1),
+                                                                         num(prefix + ".axis.y", 0),
+                                                                         num(prefix + ".axis.z", 0));
             if (theta != 0.0 && axis.norm() == 0.0)
                 throw Exception(problem[prefix + ".theta"].second, prefix + ".axis is the zero vector");
             return poseFromAxisAngle(position, theta, axis);
@@ -139,17 +151,47 @@ namespace meshgap
         int given = 0;
         for (const char *key : bounds)
             given += has(key);
-        if (given == 6)
+        const int needed = config.planar ? 4 : 6;  // planar: no volume.*.z (rejected above)
+        if (given == needed)
         {
             const Eigen::Vector3d lo(num(bounds[0], 0), num(bounds[1], 0), num(bounds[2], 0));
             const Eigen::Vector3d hi(num(bounds[3], 0), num(bounds[4], 0), num(bounds[5], 0));
-            if ((hi.array() <= lo.array()).any())
+            if ((hi.array() <= lo.array()).head(needed / 2).any())
                 throw Exception(problem["volume.max.x"].second, "volume.max must exceed volume.min on every axis");
             config.volume = Eigen::AlignedBox3d(lo, hi);
         }
         else if (given > 0)
-            throw Exception(path, "volume needs all six keys volume.min.x .. volume.max.z (found " +
-                                      std::to_string(given) + ")");
+            throw Exception(path, config.planar ? "a planar volume needs the four keys volume.min.x/y, volume.max.x/y "
+                                                  "(found " + std::to_string(given) + ")" :
+                                                "volume needs all six keys volume.min.x .. volume.max.z (found " +
+                                                    std::to_string(given) + ")");
+        // A start or goal outside the volume is no problem any planner can solve: say so here, for every tool.
+        if (config.volume)
+        {
+            const int axes = config.planar ? 2 : 3;
+            auto inside = [&](const Eigen::Vector3d &p) {
+                for (int k = 0; k < axes; ++k)
+                    if (!(p[k] >= config.volume->min()[k] && p[k] <= config.volume->max()[k]))
+                        return false;
+                return true;
+            };
+            auto text = [&](const Eigen::Vector3d &p) {
+                std::ostringstream out;
+                out << "(" << p.head(axes).transpose() << ")";
+                return out.str();
+            };
+            for (const char *label : {"start", "goal"})
+            {
+                const bool isStart = std::string(label) == "start";
+                if (!isStart && !config.goal)
+                    continue;
+                const Eigen::Vector3d p = (isStart ? config.start : *config.goal).translation();
+                if (!inside(p))
+                    throw Exception(problem[std::string(label) + ".x"].second,
+                                    std::string(label) + " " + text(p) + " lies outside the volume " +
+                                        text(config.volume->min()) + " .. " + text(config.volume->max()));
+            }
+        }
         if (has("objective"))
             config.objective = problem["objective"].first;
         if (has("objective.threshold"))

@@ -5,10 +5,13 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "FclOracle.h"
+#include "TestMeshes.h"
+#include "meshgap/mesh/MeshWriter.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
 #include "meshgap/scene/ProblemConfig.h"
@@ -52,7 +55,9 @@ TEST(PlanCli, BadInputGivesOneErrorAndExitOne)
         {"--cfg /nonexistent/p.cfg", "/nonexistent/p.cfg"},
         {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner nope", "rrtconnect"},
         {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --mode sloppy", "--mode"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --objective speed", "speed"},
+        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --objective speed", "max_min_clearance"},
+        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --objective length --weight 3", "--weight"},
+        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --objective weighted --weight -1", "--weight"},
         {"", "--cfg"},
     };
     for (const auto &[args, mention] : cases)
@@ -64,14 +69,47 @@ TEST(PlanCli, BadInputGivesOneErrorAndExitOne)
     }
 }
 
+// A start (or goal) in collision: exit 1, and the message says which, the obstacle, and the signed distance.
+TEST(PlanCli, StartOrGoalInCollisionIsNamed)
+{
+    const fs::path dir = fs::temp_directory_path() / ("meshgap_plan_collide_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    writeObj(test::box(1, 1, 1), (dir / "robot.obj").string());
+    writeObj(test::merged(test::transformed(test::box(1, 1, 1), test::translation(10, 0, 0)),
+                          test::transformed(test::box(1, 1, 1), test::translation(-10, 0, 0))),
+             (dir / "world.obj").string());
+    for (const auto &[label, start, goal] : {std::make_tuple("start", "10.5", "0"), std::make_tuple("goal", "0", "-9")})
+    {
+        std::ofstream(dir / "p.cfg") << "[problem]\nrobot = robot.obj\nworld = world.obj\nstart.x = " << start
+                                     << "\nstart.y = 0\nstart.z = 0\ngoal.x = " << goal
+                                     << "\ngoal.y = 0\ngoal.z = 0\nvolume.min.x = -20\nvolume.min.y = -20\n"
+                                        "volume.min.z = -20\nvolume.max.x = 20\nvolume.max.y = 20\nvolume.max.z = 20\n";
+        const PlanRun r = plan("--cfg " + (dir / "p.cfg").string() + " --time 1");
+        EXPECT_EQ(r.status, 1) << r.err;
+        EXPECT_NE(r.err.find(std::string(label) + " is in collision with obstacle " + (label == std::string("start") ? "0" : "1")),
+                  std::string::npos)
+            << r.err;
+        EXPECT_NE(r.err.find("signed distance"), std::string::npos) << r.err;
+    }
+    fs::remove_all(dir);
+}
+
 #ifdef MESHGAP_HAVE_FCL
 TEST(PlanCli, PlansAPathWhoseEveryStateFclCallsFree)
 {
     const std::string cfg = MAPS + "/hand_bowl/hand_bowl.cfg";
     const std::string out = (fs::temp_directory_path() / ("meshgap_plan_" + std::to_string(::getpid()) + ".path")).string();
-    const PlanRun r = plan("--cfg " + cfg + " --planner rrtconnect --time 20 --seed 3 --out " + out);
+    const std::string csv = out + ".csv", summary = out + ".txt";
+    const PlanRun r = plan("--cfg " + cfg + " --planner rrtconnect --time 20 --seed 3 --out " + out +
+                           " --clearance-csv " + csv + " --summary " + summary);
     ASSERT_EQ(r.status, 0) << r.out << r.err;
-    EXPECT_NE(r.out.find("exact solution yes"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("exact solution  yes"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("dense path free yes"), std::string::npos) << r.out;
+    std::ifstream summaryIn(summary);
+    std::stringstream summaryText;
+    summaryText << summaryIn.rdbuf();
+    EXPECT_NE(r.out.find(summaryText.str()), std::string::npos) << "the summary file is what was printed";
+    fs::remove(summary);
     const ProblemConfig p = readProblemConfig(cfg);
     const auto fw = test::fclModel(loadMesh(p.world)), fr = test::fclModel(loadRobotMesh(p.robot));
     const std::vector<Eigen::Isometry3d> path = readPoses(out);
@@ -81,5 +119,35 @@ TEST(PlanCli, PlansAPathWhoseEveryStateFclCallsFree)
     for (std::size_t i = 0; i < path.size(); ++i)
         EXPECT_FALSE(test::fclCollide(fw, fr, path[i])) << "state " << i;
     fs::remove(out);
+
+    // The clearance CSV: the dense path, from start to goal, every state free by FCL and its clearance FCL's.
+    std::ifstream in(csv);
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "index,arc_length,fraction,x,y,z,qx,qy,qz,qw,clearance,in_collision");
+    std::vector<std::vector<double>> rows;
+    while (std::getline(in, line))
+    {
+        std::vector<double> row;
+        std::stringstream fields(line);
+        for (std::string field; std::getline(fields, field, ',');)
+            row.push_back(std::stod(field));
+        ASSERT_EQ(row.size(), 12u) << line;
+        rows.push_back(row);
+    }
+    fs::remove(csv);
+    ASSERT_GT(rows.size(), path.size());
+    EXPECT_EQ(rows.front()[2], 0.0);
+    EXPECT_DOUBLE_EQ(rows.back()[2], 1.0);
+    for (std::size_t i = 0; i < rows.size(); i += 1 + rows.size() / 60)  // about 60 states checked by FCL
+    {
+        const auto &row = rows[i];
+        Eigen::Isometry3d P = Eigen::Isometry3d::Identity();
+        P.linear() = Eigen::Quaterniond(row[9], row[6], row[7], row[8]).normalized().toRotationMatrix();
+        P.translation() = Eigen::Vector3d(row[3], row[4], row[5]);
+        EXPECT_EQ(row[11], 0.0) << "dense state " << i;
+        const double exact = test::fclDistance(fw, fr, P);
+        EXPECT_NEAR(row[10], exact, 1e-6 * (1 + exact)) << "dense state " << i;
+    }
 }
 #endif

@@ -6,6 +6,7 @@
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/RandomNumbers.h>
+#include <iostream>
 #include <thread>
 
 #include "FclOracle.h"
@@ -61,6 +62,7 @@ TEST(ClearanceChecker, SpecsSayWhatTheClearanceIs)
     ClearanceChecker fast(f.si, f.scene, ClearanceChecker::Mode::FAST);
     EXPECT_EQ(certified.getSpecs().clearanceComputationType, ob::StateValidityCheckerSpecs::EXACT);
     EXPECT_EQ(fast.getSpecs().clearanceComputationType, ob::StateValidityCheckerSpecs::APPROXIMATE);
+    EXPECT_TRUE(certified.getSpecs().hasValidDirectionComputation);
 }
 
 #ifdef MESHGAP_HAVE_FCL
@@ -80,7 +82,8 @@ TEST(ClearanceChecker, NeverValidInCollisionAndClearanceIsTheExactMinimum)
         if (hit)
         {
             ++colliding;
-            EXPECT_EQ(checker.clearance(s.get()), 0.0);
+            EXPECT_LE(checker.clearance(s.get()), 0.0);  // signed: a penetration depth, or 0 where none is computed
+            EXPECT_LE(dist, 0.0);
             continue;
         }
         ++free;
@@ -90,6 +93,46 @@ TEST(ClearanceChecker, NeverValidInCollisionAndClearanceIsTheExactMinimum)
     }
     EXPECT_GT(colliding, 20);
     EXPECT_GT(free, 20);
+}
+#endif
+
+#ifdef MESHGAP_HAVE_FCL
+// clearance(state, validState, available): from colliding and nearly colliding states, a proposed state is free (FCL),
+// within bounds, keeps the rotation, and is clearer than the state it came from.
+TEST(ClearanceChecker, ValidStateAwayFromTheNearestObstacleIsFreeAndClearer)
+{
+    Fixture f;
+    ClearanceChecker checker(f.si, f.scene);
+    const auto fw = test::fclModel(f.world), fr = test::fclModel(f.robot);
+    ob::ScopedState<ob::SE3StateSpace> away(f.si->getStateSpace());
+    int colliding = 0, near = 0, collidingFixed = 0, nearFixed = 0;
+    for (const auto &s : f.randomStates(600))
+    {
+        const Eigen::Isometry3d X = poseFromState(*f.si->getStateSpace(), s.get());
+        const bool hit = test::fclCollide(fw, fr, X);
+        const double before = hit ? 0.0 : test::fclDistance(fw, fr, X);
+        if (!hit && before > 0.3)
+            continue;  // only colliding and nearly colliding states
+        bool available = false;
+        const double c = checker.clearance(s.get(), away.get(), available);
+        EXPECT_EQ(c <= 0.0, hit);
+        (hit ? colliding : near)++;
+        if (!available)
+            continue;
+        (hit ? collidingFixed : nearFixed)++;
+        const Eigen::Isometry3d Y = poseFromState(*f.si->getStateSpace(), away.get());
+        ASSERT_TRUE(f.si->satisfiesBounds(away.get()));
+        ASSERT_FALSE(test::fclCollide(fw, fr, Y)) << X.matrix() << "\n->\n" << Y.matrix();
+        EXPECT_GT(test::fclDistance(fw, fr, Y), before);
+        EXPECT_TRUE(Y.linear().isApprox(X.linear(), 1e-12));
+    }
+    EXPECT_GT(colliding, 20);
+    EXPECT_GT(near, 10);
+    // The direction is useful, not just safe: most states get a valid state (measured: see the counts).
+    EXPECT_GT(nearFixed, near * 8 / 10) << nearFixed << " of " << near;
+    EXPECT_GT(collidingFixed, colliding / 3) << collidingFixed << " of " << colliding;
+    std::cout << "valid state away: " << collidingFixed << " of " << colliding << " colliding, " << nearFixed << " of "
+              << near << " near\n";
 }
 #endif
 
@@ -121,39 +164,69 @@ TEST(ClearanceChecker, FastModeIsAPureFunctionOfTheStateAndNeverBelowExact)
 
 TEST(ClearanceChecker, ThreadsGiveTheSingleThreadedAnswers)
 {
+    // One checker per mode, queried from 8 threads at once, each visiting the states in its own interleaved order
+    // (strides coprime to the state count), validity and clearance mixed: every answer equals the single-threaded
+    // one bit for bit (issue 7). Warm starts are per thread, so a thread's history never leaks into another's answer.
+    constexpr int THREADS = 8, ROUNDS = 2;
     Fixture f;
-    ClearanceChecker checker(f.si, f.scene);
-    const auto states = f.randomStates(120);
-    std::vector<double> expected;
-    std::vector<char> expectedValid;
-    for (const auto &s : states)
+    const auto states = f.randomStates(101);
+    for (const ClearanceChecker::Mode mode : {ClearanceChecker::Mode::CERTIFIED, ClearanceChecker::Mode::FAST})
     {
-        expected.push_back(checker.clearance(s.get()));
-        expectedValid.push_back(checker.isValid(s.get()));
-    }
-    std::vector<std::vector<double>> got(4, std::vector<double>(states.size()));
-    std::vector<std::vector<char>> gotValid(4, std::vector<char>(states.size()));
-    std::vector<std::thread> threads;
-    for (int t = 0; t < 4; ++t)
-        threads.emplace_back([&, t] {
-            for (int round = 0; round < 3; ++round)
-                for (std::size_t k = 0; k < states.size(); ++k)
-                {
-                    // Interleaved orders: strides coprime to the state count visit every state once per round.
-                    static const std::size_t strides[4] = {1, 7, 11, 13};
-                    const std::size_t i = (k * strides[t] + round * 17) % states.size();
-                    got[t][i] = checker.clearance(states[i].get());
-                    gotValid[t][i] = checker.isValid(states[i].get());
-                }
-        });
-    for (std::thread &t : threads)
-        t.join();
-    for (int t = 0; t < 4; ++t)
-        for (std::size_t i = 0; i < states.size(); ++i)
+        const bool fast = mode == ClearanceChecker::Mode::FAST;
+        ClearanceChecker checker(f.si, f.scene, mode);
+        // Fast clearance runs comb-GA-wl per obstacle pair: fewer states keep the test short.
+        const std::size_t n = fast ? 23 : states.size();
+        std::vector<double> expected(n);
+        std::vector<char> expectedValid(n);
         {
-            EXPECT_EQ(got[t][i], expected[i]) << "thread " << t << " state " << i;
-            EXPECT_EQ(gotValid[t][i], expectedValid[i]);
+            ClearanceChecker reference(f.si, f.scene, mode);
+            for (std::size_t i = 0; i < n; ++i)
+            {
+                expected[i] = reference.clearance(states[i].get());
+                expectedValid[i] = reference.isValid(states[i].get());
+            }
         }
-    const CheckerStats stats = checker.stats();
-    EXPECT_EQ(stats.clearanceCalls, states.size() * 13);
+        std::vector<std::vector<double>> got(THREADS, std::vector<double>(n));
+        std::vector<std::vector<char>> gotValid(THREADS, std::vector<char>(n));
+        std::vector<std::thread> threads;
+        for (int t = 0; t < THREADS; ++t)
+            threads.emplace_back([&, t] {
+                static const std::size_t strides[THREADS] = {1, 2, 3, 4, 5, 6, 7, 8};
+                for (int round = 0; round < ROUNDS; ++round)
+                    for (std::size_t k = 0; k < n; ++k)
+                    {
+                        // n is prime, so every stride visits every state once per round.
+                        const std::size_t i = (k * strides[t] + static_cast<std::size_t>(round * 17 + t)) % n;
+                        if ((k + static_cast<std::size_t>(t)) % 2 == 0)
+                        {
+                            got[t][i] = checker.clearance(states[i].get());
+                            gotValid[t][i] = checker.isValid(states[i].get());
+                        }
+                        else
+                        {
+                            double d = 0.0;
+                            gotValid[t][i] = checker.isValid(states[i].get(), d);
+                            got[t][i] = d;
+                        }
+                    }
+            });
+        for (std::thread &t : threads)
+            t.join();
+        int collisions = 0;
+        for (std::size_t i = 0; i < n; ++i)
+            collisions += !expectedValid[i];
+        if (!fast)
+        {
+            EXPECT_GT(collisions, 0) << "no state collides: the verdicts went untested";
+        }
+        for (int t = 0; t < THREADS; ++t)
+            for (std::size_t i = 0; i < n; ++i)
+            {
+                EXPECT_EQ(got[t][i], expected[i]) << (fast ? "fast" : "certified") << " thread " << t << " state " << i;
+                EXPECT_EQ(gotValid[t][i], expectedValid[i]) << "thread " << t << " state " << i;
+            }
+        const CheckerStats stats = checker.stats();
+        EXPECT_GT(stats.clearanceCalls, 0u);
+        EXPECT_GE(stats.validityCalls, n * THREADS * ROUNDS / 2);
+    }
 }

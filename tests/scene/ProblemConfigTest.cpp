@@ -104,6 +104,46 @@ TEST_F(ProblemConfigTest, ErrorsNameFileLineAndProblem)
     EXPECT_NE(error("").find("missing required key"), std::string::npos);
 }
 
+// OMPL.app's 2D problems (e.g. resources/2D/Maze_planar.cfg): no start.z, theta is the yaw, a 2D volume.
+const std::string PLANAR = "[problem]\nname = maze\nrobot = meshes/r.obj\nworld = meshes/w.obj\n"
+                           "start.x = 0.01\nstart.y = -0.15\nstart.theta = 0.0\n"
+                           "goal.x = 41.01\ngoal.y = -0.15\ngoal.theta = 0.802851455917\n"
+                           "volume.min.x = -55.0\nvolume.min.y = -54.0\nvolume.max.x = 55.0\nvolume.max.y = 56.0\n"
+                           "[benchmark]\ntime_limit=20.0\n[planner]\nest=\n";
+
+TEST_F(ProblemConfigTest, ReadsAPlanarFile)
+{
+    const ProblemConfig c = readProblemConfig(write(PLANAR));
+    EXPECT_TRUE(c.planar);
+    EXPECT_FALSE(readProblemConfig(write(GOOD)).planar);
+    EXPECT_TRUE(c.start.translation().isApprox(Eigen::Vector3d(0.01, -0.15, 0)));
+    ASSERT_TRUE(c.goal.has_value());
+    EXPECT_TRUE(c.goal->translation().isApprox(Eigen::Vector3d(41.01, -0.15, 0)));
+    // The yaw: a rotation about z by goal.theta.
+    EXPECT_TRUE(c.goal->linear().isApprox(
+        Eigen::AngleAxisd(0.802851455917, Eigen::Vector3d::UnitZ()).toRotationMatrix(), 1e-12));
+    ASSERT_TRUE(c.volume.has_value());
+    EXPECT_EQ(c.volume->min(), Eigen::Vector3d(-55, -54, 0));
+    EXPECT_EQ(c.volume->max(), Eigen::Vector3d(55, 56, 0));
+}
+
+TEST_F(ProblemConfigTest, PlanarErrorsNameTheLine)
+{
+    const std::string file = (dir_ / "p.cfg").string();
+    auto replaced = [](std::string s, const std::string &from, const std::string &to) {
+        return s.replace(s.find(from), from.size(), to);
+    };
+    std::string e = error(replaced(PLANAR, "goal.y = -0.15\n", "goal.y = -0.15\ngoal.z = 3\n"));
+    EXPECT_NE(e.find(file + ":10"), std::string::npos) << e;
+    EXPECT_NE(e.find("planar"), std::string::npos) << e;
+    e = error(replaced(PLANAR, "start.theta = 0.0\n", "start.theta = 0.0\nstart.axis.z = 1\n"));
+    EXPECT_NE(e.find(file + ":8"), std::string::npos) << e;
+    e = error(replaced(PLANAR, "volume.max.y = 56.0\n", ""));
+    EXPECT_NE(e.find("four keys"), std::string::npos) << e;
+    e = error(replaced(PLANAR, "start.y = -0.15\n", ""));
+    EXPECT_NE(e.find("missing required key 'start.y'"), std::string::npos) << e;
+}
+
 TEST(ProblemConfig, MissingFile)
 {
     EXPECT_THROW(readProblemConfig("/nonexistent/x.cfg"), Exception);

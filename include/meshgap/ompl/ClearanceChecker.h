@@ -16,6 +16,10 @@ namespace meshgap
         spaces. */
     Eigen::Isometry3d poseFromState(const ompl::base::StateSpace &space, const ompl::base::State *state);
 
+    /** \brief The inverse of poseFromState(): set an SE(3) state to \e X, or an SE(2) state to X's x, y and its yaw
+        (the rotation's angle about z; any z translation or tilt is dropped). Throws for other spaces. */
+    void stateFromPose(const ompl::base::StateSpace &space, const Eigen::Isometry3d &X, ompl::base::State *state);
+
     /** \brief Counters summed over all threads, for benchmark run properties. */
     struct CheckerStats
     {
@@ -32,8 +36,11 @@ namespace meshgap
        (specs: EXACT), with a warm start per thread (the last answer of the same thread, paper III-D); in FAST mode
        the paper's node-to-node distance from comb-GA-wl (specs: APPROXIMATE; never below the exact value), seeded
        from the state's own coordinates and not warm-started, so it is a pure function of the state, as
-       RRT*'s and PRM*'s repeated cost comparisons need. In collision clearance() is 0 (a penetration depth is not
-       computed yet). Thread-safe: the scene is immutable, warm starts live per thread, counters are atomic.
+       RRT*'s and PRM*'s repeated cost comparisons need. clearance() is signed: it returns SceneResult::distance as
+       the scene computes it, which in collision is the penetration depth as a negative number (or 0 where the scene
+       computes no depth). clearance(state, validState, validStateAvailable) (specs: hasValidDirectionComputation)
+       also proposes a valid state away from the nearest obstacle (validStateAway()). Thread-safe: the scene is
+       immutable, warm starts live per thread, counters are atomic.
     */
     class ClearanceChecker : public ompl::base::StateValidityChecker
     {
@@ -48,7 +55,20 @@ namespace meshgap
 
         bool isValid(const ompl::base::State *state) const override;
         bool isValid(const ompl::base::State *state, double &dist) const override;
+        /** \brief Signed distance to the nearest obstacle: SceneResult::distance, negative (or 0) in collision. */
         double clearance(const ompl::base::State *state) const override;
+        /** \brief clearance(state), and in \e validState a state away from the nearest obstacle
+            (validStateAway()); \e validStateAvailable is true only if that state is valid (isValid()). */
+        double clearance(const ompl::base::State *state, ompl::base::State *validState,
+                         bool &validStateAvailable) const override;
+        /** \brief Fill \e out with \e state translated away from the nearest obstacle of \e r (the answer for
+            \e state): along onRobot - onObstacle, reversed in collision (so the robot moves out), or, where the
+            witness points coincide, from the witness point towards the robot's origin. The first translation tried
+            is |distance| plus a margin of 2% of the robot's radius, then doubled up to four times, each clamped to
+            the bounds; the first one that is valid, and (for a valid \e state) strictly clearer, is kept. Returns
+            false, leaving \e out unspecified, if none is; a true answer is always a valid state. The rotation is
+            kept; an SE(2) state moves in its plane. */
+        bool validStateAway(const ompl::base::State *state, const SceneResult &r, ompl::base::State *out) const;
 
         Mode mode() const { return mode_; }
         const Scene &scene() const { return *scene_; }

@@ -12,7 +12,8 @@ namespace meshgap
        @anchor mgClearanceMotionValidator
        @par Short description
        Conservative advancement on certified clearance. Along OMPL's SE(3) interpolation (translation linear,
-       rotation by slerp), a motion fraction df moves no robot point further than df * (|p2 - p1| + r * theta),
+       rotation by slerp) and its SE(2) interpolation (x, y linear, yaw along the shorter arc, so theta = |dyaw|
+       wrapped to [0, pi]), a motion fraction df moves no robot point further than df * (|p2 - p1| + r * theta),
        r the robot's radius about its origin and theta the rotation angle between the two states. So from a state
        at exact clearance c the motion is free for a fraction c / (|p2 - p1| + r * theta); the validator steps by
        that much, and certifies the motion free only if the steps reach s2. A step below minStepFraction (the robot

@@ -4,16 +4,20 @@
 #include <ompl/geometric/SimpleSetup.h>
 
 #include "meshgap/ompl/ClearanceChecker.h"
+#include "meshgap/ompl/Objectives.h"
 #include "meshgap/scene/ProblemConfig.h"
 
 namespace meshgap
 {
     /** \brief An OMPL problem built from an OMPL.app .cfg, in OMPL.app's conventions: an SE(3) space bounded by the
-        cfg's volume, the robot loaded and centred as OMPL.app does (its state is its pose), the world split into
-        its connected parts as obstacles, a ClearanceChecker in \e mode, and the cfg's start and goal. The
-        objective is "length" (path length) or "max_min_clearance" (OMPL's MaximizeMinClearanceObjective), from
-        \e objective or, when empty, the cfg's own objective key (default: length). Throws meshgap::Exception for a
-        cfg without a volume, an unknown objective, or a start or goal that is out of bounds or in collision. */
+        cfg's volume, or for a planar cfg (ProblemConfig::planar) an SE(2) space bounded by its x/y volume with the
+        robot moving in the plane z = 0 of the world; the robot loaded and centred as OMPL.app does (by its centre
+        c, or for a planar problem by (c.x, c.y, 0)), so its state is its pose; the world split into its connected
+        parts as obstacles; a ClearanceChecker in \e mode; and the cfg's start and goal. The objective is made by
+        allocObjective() from \e objective or, when empty, the cfg's own objective key (default: length), with
+        \e objectiveOptions; the cfg's objective.threshold, if any, is its cost threshold. Throws meshgap::Exception
+        for a cfg without a volume or goal, an unknown objective, or a start or goal out of bounds or in collision
+        (the message says which, the obstacle hit, where, and the signed distance). */
     struct OmplProblem
     {
         ompl::geometric::SimpleSetupPtr setup;
@@ -23,7 +27,8 @@ namespace meshgap
     };
 
     OmplProblem setupProblem(const ProblemConfig &config, ClearanceChecker::Mode mode, const std::string &objective = "",
-                             const BodyOptions &bodies = BodyOptions());
+                             const BodyOptions &bodies = BodyOptions(),
+                             const ObjectiveOptions &objectiveOptions = ObjectiveOptions());
 }  // namespace meshgap
 
 #endif

@@ -11,11 +11,17 @@ namespace meshgap
 {
     /** \brief An OMPL.app problem file (.cfg), read unchanged: [problem] with robot, world, start/goal (position
         plus axis-angle in radians), volume, objective and sampler; [benchmark] and [planner] are kept as key/value
-        lists in file order. Mesh paths are resolved against the .cfg's folder. */
+        lists in file order. Mesh paths are resolved against the .cfg's folder.
+
+        A file without start.z is a planar (SE(2)) problem, as OMPL.app's 2D problems are: start.x, start.y,
+        start.theta (the yaw about z, radians), the same for the goal, and volume.min.x/y, volume.max.x/y; the robot
+        moves in the plane z = 0 of the 3D world. start and goal are then poses at z = 0 rotated about z, and the
+        volume's z range is [0, 0]. */
     struct ProblemConfig
     {
         std::string file;    ///< the .cfg path
         std::string name;    ///< problem name (the file's stem when absent)
+        bool planar{false};  ///< SE(2): no start.z in the file
         std::string robot;   ///< robot mesh path, resolved
         std::string world;   ///< world mesh path, resolved
         Eigen::Isometry3d start{Eigen::Isometry3d::Identity()};
@@ -29,8 +35,9 @@ namespace meshgap
     };
 
     /** \brief Read a .cfg. Throws meshgap::Exception naming "file:line" for a malformed line, an unknown section or
-        [problem] key, a value that is not a number where one is needed, a zero rotation axis, and "file" for a
-        missing required key (robot, world, start.x/y/z) or a mesh file that does not exist. */
+        [problem] key, a value that is not a number where one is needed, a zero rotation axis, a 3D key (goal.z,
+        *.axis.*, volume.*.z) in a planar file, and "file" for a missing required key (robot, world, start.x/y, and
+        start.z unless planar) or a mesh file that does not exist. */
     ProblemConfig readProblemConfig(const std::string &path);
 }  // namespace meshgap
 

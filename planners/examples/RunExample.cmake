@@ -1,0 +1,10 @@
+# Run one example (EXAMPLE, with the |-separated ARGS) and fail unless it exits 0 and prints "solved:".
+string(REPLACE "|" ";" ARGS "${ARGS}")
+execute_process(COMMAND ${EXAMPLE} ${ARGS} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}")
+if(NOT status EQUAL 0)
+    message(FATAL_ERROR "${EXAMPLE} exited with ${status}:\n${err}")
+endif()
+if(NOT out MATCHES "solved:")
+    message(FATAL_ERROR "${EXAMPLE} did not say it solved the problem:\n${out}")
+endif()
