@@ -1,45 +1,214 @@
-// meshgap_plan: plan a path for an OMPL.app-format problem with meshgap's clearance checker.
+// meshgap_plan: plan a path for an OMPL.app-format problem (SE(3), or SE(2) for a 2D cfg) with meshgap's clearance
+// checker.
 //
-//   meshgap_plan --cfg problem.cfg [--planner rrtconnect] [--time 10] [--objective length|max_min_clearance]
-//                [--mode certified|fast] [--seed N] [--out solution.path]
+//   meshgap_plan --cfg problem.cfg [--planner rrtconnect] [--time 10] [--objective NAME [--weight W]]
+//                [--mode certified|fast] [--motion discrete|clearance] [--seed N] [--out solution.path]
+//                [--clearance-csv clearance.csv] [--summary summary.txt] [--export-glb scene.glb [--export-states N]]
 //
-// Prints the outcome (solved exactly or approximately, path length, minimum clearance along the path's states,
-// checker counters) and writes the path in OMPL's .path format (one state per line: x y z qx qy qz qw), which
-// meshgap_distance --poses and OMPL.app read.
+// While it plans, one progress line a second goes to stderr (elapsed time, validity checks, the planner's best cost
+// when it reports one). Then it prints a summary (solved, exact or approximate, planning time, path length, cost,
+// the exact minimum clearance along the densely interpolated path, checker counters), writes the path in OMPL's
+// .path format (one state per line: x y z qx qy qz qw, or x y theta), which meshgap_distance --poses and OMPL.app
+// read, the exact clearance along the dense path as CSV, and the scene (world, the robot at N states along the path,
+// the closest-point segment at each) as a glTF 2.0 binary file for any 3D viewer. Exit status: 0 exact solution, 2 approximate or none,
+// 1 bad input (including a start or goal in collision: the message says which, the obstacle and the distance).
 
 #include <boost/program_options.hpp>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <mutex>
+#include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/RandomNumbers.h>
+#include <sstream>
+#include <thread>
 
 #include "CliMain.h"
 #include "meshgap/Exception.h"
+#include "meshgap/mesh/SceneExport.h"
 #include "meshgap/ompl/ClearanceMotionValidator.h"
+#include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/ProblemSetup.h"
 
 namespace po = boost::program_options;
+namespace ob = ompl::base;
 using namespace meshgap;
 
 namespace
 {
+    std::string joined(const std::vector<std::string> &names)
+    {
+        std::string s;
+        for (const std::string &n : names)
+            s += (s.empty() ? "" : ", ") + n;
+        return s;
+    }
+
+    /** \brief One stderr line a second while the planner runs: elapsed time, validity checks, and the planner's
+        iterations and best cost when it reports them (OMPL's planner progress properties, read from this thread
+        as ompl::tools::Benchmark does). */
+    class Progress
+    {
+    public:
+        Progress(const ob::PlannerPtr &planner, const ClearanceChecker &checker, bool enabled)
+        {
+            if (!enabled)
+                return;
+            thread_ = std::thread([this, planner, &checker] {
+                const auto start = std::chrono::steady_clock::now();
+                const auto properties = planner->getPlannerProgressProperties();
+                std::unique_lock<std::mutex> lock(mutex_);
+                while (!cv_.wait_for(lock, std::chrono::seconds(1), [this] { return done_; }))
+                {
+                    const double elapsed =
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                    std::string line = "planning: " + std::to_string(static_cast<int>(elapsed + 0.5)) + " s, " +
+                                       std::to_string(checker.stats().validityCalls) + " validity checks";
+                    for (const char *name : {"iterations INTEGER", "best cost REAL"})
+                    {
+                        const auto it = properties.find(name);
+                        if (it == properties.end())
+                            continue;
+                        const std::string value = it->second();
+                        const std::string label = std::string(name).substr(0, std::string(name).rfind(' '));
+                        if (!value.empty() && value != "nan" && value != "inf" && value != "-inf")
+                            line += ", " + label + " " + value;
+                    }
+                    std::fprintf(stderr, "%s\n", line.c_str());
+                }
+            });
+        }
+        ~Progress()
+        {
+            if (!thread_.joinable())
+                return;
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                done_ = true;
+            }
+            cv_.notify_all();
+            thread_.join();
+        }
+
+    private:
+        std::mutex mutex_;
+        std::condition_variable cv_;
+        bool done_{false};
+        std::thread thread_;
+    };
+
+    /** \brief The solution path interpolated densely (\e perSegment states per OMPL validity-check segment) and
+        the exact signed clearance at each state (a warm-started exact query, whatever the checker's mode). */
+    struct DenseClearance
+    {
+        explicit DenseClearance(const ompl::geometric::PathGeometric &solution) : path(solution) {}
+
+        ompl::geometric::PathGeometric path;
+        std::vector<double> arcLength, clearance;
+        std::vector<char> inCollision;
+        double minClearance{std::numeric_limits<double>::infinity()};
+        std::size_t argmin{0}, collisions{0};
+    };
+
+    DenseClearance denseClearance(const ompl::geometric::PathGeometric &solution, const Scene &scene,
+                                  unsigned perSegment)
+    {
+        DenseClearance d(solution);
+        const ob::SpaceInformationPtr &si = solution.getSpaceInformation();
+        unsigned count = 1;
+        for (std::size_t i = 1; i < solution.getStateCount(); ++i)
+            count += perSegment * std::max(1u, si->getStateSpace()->validSegmentCount(solution.getState(i - 1),
+                                                                                      solution.getState(i)));
+        d.path.interpolate(count);
+        SceneRequest request;  // exact
+        SceneWarmStart warm;
+        double s = 0.0;
+        for (std::size_t i = 0; i < d.path.getStateCount(); ++i)
+        {
+            if (i > 0)
+                s += si->distance(d.path.getState(i - 1), d.path.getState(i));
+            SceneResult r;
+            scene.distance(poseFromState(*si->getStateSpace(), d.path.getState(i)), request, warm, r);
+            d.arcLength.push_back(s);
+            d.clearance.push_back(r.distance);
+            d.inCollision.push_back(r.inCollision);
+            d.collisions += r.inCollision;
+            if (r.distance < d.minClearance)
+            {
+                d.minClearance = r.distance;
+                d.argmin = i;
+            }
+        }
+        return d;
+    }
+
+    void writeClearanceCsv(const DenseClearance &d, const std::string &file)
+    {
+        std::ofstream out(file);
+        if (!out)
+            throw Exception(file, "cannot open for writing");
+        const ob::StateSpace &space = *d.path.getSpaceInformation()->getStateSpace();
+        const bool planar = space.getType() == ob::STATE_SPACE_SE2;
+        out << "index,arc_length,fraction," << (planar ? "x,y,theta" : "x,y,z,qx,qy,qz,qw") << ",clearance,in_collision\n";
+        out.precision(17);
+        const double total = d.arcLength.empty() ? 0.0 : d.arcLength.back();
+        for (std::size_t i = 0; i < d.path.getStateCount(); ++i)
+        {
+            out << i << "," << d.arcLength[i] << "," << (total > 0.0 ? d.arcLength[i] / total : 0.0);
+            const ob::State *s = d.path.getState(i);
+            if (planar)
+            {
+                const auto *se2 = s->as<ob::SE2StateSpace::StateType>();
+                out << "," << se2->getX() << "," << se2->getY() << "," << se2->getYaw();
+            }
+            else
+            {
+                const auto *se3 = s->as<ob::SE3StateSpace::StateType>();
+                const auto &q = se3->rotation();
+                out << "," << se3->getX() << "," << se3->getY() << "," << se3->getZ() << "," << q.x << "," << q.y
+                    << "," << q.z << "," << q.w;
+            }
+            out << "," << d.clearance[i] << "," << int(d.inCollision[i]) << "\n";
+        }
+        if (!out)
+            throw Exception(file, "write failed");
+    }
+
     int run(int argc, char **argv)
     {
-        std::string cfg, planner = "rrtconnect", objective, mode = "certified", motion = "discrete", out;
-        double time = 10.0;
+        std::string cfg, planner = "rrtconnect", objective, mode = "certified", motion = "discrete", out, csv, summaryFile,
+                    glb;
+        double time = 10.0, weight = 0.0;
+        unsigned dense = 4, exportStates = 8;
         std::uint32_t seed = 1;
         po::options_description options("meshgap_plan --cfg FILE [options]\n\nOptions");
         options.add_options()("help,h", "print this help")("cfg", po::value(&cfg), "OMPL.app problem file (.cfg)")(
-            "planner", po::value(&planner), "planner name (an unknown name lists the valid ones)")(
-            "time", po::value(&time), "time limit in seconds")(
-            "objective", po::value(&objective), "length or max_min_clearance (default: the cfg's, else length)")(
+            "planner", po::value(&planner), ("planner: " + joined(plannerNames())).c_str())(
+            "time", po::value(&time), "time limit in seconds (default 10)")(
+            "objective", po::value(&objective),
+            "length, clearance (integral of 1/clearance), max_min_clearance, or weighted (length + W * clearance); "
+            "default: the cfg's objective, else length")(
+            "weight", po::value(&weight),
+            "W of --objective weighted, a length (default: a tenth of the robot's radius)")(
             "mode", po::value(&mode), "clearance: certified (exact) or fast (the paper's node distance)")(
             "motion", po::value(&motion),
             "motion validator: discrete (OMPL's, sampled) or clearance (conservative advancement, certified)")(
-            "seed", po::value(&seed), "OMPL's random seed")("out", po::value(&out), "write the path here (.path)")(
-            "quiet,q", "print warnings and errors only");
+            "seed", po::value(&seed), "OMPL's random seed (default 1)")(
+            "out", po::value(&out), "write the path here (.path)")(
+            "clearance-csv", po::value(&csv),
+            "write the exact clearance along the densely interpolated path here (CSV)")(
+            "dense", po::value(&dense), "states per OMPL validity-check segment of the dense path (default 4)")(
+            "summary", po::value(&summaryFile), "also write the summary here")(
+            "export-glb", po::value(&glb),
+            "write the scene as glTF 2.0 binary (.glb): the world, the robot at --export-states states evenly spaced "
+            "along the dense path (start and goal without a path) and the exact closest-point segment at each")(
+            "export-states", po::value(&exportStates), "robot states in the --export-glb file (default 8)")(
+            "quiet,q", "print warnings and errors only (no OMPL messages, no progress)");
         po::variables_map vm;
         po::store(po::parse_command_line(argc, argv, options), vm);
         po::notify(vm);
@@ -48,7 +217,8 @@ namespace
             std::cout << options << "\n";
             return 0;
         }
-        if (vm.count("quiet"))
+        const bool quiet = vm.count("quiet") > 0;
+        if (quiet)
             ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
         if (cfg.empty())
             throw Exception("command line", "--cfg FILE is required; see --help");
@@ -60,58 +230,130 @@ namespace
             throw Exception("--motion", "clearance needs --mode certified (it steps by exact clearance)");
         if (!(time > 0.0))
             throw Exception("--time", "must be positive");
+        if (dense < 1)
+            throw Exception("--dense", "must be at least 1");
+        if (exportStates < 1)
+            throw Exception("--export-states", "must be at least 1");
+        if (vm.count("weight") && !(weight > 0.0 && std::isfinite(weight)))
+            throw Exception("--weight", "must be positive and finite");
         ompl::RNG::setSeed(seed);
 
         const ProblemConfig config = readProblemConfig(cfg);
+        const std::string chosen = !objective.empty() ? objective : config.objective;
+        if (vm.count("weight") && chosen != "weighted")
+            throw Exception("--weight", "applies to --objective weighted only (the objective is " +
+                                            (chosen.empty() ? std::string("length") : chosen) + ")");
+        ObjectiveOptions objectiveOptions;
+        objectiveOptions.weight = weight;
         OmplProblem problem = setupProblem(config, mode == "certified" ? ClearanceChecker::Mode::CERTIFIED :
                                                                          ClearanceChecker::Mode::FAST,
-                                           objective);
+                                           objective, BodyOptions(), objectiveOptions);
+        const ob::SpaceInformationPtr si = problem.setup->getSpaceInformation();
         if (motion == "clearance")
-            problem.setup->getSpaceInformation()->setMotionValidator(
-                std::make_shared<ClearanceMotionValidator>(problem.setup->getSpaceInformation(), problem.checker));
-        problem.setup->setPlanner(allocPlanner(planner, problem.setup->getSpaceInformation()));
+            si->setMotionValidator(std::make_shared<ClearanceMotionValidator>(si, problem.checker));
+        problem.setup->setPlanner(allocPlanner(planner, si));
         problem.setup->setup();
-        OMPL_INFORM("%s: %zu obstacles, planner %s, objective %s, clearance %s", config.name.c_str(),
-                    problem.scene->obstacles().size(), planner.c_str(), problem.objective.c_str(), mode.c_str());
-        const ompl::base::PlannerStatus status = problem.setup->solve(time);
-        const CheckerStats stats = problem.checker->stats();
-        std::printf("problem        %s\nplanner        %s\nstatus         %s\n", config.name.c_str(), planner.c_str(),
-                    status.asString().c_str());
-        if (!problem.setup->haveSolutionPath())
+        OMPL_INFORM("%s: %s, %zu obstacles, planner %s, objective %s, clearance %s, motion %s", config.name.c_str(),
+                    config.planar ? "SE(2)" : "SE(3)", problem.scene->obstacles().size(), planner.c_str(),
+                    problem.objective.c_str(), mode.c_str(), motion.c_str());
+        ob::PlannerStatus status;
         {
-            std::printf("no path found within %g s\nvalidity calls %llu\nquery time     %.1f ms\n", time,
-                        static_cast<unsigned long long>(stats.validityCalls), stats.seconds * 1e3);
+            Progress progress(problem.setup->getPlanner(), *problem.checker, !quiet);
+            status = problem.setup->solve(time);
+        }
+        const CheckerStats stats = problem.checker->stats();
+        const bool exact = status == ob::PlannerStatus::EXACT_SOLUTION;
+        const bool havePath = problem.setup->haveSolutionPath() &&
+                              (exact || status == ob::PlannerStatus::APPROXIMATE_SOLUTION);
+
+        std::ostringstream summary;
+        summary.precision(6);
+        auto line = [&summary](const char *key, const auto &value) {
+            char padded[24];
+            std::snprintf(padded, sizeof padded, "%-16s", key);
+            summary << padded << value << "\n";
+        };
+        line("problem", config.name + (config.planar ? " (SE(2))" : " (SE(3))"));
+        line("planner", planner);
+        line("objective", problem.objective);
+        line("clearance mode", mode + ", motion " + motion);
+        line("status", status.asString());
+        line("solved", !havePath ? "no" : exact ? "yes (exact)" : "approximate");
+        line("exact solution", exact ? "yes" : "no");
+        line("planning time", std::to_string(problem.setup->getLastPlanComputationTime()) + " s");
+        std::unique_ptr<DenseClearance> d;
+        if (havePath)
+        {
+            ompl::geometric::PathGeometric &path = problem.setup->getSolutionPath();
+            d = std::make_unique<DenseClearance>(denseClearance(path, *problem.scene, dense));
+            line("states", std::to_string(path.getStateCount()) + " (dense: " +
+                               std::to_string(d->path.getStateCount()) + ")");
+            line("length", path.length());
+            line("cost", std::to_string(path.cost(problem.setup->getOptimizationObjective()).value()) + " (" +
+                             problem.objective + ")");
+            std::ostringstream mc;
+            mc.precision(6);
+            mc << d->minClearance << " (exact, over the dense path; at arc length " << d->arcLength[d->argmin]
+               << " of " << d->arcLength.back() << ")";
+            line("min clearance", mc.str());
+            line("dense path free", d->collisions == 0 ? std::string("yes") :
+                                                         "NO: " + std::to_string(d->collisions) + " states collide");
+        }
+        line("validity calls", stats.validityCalls);
+        line("clearance calls", stats.clearanceCalls);
+        line("query time", std::to_string(stats.seconds * 1e3) + " ms");
+        std::cout << summary.str();
+        if (!summaryFile.empty())
+        {
+            std::ofstream file(summaryFile);
+            if (!(file << summary.str()))
+                throw Exception(summaryFile, "cannot write");
+        }
+        if (!glb.empty())
+        {
+            // States evenly spaced (by index) along the dense path, first and last included; without a path the
+            // start and the goal, so the scene can still be looked at.
+            std::vector<Eigen::Isometry3d> poses;
+            if (havePath)
+            {
+                const std::size_t n = d->path.getStateCount(), k = std::min<std::size_t>(exportStates, n);
+                for (std::size_t i = 0; i < k; ++i)
+                {
+                    const std::size_t at = k == 1 ? 0 : (i * (n - 1) + (k - 1) / 2) / (k - 1);
+                    poses.push_back(poseFromState(*si->getStateSpace(), d->path.getState(at)));
+                }
+            }
+            else
+            {
+                poses.push_back(config.start);
+                if (config.goal)
+                    poses.push_back(*config.goal);
+            }
+            writeGlb(sceneExportParts(*problem.scene, poses), glb);
+            std::printf("scene written   %s (%zu robot states)\n", glb.c_str(), poses.size());
+        }
+        if (!havePath)
+        {
+            std::fprintf(stderr, "no path found within %g s\n", time);
             return 2;
         }
-        ompl::geometric::PathGeometric &path = problem.setup->getSolutionPath();
-        double minClearance = std::numeric_limits<double>::infinity();
-        bool allValid = true;
-        for (const ompl::base::State *s : path.getStates())
-        {
-            const SceneResult r = problem.checker->query(s);
-            allValid = allValid && !r.inCollision;
-            minClearance = std::min(minClearance, r.inCollision ? 0.0 : r.distance);
-        }
-        std::printf("exact solution %s\nstates         %zu\nlength         %.6g\nmin clearance  %.6g (%s, at the "
-                    "path's states)\nstates valid   %s\nvalidity calls %llu\nclearance calls %llu\nquery time     "
-                    "%.1f ms\n",
-                    status == ompl::base::PlannerStatus::EXACT_SOLUTION ? "yes" : "no (approximate)",
-                    path.getStateCount(), path.length(), minClearance,
-                    mode == "certified" ? "exact" : "node distance", allValid ? "all" : "NO",
-                    static_cast<unsigned long long>(stats.validityCalls),
-                    static_cast<unsigned long long>(stats.clearanceCalls), stats.seconds * 1e3);
         if (!out.empty())
         {
             std::ofstream file(out);
             if (!file)
                 throw Exception(out, "cannot open for writing");
             file.precision(17);  // full precision: the states must round-trip exactly
-            path.printAsMatrix(file);
+            problem.setup->getSolutionPath().printAsMatrix(file);
             if (!file)
                 throw Exception(out, "write failed");
-            std::printf("path written   %s\n", out.c_str());
+            std::printf("path written    %s\n", out.c_str());
         }
-        return status == ompl::base::PlannerStatus::EXACT_SOLUTION ? 0 : 2;
+        if (!csv.empty())
+        {
+            writeClearanceCsv(*d, csv);
+            std::printf("clearance CSV   %s\n", csv.c_str());
+        }
+        return exact ? 0 : 2;
     }
 }  // namespace
 

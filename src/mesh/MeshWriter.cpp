@@ -1,6 +1,10 @@
 #include "meshgap/mesh/MeshWriter.h"
 
+#include <assimp/Exporter.hpp>
+#include <assimp/material.h>
+#include <assimp/scene.h>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -42,5 +46,99 @@ namespace meshgap
             fail("write failed");
         if (std::rename(temporary.c_str(), path.c_str()) != 0)
             fail("cannot rename " + temporary + " to it");
+    }
+
+    namespace
+    {
+        /** \brief One part as an assimp mesh (owned by the scene it is put in). */
+        aiMesh *toAssimpMesh(const ColoredMesh &part, unsigned int material, const std::string &path)
+        {
+            const Mesh &mesh = part.mesh;
+            for (const Eigen::Vector3d &v : mesh.vertices)
+                if (!v.allFinite())
+                    throw Exception(path, "cannot write part '" + part.name + "': a coordinate is not finite");
+            for (const Triangle &t : mesh.triangles)
+                for (std::uint32_t i : t)
+                    if (i >= mesh.vertices.size())
+                        throw Exception(path, "cannot write part '" + part.name + "': a triangle uses vertex " +
+                                                  std::to_string(i) + " of " + std::to_string(mesh.vertices.size()));
+            auto out = std::make_unique<aiMesh>();
+            out->mName = part.name;
+            out->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
+            out->mMaterialIndex = material;
+            out->mNumVertices = static_cast<unsigned int>(mesh.vertices.size());
+            out->mVertices = new aiVector3D[mesh.vertices.size()];
+            for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+                out->mVertices[i] = aiVector3D(static_cast<ai_real>(mesh.vertices[i].x()),
+                                               static_cast<ai_real>(mesh.vertices[i].y()),
+                                               static_cast<ai_real>(mesh.vertices[i].z()));
+            out->mNumFaces = static_cast<unsigned int>(mesh.triangles.size());
+            out->mFaces = new aiFace[mesh.triangles.size()];
+            for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+            {
+                out->mFaces[f].mNumIndices = 3;
+                out->mFaces[f].mIndices = new unsigned int[3];
+                for (int k = 0; k < 3; ++k)
+                    out->mFaces[f].mIndices[k] = mesh.triangles[f][k];
+            }
+            return out.release();
+        }
+
+        aiMaterial *toAssimpMaterial(const ColoredMesh &part)
+        {
+            auto material = std::make_unique<aiMaterial>();
+            const aiString name(part.name);
+            material->AddProperty(&name, AI_MATKEY_NAME);
+            const aiColor4D color(static_cast<ai_real>(part.color[0]), static_cast<ai_real>(part.color[1]),
+                                  static_cast<ai_real>(part.color[2]), static_cast<ai_real>(part.color[3]));
+            material->AddProperty(&color, 1, AI_MATKEY_BASE_COLOR);
+            material->AddProperty(&color, 1, AI_MATKEY_COLOR_DIFFUSE);
+            const ai_real opacity = color.a;
+            material->AddProperty(&opacity, 1, AI_MATKEY_OPACITY);
+            return material.release();
+        }
+    }  // namespace
+
+    void writeGlb(const std::vector<ColoredMesh> &parts, const std::string &path)
+    {
+        std::vector<const ColoredMesh *> kept;
+        for (const ColoredMesh &part : parts)
+            if (!part.mesh.triangles.empty())
+                kept.push_back(&part);
+        if (kept.empty())
+            throw Exception(path, "nothing to write: no part has triangles");
+        // aiScene's destructor frees its meshes, materials and nodes: fill it as we go, so a throw leaks nothing.
+        aiScene scene;
+        scene.mRootNode = new aiNode("meshgap");
+        scene.mMeshes = new aiMesh *[kept.size()]();
+        scene.mMaterials = new aiMaterial *[kept.size()]();
+        scene.mRootNode->mChildren = new aiNode *[kept.size()]();
+        for (std::size_t i = 0; i < kept.size(); ++i)
+        {
+            const auto index = static_cast<unsigned int>(i);
+            scene.mMeshes[i] = toAssimpMesh(*kept[i], index, path);
+            ++scene.mNumMeshes;
+            scene.mMaterials[i] = toAssimpMaterial(*kept[i]);
+            ++scene.mNumMaterials;
+            aiNode *node = new aiNode(kept[i]->name);
+            node->mParent = scene.mRootNode;
+            node->mNumMeshes = 1;
+            node->mMeshes = new unsigned int[1]{index};
+            scene.mRootNode->mChildren[i] = node;
+            ++scene.mRootNode->mNumChildren;
+        }
+        const std::string temporary = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+        Assimp::Exporter exporter;
+        if (exporter.Export(&scene, "glb2", temporary) != aiReturn_SUCCESS)
+        {
+            std::remove(temporary.c_str());
+            throw Exception(path, std::string("glTF export failed: ") + exporter.GetErrorString());
+        }
+        if (std::rename(temporary.c_str(), path.c_str()) != 0)
+        {
+            const std::string reason = std::strerror(errno);
+            std::remove(temporary.c_str());
+            throw Exception(path, "cannot rename " + temporary + " to it: " + reason);
+        }
     }
 }  // namespace meshgap

@@ -1,7 +1,9 @@
 #ifndef MESHGAP_MESH_MESH_WRITER_H
 #define MESHGAP_MESH_MESH_WRITER_H
 
+#include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "meshgap/mesh/Mesh.h"
 
@@ -12,6 +14,24 @@ namespace meshgap
         written beside \e path under a temporary name and renamed over \e path once complete, so a reader never
         sees half a file. Throws meshgap::Exception naming the file if it cannot be written. */
     void writeObj(const Mesh &mesh, const std::string &path);
+
+    /** \brief One mesh of a file written by writeGlb(): its triangles (already in the file's frame), a name and a
+        colour. */
+    struct ColoredMesh
+    {
+        std::string name;
+        Mesh mesh;
+        /** \brief RGBA in [0, 1]; an alpha below 1 is written as a blended (see-through) material. */
+        Eigen::Vector4d color{0.7, 0.7, 0.7, 1.0};
+    };
+
+    /** \brief Write \e parts as one glTF 2.0 binary file (.glb), through assimp's exporter (format id "glb2"): one
+        mesh, one material (base colour and diffuse colour) and one node (identity transform, named after the part)
+        per part, in order, vertices in single precision (glTF's), no normals (glTF viewers then shade flat, as the
+        specification requires). A part without triangles is skipped. Written under a temporary name and renamed over \e path once complete, as writeObj()
+        does. Throws meshgap::Exception naming the file for a triangle index out of range, a non-finite coordinate
+        or a failed export (with assimp's message). */
+    void writeGlb(const std::vector<ColoredMesh> &parts, const std::string &path);
 }  // namespace meshgap
 
 #endif
