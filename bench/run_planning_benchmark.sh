@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Planning throughput of meshgap's checkers against the FCL checker on OMPL.app problems:
+# RRTConnect, every checker, RUNS runs of at most TIME s each per problem, then a Markdown table.
+#
+#   bench/run_planning_benchmark.sh [BUILD_DIR] [OUT_DIR]
+#   RUNS=5 TIME=10 PROBLEMS="cubicles Easy" PLANNERS=rrtconnect bench/run_planning_benchmark.sh build results
+#
+# The .log files go to OUT_DIR (default: planning-results); load them into Planner Arena with
+#   ompl_benchmark_statistics OUT_DIR/*.log -d OUT_DIR/results.db
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+build="${1:-$here/../build}"
+out="${2:-planning-results}"
+data="${MESHGAP_SHARED_DATA_DIR:-$here/../../shared/data}/omplapp"
+runs="${RUNS:-5}"
+time="${TIME:-10}"
+planners="${PLANNERS:-rrtconnect}"
+seed="${SEED:-1}"
+mkdir -p "$out"
+for problem in ${PROBLEMS:-cubicles Easy}; do
+    cfg="$data/$problem.cfg"
+    [ -f "$cfg" ] || { echo "error: $cfg: not found (set MESHGAP_SHARED_DATA_DIR)" >&2; exit 1; }
+    nice "$build/planners/meshgap_benchmark" --cfg "$cfg" --planners "$planners" --runs "$runs" --time "$time" \
+        --seed "$seed" --out-dir "$out"
+done
+python3 "$here/planning_summary.py" "$out"/*.log

@@ -1,0 +1,563 @@
+// meshgap_benchmark: OMPL's Benchmark on an OMPL.app problem, with the clearance checker as a dimension of the
+// experiment grid (planners x checkers x runs), written in OMPL's .log format for ompl_benchmark_statistics and
+// Planner Arena.
+//
+//   meshgap_benchmark --cfg problem.cfg [--planners rrtconnect,rrtstar] [--checkers meshgap-certified,fcl]
+//                     [--runs N] [--time S] [--memory MB] [--seed N] [--objective NAME] [--out-dir DIR]
+//                     [--shard i/n] [--no-simplify]
+//
+// Every planner runs once per checker, named "<planner>[<checker>]" (e.g. RRTConnect[fcl]), all in one experiment
+// named after the problem: the statistics script and Planner Arena show the checkers side by side. Each
+// (planner, checker) slice is its own .log file, rewritten (write, then rename) after every run, so an interrupted
+// benchmark keeps every finished run; --shard i/n runs every n-th cell of the grid, and all the .log files of all
+// the shards load into one database (ompl_benchmark_statistics *.log -d results.db).
+
+#include <boost/algorithm/string.hpp>
+#include <boost/program_options.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/tools/benchmark/Benchmark.h>
+#include <ompl/util/RandomNumbers.h>
+#include <regex>
+#include <set>
+
+#include "CliMain.h"
+#include "FclChecker.h"
+#include "meshgap/Exception.h"
+#include "meshgap/mesh/MeshLoader.h"
+#include "meshgap/ompl/ClearanceMotionValidator.h"
+#include "meshgap/ompl/PlannerFactory.h"
+#include "meshgap/ompl/ProblemSetup.h"
+#include "meshgap/scene/RobotMesh.h"
+
+namespace po = boost::program_options;
+namespace ob = ompl::base;
+namespace fs = std::filesystem;
+using namespace meshgap;
+
+namespace
+{
+    /** \brief The checkers this build can run, in grid order. */
+    std::vector<std::string> checkerNames()
+    {
+        std::vector<std::string> names = {"meshgap-certified", "meshgap-fast", "meshgap-certified-cmv"};
+#ifdef MESHGAP_HAVE_FCL
+        names.push_back("fcl");
+#endif
+        return names;
+    }
+
+    /** \brief A real for a .log: 9 significant digits (std::to_string's fixed 6 decimals lose small times). */
+    std::string real(double value)
+    {
+        char buffer[32];
+        std::snprintf(buffer, sizeof buffer, "%.9g", value);
+        return buffer;
+    }
+
+    std::string joined(const std::vector<std::string> &items)
+    {
+        return boost::algorithm::join(items, ", ");
+    }
+
+    std::vector<std::string> splitList(const std::string &list)
+    {
+        std::vector<std::string> items;
+        boost::algorithm::split(items, list, boost::is_any_of(","));
+        for (std::string &item : items)
+            boost::algorithm::trim(item);
+        items.erase(std::remove(items.begin(), items.end(), ""), items.end());
+        return items;
+    }
+
+    /** \brief One [planner] entry: a factory name, an optional display name, and parameters (ParamSet keys). */
+    struct PlannerSpec
+    {
+        std::string type, name;
+        std::vector<std::pair<std::string, std::string>> params;
+    };
+
+    /** \brief The cfg's [planner] section as OMPL.app reads it: "rrt=" starts an entry, "rrt.name=X" names it,
+        "rrt.range=50" sets a parameter of the entry just started. */
+    std::vector<PlannerSpec> plannersFromConfig(const ProblemConfig &config)
+    {
+        std::vector<PlannerSpec> specs;
+        for (const auto &[key, value] : config.planners)
+        {
+            const std::size_t dot = key.find('.');
+            if (dot == std::string::npos)
+            {
+                specs.push_back({key, "", {}});
+                continue;
+            }
+            const std::string prefix = key.substr(0, dot), rest = key.substr(dot + 1);
+            if (prefix == "problem")
+                throw Exception(config.file, "[planner] " + key + ": per-planner problem settings are not supported");
+            if (specs.empty() || specs.back().type != prefix)
+                throw Exception(config.file, "[planner] " + key + " does not follow a '" + prefix + "=' line");
+            if (rest == "name")
+                specs.back().name = value;
+            else
+                specs.back().params.emplace_back(rest, value);
+        }
+        return specs;
+    }
+
+    /** \brief "i/n" with 1 <= i <= n. */
+    std::pair<unsigned, unsigned> parseShard(const std::string &text)
+    {
+        std::smatch m;
+        if (std::regex_match(text, m, std::regex("([0-9]{1,6})/([0-9]{1,6})")))
+        {
+            const unsigned i = std::stoul(m[1]), n = std::stoul(m[2]);
+            if (i >= 1 && i <= n)
+                return {i, n};
+        }
+        throw Exception("--shard", "'" + text + "' is not i/n with 1 <= i <= n");
+    }
+
+    std::string fileSafe(const std::string &name)
+    {
+        std::string out = name;
+        for (char &c : out)
+            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '+')
+                c = '_';
+        return out;
+    }
+
+    /** \brief One problem, its scene built once, and the checkers installed into its SpaceInformation in turn. */
+    class Checkers
+    {
+    public:
+        Checkers(const ProblemConfig &config, const std::string &objective)
+          : problem_(setupProblem(config, ClearanceChecker::Mode::CERTIFIED, objective))
+        {
+            si_ = problem_.setup->getSpaceInformation();
+#ifdef MESHGAP_HAVE_FCL
+            // FCL gets the meshes as OMPL.app loads them: the robot centred by loadRobotMesh(), the whole world.
+            // Should meshgap's robot sit in another frame (OMPL.app's 2D problems centre the robot in x and y
+            // only), FCL takes meshgap's robot surface instead, so the same state is the same pose for both.
+            Mesh robot = loadRobotMesh(config.robot);
+            const Mesh &surface = problem_.scene->robot().surface();
+            const Eigen::AlignedBox3d a = usedBounds(robot), b = usedBounds(surface);
+            const double tolerance = 1e-9 * (1.0 + a.diagonal().norm());
+            if ((a.min() - b.min()).cwiseAbs().maxCoeff() > tolerance || (a.max() - b.max()).cwiseAbs().maxCoeff() > tolerance)
+            {
+                OMPL_WARN("%s: meshgap's robot frame is not loadRobotMesh()'s; FCL uses meshgap's robot surface",
+                          config.file.c_str());
+                robot = surface;
+            }
+            fcl_ = std::make_shared<FclChecker>(si_, robot, loadMesh(config.world));
+#endif
+        }
+
+        /** \brief Bounding box of the vertices that some triangle uses. */
+        static Eigen::AlignedBox3d usedBounds(const Mesh &mesh)
+        {
+            Eigen::AlignedBox3d box;
+            for (const Triangle &t : mesh.triangles)
+                for (std::uint32_t v : t)
+                    box.extend(mesh.vertices[v]);
+            return box;
+        }
+
+        ompl::geometric::SimpleSetup &setup() { return *problem_.setup; }
+        const OmplProblem &problem() const { return problem_; }
+
+        /** \brief Make \e name the problem's validity checker and motion validator. */
+        void install(const std::string &name)
+        {
+            ob::StateValidityCheckerPtr checker;
+            ob::MotionValidatorPtr validator;
+            if (name == "meshgap-certified")
+                checker = problem_.checker;
+            else if (name == "meshgap-fast")
+                checker = fast_ ? fast_ : (fast_ = std::make_shared<ClearanceChecker>(si_, problem_.scene,
+                                                                                      ClearanceChecker::Mode::FAST));
+            else if (name == "meshgap-certified-cmv")
+            {
+                if (!cmvChecker_)
+                {
+                    cmvChecker_ = std::make_shared<ClearanceChecker>(si_, problem_.scene, ClearanceChecker::Mode::CERTIFIED);
+                    cmv_ = std::make_shared<ClearanceMotionValidator>(si_, cmvChecker_);
+                }
+                checker = cmvChecker_;
+                validator = cmv_;
+            }
+#ifdef MESHGAP_HAVE_FCL
+            else if (name == "fcl")
+                checker = fcl_;
+#endif
+            else
+                throw Exception("--checkers", "unknown checker '" + name + "'");
+            active_ = name;
+            si_->setStateValidityChecker(checker);
+            si_->setMotionValidator(validator ? validator : std::make_shared<ob::DiscreteMotionValidator>(si_));
+        }
+
+        /** \brief Counters of the installed checker (cumulative). */
+        CheckerStats stats() const
+        {
+#ifdef MESHGAP_HAVE_FCL
+            if (active_ == "fcl")
+                return fcl_->stats();
+#endif
+            return std::static_pointer_cast<const ClearanceChecker>(si_->getStateValidityChecker())->stats();
+        }
+
+        bool isMeshgap() const { return active_ != "fcl"; }
+
+        /** \brief FCL's verdict on \e path, densely interpolated (4x OMPL's motion-check resolution, as the
+            Benchmark's strict check): states checked, whether all are collision-free, the least distance. */
+        void fclPathProperties(const ompl::geometric::PathGeometric &solution, ompl::tools::Benchmark::RunProperties &run)
+        {
+#ifdef MESHGAP_HAVE_FCL
+            ompl::geometric::PathGeometric path(solution);
+            const ob::StateSpacePtr &space = si_->getStateSpace();
+            const unsigned factor = space->getValidSegmentCountFactor();
+            space->setValidSegmentCountFactor(4 * factor);
+            path.interpolate();
+            space->setValidSegmentCountFactor(factor);
+            bool free = true;
+            double least = std::numeric_limits<double>::infinity();
+            for (const ob::State *s : path.getStates())
+            {
+                const Eigen::Isometry3d X = fcl_->pose(s);
+                const bool collides = fcl_->inCollision(X);
+                free = free && !collides;
+                least = std::min(least, collides ? 0.0 : fcl_->distance(X));
+            }
+            run["fcl path states INTEGER"] = std::to_string(path.getStateCount());
+            run["fcl path collision free BOOLEAN"] = free ? "1" : "0";
+            run["fcl path min clearance REAL"] = real(least);
+#else
+            (void)solution;
+            (void)run;
+#endif
+        }
+
+    private:
+        OmplProblem problem_;
+        ob::SpaceInformationPtr si_;
+        ClearanceCheckerPtr fast_, cmvChecker_;
+        std::shared_ptr<ClearanceMotionValidator> cmv_;
+#ifdef MESHGAP_HAVE_FCL
+        std::shared_ptr<FclChecker> fcl_;
+#endif
+        std::string active_;
+    };
+
+    /** \brief A planner run through another, so the checker's counters are read the moment solve() returns,
+        before the Benchmark simplifies and checks the path with the same checker. Forwards what the Benchmark
+        calls; carries the inner planner's parameters, specs and progress properties. */
+    class MeasuredPlanner : public ob::Planner
+    {
+    public:
+        MeasuredPlanner(ob::PlannerPtr inner, const std::string &name, std::function<void()> solved)
+          : ob::Planner(inner->getSpaceInformation(), name), inner_(std::move(inner)), solved_(std::move(solved))
+        {
+            specs_ = inner_->getSpecs();
+            params_.include(inner_->params());
+            for (const auto &[key, property] : inner_->getPlannerProgressProperties())
+                addPlannerProgressProperty(key, property);
+        }
+
+        ob::PlannerStatus solve(const ob::PlannerTerminationCondition &ptc) override
+        {
+            const ob::PlannerStatus status = inner_->solve(ptc);
+            solved_();
+            return status;
+        }
+        void setProblemDefinition(const ob::ProblemDefinitionPtr &pdef) override
+        {
+            ob::Planner::setProblemDefinition(pdef);
+            inner_->setProblemDefinition(pdef);
+        }
+        void clear() override
+        {
+            ob::Planner::clear();
+            inner_->clear();
+        }
+        void setup() override
+        {
+            ob::Planner::setup();
+            if (!inner_->isSetup())
+                inner_->setup();
+        }
+        void getPlannerData(ob::PlannerData &data) const override { inner_->getPlannerData(data); }
+        void printProperties(std::ostream &out) const override { inner_->printProperties(out); }
+
+    private:
+        ob::PlannerPtr inner_;
+        std::function<void()> solved_;
+    };
+
+    /** \brief OMPL's own .log writer for an experiment assembled run by run; written to DIR/x.log.part, then
+        renamed, so a .log on disk is always whole. */
+    class LogWriter : public ompl::tools::Benchmark
+    {
+    public:
+        explicit LogWriter(ompl::geometric::SimpleSetup &setup) : Benchmark(setup) {}
+
+        void write(const CompleteExperiment &experiment, const fs::path &path)
+        {
+            exp_ = experiment;
+            const fs::path part = path.string() + ".part";
+            {
+                std::ofstream out(part);
+                if (!out || !saveResultsToStream(out) || !out.flush())
+                    throw Exception(part.string(), "cannot write the benchmark log");
+            }
+            fs::rename(part, path);
+        }
+    };
+
+    struct Settings
+    {
+        double time{10.0}, memory{4096.0};
+        unsigned runs{10};
+        bool simplify{true};
+        fs::path outDir{"."};
+    };
+
+    /** \brief The [benchmark] section; unknown keys are reported and ignored, as OMPL.app does. */
+    void applyConfig(const ProblemConfig &config, Settings &settings)
+    {
+        for (const auto &[key, value] : config.benchmark)
+        {
+            try
+            {
+                if (key == "time_limit")
+                    settings.time = std::stod(value);
+                else if (key == "mem_limit")
+                    settings.memory = std::stod(value);
+                else if (key == "run_count")
+                    settings.runs = static_cast<unsigned>(std::stoul(value));
+                else if (key == "output")
+                    settings.outDir = value;
+                else
+                    OMPL_WARN("%s: [benchmark] %s is not supported; ignored", config.file.c_str(), key.c_str());
+            }
+            catch (const std::logic_error &)
+            {
+                throw Exception(config.file, "[benchmark] " + key + " = '" + value + "' is not a number");
+            }
+        }
+    }
+
+    int run(int argc, char **argv)
+    {
+        std::string cfg, plannerList, checkerList, objective, shardText = "1/1";
+        std::uint32_t seed = 0;
+        Settings settings;
+        po::options_description options("meshgap_benchmark --cfg FILE [options]\n\nOptions");
+        options.add_options()("help,h", "print this help")("cfg", po::value(&cfg), "OMPL.app problem file (.cfg)")(
+            "planners", po::value(&plannerList), "planners, comma-separated (default: the cfg's [planner] section)")(
+            "checkers", po::value(&checkerList),
+            ("checkers, comma-separated (default: all of " + joined(checkerNames()) + ")").c_str())(
+            "runs", po::value<unsigned>(), "runs per planner and checker (default: the cfg's run_count, else 10)")(
+            "time", po::value<double>(), "seconds per run (default: the cfg's time_limit, else 10)")(
+            "memory", po::value<double>(), "MB per run (default: the cfg's mem_limit, else 4096)")(
+            "seed", po::value(&seed), "OMPL's random seed; shard i uses seed + i - 1 (default: random)")(
+            "objective", po::value(&objective), "optimization objective (default: the cfg's, else length)")(
+            "out-dir", po::value<std::string>(), "where the .log files go (default: the cfg's output, else .)")(
+            "shard", po::value(&shardText), "run the i-th of n slices of the grid (default 1/1)")(
+            "no-simplify", "record the planner's path as it is (default: simplified, as OMPL's Benchmark does)")(
+            "verbose,v", "OMPL's informational messages too");
+        po::variables_map vm;
+        po::store(po::parse_command_line(argc, argv, options), vm);
+        po::notify(vm);
+        if (vm.count("help"))
+        {
+            std::cout << options << "\n";
+            return 0;
+        }
+        ompl::msg::setLogLevel(vm.count("verbose") ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
+        if (cfg.empty())
+            throw Exception("command line", "--cfg FILE is required; see --help");
+        const auto [shard, shards] = parseShard(shardText);
+        const std::vector<std::string> available = checkerNames();
+        const std::vector<std::string> checkers = checkerList.empty() ? available : splitList(checkerList);
+        for (const std::string &c : checkers)
+            if (std::find(available.begin(), available.end(), c) == available.end())
+                throw Exception("--checkers", "unknown checker '" + c + "'; valid names: " + joined(available));
+        if (checkers.empty() || std::set<std::string>(checkers.begin(), checkers.end()).size() != checkers.size())
+            throw Exception("--checkers", "'" + checkerList + "' names no checker, or one twice");
+
+        const ProblemConfig config = readProblemConfig(cfg);
+        applyConfig(config, settings);
+        if (vm.count("runs"))
+            settings.runs = vm["runs"].as<unsigned>();
+        if (vm.count("time"))
+            settings.time = vm["time"].as<double>();
+        if (vm.count("memory"))
+            settings.memory = vm["memory"].as<double>();
+        if (vm.count("out-dir"))
+            settings.outDir = vm["out-dir"].as<std::string>();
+        settings.simplify = !vm.count("no-simplify");
+        if (settings.runs == 0 || !(settings.time > 0.0) || !(settings.memory > 0.0))
+            throw Exception("command line", "runs, time and memory must be positive");
+
+        std::vector<PlannerSpec> planners;
+        if (!plannerList.empty())
+            for (const std::string &p : splitList(plannerList))
+                planners.push_back({boost::algorithm::to_lower_copy(p), "", {}});
+        else
+            planners = plannersFromConfig(config);
+        if (planners.empty())
+            throw Exception(cfg, "no planners: the cfg has no [planner] section; give --planners");
+        const std::vector<std::string> known = plannerNames();
+        for (const PlannerSpec &p : planners)
+            if (std::find(known.begin(), known.end(), p.type) == known.end())
+                throw Exception("planner", "unknown planner '" + p.type + "'; valid names: " + joined(known) +
+                                               (plannerList.empty() ? " (choose with --planners)" : ""));
+        if (seed != 0)
+            ompl::RNG::setSeed(seed + shard - 1);
+
+        Checkers problem(config, objective);
+        const ob::SpaceInformationPtr si = problem.setup().getSpaceInformation();
+        // Allocate each planner once now, so a bad parameter or a duplicate name fails before any run.
+        auto allocate = [&](const PlannerSpec &spec) {
+            ob::PlannerPtr planner = allocPlanner(spec.type, si);
+            for (const auto &[key, value] : spec.params)
+                if (!planner->params().hasParam(key) || !planner->params().setParam(key, value))
+                    throw Exception(config.file, "[planner] " + spec.type + "." + key + " = '" + value +
+                                                     "': no such parameter, or a bad value");
+            if (!spec.name.empty())
+                planner->setName(spec.name);
+            return planner;
+        };
+        std::set<std::string> names;
+        for (const PlannerSpec &spec : planners)
+        {
+            const std::string name = allocate(spec)->getName();
+            if (!names.insert(name).second)
+                throw Exception(config.file, "two planners named '" + name + "': name each ([planner] " + spec.type +
+                                                 ".name = ...)");
+        }
+        fs::create_directories(settings.outDir);
+
+        // The grid: cell k = (planner p, checker c, run r), k = (p * C + c) * R + r; this shard runs k % n == i - 1.
+        const std::size_t C = checkers.size(), R = settings.runs, cells = planners.size() * C * R;
+        std::size_t mine = 0;
+        for (std::size_t k = shard - 1; k < cells; k += shards)
+            ++mine;
+        if (mine == 0)
+        {
+            std::fprintf(stderr, "shard %u/%u: no runs (the grid has %zu)\n", shard, shards, cells);
+            return 0;
+        }
+        std::fprintf(stderr, "%s: %zu planners x %zu checkers x %zu runs, %g s and %g MB each; shard %u/%u runs %zu\n",
+                     config.name.c_str(), planners.size(), C, R, settings.time, settings.memory, shard, shards, mine);
+
+        const auto start = std::chrono::steady_clock::now();
+        LogWriter writer(problem.setup());
+        std::size_t done = 0;
+        for (std::size_t p = 0; p < planners.size(); ++p)
+            for (std::size_t c = 0; c < C; ++c)
+            {
+                std::vector<std::size_t> runs;
+                for (std::size_t r = 0; r < R; ++r)
+                    if (((p * C + c) * R + r) % shards == shard - 1)
+                        runs.push_back(r);
+                if (runs.empty())
+                    continue;
+                const std::string &checker = checkers[c];
+                problem.install(checker);
+                const ob::PlannerPtr inner = allocate(planners[p]);
+                const std::string name = inner->getName() + "[" + checker + "]";
+                CheckerStats before, after;
+                bool solvedSeen = false;
+                auto measured = std::make_shared<MeasuredPlanner>(inner, name, [&]() {
+                    after = problem.stats();
+                    solvedSeen = true;
+                });
+                problem.setup().setPlanner(measured);
+                ompl::tools::Benchmark benchmark(problem.setup(), config.name);
+                benchmark.addPlanner(measured);
+                benchmark.setPreRunEvent([&](const ob::PlannerPtr &) {
+                    before = problem.stats();
+                    solvedSeen = false;
+                });
+                benchmark.setPostRunEvent([&](const ob::PlannerPtr &, ompl::tools::Benchmark::RunProperties &run) {
+                    if (!solvedSeen)
+                        after = problem.stats();
+                    const double validity = static_cast<double>(after.validityCalls - before.validityCalls);
+                    const double clearance = static_cast<double>(after.clearanceCalls - before.clearanceCalls);
+                    const double seconds = after.seconds - before.seconds;
+                    run["checker validity calls INTEGER"] = std::to_string(after.validityCalls - before.validityCalls);
+                    run["checker clearance calls INTEGER"] = std::to_string(after.clearanceCalls - before.clearanceCalls);
+                    run["checker query time REAL"] = real(seconds);
+                    if (validity + clearance > 0)
+                        run["checker mean query time REAL"] = real(seconds / (validity + clearance));
+                    if (problem.isMeshgap())
+                    {
+                        run["checker evaluations INTEGER"] = std::to_string(after.evaluations - before.evaluations);
+                        if (clearance > 0)
+                            run["checker warm start hit rate REAL"] =
+                                real(static_cast<double>(after.warmStartHits - before.warmStartHits) / clearance);
+                    }
+                    if (problem.setup().haveSolutionPath())
+                        problem.fclPathProperties(problem.setup().getSolutionPath(), run);
+                });
+
+                ompl::tools::Benchmark::Request request(settings.time, settings.memory, 1);
+                request.displayProgress = false;
+                request.saveConsoleOutput = false;
+                request.simplify = settings.simplify;
+                ompl::tools::Benchmark::CompleteExperiment slice;
+                const fs::path log = settings.outDir / (fileSafe(config.name) + "." + fileSafe(inner->getName()) +
+                                                        "." + checker +
+                                                        (shards > 1 ? ".shard" + std::to_string(shard) + "of" +
+                                                                          std::to_string(shards) : "") + ".log");
+                for (std::size_t r : runs)
+                {
+                    benchmark.benchmark(request);
+                    const auto &e = benchmark.getRecordedExperimentData();
+                    ++done;
+                    const double elapsed =
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                    if (e.planners.size() != 1 || e.planners[0].runs.size() != 1)
+                    {
+                        std::fprintf(stderr, "[%7.1f s] run %zu of %zu: %s run %zu: no result recorded\n", elapsed,
+                                     done, mine, name.c_str(), r + 1);
+                        continue;
+                    }
+                    if (slice.planners.empty())
+                    {
+                        slice = e;
+                        slice.planners[0].common["checker"] = checker;
+                    }
+                    else
+                    {
+                        slice.planners[0].runs.push_back(e.planners[0].runs[0]);
+                        for (const auto &progress : e.planners[0].runsProgressData)
+                            slice.planners[0].runsProgressData.push_back(progress);
+                        slice.totalDuration += e.totalDuration;
+                    }
+                    slice.runCount = static_cast<unsigned>(slice.planners[0].runs.size());
+                    writer.write(slice, log);
+                    const auto &props = e.planners[0].runs[0];
+                    const bool exact = props.count("solved BOOLEAN") && props.at("solved BOOLEAN") == "1";
+                    std::fprintf(stderr, "[%7.1f s] run %zu of %zu: %s run %zu: %s in %.3g s\n", elapsed, done, mine,
+                                 name.c_str(), r + 1,
+                                 exact ? "solved" :
+                                         (problem.setup().haveSolutionPath() ? "approximate" : "not solved"),
+                                 std::stod(props.at("time REAL")));
+                }
+                if (!slice.planners.empty())
+                    std::fprintf(stderr, "wrote %s (%zu runs)\n", log.c_str(), slice.planners[0].runs.size());
+            }
+        return 0;
+    }
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    return cli::runMain(argc, argv, run);
+}

@@ -1,0 +1,280 @@
+// meshgap_benchmark as a user runs it: errors, and a small sharded benchmark whose .log files are read back here
+// (and by OMPL's ompl_benchmark_statistics when it is installed).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+using namespace std::string_literals;
+namespace fs = std::filesystem;
+
+namespace
+{
+    struct CliRun
+    {
+        int status;
+        std::string out, err;
+    };
+
+    std::string slurp(const fs::path &path)
+    {
+        std::ifstream in(path);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+
+    CliRun shell(const std::string &command)
+    {
+        static int calls = 0;
+        const std::string stem = (fs::temp_directory_path() / ("meshgap_benchmark_" + std::to_string(::getpid()) +
+                                                               "_" + std::to_string(++calls))).string();
+        const int raw = std::system((command + " >" + stem + ".out 2>" + stem + ".err").c_str());
+        CliRun r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(stem + ".out"), slurp(stem + ".err")};
+        fs::remove(stem + ".out");
+        fs::remove(stem + ".err");
+        return r;
+    }
+
+    CliRun benchmark(const std::string &args)
+    {
+        return shell(std::string(MESHGAP_BINARY_DIR) + "/planners/meshgap_benchmark " + args);
+    }
+
+    const std::string MAPS = std::string(MESHGAP_SOURCE_DIR) + "/maps";
+    const std::string CFG = MAPS + "/slotted_wall/slotted_wall.cfg";
+
+    /** \brief One planner block of an OMPL .log: its name, common properties, run properties and runs. */
+    struct PlannerLog
+    {
+        std::string name;
+        std::vector<std::string> common, properties;
+        std::vector<std::map<std::string, std::string>> runs;
+    };
+
+    struct ExperimentLog
+    {
+        std::string name, seed;
+        std::vector<PlannerLog> planners;
+    };
+
+    /** \brief A reader of OMPL's .log format (Benchmark::saveResultsToStream), strict about the counts. */
+    ExperimentLog readLog(const fs::path &path)
+    {
+        std::ifstream in(path);
+        std::string line;
+        ExperimentLog log;
+        auto next = [&]() {
+            if (!std::getline(in, line))
+                throw std::runtime_error(path.string() + ": ends early");
+            return line;
+        };
+        auto count = [&](const std::string &suffix) {
+            const std::string l = next();
+            if (l.size() < suffix.size() || l.compare(l.size() - suffix.size(), suffix.size(), suffix) != 0)
+                throw std::runtime_error(path.string() + ": expected '... " + suffix + "', got '" + l + "'");
+            return std::stoul(l);
+        };
+        std::string first = next();
+        if (first.rfind("Experiment ", 0) != 0 && first.find(" version") != std::string::npos)
+            first = next();  // "OMPL version 1.5.2" (Debian's OMPL leaves the number empty)
+        if (first.rfind("Experiment ", 0) != 0)
+            throw std::runtime_error(path.string() + ": no Experiment line");
+        log.name = first.substr(11);
+        while (next() != "|>>>")  // experiment properties, host, date, then the setup
+        {
+        }
+        if (next() == "<<<|")  // the CPU's description, optional
+        {
+            while (next() != "|>>>")
+            {
+            }
+            next();
+        }
+        log.seed = line.substr(0, line.find(' '));
+        for (const char *suffix : {"seconds per run", "MB per run", "runs per planner", "seconds spent to collect the data"})
+            if (next().find(suffix) == std::string::npos)
+                throw std::runtime_error(path.string() + ": expected '" + suffix + "'");
+        for (std::size_t e = count("enum type"); e > 0; --e)
+            next();
+        for (std::size_t p = count("planners"); p > 0; --p)
+        {
+            PlannerLog planner;
+            planner.name = next();
+            for (std::size_t k = count("common properties"); k > 0; --k)
+                planner.common.push_back(next());
+            for (std::size_t k = count("properties for each run"); k > 0; --k)
+                planner.properties.push_back(next());
+            for (std::size_t r = count("runs"); r > 0; --r)
+            {
+                std::string values = next();
+                std::map<std::string, std::string> run;
+                for (const std::string &property : planner.properties)
+                {
+                    const std::size_t end = values.find("; ");
+                    if (end == std::string::npos)
+                        throw std::runtime_error(path.string() + ": too few values in '" + line + "'");
+                    run[property] = values.substr(0, end);
+                    values.erase(0, end + 2);
+                }
+                if (!values.empty())
+                    throw std::runtime_error(path.string() + ": too many values in '" + line + "'");
+                planner.runs.push_back(run);
+            }
+            if (next() != ".")  // progress data: property names, then one line per run
+            {
+                std::size_t names = std::stoul(line);
+                while (names-- > 0)
+                    next();
+                for (std::size_t r = count("runs"); r > 0; --r)
+                    next();
+                if (next() != ".")
+                    throw std::runtime_error(path.string() + ": no '.' after " + planner.name);
+            }
+            log.planners.push_back(planner);
+        }
+        return log;
+    }
+
+    /** \brief Two shards of one small grid (rrtconnect x two checkers x 2 runs), run once for all tests here. */
+    class BenchmarkCli : public ::testing::Test
+    {
+    protected:
+        static void SetUpTestSuite()
+        {
+            dir_ = fs::temp_directory_path() / ("meshgap_benchmark_logs_" + std::to_string(::getpid()));
+            fs::remove_all(dir_);
+            for (const char *shard : {"1/2", "2/2"})
+                shards_.push_back(benchmark("--cfg " + CFG + " --planners rrtconnect --checkers meshgap-certified,fcl"
+                                            " --runs 2 --time 2 --seed 7 --out-dir " + dir_.string() + " --shard " +
+                                            shard));
+            for (const auto &entry : fs::directory_iterator(dir_))
+                if (entry.path().extension() == ".log")
+                    logs_.push_back(entry.path());
+            std::sort(logs_.begin(), logs_.end());
+        }
+        static void TearDownTestSuite() { fs::remove_all(dir_); }
+
+        static fs::path dir_;
+        static std::vector<CliRun> shards_;
+        static std::vector<fs::path> logs_;
+    };
+    fs::path BenchmarkCli::dir_;
+    std::vector<CliRun> BenchmarkCli::shards_;
+    std::vector<fs::path> BenchmarkCli::logs_;
+}  // namespace
+
+TEST(BenchmarkCliErrors, BadInputGivesOneErrorAndExitOne)
+{
+    const std::string ok = "--cfg " + CFG + " --planners rrtconnect ";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"--cfg /nonexistent/p.cfg --planners rrtconnect", "/nonexistent/p.cfg"},
+        {"--cfg " + CFG + " --planners rrtconnect,nope", "'nope'"},
+        {"--cfg " + CFG, "--planners"},  // the map's cfg has no [planner] section
+        {ok + "--checkers meshgap-certified,nope", "'nope'"},
+        {ok + "--shard 3/2", "--shard"},
+        {ok + "--shard 0/2", "--shard"},
+        {ok + "--shard half", "--shard"},
+        {ok + "--runs 0", "positive"},
+        {"--planners rrtconnect", "--cfg"},
+    };
+    for (const auto &[args, mention] : cases)
+    {
+        const CliRun r = benchmark(args);
+        EXPECT_EQ(r.status, 1) << args << "\n" << r.err;
+        EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << args << "\n" << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+        EXPECT_NE(r.err.find(mention), std::string::npos) << args << "\n" << r.err;
+    }
+}
+
+TEST_F(BenchmarkCli, ShardsCoverTheGridExactlyOnce)
+{
+    for (const CliRun &r : shards_)
+    {
+        ASSERT_EQ(r.status, 0) << r.err;
+        EXPECT_NE(r.err.find("run 2 of 2"), std::string::npos) << r.err;  // progress, per shard
+    }
+    // Cells (rrtconnect, checker, run) in order: shard 1 takes cells 0 and 2, shard 2 cells 1 and 3, so each shard
+    // has one run of each checker: four .log files, one run each, and each shard with its own seed.
+    ASSERT_EQ(logs_.size(), 4u);
+    std::map<std::string, std::size_t> runs;
+    std::map<std::string, std::set<std::string>> seeds;
+    for (const fs::path &path : logs_)
+    {
+        const ExperimentLog log = readLog(path);
+        EXPECT_EQ(log.name, "slotted_wall");
+        ASSERT_EQ(log.planners.size(), 1u) << path;
+        runs[log.planners[0].name] += log.planners[0].runs.size();
+        seeds[log.planners[0].name].insert(log.seed);
+    }
+    const std::map<std::string, std::size_t> expected = {{"geometric_RRTConnect[fcl]", 2},
+                                                         {"geometric_RRTConnect[meshgap-certified]", 2}};
+    EXPECT_EQ(runs, expected);
+    for (const auto &[planner, s] : seeds)
+        EXPECT_EQ(s, (std::set<std::string>{"7", "8"})) << planner;
+}
+
+TEST_F(BenchmarkCli, RunsCarryCheckerCountersAndFclVerdicts)
+{
+    ASSERT_FALSE(logs_.empty());
+    std::size_t solved = 0;
+    for (const fs::path &path : logs_)
+    {
+        const PlannerLog planner = readLog(path).planners.at(0);
+        const bool fcl = planner.name.find("[fcl]") != std::string::npos;
+        EXPECT_NE(std::find(planner.common.begin(), planner.common.end(), fcl ? "checker = fcl" : "checker = meshgap-certified"),
+                  planner.common.end());
+        for (const auto &run : planner.runs)
+        {
+            EXPECT_GT(std::stoul(run.at("checker validity calls INTEGER")), 0u) << path;
+            EXPECT_EQ(run.at("checker clearance calls INTEGER"), "0") << path;  // rrtconnect, length
+            EXPECT_GT(std::stod(run.at("checker mean query time REAL")), 0.0) << path;
+            EXPECT_EQ(run.count("checker evaluations INTEGER"), fcl ? 0u : 1u) << path;
+            if (run.at("solved BOOLEAN") != "1")
+                continue;
+            ++solved;
+            // Every densely interpolated state of the path is free by FCL, with a positive distance.
+            EXPECT_EQ(run.at("fcl path collision free BOOLEAN"), "1") << path;
+            EXPECT_GT(std::stoul(run.at("fcl path states INTEGER")), std::stoul(run.at("solution segments INTEGER")));
+            EXPECT_GT(std::stod(run.at("fcl path min clearance REAL")), 0.0) << path;
+            EXPECT_EQ(run.at("correct solution BOOLEAN"), "1") << path;
+        }
+    }
+    EXPECT_GE(solved, 2u) << "slotted_wall is solved by rrtconnect in well under a second";
+}
+
+TEST_F(BenchmarkCli, StatisticsScriptLoadsEveryRunIntoOneDatabase)
+{
+    // ompl_benchmark_statistics ships in Debian's ompl-demos; OMPL_BENCHMARK_STATISTICS names another copy.
+    std::string script = std::getenv("OMPL_BENCHMARK_STATISTICS") ? std::getenv("OMPL_BENCHMARK_STATISTICS") : "";
+    if (script.empty() && shell("command -v ompl_benchmark_statistics").status == 0)
+        script = "ompl_benchmark_statistics";
+    if (script.empty())
+        GTEST_SKIP() << "ompl_benchmark_statistics not found (Debian package ompl-demos); not checking the database";
+    ASSERT_EQ(logs_.size(), 4u);
+    const fs::path db = dir_ / "results.db";
+    std::string command = "python3 " + (script.find('/') == std::string::npos ? "$(command -v " + script + ")" : script);
+    for (const fs::path &log : logs_)
+        command += " " + log.string();
+    const CliRun load = shell(command + " -d " + db.string());
+    ASSERT_EQ(load.status, 0) << load.out << load.err;
+    const CliRun query = shell(
+        "python3 -c \"import sqlite3; c = sqlite3.connect('" + db.string() +
+        "'); print(*c.execute('SELECT p.name, COUNT(*), SUM(COALESCE(r.fcl_path_collision_free, 1) = 0), "
+        "COUNT(DISTINCT r.experimentid) FROM runs r JOIN plannerConfigs p ON r.plannerid = p.id "
+        "GROUP BY p.name ORDER BY p.name').fetchall(), sep='\\n')\"");
+    ASSERT_EQ(query.status, 0) << query.err;
+    // Two planner configurations (one per checker), two runs each from two experiments (shards), no path that
+    // FCL finds in collision.
+    EXPECT_EQ(query.out, "('geometric_RRTConnect[fcl]', 2, 0, 2)\n('geometric_RRTConnect[meshgap-certified]', 2, 0, 2)\n")
+        << query.out;
+}
