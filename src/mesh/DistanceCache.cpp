@@ -7,12 +7,14 @@
 #include <cerrno>
 #include <cinttypes>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <limits>
 #include <system_error>
 
 #if defined(__unix__) || defined(__APPLE__)
+#include <signal.h>
 #include <unistd.h>
 #define MESHGAP_HAVE_POSIX_IO 1
 #endif
@@ -134,7 +136,23 @@ namespace meshgap
             return true;
         }
 
-        /** \brief A name in the folder of \e path that no other writer (thread or process) uses at the same time. */
+        /** \brief This machine's name, as it appears in temporary file names (dots replaced, so names parse). */
+        std::string hostName()
+        {
+            char name[256] = "host";
+#ifdef MESHGAP_HAVE_POSIX_IO
+            if (::gethostname(name, sizeof name - 1) != 0)
+                std::strcpy(name, "host");
+            name[sizeof name - 1] = '\0';
+#endif
+            std::string host(name);
+            std::replace(host.begin(), host.end(), '.', '_');
+            std::replace(host.begin(), host.end(), '/', '_');
+            return host.empty() ? std::string("host") : host;
+        }
+
+        /** \brief A name in the folder of \e path that no other writer (thread or process, on this or another
+            machine sharing the folder) uses at the same time: <path>.tmp.<host>.<pid>.<counter>. */
         std::string temporaryPath(const std::string &path)
         {
             static std::atomic<unsigned long> counter{0};
@@ -143,7 +161,44 @@ namespace meshgap
 #else
             const unsigned long pid = 0;
 #endif
-            return path + ".tmp." + std::to_string(pid) + "." + std::to_string(counter++);
+            return path + ".tmp." + hostName() + "." + std::to_string(pid) + "." + std::to_string(counter++);
+        }
+
+        /** \brief Remove the temporary files that writers of \e path killed mid-write left behind (up to a whole
+            table each): those named <path>.tmp.<this host>.<pid>.<n> whose process no longer exists. A live
+            writer's file, and any file of another machine, is left alone. */
+        void removeStaleTemporaries(const std::string &path)
+        {
+#ifdef MESHGAP_HAVE_POSIX_IO
+            namespace fs = std::filesystem;
+            const fs::path target(path);
+            const std::string prefix = target.filename().string() + ".tmp." + hostName() + ".";
+            std::error_code ec;
+            fs::directory_iterator it(target.has_parent_path() ? target.parent_path() : fs::path("."), ec), end;
+            for (; !ec && it != end; it.increment(ec))
+            {
+                const std::string name = it->path().filename().string();
+                if (name.compare(0, prefix.size(), prefix) != 0)
+                    continue;
+                const std::string rest = name.substr(prefix.size());  // <pid>.<n>
+                const auto dot = rest.find('.');
+                if (dot == 0 || dot == std::string::npos ||
+                    rest.find_first_not_of("0123456789.") != std::string::npos)
+                    continue;
+                const long pid = std::strtol(rest.substr(0, dot).c_str(), nullptr, 10);
+                if (pid <= 0 || pid == static_cast<long>(::getpid()))
+                    continue;
+                if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
+                {
+                    std::error_code ignored;
+                    if (fs::remove(it->path(), ignored))
+                        OMPL_INFORM("meshgap: removed '%s', left by a writer that was killed",
+                                    it->path().string().c_str());
+                }
+            }
+#else
+            (void)path;
+#endif
         }
 
         void rejectCache(const std::string &path, const std::string &why)
@@ -312,6 +367,8 @@ namespace meshgap
                 return false;
             }
         }
+
+        removeStaleTemporaries(path);
 
         CacheHeader header;
         std::memcpy(header.magic, MAGIC, sizeof MAGIC);

@@ -77,7 +77,14 @@ namespace meshgap
     {
         Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
         if (theta != 0.0)
-            pose.linear() = Eigen::AngleAxisd(theta, axis.normalized()).toRotationMatrix();
+        {
+            // Scale by the largest component first: axis.normalized() alone overflows for components above about
+            // 1e154 (giving a zero axis, so a matrix that is no rotation) and underflows below about 1e-154.
+            const double largest = axis.cwiseAbs().maxCoeff();
+            if (!(largest > 0.0) || !std::isfinite(largest) || !std::isfinite(theta))
+                throw Exception("rotation", "the axis must be finite and non-zero and the angle finite");
+            pose.linear() = Eigen::AngleAxisd(theta, (axis / largest).normalized()).toRotationMatrix();
+        }
         pose.translation() = position;
         return pose;
     }

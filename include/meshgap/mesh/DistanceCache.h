@@ -29,9 +29,12 @@ namespace meshgap
     bool readDistanceCache(const std::string &path, std::uint64_t hash, std::uint32_t numNodes, double *D,
                            std::uint32_t *P);
 
-    /** \brief Write the table atomically: to a temporary file in the same folder, flushed and synced, then renamed
-        onto \e path. Creates the folder if needed. Returns false (with an OMPL_WARN) on any failure, leaving no
-        temporary file behind; never throws for I/O errors. */
+    /** \brief Write the table atomically: to a temporary file in the same folder
+        (<path>.tmp.<host>.<pid>.<n>), flushed and synced, then renamed onto \e path, so a reader sees either no
+        file or a complete one, also when the writer is killed. Creates the folder if needed. Returns false (with
+        an OMPL_WARN) on any failure, leaving no temporary file behind; never throws for I/O errors. A writer killed
+        mid-write leaves its temporary file; the next write of the same \e path removes those of this host whose
+        process no longer exists. */
     bool writeDistanceCache(const std::string &path, std::uint64_t hash, std::uint32_t numNodes, const double *D,
                             const std::uint32_t *P);
 }  // namespace meshgap

@@ -19,7 +19,9 @@ namespace meshgap
     /** \brief "x y z qx qy qz qw" with full precision. */
     std::string formatPose(const Eigen::Isometry3d &pose);
 
-    /** \brief Rotation by \e theta radians about \e axis (normalised), as OMPL.app's start.theta/start.axis.*. */
+    /** \brief Rotation by \e theta radians about \e axis (normalised, at any magnitude), as OMPL.app's
+        start.theta/start.axis.*. Throws meshgap::Exception for theta != 0 with a zero or non-finite axis or a
+        non-finite theta. */
     Eigen::Isometry3d poseFromAxisAngle(const Eigen::Vector3d &position, double theta, const Eigen::Vector3d &axis);
 }  // namespace meshgap
 
