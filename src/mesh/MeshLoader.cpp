@@ -3,6 +3,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <ompl/util/Console.h>
@@ -63,6 +64,37 @@ namespace meshgap
                     visit(node->mChildren[c], transform);
             }
         };
+
+        /** \brief Debian's assimp 5.2 hangs on a PLY header with bytes that are not text (found by fuzzing:
+            fuzz/known/assimp_ply_header_hang.bin). A PLY header is ASCII by the format's definition, magic "ply" to
+            "end_header", so check that before assimp reads the file. */
+        void checkPlyHeader(const std::string &path)
+        {
+            std::ifstream in(path, std::ios::binary);
+            std::string head(64 * 1024, '\0');
+            in.read(&head[0], static_cast<std::streamsize>(head.size()));
+            head.resize(static_cast<std::size_t>(in.gcount()));
+            if (head.compare(0, 3, "ply") != 0 && head.compare(0, 3, "PLY") != 0)
+                throw Exception(path, "corrupt PLY header (the file does not start with 'ply')");
+            const std::size_t end = head.find("end_header");
+            if (end == std::string::npos)
+                throw Exception(path, "corrupt PLY header (no 'end_header' in the first 64 KiB)");
+            for (std::size_t i = 0; i < end; ++i)
+            {
+                const unsigned char c = static_cast<unsigned char>(head[i]);
+                if (!(c == '\n' || c == '\r' || c == '\t' || (c >= 32 && c < 127)))
+                    throw Exception(path, "corrupt PLY header (a byte that is not text at offset " + std::to_string(i) +
+                                              ")");
+            }
+        }
+
+        bool hasExtension(const std::string &path, const char *extension)
+        {
+            std::string ext = std::filesystem::path(path).extension().string();
+            for (char &c : ext)
+                c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+            return ext == extension;
+        }
     }  // namespace
 
     Mesh loadMesh(const std::string &path, LoadReport *reportOut)
@@ -77,14 +109,22 @@ namespace meshgap
             throw Exception(path, "cannot open the file for reading");
         if (fs::file_size(path, ec) == 0)
             throw Exception(path, "the file is empty");
+        if (hasExtension(path, ".ply"))
+            checkPlyHeader(path);
 
         Assimp::Importer importer;
-        const unsigned int flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
-                                   aiProcess_OptimizeGraph | aiProcess_GenNormals;
+        // OMPL.app's post-processing, plus assimp's own validation, which runs first: without it a face index out of
+        // range (a corrupt binary PLY, say) reaches the other steps and crashes inside assimp. It only checks.
+        const unsigned int flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                                   aiProcess_JoinIdenticalVertices | aiProcess_SortByPType | aiProcess_OptimizeGraph |
+                                   aiProcess_GenNormals;
         const aiScene *scene = importer.ReadFile(path, flags);
         if (scene == nullptr)
         {
-            std::string why = importer.GetErrorString();
+            const std::string why = importer.GetErrorString();
+            // assimp's validation words an empty scene its own way; say it as the rest of meshgap does.
+            if (why.find("contains no faces") != std::string::npos || why.find("mNumMeshes is 0") != std::string::npos)
+                throw Exception(path, "no triangles (an empty scene, a point cloud or only lines?)");
             throw Exception(path, "cannot read the mesh (" + (why.empty() ? std::string("unknown format") : why) + ")");
         }
         if (scene->mRootNode == nullptr || !scene->HasMeshes())

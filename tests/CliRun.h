@@ -1,0 +1,67 @@
+#ifndef MESHGAP_TESTS_CLI_RUN_H
+#define MESHGAP_TESTS_CLI_RUN_H
+
+// Running one of meshgap's executables as a user does, for the CLI tests: exit status, stdout, stderr.
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace meshgap
+{
+    namespace test
+    {
+        struct CliRun
+        {
+            int status{-1};  ///< exit status; -1 if killed by a signal (a crash); 124 if it ran out of time
+            std::string out, err;
+        };
+
+        /** \brief Run build/planners/<executable> with \e args (shell syntax) under `timeout seconds`. */
+        inline CliRun runExecutable(const std::string &executable, const std::string &args, int seconds = 300)
+        {
+            namespace fs = std::filesystem;
+            // Unique per process and call: ctest runs several tests at once.
+            static int calls = 0;
+            const std::string stem = (fs::temp_directory_path() / ("meshgap_cli_" + std::to_string(::getpid()) +
+                                                                   "_" + std::to_string(++calls)))
+                                         .string();
+            const std::string command = "timeout " + std::to_string(seconds) + " " + MESHGAP_BINARY_DIR +
+                                        "/planners/" + executable + " " + args + " >" + stem + ".out 2>" + stem +
+                                        ".err";
+            const int raw = std::system(command.c_str());
+            auto slurp = [](const std::string &path) {
+                std::ifstream in(path);
+                std::stringstream s;
+                s << in.rdbuf();
+                fs::remove(path);
+                return s.str();
+            };
+            CliRun r;
+            r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+            // `timeout` reports a child killed by a signal as 128 + signal.
+            if (r.status > 128 && r.status != 124)
+                r.status = -1;
+            r.out = slurp(stem + ".out");
+            r.err = slurp(stem + ".err");
+            return r;
+        }
+
+        /** \brief Lines of \e text that start with \e prefix. */
+        inline int countLines(const std::string &text, const std::string &prefix)
+        {
+            std::istringstream in(text);
+            std::string line;
+            int n = 0;
+            while (std::getline(in, line))
+                n += line.rfind(prefix, 0) == 0;
+            return n;
+        }
+    }  // namespace test
+}  // namespace meshgap
+
+#endif
