@@ -66,6 +66,7 @@ int main(int argc, char **argv)
         return 0;
     }
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+    ompl::RNG::setSeed(7);  // before any sampler exists
 
     auto space = std::make_shared<ob::SE3StateSpace>();
     ob::RealVectorBounds bounds(3);
@@ -80,7 +81,6 @@ int main(int argc, char **argv)
     // A fixed pool of states (allocated once) visited in a different order by each thread.
     std::vector<ob::State *> pool(4096);
     ob::StateSamplerPtr sampler = si->allocStateSampler();
-    ompl::RNG::setSeed(7);
     for (ob::State *&s : pool)
     {
         s = si->allocState();
