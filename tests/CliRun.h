@@ -21,8 +21,8 @@ namespace meshgap
             std::string out, err;
         };
 
-        /** \brief Run build/planners/<executable> with \e args (shell syntax) under `timeout seconds`. */
-        inline CliRun runExecutable(const std::string &executable, const std::string &args, int seconds = 300)
+        /** \brief Run a shell \e command under `timeout seconds`, capturing its stdout and stderr. */
+        inline CliRun runCommand(const std::string &command, int seconds = 300)
         {
             namespace fs = std::filesystem;
             // Unique per process and call: ctest runs several tests at once.
@@ -30,10 +30,9 @@ namespace meshgap
             const std::string stem = (fs::temp_directory_path() / ("meshgap_cli_" + std::to_string(::getpid()) +
                                                                    "_" + std::to_string(++calls)))
                                          .string();
-            const std::string command = "timeout " + std::to_string(seconds) + " " + MESHGAP_BINARY_DIR +
-                                        "/planners/" + executable + " " + args + " >" + stem + ".out 2>" + stem +
-                                        ".err";
-            const int raw = std::system(command.c_str());
+            const std::string line = "timeout " + std::to_string(seconds) + " " + command + " >" + stem + ".out 2>" +
+                                     stem + ".err";
+            const int raw = std::system(line.c_str());
             auto slurp = [](const std::string &path) {
                 std::ifstream in(path);
                 std::stringstream s;
@@ -49,6 +48,12 @@ namespace meshgap
             r.out = slurp(stem + ".out");
             r.err = slurp(stem + ".err");
             return r;
+        }
+
+        /** \brief Run build/planners/<executable> with \e args (shell syntax) under `timeout seconds`. */
+        inline CliRun runExecutable(const std::string &executable, const std::string &args, int seconds = 300)
+        {
+            return runCommand(std::string(MESHGAP_BINARY_DIR) + "/planners/" + executable + " " + args, seconds);
         }
 
         /** \brief Lines of \e text that start with \e prefix. */

@@ -1,4 +1,5 @@
-// Every file of the bad-input corpus (tests/resources/bad) through every executable that reads that kind of file:
+// Every file of the bad-input corpus (tests/resources/bad) through every executable that reads that kind of file
+// (meshgap_makemap reads none):
 // one line "error: ..." naming the file and the problem, exit status 1, nothing on stdout, no crash, no hang.
 
 #include <gtest/gtest.h>
@@ -49,12 +50,15 @@ namespace
     bool isConfig(const fs::path &p) { return p.extension() == ".cfg"; }
 
     // The command lines that read \e file: a mesh as either body of meshgap_distance; a problem through
-    // meshgap_distance and meshgap_plan.
+    // meshgap_distance, meshgap_plan and meshgap_benchmark.
     std::vector<std::pair<std::string, std::string>> commandsFor(const fs::path &file)
     {
         const std::string f = "'" + file.string() + "'";
         if (isConfig(file))
-            return {{"meshgap_distance", "--cfg " + f}, {"meshgap_plan", "--cfg " + f + " --time 1"}};
+            return {{"meshgap_distance", "--cfg " + f},
+                    {"meshgap_plan", "--cfg " + f + " --time 1"},
+                    {"meshgap_benchmark", "--cfg " + f + " --planners rrtconnect --runs 1 --time 1 --out-dir " +
+                                              (fs::temp_directory_path() / "meshgap_bad_corpus_logs").string()}};
         return {{"meshgap_distance", RES + "/cube.obj " + f}, {"meshgap_distance", f + " " + RES + "/cube.obj"}};
     }
 

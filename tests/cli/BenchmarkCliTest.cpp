@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -13,41 +14,18 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "CliRun.h"
+
 using namespace std::string_literals;
 namespace fs = std::filesystem;
 
 namespace
 {
-    struct CliRun
-    {
-        int status;
-        std::string out, err;
-    };
+    using meshgap::test::CliRun;
 
-    std::string slurp(const fs::path &path)
-    {
-        std::ifstream in(path);
-        std::stringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
+    CliRun shell(const std::string &command) { return meshgap::test::runCommand(command); }
 
-    CliRun shell(const std::string &command)
-    {
-        static int calls = 0;
-        const std::string stem = (fs::temp_directory_path() / ("meshgap_benchmark_" + std::to_string(::getpid()) +
-                                                               "_" + std::to_string(++calls))).string();
-        const int raw = std::system((command + " >" + stem + ".out 2>" + stem + ".err").c_str());
-        CliRun r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(stem + ".out"), slurp(stem + ".err")};
-        fs::remove(stem + ".out");
-        fs::remove(stem + ".err");
-        return r;
-    }
-
-    CliRun benchmark(const std::string &args)
-    {
-        return shell(std::string(MESHGAP_BINARY_DIR) + "/planners/meshgap_benchmark " + args);
-    }
+    CliRun benchmark(const std::string &args) { return meshgap::test::runExecutable("meshgap_benchmark", args); }
 
     const std::string MAPS = std::string(MESHGAP_SOURCE_DIR) + "/maps";
     const std::string CFG = MAPS + "/slotted_wall/slotted_wall.cfg";
@@ -256,13 +234,14 @@ TEST_F(BenchmarkCli, StatisticsScriptLoadsEveryRunIntoOneDatabase)
 {
     // ompl_benchmark_statistics ships in Debian's ompl-demos; OMPL_BENCHMARK_STATISTICS names another copy.
     std::string script = std::getenv("OMPL_BENCHMARK_STATISTICS") ? std::getenv("OMPL_BENCHMARK_STATISTICS") : "";
-    if (script.empty() && shell("command -v ompl_benchmark_statistics").status == 0)
+    if (script.empty() && std::system("command -v ompl_benchmark_statistics >/dev/null 2>&1") == 0)
         script = "ompl_benchmark_statistics";
     if (script.empty())
         GTEST_SKIP() << "ompl_benchmark_statistics not found (Debian package ompl-demos); not checking the database";
     ASSERT_EQ(logs_.size(), 4u);
     const fs::path db = dir_ / "results.db";
-    std::string command = "python3 " + (script.find('/') == std::string::npos ? "$(command -v " + script + ")" : script);
+    // The script's own interpreter (its #! line: Debian's python3), not whichever python3 comes first on PATH.
+    std::string command = script.find('/') == std::string::npos ? "$(command -v " + script + ")" : script;
     for (const fs::path &log : logs_)
         command += " " + log.string();
     const CliRun load = shell(command + " -d " + db.string());
@@ -277,4 +256,44 @@ TEST_F(BenchmarkCli, StatisticsScriptLoadsEveryRunIntoOneDatabase)
     // FCL finds in collision.
     EXPECT_EQ(query.out, "('geometric_RRTConnect[fcl]', 2, 0, 2)\n('geometric_RRTConnect[meshgap-certified]', 2, 0, 2)\n")
         << query.out;
+}
+
+TEST(BenchmarkCliInterrupted, AKilledBenchmarkKeepsEveryFinishedRun)
+{
+    // A long benchmark (many short runs), killed with SIGKILL once its first log is on disk: every .log left is
+    // complete and readable, with at least the runs that had finished; the half-written temporaries are not logs.
+    const fs::path dir = fs::temp_directory_path() / ("meshgap_benchmark_killed_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path pidFile = dir / "pid";
+    const std::string command = std::string(MESHGAP_BINARY_DIR) + "/planners/meshgap_benchmark --cfg " + CFG +
+                                " --planners rrtconnect --checkers meshgap-certified --runs 200 --time 1 --seed 3"
+                                " --out-dir " + dir.string() + " >/dev/null 2>&1 & echo $! > " + pidFile.string();
+    ASSERT_EQ(std::system(command.c_str()), 0);
+    auto logs = [&] {
+        std::vector<fs::path> found;
+        for (const auto &entry : fs::directory_iterator(dir))
+            if (entry.path().extension() == ".log")
+                found.push_back(entry.path());
+        return found;
+    };
+    for (int waited = 0; logs().empty() && waited < 1200; ++waited)  // up to 120 s on a loaded machine
+        ::usleep(100000);
+    ::usleep(300000);  // let it get into later runs, so the kill may land mid-write
+    pid_t pid = 0;
+    std::ifstream(pidFile) >> pid;
+    ASSERT_GT(pid, 0);
+    ::kill(pid, SIGKILL);
+    ::usleep(200000);
+    const std::vector<fs::path> kept = logs();
+    ASSERT_FALSE(kept.empty()) << "no log was written before the kill";
+    for (const fs::path &log : kept)
+    {
+        ExperimentLog parsed;
+        ASSERT_NO_THROW(parsed = readLog(log)) << log;
+        ASSERT_EQ(parsed.planners.size(), 1u);
+        EXPECT_GE(parsed.planners[0].runs.size(), 1u) << log;
+        EXPECT_LT(parsed.planners[0].runs.size(), 200u) << "the benchmark finished before the kill: nothing was tested";
+    }
+    fs::remove_all(dir);
 }

@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "CliRun.h"
 #include "TestMeshes.h"
 #include "meshgap/distance/Enumeration.h"
 #include "meshgap/mesh/MeshLoader.h"
@@ -22,43 +23,10 @@ namespace fs = std::filesystem;
 
 namespace
 {
-    struct CliRun
-    {
-        int status;  // exit status, or -1 if killed by a signal
-        std::string out, err;
-    };
+    using test::CliRun;
+    using test::countLines;
 
-    CliRun run(const std::string &args)
-    {
-        // Unique per process and call: ctest runs several of these tests at once.
-        static int calls = 0;
-        const std::string stem = (fs::temp_directory_path() / ("meshgap_cli_" + std::to_string(::getpid()) + "_" +
-                                                               std::to_string(++calls))).string();
-        const std::string out = stem + ".out", err = stem + ".err";
-        const std::string command = std::string(MESHGAP_BINARY_DIR) + "/planners/meshgap_distance " + args + " >" +
-                                    out + " 2>" + err;
-        const int raw = std::system(command.c_str());
-        auto slurp = [](const std::string &path) {
-            std::ifstream in(path);
-            std::stringstream s;
-            s << in.rdbuf();
-            return s.str();
-        };
-        CliRun result{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
-        fs::remove(out);
-        fs::remove(err);
-        return result;
-    }
-
-    int countLines(const std::string &text, const std::string &prefix)
-    {
-        std::istringstream in(text);
-        std::string line;
-        int n = 0;
-        while (std::getline(in, line))
-            n += line.rfind(prefix, 0) == 0;
-        return n;
-    }
+    CliRun run(const std::string &args) { return test::runExecutable("meshgap_distance", args); }
 
     const std::string RES = MESHGAP_TEST_RESOURCES_DIR;
 }  // namespace

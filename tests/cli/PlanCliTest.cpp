@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "CliRun.h"
 #include "FclOracle.h"
 #include "TestMeshes.h"
 #include "meshgap/mesh/MeshWriter.h"
@@ -22,29 +23,9 @@ namespace fs = std::filesystem;
 
 namespace
 {
-    struct PlanRun
-    {
-        int status;
-        std::string out, err;
-    };
+    using PlanRun = test::CliRun;
 
-    PlanRun plan(const std::string &args)
-    {
-        static int calls = 0;
-        const std::string stem = (fs::temp_directory_path() / ("meshgap_plan_" + std::to_string(::getpid()) + "_" +
-                                                               std::to_string(++calls))).string();
-        const std::string command = std::string(MESHGAP_BINARY_DIR) + "/planners/meshgap_plan " + args + " >" + stem +
-                                    ".out 2>" + stem + ".err";
-        const int raw = std::system(command.c_str());
-        auto slurp = [](const std::string &path) {
-            std::ifstream in(path);
-            std::stringstream s;
-            s << in.rdbuf();
-            fs::remove(path);
-            return s.str();
-        };
-        return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(stem + ".out"), slurp(stem + ".err")};
-    }
+    PlanRun plan(const std::string &args) { return test::runExecutable("meshgap_plan", args); }
 
     const std::string MAPS = std::string(MESHGAP_SOURCE_DIR) + "/maps";
 }  // namespace
