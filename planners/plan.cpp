@@ -10,8 +10,9 @@
 // the exact minimum clearance along the densely interpolated path, checker counters), writes the path in OMPL's
 // .path format (one state per line: x y z qx qy qz qw, or x y theta), which meshgap_distance --poses and OMPL.app
 // read, the exact clearance along the dense path as CSV, and the scene (world, the robot at N states along the path,
-// the closest-point segment at each) as a glTF 2.0 binary file for any 3D viewer. Exit status: 0 exact solution, 2 approximate or none,
-// 1 bad input (including a start or goal in collision: the message says which, the obstacle and the distance).
+// the closest-point segment at each) as a glTF 2.0 binary file for any 3D viewer. Exit status: 0 exact solution,
+// 2 approximate or none, 1 bad input (including a start or goal in collision: the message says which, the obstacle
+// and the distance).
 
 #include <boost/program_options.hpp>
 #include <chrono>

@@ -50,8 +50,7 @@ namespace meshgap
 
     namespace
     {
-        /** \brief One part as an assimp mesh (owned by the scene it is put in). */
-        aiMesh *toAssimpMesh(const ColoredMesh &part, unsigned int material, const std::string &path)
+        void checkPart(const ColoredMesh &part, const std::string &path)
         {
             const Mesh &mesh = part.mesh;
             for (const Eigen::Vector3d &v : mesh.vertices)
@@ -62,6 +61,12 @@ namespace meshgap
                     if (i >= mesh.vertices.size())
                         throw Exception(path, "cannot write part '" + part.name + "': a triangle uses vertex " +
                                                   std::to_string(i) + " of " + std::to_string(mesh.vertices.size()));
+        }
+
+        /** \brief One (checked) part as an assimp mesh (owned by the scene it is put in). */
+        aiMesh *toAssimpMesh(const ColoredMesh &part, unsigned int material)
+        {
+            const Mesh &mesh = part.mesh;
             auto out = std::make_unique<aiMesh>();
             out->mName = part.name;
             out->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
@@ -104,10 +109,13 @@ namespace meshgap
         std::vector<const ColoredMesh *> kept;
         for (const ColoredMesh &part : parts)
             if (!part.mesh.triangles.empty())
+            {
+                checkPart(part, path);  // every check before anything is allocated for assimp
                 kept.push_back(&part);
+            }
         if (kept.empty())
             throw Exception(path, "nothing to write: no part has triangles");
-        // aiScene's destructor frees its meshes, materials and nodes: fill it as we go, so a throw leaks nothing.
+        // aiScene's destructor frees its meshes, materials and nodes (counted ones: counts follow the arrays).
         aiScene scene;
         scene.mRootNode = new aiNode("meshgap");
         scene.mMeshes = new aiMesh *[kept.size()]();
@@ -116,7 +124,7 @@ namespace meshgap
         for (std::size_t i = 0; i < kept.size(); ++i)
         {
             const auto index = static_cast<unsigned int>(i);
-            scene.mMeshes[i] = toAssimpMesh(*kept[i], index, path);
+            scene.mMeshes[i] = toAssimpMesh(*kept[i], index);
             ++scene.mNumMeshes;
             scene.mMaterials[i] = toAssimpMaterial(*kept[i]);
             ++scene.mNumMaterials;

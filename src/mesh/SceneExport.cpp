@@ -19,8 +19,8 @@ namespace meshgap
         Mesh box;
         box.source = "segment";
         for (const Eigen::Vector3d &end : {from, to})
-            for (const auto &corner : {Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, -1), Eigen::Vector2d(1, 1),
-                                       Eigen::Vector2d(-1, 1)})
+            for (const auto &corner :
+                 {Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, -1), Eigen::Vector2d(1, 1), Eigen::Vector2d(-1, 1)})
                 box.vertices.push_back(end + h * (corner.x() * u + corner.y() * v));
         // Corners 0-3 at the start, 4-7 at the end, counter-clockwise about the axis; faces wound outward.
         box.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
@@ -49,8 +49,8 @@ namespace meshgap
             const Eigen::Isometry3d &X = robotPoses[k];
             SceneResult r;
             scene.distance(X, SceneRequest(), warm, r);
-            ColoredMesh placed{"robot " + std::to_string(k), robot, r.inCollision ? options.collisionColor :
-                                                                                      options.robotColor};
+            ColoredMesh placed{"robot " + std::to_string(k), robot,
+                               r.inCollision ? options.collisionColor : options.robotColor};
             for (Eigen::Vector3d &p : placed.mesh.vertices)
                 p = X * p;
             parts.push_back(std::move(placed));

@@ -1,12 +1,12 @@
 // meshgap_plan --export-glb: a quick plan on maps/slotted_wall, and the .glb it writes imports with assimp, holding
 // the world's parts, the robot at each exported state and a closest-point segment per state.
 
+#include <assimp/scene.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <assimp/Importer.hpp>
-#include <assimp/scene.h>
 #include <filesystem>
-#include <unistd.h>
 
 #include "CliRun.h"
 #include "meshgap/mesh/MeshLoader.h"
@@ -23,7 +23,8 @@ TEST(PlanExport, GlbOfThePlannedPathImports)
     const std::string file =
         (fs::temp_directory_path() / ("meshgap_plan_export_" + std::to_string(::getpid()) + ".glb")).string();
     const test::CliRun run = test::runExecutable(
-        "meshgap_plan", "--cfg " + cfg + " --time 20 --seed 1 --quiet --export-glb " + file + " --export-states 5", 120);
+        "meshgap_plan", "--cfg " + cfg + " --time 20 --seed 1 --quiet --export-glb " + file + " --export-states 5",
+        120);
     ASSERT_EQ(run.status, 0) << run.out << run.err;
     EXPECT_NE(run.out.find("scene written"), std::string::npos) << run.out;
     ASSERT_TRUE(fs::exists(file));
@@ -46,8 +47,8 @@ TEST(PlanExport, GlbOfThePlannedPathImports)
     fs::remove(file);
 
     // A bad value is refused before planning.
-    const test::CliRun bad = test::runExecutable("meshgap_plan", "--cfg " + cfg + " --export-glb " + file +
-                                                                     " --export-states 0");
+    const test::CliRun bad =
+        test::runExecutable("meshgap_plan", "--cfg " + cfg + " --export-glb " + file + " --export-states 0");
     EXPECT_EQ(bad.status, 1);
     EXPECT_NE(bad.err.find("--export-states"), std::string::npos) << bad.err;
     EXPECT_FALSE(fs::exists(file));

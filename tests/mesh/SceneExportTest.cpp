@@ -1,12 +1,12 @@
 // The glTF 2.0 export: a small scene written with writeGlb(sceneExportParts(...)) and read back by assimp's glTF
 // importer; every mesh is there, in order, with its triangles, placed where the scene put it.
 
+#include <assimp/scene.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <assimp/Importer.hpp>
-#include <assimp/scene.h>
 #include <filesystem>
-#include <unistd.h>
 
 #include "TestMeshes.h"
 #include "meshgap/Exception.h"
@@ -47,7 +47,8 @@ TEST(SceneExport, SegmentBoxIsAClosedOutwardBoxAroundTheSegment)
 TEST(SceneExport, GlbReadsBackWithEveryMeshAndTriangle)
 {
     // Two obstacles (the world splits into its parts) and a box robot at three poses, the last one colliding.
-    const Mesh world = test::merged(test::box(1, 1, 1), test::transformed(test::icosphere(1.0, 2), test::translation(8, 0, 0)));
+    const Mesh world =
+        test::merged(test::box(1, 1, 1), test::transformed(test::icosphere(1.0, 2), test::translation(8, 0, 0)));
     const ScenePtr scene = Scene::fromMeshes(test::box(0.5, 0.25, 0.25), world);
     ASSERT_EQ(scene->obstacles().size(), 2u);
     const std::vector<Eigen::Isometry3d> poses = {test::translation(3, 0, 0), test::translation(3, 2, 0.5),

@@ -28,9 +28,9 @@ namespace meshgap
     /** \brief Write \e parts as one glTF 2.0 binary file (.glb), through assimp's exporter (format id "glb2"): one
         mesh, one material (base colour and diffuse colour) and one node (identity transform, named after the part)
         per part, in order, vertices in single precision (glTF's), no normals (glTF viewers then shade flat, as the
-        specification requires). A part without triangles is skipped. Written under a temporary name and renamed over \e path once complete, as writeObj()
-        does. Throws meshgap::Exception naming the file for a triangle index out of range, a non-finite coordinate
-        or a failed export (with assimp's message). */
+        specification requires). A part without triangles is skipped. Written under a temporary name and renamed
+        over \e path once complete, as writeObj() does. Throws meshgap::Exception naming the file for a triangle
+        index out of range, a non-finite coordinate or a failed export (with assimp's message). */
     void writeGlb(const std::vector<ColoredMesh> &parts, const std::string &path);
 }  // namespace meshgap
 

@@ -16,9 +16,9 @@ namespace meshgap
         /** \brief Side of the closest-point segments' square cross-section; negative: 1/200 of the robot's size
             (its surface's bounding-box diagonal). */
         double segmentWidth{-1.0};
-        Eigen::Vector4d worldColor{0.62, 0.64, 0.68, 0.6};    ///< obstacles (see-through)
-        Eigen::Vector4d robotColor{0.20, 0.45, 0.85, 1.0};    ///< the robot at each pose
-        Eigen::Vector4d segmentColor{0.10, 0.75, 0.25, 1.0};  ///< a free pose's closest-point segment
+        Eigen::Vector4d worldColor{0.62, 0.64, 0.68, 0.6};      ///< obstacles (see-through)
+        Eigen::Vector4d robotColor{0.20, 0.45, 0.85, 1.0};      ///< the robot at each pose
+        Eigen::Vector4d segmentColor{0.10, 0.75, 0.25, 1.0};    ///< a free pose's closest-point segment
         Eigen::Vector4d collisionColor{0.90, 0.10, 0.10, 1.0};  ///< a colliding pose's robot and segment
     };
 
