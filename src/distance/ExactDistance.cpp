@@ -1,5 +1,6 @@
 #include "meshgap/distance/ExactDistance.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -120,7 +121,7 @@ namespace meshgap
     }
 
     void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
-                     double stopBelow)
+                     double stopBelow, double upperBound)
     {
         result.nodeDistance = result.distance;
         TriangleCandidate best;
@@ -134,14 +135,34 @@ namespace meshgap
         {
             BvhDistanceResult traversal;
             const bool seeded = std::isfinite(best.d);
-            bvhDistance(a.bvh(), b.bvh(), X_AB, best.d, mayStop ? stopBelow : 0.0, traversal,
+            bvhDistance(a.bvh(), b.bvh(), X_AB, std::min(best.d, upperBound), mayStop ? stopBelow : 0.0, traversal,
                         seeded ? best.ta : UINT32_MAX, seeded ? best.tb : UINT32_MAX);
             result.triangleTests += traversal.triangleTests;
             if (traversal.found)
                 best = {traversal.distance, traversal.triangleA, traversal.triangleB, traversal.onA, traversal.onB};
         }
-        if (!std::isfinite(best.d))
+        if (a.surface().triangles.empty() || b.surface().triangles.empty())
             throw Exception("exact distance", "a body has no triangles");
+        if (!(best.d < upperBound))
+        {
+            // Nothing closer than the caller's bound (the seed, if any, was not either): proven, but no pair to
+            // report. A part of one body may still lie inside the other.
+            result.distance = std::numeric_limits<double>::infinity();
+            result.certified = true;
+            result.penetrationDepth = 0.0;
+            result.penetration = Penetration::None;
+            result.inCollision = oneInsideTheOther(a, b, X_AB);
+            if (!result.inCollision)
+                return;
+            if (mayStop)
+            {
+                result.distance = kContactDistance;
+                result.penetration = Penetration::NotComputed;
+            }
+            else
+                setPenetration(a, b, X_AB, result);
+            return;
+        }
 
         result.distance = best.d;
         result.onA = best.onA;

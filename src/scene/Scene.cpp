@@ -296,7 +296,9 @@ namespace meshgap
             }
             // Without an early stop, a collision still ends the walk at once (stopBelow 0: no depth yet): the
             // depth pass below then looks at every obstacle that might collide.
-            refineExact(obstacle, *robot_, X_WR, r, mayStop ? request.stopBelow : 0.0);
+            // The best distance so far bounds this obstacle's search: only a closer pair can change the answer.
+            refineExact(obstacle, *robot_, X_WR, r, mayStop ? request.stopBelow : 0.0,
+                        bestK == obstacles_.size() ? std::numeric_limits<double>::infinity() : best.distance);
             ++result.pairsChecked;
             complete = complete && r.certified;
             if (bestK == obstacles_.size() || r.distance < best.distance)

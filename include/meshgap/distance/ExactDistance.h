@@ -1,6 +1,8 @@
 #ifndef MESHGAP_DISTANCE_EXACT_DISTANCE_H
 #define MESHGAP_DISTANCE_EXACT_DISTANCE_H
 
+#include <limits>
+
 #include "meshgap/distance/DistanceSolver.h"
 
 namespace meshgap
@@ -34,9 +36,15 @@ namespace meshgap
         necessarily the minimum, so certified stays false (except for a proven collision), and inCollision is set
         only if that pair touches: the bodies may still intersect elsewhere, and the containment test is not made.
         With stopBelow >= 0 a collision gets no depth (penetration NotComputed, distance kContactDistance): the
-        caller asked for the verdict only. Negative (the default): never stop early. */
+        caller asked for the verdict only. Negative (the default): never stop early.
+
+        \param upperBound Only a surface pair closer than this matters to the caller (a scene passes the best
+        distance found on its other obstacles), so the traversal prunes everything at or above it. When nothing is
+        closer, distance is +infinity, certified (nothing below the bound exists) and the witnesses unset; the
+        collision verdict is still exact (a containment cannot hide behind the bound). Infinity (the default): no
+        bound. */
     void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
-                     double stopBelow = -1.0);
+                     double stopBelow = -1.0, double upperBound = std::numeric_limits<double>::infinity());
 
     /** \brief Exact collision test alone: a touching or intersecting surface triangle pair (bvhCollide()), or one
         closed body wholly inside the other. Cheaper than refineExact(); the same verdict. */
