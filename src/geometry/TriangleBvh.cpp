@@ -148,6 +148,17 @@ namespace meshgap
             std::uint32_t a, b;
         };
 
+        /** \brief A traversal stack of this thread, emptied, its capacity kept from earlier calls: once warm, a query
+            allocates nothing for it. Each call site has its own \e Site, so no traversal ever shares a stack with
+            another one running at the same time (none of them is re-entered). */
+        template <typename T, int Site>
+        std::vector<T> &threadStack()
+        {
+            thread_local std::vector<T> stack;
+            stack.clear();
+            return stack;
+        }
+
         /** \brief Split the pair on the node with the larger sphere (a leaf cannot be split). */
         bool splitA(const TriangleBvh::Node &a, const TriangleBvh::Node &b)
         {
@@ -169,8 +180,10 @@ namespace meshgap
                                       X.t.norm());
         std::uint32_t bestA = seedA, bestB = seedB;  // UINT32_MAX: no pair yet (any real pair ranks before it)
         const Mesh &ma = a.mesh(), &mb = b.mesh();
-        std::vector<PairEntry> stack{{0u, 0u}};
-        std::vector<double> bounds{lowerBound(a.nodes()[0], b.nodes()[0], X)};
+        std::vector<PairEntry> &stack = threadStack<PairEntry, 1>();
+        std::vector<double> &bounds = threadStack<double, 2>();
+        stack.push_back({0u, 0u});
+        bounds.push_back(lowerBound(a.nodes()[0], b.nodes()[0], X));
         ++result.boxTests;
         Eigen::Vector3d pb[3], onA, onB;
         while (!stack.empty())
@@ -263,7 +276,8 @@ namespace meshgap
             return false;
         const RelativePose X(X_AB);
         const Mesh &ma = a.mesh(), &mb = b.mesh();
-        std::vector<PairEntry> stack{{0u, 0u}};
+        std::vector<PairEntry> &stack = threadStack<PairEntry, 3>();
+        stack.push_back({0u, 0u});
         Eigen::Vector3d pb[3];
         while (!stack.empty())
         {
@@ -328,7 +342,8 @@ namespace meshgap
             double bound;
         };
         // Depth first, the nearer child first (measured faster here than a best-first heap).
-        std::vector<Entry> stack{{0u, bound(tree.nodes()[0])}};
+        std::vector<Entry> &stack = threadStack<Entry, 4>();
+        stack.push_back({0u, bound(tree.nodes()[0])});
         Eigen::Vector3d on;
         while (!stack.empty())
         {
@@ -378,7 +393,8 @@ namespace meshgap
         // Signs closer to zero than this (relative to the magnitudes multiplied) are not trusted: roundoff in a
         // triple product is a few 1e-16 of them, so 1e-10 leaves a wide margin.
         constexpr double eps = 1e-10;
-        std::vector<std::uint32_t> stack{0u};
+        std::vector<std::uint32_t> &stack = threadStack<std::uint32_t, 5>();
+        stack.push_back(0u);
         while (!stack.empty())
         {
             const TriangleBvh::Node &n = tree.nodes()[stack.back()];
