@@ -139,31 +139,11 @@ namespace
         {
             si_ = problem_.setup->getSpaceInformation();
 #ifdef MESHGAP_HAVE_FCL
-            // FCL gets the meshes as OMPL.app loads them: the robot centred by loadRobotMesh(), the whole world.
-            // Should meshgap's robot sit in another frame (OMPL.app's 2D problems centre the robot in x and y
-            // only), FCL takes meshgap's robot surface instead, so the same state is the same pose for both.
-            Mesh robot = loadRobotMesh(config.robot);
-            const Mesh &surface = problem_.scene->robot().surface();
-            const Eigen::AlignedBox3d a = usedBounds(robot), b = usedBounds(surface);
-            const double tolerance = 1e-9 * (1.0 + a.diagonal().norm());
-            if ((a.min() - b.min()).cwiseAbs().maxCoeff() > tolerance || (a.max() - b.max()).cwiseAbs().maxCoeff() > tolerance)
-            {
-                OMPL_WARN("%s: meshgap's robot frame is not loadRobotMesh()'s; FCL uses meshgap's robot surface",
-                          config.file.c_str());
-                robot = surface;
-            }
-            fcl_ = std::make_shared<FclChecker>(si_, robot, loadMesh(config.world));
+            // FCL gets the meshes as OMPL.app loads them: the robot centred as OMPL.app centres it (x and y only
+            // in a 2D problem), the whole world, so the same state is the same pose for both checkers.
+            fcl_ = std::make_shared<FclChecker>(si_, loadRobotMesh(config.robot, config.planar),
+                                                loadMesh(config.world));
 #endif
-        }
-
-        /** \brief Bounding box of the vertices that some triangle uses. */
-        static Eigen::AlignedBox3d usedBounds(const Mesh &mesh)
-        {
-            Eigen::AlignedBox3d box;
-            for (const Triangle &t : mesh.triangles)
-                for (std::uint32_t v : t)
-                    box.extend(mesh.vertices[v]);
-            return box;
         }
 
         ompl::geometric::SimpleSetup &setup() { return *problem_.setup; }

@@ -166,7 +166,7 @@ namespace
                 throw Exception("command line", "give either --cfg or two mesh files, not both");
             const ProblemConfig problem = readProblemConfig(cfg);
             meshA = loadMesh(problem.world, &reportA);
-            meshB = loadRobotMesh(problem.robot, &reportB);
+            meshB = loadRobotMesh(problem.robot, problem.planar, &reportB);  // OMPL.app's centring, 2D or 3D
             pose = problem.start;
         }
         else

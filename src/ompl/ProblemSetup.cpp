@@ -12,20 +12,6 @@ namespace meshgap
 {
     namespace
     {
-        /** \brief The robot mesh as OMPL.app's 2D problems place it: shifted by its centre's x and y only
-            (RigidBodyGeometry zeroes the centre's z for Motion_2D), subtracting in single precision as
-            loadRobotMesh() does. */
-        Mesh loadPlanarRobotMesh(const std::string &path)
-        {
-            LoadReport report;
-            Mesh mesh = loadMesh(path, &report);
-            const float cx = static_cast<float>(report.omplAppCenter.x()),
-                        cy = static_cast<float>(report.omplAppCenter.y());
-            for (Eigen::Vector3d &v : mesh.vertices)
-                v = Eigen::Vector3d(static_cast<float>(v.x()) - cx, static_cast<float>(v.y()) - cy, v.z());
-            return mesh;
-        }
-
         std::string point(const Eigen::Vector3d &p)
         {
             std::ostringstream out;
@@ -64,7 +50,7 @@ namespace meshgap
         if (!config.goal)
             throw Exception(config.file, "no goal (goal.x, goal.y" + std::string(config.planar ? ")" : ", goal.z)"));
         OmplProblem problem;
-        problem.scene = Scene::fromMeshes(config.planar ? loadPlanarRobotMesh(config.robot) : loadRobotMesh(config.robot),
+        problem.scene = Scene::fromMeshes(loadRobotMesh(config.robot, config.planar),
                                           loadMesh(config.world), bodies);
 
         const int dimensions = config.planar ? 2 : 3;

@@ -2,19 +2,34 @@
 
 namespace meshgap
 {
-    Mesh loadRobotMesh(const std::string &path, LoadReport *reportOut)
+    namespace
     {
-        LoadReport report;
-        Mesh mesh = loadMesh(path, &report);
-        // Vertices are single-precision values widened to double, so float(v) is exact; the subtraction rounds to
-        // float as OMPL.app's aiVector3D arithmetic does.
-        const float cx = static_cast<float>(report.omplAppCenter.x()), cy = static_cast<float>(report.omplAppCenter.y()),
-                    cz = static_cast<float>(report.omplAppCenter.z());
-        for (Eigen::Vector3d &v : mesh.vertices)
-            v = Eigen::Vector3d(static_cast<float>(v.x()) - cx, static_cast<float>(v.y()) - cy,
-                                static_cast<float>(v.z()) - cz);
-        if (reportOut)
-            *reportOut = report;
-        return mesh;
+        /** \brief Shift by the centre (its z only when \e shiftZ), in single precision. Vertices are single-precision
+            values widened to double, so float(v) is exact; the subtraction rounds to float as OMPL.app's aiVector3D
+            arithmetic does. */
+        Mesh centred(const std::string &path, LoadReport *reportOut, bool shiftZ)
+        {
+            LoadReport report;
+            Mesh mesh = loadMesh(path, &report);
+            const float cx = static_cast<float>(report.omplAppCenter.x()),
+                        cy = static_cast<float>(report.omplAppCenter.y()),
+                        cz = shiftZ ? static_cast<float>(report.omplAppCenter.z()) : 0.0f;
+            for (Eigen::Vector3d &v : mesh.vertices)
+                v = Eigen::Vector3d(static_cast<float>(v.x()) - cx, static_cast<float>(v.y()) - cy,
+                                    shiftZ ? static_cast<double>(static_cast<float>(v.z()) - cz) : v.z());
+            if (reportOut)
+                *reportOut = report;
+            return mesh;
+        }
+    }  // namespace
+
+    Mesh loadRobotMesh(const std::string &path, LoadReport *report)
+    {
+        return centred(path, report, true);
+    }
+
+    Mesh loadPlanarRobotMesh(const std::string &path, LoadReport *report)
+    {
+        return centred(path, report, false);
     }
 }  // namespace meshgap
