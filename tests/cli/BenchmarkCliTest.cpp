@@ -132,7 +132,7 @@ namespace
             fs::remove_all(dir_);
             for (const char *shard : {"1/2", "2/2"})
                 shards_.push_back(benchmark("--cfg " + CFG + " --planners rrtconnect --checkers meshgap-certified,fcl"
-                                            " --runs 2 --time 2 --seed 7 --out-dir " + dir_.string() + " --shard " +
+                                            " --runs 2 --time 10 --seed 7 --out-dir " + dir_.string() + " --shard " +
                                             shard));
             for (const auto &entry : fs::directory_iterator(dir_))
                 if (entry.path().extension() == ".log")

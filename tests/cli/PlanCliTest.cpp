@@ -81,7 +81,7 @@ TEST(PlanCli, PlansAPathWhoseEveryStateFclCallsFree)
     const std::string cfg = MAPS + "/hand_bowl/hand_bowl.cfg";
     const std::string out = (fs::temp_directory_path() / ("meshgap_plan_" + std::to_string(::getpid()) + ".path")).string();
     const std::string csv = out + ".csv", summary = out + ".txt";
-    const PlanRun r = plan("--cfg " + cfg + " --planner rrtconnect --time 20 --seed 3 --out " + out +
+    const PlanRun r = plan("--cfg " + cfg + " --planner rrtconnect --time 120 --seed 3 --out " + out +
                            " --clearance-csv " + csv + " --summary " + summary);
     ASSERT_EQ(r.status, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("exact solution  yes"), std::string::npos) << r.out;

@@ -23,7 +23,7 @@ TEST(PlanExport, GlbOfThePlannedPathImports)
     const std::string file =
         (fs::temp_directory_path() / ("meshgap_plan_export_" + std::to_string(::getpid()) + ".glb")).string();
     const test::CliRun run = test::runExecutable(
-        "meshgap_plan", "--cfg " + cfg + " --time 20 --seed 1 --quiet --export-glb " + file + " --export-states 5",
+        "meshgap_plan", "--cfg " + cfg + " --time 120 --seed 1 --quiet --export-glb " + file + " --export-states 5",
         120);
     ASSERT_EQ(run.status, 0) << run.out << run.err;
     EXPECT_NE(run.out.find("scene written"), std::string::npos) << run.out;
