@@ -108,7 +108,8 @@ TEST_F(CacheInterrupt, KilledWriterLeavesNoFileOrTheCompleteTable)
     const std::string path = distanceCachePath(dir_.string(), hash);
     auto write = [&] { return writeDistanceCache(path, hash, n, D.data(), P.data()); };
 
-    // Uninterrupted: how long a writer lives (fork to exit), then the delays are spread over 0 .. 1.2 x that.
+    // Uninterrupted: how long a writer lives (fork to exit), then the delays are spread over 0 .. 1.2 x that (and
+    // one well after).
     const double full = runChild(write, -1.0);
     ASSERT_TRUE(fs::exists(path));
     std::vector<double> readD(entries);
@@ -123,7 +124,10 @@ TEST_F(CacheInterrupt, KilledWriterLeavesNoFileOrTheCompleteTable)
     {
         fs::remove(path);
         pid_t child = 0;
-        runChild(write, 1.2 * full * k / (kills - 1), &child);
+        // Spread over 0 .. 1.2 x the measured life, and the last one long after it: a writer's life varies from
+        // run to run (page cache, disk), and at least one kill must land after the rename.
+        const double delay = k + 1 < kills ? 1.2 * full * k / (kills - 2) : 5.0 * full + 0.5;
+        runChild(write, delay, &child);
         midWrite += temporaries(child) > 0;  // (the next writer removes it: its process is gone)
         if (!fs::exists(path))
         {
