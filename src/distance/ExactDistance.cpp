@@ -113,6 +113,24 @@ namespace meshgap
         {
             return anyPartInside(b, a, X_AB) || anyPartInside(a, b, X_AB.inverse());
         }
+
+        /** \brief The signed distance once result.inCollision is decided: nothing to add when free; in collision the
+            depth (setPenetration()), unless the caller stops early (\e mayStop), who asked for the verdict only. */
+        void finishCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, bool mayStop,
+                             DistanceResult &result)
+        {
+            result.penetrationDepth = 0.0;
+            result.penetration = Penetration::None;
+            if (!result.inCollision)
+                return;
+            if (mayStop)
+            {
+                result.distance = kContactDistance;
+                result.penetration = Penetration::NotComputed;
+            }
+            else
+                setPenetration(a, b, X_AB, result);
+        }
     }  // namespace
 
     bool inCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)
@@ -149,18 +167,8 @@ namespace meshgap
             // report. A part of one body may still lie inside the other.
             result.distance = std::numeric_limits<double>::infinity();
             result.certified = true;
-            result.penetrationDepth = 0.0;
-            result.penetration = Penetration::None;
             result.inCollision = oneInsideTheOther(a, b, X_AB);
-            if (!result.inCollision)
-                return;
-            if (mayStop)
-            {
-                result.distance = kContactDistance;
-                result.penetration = Penetration::NotComputed;
-            }
-            else
-                setPenetration(a, b, X_AB, result);
+            finishCollision(a, b, X_AB, mayStop, result);
             return;
         }
 
@@ -174,20 +182,9 @@ namespace meshgap
         // may have ended it early (bvhDistance() does not say whether it did): then it is only an upper bound.
         const bool stoppedEarly = mayStop && best.d <= stopBelow && !result.inCollision;
         result.certified = !stoppedEarly;
-        result.penetrationDepth = 0.0;
-        result.penetration = Penetration::None;
         if (!result.inCollision && !stoppedEarly)
             result.inCollision = oneInsideTheOther(a, b, X_AB);  // the witnesses stay the closest surface points
-        if (!result.inCollision)
-            return;
-        // In collision: the signed distance. An early stop asked for the verdict only: no depth then.
-        if (mayStop)
-        {
-            result.distance = kContactDistance;
-            result.penetration = Penetration::NotComputed;
-        }
-        else
-            setPenetration(a, b, X_AB, result);
+        finishCollision(a, b, X_AB, mayStop, result);
     }
 
     void ExactSolver::solve(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, const DistanceRequest &request,

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <limits>
 
 #include "FclOracle.h"
 #include "TestMeshes.h"
@@ -50,6 +51,31 @@ TEST(ExactDistance, AnalyticGapBetweenBoxesWhatever)
         EXPECT_FALSE(r.inCollision);
         EXPECT_NEAR((r.onA - r.onB).norm(), r.distance, 1e-12);
     }
+}
+
+TEST(ExactDistance, AnUpperBoundPrunesOnlyWhatCannotBeCloserAndNeverAContainment)
+{
+    // refineExact(..., upperBound): a scene passes the best distance of its other obstacles.
+    const BodyPtr box = body(test::box(1.0, 1.0, 1.0, 2)), ball = body(test::icosphere(0.3, 2));
+    const Eigen::Isometry3d apart = test::translation(3.0, 0.2, -0.1);  // box face at x = 1, ball: gap 3 - 1 - 0.3
+    DistanceResult free;
+    refineExact(*box, *ball, apart, free);
+    ASSERT_FALSE(free.inCollision);
+    // A bound above the distance changes nothing; one below it leaves nothing to report, proven.
+    DistanceResult above;
+    refineExact(*box, *ball, apart, above, -1.0, free.distance + 0.1);
+    EXPECT_EQ(above.distance, free.distance);
+    EXPECT_TRUE(above.certified);
+    DistanceResult below;
+    refineExact(*box, *ball, apart, below, -1.0, free.distance - 0.1);
+    EXPECT_EQ(below.distance, std::numeric_limits<double>::infinity());
+    EXPECT_TRUE(below.certified);
+    EXPECT_FALSE(below.inCollision);
+    // The ball wholly inside the box is far from its surface, beyond any small bound: still a collision, with depth.
+    DistanceResult inside;
+    refineExact(*box, *ball, test::translation(0.1, 0.0, 0.0), inside, -1.0, 1e-3);
+    EXPECT_TRUE(inside.inCollision);
+    EXPECT_LT(inside.distance, 0.0);
 }
 
 #ifdef MESHGAP_HAVE_FCL
