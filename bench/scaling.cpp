@@ -48,10 +48,6 @@
 #include "meshgap/scene/Scene.h"
 
 // ---- allocation counting (this executable only) ----
-extern "C" void *__libc_malloc(std::size_t);
-extern "C" void *__libc_calloc(std::size_t, std::size_t);
-extern "C" void *__libc_realloc(void *, std::size_t);
-extern "C" void *__libc_memalign(std::size_t, std::size_t);
 
 namespace
 {
@@ -136,79 +132,13 @@ namespace
         numSites = 0;
     }
 
-    void *counted(std::size_t size, std::size_t align = 0)
-    {
-        noteAllocation();
-        void *p = align > alignof(std::max_align_t) ? __libc_memalign(align, size ? size : 1)
-                                                    : __libc_malloc(size ? size : 1);
-        if (!p)
-            throw std::bad_alloc();
-        return p;
-    }
 }  // namespace
 
-extern "C" void *malloc(std::size_t size)
+#include "alloc/CountingAllocator.h"
+
+void meshgapNoteAllocation()
 {
     noteAllocation();
-    return __libc_malloc(size);
-}
-extern "C" void *calloc(std::size_t n, std::size_t size)
-{
-    noteAllocation();
-    return __libc_calloc(n, size);
-}
-extern "C" void *realloc(void *p, std::size_t size)
-{
-    noteAllocation();
-    return __libc_realloc(p, size);
-}
-void *operator new(std::size_t size)
-{
-    return counted(size);
-}
-void *operator new[](std::size_t size)
-{
-    return counted(size);
-}
-void *operator new(std::size_t size, std::align_val_t a)
-{
-    return counted(size, static_cast<std::size_t>(a));
-}
-void *operator new[](std::size_t size, std::align_val_t a)
-{
-    return counted(size, static_cast<std::size_t>(a));
-}
-void operator delete(void *p) noexcept
-{
-    std::free(p);
-}
-void operator delete[](void *p) noexcept
-{
-    std::free(p);
-}
-void operator delete(void *p, std::size_t) noexcept
-{
-    std::free(p);
-}
-void operator delete[](void *p, std::size_t) noexcept
-{
-    std::free(p);
-}
-void operator delete(void *p, std::align_val_t) noexcept
-{
-    std::free(p);
-}
-void operator delete[](void *p, std::align_val_t) noexcept
-{
-    std::free(p);
-}
-void operator delete(void *p, std::size_t, std::align_val_t) noexcept
-{
-    std::free(p);
-}
-void operator delete[](void *p, std::size_t, std::align_val_t) noexcept
-{
-    std::free(p);
 }
 
 using namespace meshgap;

@@ -80,6 +80,16 @@ namespace meshgap
                 picks.push_back(i);
             }
         }
+
+        /** \brief The per-query arrays of solve(), kept per thread (ThreadScratch). */
+        struct Scratch
+        {
+            std::vector<Individual> population;
+            std::vector<double> fitness;
+            std::vector<std::size_t> picks;
+            std::vector<Offspring> offspring;
+            MoveScratch moves;
+        };
     }  // namespace
 
     CombGA::CombGA(bool localSearch)
@@ -176,7 +186,10 @@ namespace meshgap
         const MeshDistances &distancesA = a.distances(), &distancesB = b.distances();
         // The mutation radius is fixed at max(D)/2 (III-B.3: "In the present case r_max was fixed to max(D)/2").
         const double radiusA = 0.5 * distancesA.maxDistance(), radiusB = 0.5 * distancesB.maxDistance();
-        MoveScratch scratch;
+        ThreadScratch<Scratch> lease;
+        Scratch &work = lease.get();
+        MoveScratch &scratch = work.moves;
+        scratch.reserve(std::max(distancesA.graph().numNodes(), distancesB.graph().numNodes()));
 
         Individual best{NodePair(), std::numeric_limits<double>::infinity()};
         std::size_t convergedAt = 0, localSteps = 0;
@@ -202,7 +215,8 @@ namespace meshgap
         };
 
         // Initial population (III-D): at random, with the warm start as its first member when given.
-        std::vector<Individual> population(populationSize);
+        std::vector<Individual> &population = work.population;
+        population.assign(populationSize, Individual());
         for (std::size_t i = 0; i < populationSize; ++i)
             population[i].pair = (i == 0 && request.start) ? *request.start : NodePair{nodeA(rng), nodeB(rng)};
         bool stopped = false;
@@ -210,9 +224,10 @@ namespace meshgap
             stopped = !evaluate(population[i], 0);
         record();
 
-        std::vector<double> fitness;
-        std::vector<std::size_t> picks;
-        std::vector<Offspring> offspring;
+        std::vector<double> &fitness = work.fitness;
+        std::vector<std::size_t> &picks = work.picks;
+        std::vector<Offspring> &offspring = work.offspring;
+        offspring.clear();
         offspring.reserve(populationSize);
         std::size_t generation = 0;
         bool converged = false;

@@ -1,5 +1,6 @@
 #include "meshgap/distance/CombSA.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -90,7 +91,9 @@ namespace meshgap
         const MeshDistances &distancesA = a.distances(), &distancesB = b.distances();
         // The largest move is the mutation's r_max = max(D)/2 (III-B.3), shrunk by moveRadius() as t falls.
         const double maxRadiusA = 0.5 * distancesA.maxDistance(), maxRadiusB = 0.5 * distancesB.maxDistance();
-        MoveScratch scratch;
+        ThreadScratch<MoveScratch> lease;
+        MoveScratch &scratch = lease.get();
+        scratch.reserve(std::max(distancesA.graph().numNodes(), distancesB.graph().numNodes()));
 
         NodePair current;
         if (request.start)

@@ -143,7 +143,9 @@ namespace meshgap
     {
         result.nodeDistance = result.distance;
         TriangleCandidate best;
-        if (std::isfinite(result.distance) && result.nodes.a < a.numNodes() && result.nodes.b < b.numNodes())
+        // A seed whose nodes are not below the caller's bound is not worth its descent: the traversal, pruned at the
+        // bound, is then cheaper than walking the surface towards a pair that most likely does not matter.
+        if (result.distance < upperBound && result.nodes.a < a.numNodes() && result.nodes.b < b.numNodes())
             best = seedFromNodes(a, b, X_AB, result.nodes, result.triangleTests);
 
         // With an early stop, a seed at or below stopBelow is already the answer. Otherwise the traversal stops at

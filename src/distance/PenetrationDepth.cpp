@@ -5,6 +5,7 @@
 #include <vector>
 #include <limits>
 
+#include "meshgap/ThreadScratch.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/geometry/TriangleDistance.h"
 
@@ -133,7 +134,9 @@ namespace meshgap
                 std::uint32_t cluster;
                 BvhPointResult nearest;  ///< of the centre
             };
-            std::vector<Candidate> candidates;
+            ThreadScratch<std::vector<Candidate>> scratch;  // a warmed-up thread allocates nothing here
+            std::vector<Candidate> &candidates = scratch.get();
+            candidates.clear();
             for (std::uint32_t k = 0; k < mover.clusters().size(); ++k)
             {
                 const NodeCluster &cluster = mover.clusters()[k];

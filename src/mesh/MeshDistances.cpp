@@ -4,10 +4,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <boost/graph/compressed_sparse_row_graph.hpp>
-#include <boost/graph/dijkstra_shortest_paths.hpp>
-#include <boost/graph/dijkstra_shortest_paths_no_color_map.hpp>
-#include <boost/range/iterator_range.hpp>
+#include <boost/graph/detail/d_ary_heap.hpp>
+#include <boost/property_map/property_map.hpp>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -21,72 +19,25 @@
 #include "meshgap/Exception.h"
 #include "meshgap/mesh/DistanceCache.h"
 
-/* Both strategies run the very same Dijkstra: Boost.Graph's dijkstra_shortest_paths_no_color_map_no_init (4-ary
-   indirect heap) on one compressed_sparse_row_graph whose out-edges are in SurfaceGraph order, with raw-pointer
-   distance and predecessor maps. The dense table runs it to the end from every source; an on-demand query runs it
-   from the first argument and stops (visitor throws StopSearch) when the target is settled or the next node to
-   settle lies beyond the radius. Up to that point both perform the same heap operations on the same values, and a
-   settled node's distance and predecessor never change afterwards (weights are >= 0, relaxation needs a strict
-   decrease), so answers agree bit for bit, ties included.
+/* Both strategies run the very same Dijkstra (DijkstraCore::run()): the loop of Boost.Graph's
+   dijkstra_shortest_paths_no_color_map_no_init, over SurfaceGraph's CSR arrays in their edge order, with Boost's
+   4-ary indirect heap (boost::d_ary_heap_indirect) on raw-pointer distance and index-in-heap arrays. The dense
+   table runs it to the end from every source; an on-demand query runs it from the first argument and stops when the
+   target is settled or the next node to settle lies beyond the radius. Up to that point both perform the same heap
+   operations on the same values, and a settled node's distance and predecessor never change afterwards (weights
+   are >= 0, relaxation needs a strict decrease), so answers agree bit for bit, ties included.
 
-   Keeping an on-demand query proportional to the region it searches needs two things. The distance array lives in
-   a per-thread workspace that stays at +inf except for the nodes a search touched, which are recorded and reset
-   afterwards. And Boost's no-color-map Dijkstra would otherwise allocate and zero a num_vertices()-long
-   index-in-heap array on every call (detail::vertex_property_map_generator); we specialise that generator for our
-   own vertex-index map type so it hands out the workspace's array instead. The heap never reads a slot it has not
-   written during the same search, so the array needs no clearing. Should a future Boost stop consulting the
-   generator, answers stay the same; only queries become O(V) again (bench/mesh_distances.cpp times them). */
+   The loop is ours rather than Boost.Graph's function because that function can only be stopped early by throwing
+   from its visitor (an allocation and an unwind per search), and it builds its heap, a std::vector, afresh on every
+   call; ours stops by returning and keeps the heap's storage in the caller's buffer. Its operations (pop, the
+   examine test, relaxation, push or decrease-key) are Boost's, in Boost's order, so the searches, and with them
+   every distance and predecessor, are those the Boost.Graph call gave.
 
-namespace meshgap
-{
-    namespace detail
-    {
-        /** \brief The Boost graph the searches run on: a copy of SurfaceGraph's CSR arrays, same edge order. */
-        using CsrGraph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, boost::no_property,
-                                                            boost::no_property, std::uint32_t, std::uint32_t>;
-
-        /** \brief Vertex index map for our Dijkstra calls: the identity on node ids, carrying the storage Boost's
-            heap uses for its index-in-heap map (see the specialisation below). */
-        struct HeapSlotIndexMap
-        {
-            std::size_t *slots;
-        };
-
-        inline std::uint32_t get(const HeapSlotIndexMap & /*map*/, std::uint32_t node)
-        {
-            return node;
-        }
-    }  // namespace detail
-}  // namespace meshgap
-
-namespace boost
-{
-    template <>
-    struct property_traits<meshgap::detail::HeapSlotIndexMap>
-    {
-        using key_type = std::uint32_t;
-        using value_type = std::uint32_t;
-        using reference = std::uint32_t;
-        using category = readable_property_map_tag;
-    };
-
-    namespace detail
-    {
-        /** \brief Index-in-heap map for the 4-ary heap of dijkstra_shortest_paths_no_color_map_no_init: the
-            caller's preallocated array, instead of a freshly allocated and zeroed one per call. */
-        template <>
-        struct vertex_property_map_generator<meshgap::detail::CsrGraph, meshgap::detail::HeapSlotIndexMap, std::size_t>
-        {
-            using type = std::size_t *;
-            static type build(const meshgap::detail::CsrGraph & /*graph*/,
-                              const meshgap::detail::HeapSlotIndexMap &index,
-                              boost::scoped_array<std::size_t> & /*holder*/)
-            {
-                return index.slots;
-            }
-        };
-    }  // namespace detail
-}  // namespace boost
+   Keeping an on-demand query proportional to the region it searches, and free of allocations once a thread has
+   warmed up: the distance array lives in a per-thread workspace that stays at +inf except for the nodes a search
+   touched, which are recorded and reset afterwards; the index-in-heap array, the heap's storage and the list of
+   touched nodes are sized to the largest graph seen on the thread and never shrink. The heap never reads an
+   index-in-heap slot it has not written during the same search, so that array needs no clearing. */
 
 namespace meshgap
 {
@@ -95,110 +46,119 @@ namespace meshgap
         constexpr std::uint32_t NO_NODE = std::numeric_limits<std::uint32_t>::max();
         constexpr double INF = std::numeric_limits<double>::infinity();
 
-        /** \brief Thrown by SearchVisitor to end a Dijkstra search early. */
-        struct StopSearch
+        /** \brief The heap's storage as boost::d_ary_heap_indirect needs it (a std::vector-like container) over the
+            caller's array of one slot per node: a node enters the heap at most once per search, so it never fills
+            up, and a push never allocates. */
+        struct HeapStorage
         {
+            using value_type = std::uint32_t;
+            using size_type = std::size_t;
+
+            std::uint32_t *slots;
+            size_type count{0};
+
+            size_type size() const { return count; }
+            bool empty() const { return count == 0; }
+            void push_back(std::uint32_t x) { slots[count++] = x; }
+            void pop_back() { --count; }
+            std::uint32_t &back() { return slots[count - 1]; }
+            std::uint32_t &operator[](size_type i) { return slots[i]; }
+            const std::uint32_t &operator[](size_type i) const { return slots[i]; }
         };
 
-        /** \brief Records the nodes a search reaches and stops it at a target or a radius. */
-        struct SearchVisitor : public boost::default_dijkstra_visitor
+        /** \brief Boost.Graph's Dijkstra queue: 4-ary, indirect on the distance array. */
+        using Heap = boost::d_ary_heap_indirect<std::uint32_t, 4, std::size_t *, double *, std::less<double>,
+                                                HeapStorage>;
+
+        /** \brief Buffers of one search; the caller owns them (see DijkstraCore::run()). */
+        struct SearchBuffers
         {
-            /** \brief If not null, every node given a finite distance, except the source, is appended here. */
-            std::vector<std::uint32_t> *touched{nullptr};
-            const double *dist{nullptr};
-            std::uint32_t source{NO_NODE};
-            /** \brief Stop once this node is settled (NO_NODE: never). */
-            std::uint32_t target{NO_NODE};
-            /** \brief Stop before settling a node farther than this. */
-            double radius{INF};
-
-            template <typename Graph>
-            void discover_vertex(std::uint32_t node, const Graph & /*graph*/) const
-            {
-                if (touched != nullptr && node != source)
-                    touched->push_back(node);
-            }
-
-            template <typename Graph>
-            void examine_vertex(std::uint32_t node, const Graph & /*graph*/) const
-            {
-                if (node == target || dist[node] > radius)
-                    throw StopSearch();
-            }
+            double *dist;
+            std::uint32_t *pred;
+            std::size_t *heapSlots;
+            /** \brief The heap's storage, one slot per node. */
+            std::uint32_t *heap;
+            /** \brief If not null, every node given a finite distance, except the source, is appended here
+                (capacity >= the node count). */
+            std::vector<std::uint32_t> *touched;
         };
 
-        /** \brief SurfaceGraph as a Boost CSR graph, with the Dijkstra call both strategies share. */
+        /** \brief SurfaceGraph's adjacency, with the Dijkstra loop both strategies share. */
         class DijkstraCore
         {
         public:
-            explicit DijkstraCore(const SurfaceGraph &graph) : lengths_(graph.lengths())
+            explicit DijkstraCore(const SurfaceGraph &graph)
+                : offsets_(graph.offsets()), neighbours_(graph.neighbours()), lengths_(graph.lengths()),
+                  n_(graph.numNodes())
             {
-                const std::uint32_t n = graph.numNodes();
-                const auto &offsets = graph.offsets();
-                const auto &neighbours = graph.neighbours();
                 for (double len : lengths_)
                     if (!(len >= 0.0 && len < INF))
                         throw Exception("MeshDistances",
                                         "edge length " + std::to_string(len) + " is not a finite non-negative number");
-                std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
-                edges.reserve(neighbours.size());
-                for (std::uint32_t u = 0; u < n; ++u)
-                    for (std::uint32_t k = offsets[u]; k < offsets[u + 1]; ++k)
-                        edges.emplace_back(u, neighbours[k]);
-                csr_ = detail::CsrGraph(boost::edges_are_sorted, edges.begin(), edges.end(), n, edges.size());
-
-                // The weight map indexes SurfaceGraph::lengths() by Boost's edge index: check they line up.
-                auto index = get(boost::edge_index, csr_);
-                for (std::uint32_t u = 0; u < n; ++u)
-                {
-                    std::uint32_t k = offsets[u];
-                    for (auto e : boost::make_iterator_range(boost::out_edges(u, csr_)))
-                    {
-                        if (get(index, e) != k || boost::target(e, csr_) != neighbours[k])
-                            throw Exception("MeshDistances", "Boost CSR graph does not keep SurfaceGraph's edge order");
-                        ++k;
-                    }
-                    if (k != offsets[u + 1])
-                        throw Exception("MeshDistances", "Boost CSR graph does not keep SurfaceGraph's edge order");
-                }
             }
 
-            std::uint32_t numNodes() const { return static_cast<std::uint32_t>(boost::num_vertices(csr_)); }
+            std::uint32_t numNodes() const { return n_; }
 
-            /** \brief Dijkstra from \e source. On entry \e dist must be +inf everywhere; \e pred and \e heapSlots may
-                hold anything. On return, every settled node has its final distance and predecessor (the source is
-                its own predecessor). */
-            void run(std::uint32_t source, double *dist, std::uint32_t *pred, std::size_t *heapSlots,
-                     SearchVisitor visitor) const
+            /** \brief Dijkstra from \e source, until \e target is settled (NO_NODE: never), the next node to settle
+                lies farther than \e radius, or every reachable node is settled. On entry \e b.dist must be +inf
+                everywhere; \e b.pred and \e b.heapSlots may hold anything. On return, every settled node has its
+                final distance and predecessor (the source is its own predecessor). */
+            void run(std::uint32_t source, const SearchBuffers &b, std::uint32_t target = NO_NODE,
+                     double radius = INF) const
             {
+                double *dist = b.dist;
+                std::uint32_t *pred = b.pred;
+                const std::uint32_t *offsets = offsets_.data(), *neighbours = neighbours_.data();
+                const double *lengths = lengths_.data();
                 dist[source] = 0.0;
                 pred[source] = source;
-                visitor.dist = dist;
-                visitor.source = source;
-                auto weights = boost::make_iterator_property_map(lengths_.data(), get(boost::edge_index, csr_));
-                try
+                Heap queue(dist, b.heapSlots, std::less<double>(), HeapStorage{b.heap});
+                queue.push(source);
+                while (!queue.empty())
                 {
-                    boost::dijkstra_shortest_paths_no_color_map_no_init(
-                        csr_, source, pred, dist, weights, detail::HeapSlotIndexMap{heapSlots}, std::less<double>(),
-                        boost::closed_plus<double>(INF), INF, 0.0, visitor);
-                }
-                catch (const StopSearch &)
-                {
+                    const std::uint32_t u = queue.top();
+                    queue.pop();
+                    const double du = dist[u];
+                    if (u == target || du > radius || !(du < INF))
+                        return;  // settled the target, or everything left is beyond the radius or unreachable
+                    for (std::uint32_t k = offsets[u], end = offsets[u + 1]; k < end; ++k)
+                    {
+                        // Boost's relax_target() with closed_plus (du and the length are finite).
+                        const std::uint32_t v = neighbours[k];
+                        const double dv = dist[v];
+                        const double candidate = du + lengths[k];
+                        if (!(candidate < dv))
+                            continue;
+                        dist[v] = candidate;
+                        pred[v] = u;
+                        if (dv < INF)
+                            queue.update(v);
+                        else
+                        {
+                            if (b.touched != nullptr)
+                                b.touched->push_back(v);
+                            queue.push(v);
+                        }
+                    }
                 }
             }
 
         private:
-            detail::CsrGraph csr_;
+            const std::vector<std::uint32_t> &offsets_;
+            const std::vector<std::uint32_t> &neighbours_;
             const std::vector<double> &lengths_;
+            std::uint32_t n_;
         };
 
         /** \brief Per-thread scratch for on-demand searches, shared by all MeshDistances objects on that thread:
-            dist stays +inf between searches, so a search costs only what it touches. */
+            dist stays +inf between searches, so a search costs only what it touches. Every array is sized (or
+            reserved) to the largest graph seen on the thread, so a warmed-up thread searches without allocating. */
         struct Workspace
         {
             std::vector<double> dist;
             std::vector<std::uint32_t> pred;
             std::vector<std::size_t> heapSlots;
+            std::vector<std::uint32_t> heap;     // the heap's storage, one slot per node
             std::vector<std::uint32_t> touched;  // capacity >= dist.size(), so push_back never reallocates
             bool busy{false};
 
@@ -209,6 +169,7 @@ namespace meshgap
                     dist.resize(n, INF);
                     pred.resize(n);
                     heapSlots.resize(n);
+                    heap.resize(n);
                     touched.reserve(n);
                 }
             }
@@ -249,11 +210,9 @@ namespace meshgap
             /** \brief Search until \e target is settled, the next node lies beyond \e radius, or all is settled. */
             void run(std::uint32_t target, double radius)
             {
-                SearchVisitor visitor;
-                visitor.touched = &ws_.touched;
-                visitor.target = target;
-                visitor.radius = radius;
-                core_.run(source_, ws_.dist.data(), ws_.pred.data(), ws_.heapSlots.data(), visitor);
+                const SearchBuffers buffers{ws_.dist.data(), ws_.pred.data(), ws_.heapSlots.data(), ws_.heap.data(),
+                                            &ws_.touched};
+                core_.run(source_, buffers, target, radius);
             }
 
             double dist(std::uint32_t v) const { return ws_.dist[v]; }
@@ -376,6 +335,7 @@ namespace meshgap
                     try
                     {
                         std::vector<std::size_t> heapSlots(n_);
+                        std::vector<std::uint32_t> heap(n_);
                         double localMax = 0.0;
                         for (std::uint32_t s = next++; s < n_; s = next++)
                         {
@@ -383,7 +343,7 @@ namespace meshgap
                             std::uint32_t *pred = P_.get() + std::size_t(s) * n_;
                             std::fill(dist, dist + n_, INF);
                             std::fill(pred, pred + n_, NO_NODE);
-                            core.run(s, dist, pred, heapSlots.data(), SearchVisitor());
+                            core.run(s, SearchBuffers{dist, pred, heapSlots.data(), heap.data(), nullptr});
                             for (std::uint32_t v = 0; v < n_; ++v)
                                 if (dist[v] < INF)
                                     localMax = std::max(localMax, dist[v]);

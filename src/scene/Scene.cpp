@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -14,6 +15,7 @@
 #include <boost/geometry/index/rtree.hpp>
 
 #include "meshgap/Exception.h"
+#include "meshgap/ThreadScratch.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/PenetrationDepth.h"
 #include "meshgap/distance/SolverFactory.h"
@@ -57,6 +59,15 @@ namespace meshgap
             }
             return node;
         }
+
+        /** \brief An obstacle the nearest-first walk may visit: its box, its squared box distance from the robot's
+            box (what the R-tree's nearest query ordered by), and its rank in R-tree order (the tie-break). */
+        struct Candidate
+        {
+            double comparable;
+            std::size_t rank;
+            const Entry *entry;
+        };
     }  // namespace
 
     std::vector<Mesh> splitComponents(const Mesh &mesh)
@@ -129,26 +140,100 @@ namespace meshgap
                 for (const Point &p : {e.first.min_corner(), e.first.max_corner()})
                     extent =
                         std::max({extent, std::abs(bg::get<0>(p)), std::abs(bg::get<1>(p)), std::abs(bg::get<2>(p))});
+            inTreeOrder.reserve(entries.size());
+            tree.query(bgi::satisfies([](const Entry &) { return true; }), std::back_inserter(inTreeOrder));
         }
 
-        /** \brief The broad phase both query modes share: visit obstacle \e first (the warm start's; none if out of
-            range), then the others in increasing box distance from \e box, until the next box is farther than
-            bestDistance() (nothing there can be closer) or visit() has returned true (the caller needs no more).
-            Returns true if it ended on visit()'s word with an obstacle left that might be closer. */
+        /** \brief The entries whose boxes intersect \e box, in R-tree order, into \e out (emptied first; capacity
+            for every entry, so it never grows). Boost's spatial query visitor allocates nothing. */
+        void intersecting(const Box &box, std::vector<Entry> &out) const
+        {
+            out.clear();
+            out.reserve(tree.size());
+            tree.query(bgi::intersects(box), std::back_inserter(out));
+        }
+
+        /** \brief The broad phase both query modes share: visit obstacle \e first (the warm start's; if out of range,
+            the obstacle of the nearest box), then the others in increasing box distance from \e box, until the next
+            box is farther than bestDistance() (nothing there can be closer) or visit() has returned true (the caller
+            needs no more). Returns true if it ended on visit()'s word with an obstacle left that might be closer.
+            Equal box distances go in R-tree order.
+
+            The same walk as the R-tree's incremental nearest query gave, without its allocations: after the first
+            visit, every box within the best distance so far lies in the robot's box grown by that distance (padded
+            against roundoff); those alone are sorted by box distance, and the walk goes on while the next box
+            distance is within the best distance, re-read after each visit (it only falls, so the candidates taken
+            after the first visit are all that can qualify). A cold walk first finds the nearest box by a scan. */
         template <typename BestDistance, typename Visit>
         bool visitNearestFirst(const Box &box, std::size_t first, BestDistance bestDistance, Visit visit) const
         {
-            const std::size_t count = tree.size();
-            bool ended = first < count && visit(first);
-            for (auto it = tree.qbegin(bgi::nearest(box, static_cast<unsigned>(count))); it != tree.qend(); ++it)
+            const std::size_t count = inTreeOrder.size();
+            if (first >= count)
             {
-                if (it->second == first)
-                    continue;
-                if (bg::distance(box, it->first) > bestDistance())
+                // Cold: the nearest box (the first in R-tree order among equals) is visited first.
+                if (count == 0)
+                    return false;
+                std::size_t nearest = 0;
+                double least = bg::comparable_distance(box, inTreeOrder[0].first);
+                for (std::size_t i = 1; i < count; ++i)
+                {
+                    const double c = bg::comparable_distance(box, inTreeOrder[i].first);
+                    if (c < least)
+                    {
+                        least = c;
+                        nearest = i;
+                    }
+                }
+                if (bg::distance(box, inTreeOrder[nearest].first) > bestDistance())
+                    return false;
+                first = inTreeOrder[nearest].second;
+            }
+            bool ended = visit(first);
+
+            const double bound = bestDistance();
+            if (bound < 0.0)
+                return false;  // a collision: every other box is farther
+            // Per-thread vectors (the visits and the narrow phase never query a Scene, but a nested walk would get
+            // fresh ones rather than these).
+            ThreadScratch<std::vector<Entry>> hitsScratch;
+            ThreadScratch<std::vector<Candidate>> candidatesScratch;
+            std::vector<Candidate> &candidates = candidatesScratch.get();
+            candidates.clear();
+            candidates.reserve(count);
+            auto take = [&](const std::vector<Entry> &entries)
+            {
+                for (std::size_t i = 0; i < entries.size(); ++i)
+                    if (entries[i].second != first)
+                        candidates.push_back({bg::comparable_distance(box, entries[i].first), i, &entries[i]});
+            };
+            if (bound < std::numeric_limits<double>::infinity())
+            {
+                // Every box at distance <= bound from the robot's is within bound of it along each axis. The pad
+                // covers roundoff in the box distance (relative to the bound) and in the grown box's corners
+                // (relative to the coordinates): 1e-9 of either is far above roundoff.
+                const Point &lo = box.min_corner(), &hi = box.max_corner();
+                const double scale = std::max({extent, std::abs(bg::get<0>(lo)), std::abs(bg::get<1>(lo)),
+                                               std::abs(bg::get<2>(lo)), std::abs(bg::get<0>(hi)),
+                                               std::abs(bg::get<1>(hi)), std::abs(bg::get<2>(hi))});
+                const double grow = bound + 1e-9 * (bound + scale) + 1e-300;
+                const Box grown(Point(bg::get<0>(lo) - grow, bg::get<1>(lo) - grow, bg::get<2>(lo) - grow),
+                                Point(bg::get<0>(hi) + grow, bg::get<1>(hi) + grow, bg::get<2>(hi) + grow));
+                intersecting(grown, hitsScratch.get());
+                take(hitsScratch.get());
+            }
+            else
+                take(inTreeOrder);  // no bound (or NaN): every box qualifies
+            std::sort(candidates.begin(), candidates.end(),
+                      [](const Candidate &p, const Candidate &q)
+                      { return p.comparable < q.comparable || (p.comparable == q.comparable && p.rank < q.rank); });
+
+            for (const Candidate &c : candidates)
+            {
+                if (bg::distance(box, c.entry->first) > bestDistance())
                     return false;  // this box and every later one are farther than the best
                 if (ended)
                     return true;
-                ended = visit(it->second);
+                ended = visit(c.entry->second);
             }
             return false;
         }
@@ -171,6 +256,8 @@ namespace meshgap
         }
 
         RTree tree;
+        /** \brief Every entry, in R-tree order (the order of the tree's spatial queries). */
+        std::vector<Entry> inTreeOrder;
         double extent{0.0};  ///< largest absolute coordinate of any obstacle box
         /** \brief seedNodes() of the robot and of each obstacle. */
         std::vector<std::uint32_t> robotSeeds;
@@ -211,10 +298,11 @@ namespace meshgap
     std::size_t Scene::firstCollision(const Eigen::Isometry3d &X_WR) const
     {
         // Touching or intersecting bodies, or one inside the other, have overlapping boxes.
-        const Box box = impl_->robotBox(*robot_, X_WR);
-        for (auto it = impl_->tree.qbegin(bgi::intersects(box)); it != impl_->tree.qend(); ++it)
-            if (meshgap::inCollision(*obstacles_[it->second], *robot_, X_WR))
-                return it->second;
+        ThreadScratch<std::vector<Entry>> hits;
+        impl_->intersecting(impl_->robotBox(*robot_, X_WR), hits.get());
+        for (const Entry &e : hits.get())
+            if (meshgap::inCollision(*obstacles_[e.second], *robot_, X_WR))
+                return e.second;
         return obstacles_.size();
     }
 
@@ -223,11 +311,12 @@ namespace meshgap
     {
         // Every colliding obstacle has a box overlapping the robot's: test them all, in R-tree order; the order
         // cannot matter, since the most negative value wins and ties go to the smallest index.
-        const Box box = impl_->robotBox(*robot_, X_WR);
+        ThreadScratch<std::vector<Entry>> hits;
+        impl_->intersecting(impl_->robotBox(*robot_, X_WR), hits.get());
         std::size_t bestK = obstacles_.size();
-        for (auto it = impl_->tree.qbegin(bgi::intersects(box)); it != impl_->tree.qend(); ++it)
+        for (const Entry &e : hits.get())
         {
-            const std::size_t k = it->second;
+            const std::size_t k = e.second;
             const Body &obstacle = *obstacles_[k];
             if (k != known)
             {
@@ -262,17 +351,22 @@ namespace meshgap
             warm.valid = false;
             return;
         }
+        if (!(request.upperBound > 0.0))
+            throw Exception("Scene", "the upper bound of a distance query must be positive");
         if (request.exact)
             exactDistance(X_WR, request, warm, result);
         else
             fastDistance(X_WR, request, warm, result);
     }
 
-    // Both modes share the visiting order: the warm start's obstacle first, then the R-tree's incremental nearest
-    // query (increasing box distance), stopping at the first box farther than the best distance so far. Every box
-    // distance is below its obstacle's true distance by at least the robot box's pad, so roundoff in the ordering
-    // or in the distance cannot skip an obstacle that could be closer. Per call the R-tree's query iterators still
-    // allocate (3 allocations per exact query, measured by bench/scaling.cpp); the BVH traversal stacks are per thread.
+    // Both modes share the visiting order: the warm start's obstacle first, then increasing box distance (ties in
+    // R-tree order), stopping at the first box farther than the best distance so far. Every box distance is below
+    // its obstacle's true distance by at least the robot box's pad, so roundoff in the ordering or in the distance
+    // cannot skip an obstacle that could be closer. No query allocates once its thread has warmed up: the broad
+    // phase uses the R-tree's spatial query (a visitor, no allocation) into per-thread vectors; the BVH traversal
+    // stacks, the penetration depth's cluster candidates, comb-GA's arrays and the on-demand Dijkstra's buffers are
+    // per thread too (capacity kept); DistanceResult::history is only filled on request. tests/alloc checks every
+    // query kind.
 
     void Scene::exactDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
                               SceneResult &result) const
@@ -283,6 +377,8 @@ namespace meshgap
         std::size_t bestK = obstacles_.size();
         bool complete = true;  // every visited pair completed
 
+        // Only a pair below the best so far (and the caller's bound) can change the answer.
+        auto bound = [&] { return bestK == obstacles_.size() ? request.upperBound : best.distance; };
         // Returns true when the query can end: a collision, or the early stop reached.
         auto visit = [&](std::size_t k)
         {
@@ -296,12 +392,10 @@ namespace meshgap
             }
             // Without an early stop, a collision still ends the walk at once (stopBelow 0: no depth yet): the
             // depth pass below then looks at every obstacle that might collide.
-            // The best distance so far bounds this obstacle's search: only a closer pair can change the answer.
-            refineExact(obstacle, *robot_, X_WR, r, mayStop ? request.stopBelow : 0.0,
-                        bestK == obstacles_.size() ? std::numeric_limits<double>::infinity() : best.distance);
+            refineExact(obstacle, *robot_, X_WR, r, mayStop ? request.stopBelow : 0.0, bound());
             ++result.pairsChecked;
             complete = complete && r.certified;
-            if (bestK == obstacles_.size() || r.distance < best.distance)
+            if (r.distance < bound())  // else nothing on this obstacle is below the bound (refineExact's infinity)
             {
                 best = r;
                 bestK = k;
@@ -312,8 +406,20 @@ namespace meshgap
         // Ending early (a collision, or the early stop) with an obstacle left that might be closer leaves the
         // distance uncertified; a collision is certified by its own pair.
         if (impl_->visitNearestFirst(impl_->robotBox(*robot_, X_WR), warmValid ? warm.obstacle : obstacles_.size(),
-                                     [&] { return best.distance; }, visit))
+                                     bound, visit))
             complete = false;
+        if (bestK == obstacles_.size())
+        {
+            // Nothing below the caller's bound (no obstacle is closer, none collides: a collision is below any
+            // positive bound, and a containment is found by refineExact whatever its bound).
+            if (!(request.upperBound < std::numeric_limits<double>::infinity()))
+                throw Exception("Scene", "no obstacle visited");  // cannot happen: the nearest one is always visited
+            result.distance = request.upperBound;
+            result.obstacle = obstacles_.size();
+            result.atLeast = true;
+            result.certified = complete;
+            return;  // the warm start stays as it was
+        }
         if (best.inCollision && !mayStop)
         {
             // The signed distance: the deepest penetration over all colliding obstacles, whichever was met first.
@@ -331,8 +437,6 @@ namespace meshgap
         result.penetration = best.penetration;
         result.certified = best.inCollision ? best.certified : complete;
         result.warmStartHit = warmValid && bestK == warm.obstacle;
-        if (bestK == obstacles_.size())
-            throw Exception("Scene", "no obstacle visited");  // cannot happen: the nearest one is always visited
 
         const NodePair nodes{impl_->obstacleSeeds[bestK][best.triangleA], impl_->robotSeeds[best.triangleB]};
         warm.valid = nodes.a != NONE && nodes.b != NONE;

@@ -366,6 +366,54 @@ TEST(Scene, StopBelowGivesAnUpperBoundAtOrBelowTheThresholdAndTheExactAnswerAbov
     EXPECT_GT(above, 20u);
 }
 
+TEST(Scene, UpperBoundGivesTheExactAnswerBelowItAndAProvenAtLeastAbove)
+{
+    const ScenePtr scene = Scene::fromMeshes(uRobot(), scatteredWorld(), coarse());
+    std::size_t below = 0, atLeast = 0, colliding = 0;
+    SceneWarmStart warm;  // warm along the sequence: a bounded answer must not spoil the warm start
+    int i = 0;
+    for (const Eigen::Isometry3d &X : randomPoses(1002, 200))
+    {
+        SceneWarmStart cold;
+        SceneResult exact, bounded;
+        scene->distance(X, SceneRequest(), cold, exact);
+        SceneRequest request;
+        request.upperBound = 0.25 + 0.5 * (i++ % 5);  // 0.25 .. 2.25: some poses below, some above
+        request.stopBelow = i % 2 == 0 ? 0.0 : -1.0;   // with and without the verdict-only collision
+        scene->distance(X, request, warm, bounded);
+        ASSERT_EQ(bounded.inCollision, exact.inCollision) << X.matrix();  // the verdict whatever the bound
+        if (exact.inCollision)
+        {
+            ++colliding;
+            EXPECT_LT(bounded.distance, 0.0);
+            EXPECT_FALSE(bounded.atLeast);
+        }
+        else if (exact.distance < request.upperBound)
+        {
+            ++below;
+            EXPECT_NEAR(bounded.distance, exact.distance, 1e-12 * (1.0 + exact.distance));
+            EXPECT_FALSE(bounded.atLeast);
+            EXPECT_TRUE(bounded.certified);
+            EXPECT_EQ(bounded.obstacle, exact.obstacle);
+        }
+        else
+        {
+            ++atLeast;
+            EXPECT_TRUE(bounded.atLeast) << exact.distance << " vs bound " << request.upperBound;
+            EXPECT_EQ(bounded.distance, request.upperBound);
+            EXPECT_TRUE(bounded.certified);
+        }
+    }
+    EXPECT_GT(below, 20u);
+    EXPECT_GT(atLeast, 20u);
+    EXPECT_GT(colliding, 5u);
+    SceneWarmStart w;
+    SceneResult r;
+    SceneRequest bad;
+    bad.upperBound = 0.0;
+    EXPECT_THROW(scene->distance(Eigen::Isometry3d::Identity(), bad, w, r), Exception);
+}
+
 TEST(Scene, FastModeNeverCallsACollidingPoseFreeAndIsNeverBelowTheExactDistance)
 {
     const ScenePtr scene = Scene::fromMeshes(uRobot(), scatteredWorld(), coarse());

@@ -5,6 +5,7 @@
 #include <random>
 #include <vector>
 
+#include "meshgap/ThreadScratch.h"
 #include "meshgap/distance/PairEvaluator.h"
 #include "meshgap/mesh/MeshDistances.h"
 
@@ -14,11 +15,19 @@ namespace meshgap
     using QueryRng = std::mt19937_64;
 
     /** \brief Scratch space of the moves (a path and its mesh distances), reused between calls to save allocations.
-        One per query. */
+        Used by one query at a time; the solvers keep one per thread (ThreadScratch) with capacity for the longest
+        path, so moves never allocate. */
     struct MoveScratch
     {
         std::vector<std::uint32_t> path;
         std::vector<double> cumulative;
+
+        /** \brief Capacity for a path of \e numNodes nodes (the most a mesh path of that graph has). */
+        void reserve(std::size_t numNodes)
+        {
+            path.reserve(numNodes);
+            cumulative.reserve(numNodes);
+        }
     };
 
     /** \brief Radius of mesh mating, the paper's eq. 5: r = delta_{1->2} d1^2 / (d1^2 + d2^2), where parent 1 is the

@@ -27,6 +27,11 @@ namespace meshgap
         double stopBelow{-1.0};
         /** \brief Seed of the node-level search (fast mode); the same seed gives the same answer. */
         std::uint64_t seed{1};
+        /** \brief Exact mode: only a distance below this matters to the caller, so obstacles and surface pairs at or
+            above it are pruned (a cheap query when the robot is far from everything). When the distance is at or
+            above it, the answer is distance = upperBound with atLeast set: proven, not the distance itself. The
+            collision verdict is exact whatever the bound. Infinity (the default): no bound. */
+        double upperBound{std::numeric_limits<double>::infinity()};
     };
 
     /** \brief The last answer of one caller (one thread): the best first guess for the next, nearby pose (paper
@@ -56,6 +61,9 @@ namespace meshgap
         std::size_t pairsChecked{0};  ///< robot/obstacle pairs that survived the broad phase
         std::size_t evaluations{0};   ///< node-pair evaluations (fast mode)
         bool warmStartHit{false};     ///< the minimum was at the warm start's obstacle
+        /** \brief The distance is at least SceneRequest::upperBound, which distance then holds (certified; no
+            witnesses, obstacle = obstacles().size()). */
+        bool atLeast{false};
     };
 
     /** \brief A robot (one body, moving) among obstacles (bodies fixed in the world frame). Immutable once built,

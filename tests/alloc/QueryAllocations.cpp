@@ -1,0 +1,243 @@
+// No query path allocates once warmed up on a thread: Scene::distance() in every mode (certified cold and warm,
+// fast, collision-only, in collision with penetration depth, fast with on-demand mesh distances) and
+// Scene::inCollision(). This executable replaces the global operator new / new[] and malloc / calloc / realloc and
+// counts, per thread, every allocation; each mode runs its queries once to warm up, then once more counted, and the
+// second pass must allocate nothing (and give the same answers). Not built under sanitizers (they replace the
+// allocator themselves).
+
+#include <gtest/gtest.h>
+#include <ompl/util/Console.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "TestMeshes.h"
+#include "meshgap/scene/Scene.h"
+
+#include "alloc/CountingAllocator.h"
+
+namespace
+{
+    /** \brief Allocations made by this thread so far (static TLS in the executable: reading it never allocates). */
+    thread_local std::size_t allocationCount = 0;
+}  // namespace
+
+void meshgapNoteAllocation()
+{
+    ++allocationCount;
+}
+
+namespace meshgap
+{
+    namespace
+    {
+        /** \brief 24 boxes of a few sizes on a 6 x 4 grid (spacing 1), one obstacle each: more than one R-tree leaf
+            (16 entries), so the broad phase walks inner nodes too. */
+        Mesh world()
+        {
+            Mesh all;
+            for (int i = 0; i < 6; ++i)
+                for (int j = 0; j < 4; ++j)
+                {
+                    const double h = 0.15 + 0.02 * ((i + 2 * j) % 3);
+                    const Mesh part = test::transformed(test::box(h, h, 1.2 * h, 2), test::translation(i, j, 0.0));
+                    all = all.triangles.empty() ? part : test::merged(all, part);
+                }
+            all.source = "alloc::world";
+            return all;
+        }
+
+        ScenePtr makeScene(bool onDemand)
+        {
+            BodyOptions options;
+            options.gridSize = 0;  // the meshes as they are: small graphs, quick fast-mode queries
+            if (onDemand)
+                options.distances.memoryBudgetBytes = 0;  // every body beyond the dense budget
+            return Scene::fromMeshes(test::icosphere(0.25, 2), world(), options);
+        }
+
+        /** \brief The robot along a row of boxes at height \e y (0.5: between rows, free; 0.1: in collision with the
+            boxes it passes), turning as it goes. */
+        std::vector<Eigen::Isometry3d> motion(double y, int count = 24)
+        {
+            std::vector<Eigen::Isometry3d> poses;
+            for (int k = 0; k < count; ++k)
+            {
+                Eigen::Isometry3d X = test::translation(-0.5 + 0.25 * k, y, 0.05 * (k % 3));
+                X.linear() = Eigen::AngleAxisd(0.1 * k, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+                poses.push_back(X);
+            }
+            return poses;
+        }
+
+        struct Answer
+        {
+            double distance;
+            std::size_t obstacle;
+            bool inCollision;
+            bool operator==(const Answer &o) const
+            {
+                return std::memcmp(&distance, &o.distance, sizeof distance) == 0 && obstacle == o.obstacle &&
+                       inCollision == o.inCollision;
+            }
+        };
+
+        /** \brief Runs \e query over \e poses twice (warm-up, then counted) with one warm start carried through
+            (reset before each query if \e cold); returns the allocations of the second pass and checks that both
+            passes gave the same answers. */
+        std::size_t allocationsAfterWarmUp(const Scene &scene, const std::vector<Eigen::Isometry3d> &poses,
+                                           const SceneRequest &request, bool cold, std::size_t &collisions)
+        {
+            std::vector<Answer> first, second;
+            first.reserve(poses.size());
+            second.reserve(poses.size());
+            std::size_t counted = 0;
+            collisions = 0;
+            for (int pass = 0; pass < 2; ++pass)
+            {
+                std::vector<Answer> &answers = pass == 0 ? first : second;
+                SceneWarmStart warm;
+                SceneResult result;
+                for (const Eigen::Isometry3d &X : poses)
+                {
+                    if (cold)
+                        warm = SceneWarmStart();
+                    const std::size_t before = allocationCount;
+                    scene.distance(X, request, warm, result);
+                    counted += pass == 1 ? allocationCount - before : 0;
+                    answers.push_back({result.distance, result.obstacle, result.inCollision});
+                    collisions += pass == 1 && result.inCollision;
+                }
+            }
+            EXPECT_TRUE(first == second) << "the counted pass gave other answers than the warm-up pass";
+            return counted;
+        }
+
+        SceneRequest exact(double stopBelow = -1.0)
+        {
+            SceneRequest r;
+            r.stopBelow = stopBelow;
+            return r;
+        }
+
+        SceneRequest fast(double stopBelow = -1.0)
+        {
+            SceneRequest r;
+            r.exact = false;
+            r.stopBelow = stopBelow;
+            r.seed = 7;
+            return r;
+        }
+
+        class QueryAllocations : public ::testing::Test
+        {
+        protected:
+            static void SetUpTestSuite()
+            {
+                dense_ = makeScene(false);
+                onDemand_ = makeScene(true);
+                ASSERT_TRUE(dense_->robot().distances().isDense());
+                ASSERT_FALSE(onDemand_->robot().distances().isDense());
+                ASSERT_FALSE(onDemand_->obstacles()[0]->distances().isDense());
+                ASSERT_GT(dense_->obstacles().size(), 16u);
+            }
+
+            static void TearDownTestSuite()
+            {
+                dense_.reset();
+                onDemand_.reset();
+            }
+
+            /** \brief Expects no allocation after warm-up, and (if \e collide) collisions on the way, else none. */
+            static void check(const Scene &scene, const SceneRequest &request, bool cold, bool collide)
+            {
+                std::size_t collisions = 0;
+                const std::vector<Eigen::Isometry3d> poses = motion(collide ? 0.1 : 0.5);
+                EXPECT_EQ(allocationsAfterWarmUp(scene, poses, request, cold, collisions), 0u)
+                    << "allocations over " << poses.size() << " queries";
+                if (collide)
+                    EXPECT_GT(collisions, 0u);
+                else
+                    EXPECT_EQ(collisions, 0u);
+            }
+
+            static ScenePtr dense_, onDemand_;
+        };
+
+        ScenePtr QueryAllocations::dense_, QueryAllocations::onDemand_;
+
+        TEST_F(QueryAllocations, CertifiedCold)
+        {
+            check(*dense_, exact(), true, false);
+        }
+
+        TEST_F(QueryAllocations, CertifiedWarm)
+        {
+            check(*dense_, exact(), false, false);
+        }
+
+        TEST_F(QueryAllocations, CertifiedEarlyStop)
+        {
+            check(*dense_, exact(0.1), false, false);
+        }
+
+        TEST_F(QueryAllocations, CollisionOnly)
+        {
+            check(*dense_, exact(0.0), false, false);
+            check(*dense_, exact(0.0), false, true);
+        }
+
+        TEST_F(QueryAllocations, InCollisionWithDepth)
+        {
+            check(*dense_, exact(), false, true);
+            check(*dense_, exact(), true, true);
+            check(*dense_, fast(), false, true);
+        }
+
+        TEST_F(QueryAllocations, InCollisionVerdict)
+        {
+            const std::vector<Eigen::Isometry3d> poses = motion(0.1);
+            std::size_t counted = 0, collisions = 0;
+            for (int pass = 0; pass < 2; ++pass)
+                for (const Eigen::Isometry3d &X : poses)
+                {
+                    const std::size_t before = allocationCount;
+                    const bool hit = dense_->inCollision(X);
+                    counted += pass == 1 ? allocationCount - before : 0;
+                    collisions += pass == 1 && hit;
+                }
+            EXPECT_EQ(counted, 0u);
+            EXPECT_GT(collisions, 0u);
+        }
+
+        TEST_F(QueryAllocations, Fast)
+        {
+            check(*dense_, fast(), false, false);
+            check(*dense_, fast(), true, false);
+            check(*dense_, fast(0.0), false, true);
+        }
+
+        TEST_F(QueryAllocations, FastOnDemandDistances)
+        {
+            check(*onDemand_, fast(), false, false);
+            check(*onDemand_, fast(), true, false);
+        }
+
+        TEST_F(QueryAllocations, CertifiedOnDemandDistances)
+        {
+            check(*onDemand_, exact(), true, false);
+            check(*onDemand_, exact(), false, false);
+        }
+    }  // namespace
+}  // namespace meshgap
+
+int main(int argc, char **argv)
+{
+    ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+    ::testing::InitGoogleTest(&argc, argv);
+    return RUN_ALL_TESTS();
+}
