@@ -97,13 +97,20 @@ namespace meshgap
         };
 
         /** \brief Lower bound on the distance between anything in box \e a and anything in box \e b (B's frame),
-            from the six face-axis gaps and the sphere gap; <= 0 means the boxes may touch. */
-        double lowerBound(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X)
+            from the six face-axis gaps and the sphere gap; <= 0 means the boxes may touch. Once a partial bound
+            exceeds \e enough (the caller prunes above it) that one is returned: still a lower bound, just not the
+            best of the three. */
+        double lowerBound(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X,
+                          double enough = std::numeric_limits<double>::infinity())
         {
             const Eigen::Vector3d T = X.R * b.center + X.t - a.center;
             double bound = T.norm() - a.radius - b.radius;
+            if (bound > enough)
+                return bound;
             const Eigen::Vector3d rb = X.absR * b.half;             // B's box projected on A's axes
             bound = std::max(bound, (T.cwiseAbs() - a.half - rb).maxCoeff());
+            if (bound > enough)
+                return bound;
             const Eigen::Vector3d s = X.R.transpose() * T;          // T on B's axes
             const Eigen::Vector3d ra = X.absR.transpose() * a.half;  // A's box projected on B's axes
             bound = std::max(bound, (s.cwiseAbs() - ra - b.half).maxCoeff());
@@ -141,6 +148,29 @@ namespace meshgap
             const double gap1 = std::min({q0, q1, q2}) - std::max({p0, p1, p2});
             const double gap2 = std::min({p0, p1, p2}) - std::max({q0, q1, q2});
             return std::max({gap1, gap2, 0.0});
+        }
+
+        /** \brief The largest gap (a lower bound on the distance between triangles p and q) along the nine axes
+            normal to one edge of each, stopping at the first above \e enough. Cheaper than an exact triangle
+            test by far, and it proves most pairs of nearby but not closest triangles apart. */
+        double edgeAxesGap(const Eigen::Vector3d *p, const Eigen::Vector3d *q, double enough)
+        {
+            double gap = 0.0;
+            for (int i = 0; i < 3; ++i)
+            {
+                const Eigen::Vector3d e = p[(i + 1) % 3] - p[i];
+                for (int j = 0; j < 3; ++j)
+                {
+                    const Eigen::Vector3d n = e.cross(q[(j + 1) % 3] - q[j]);
+                    const double length = n.norm();
+                    if (!(length > 0.0))
+                        continue;  // parallel edges: no axis
+                    gap = std::max(gap, axisGap(n, p, q) / length);
+                    if (gap > enough)
+                        return gap;
+                }
+            }
+            return gap;
         }
 
         struct PairEntry
@@ -210,8 +240,11 @@ namespace meshgap
                         const Eigen::Vector3d pa[3] = {ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]]};
                         // Cheap exact bound first: separation along either triangle's normal. The slack keeps
                         // rounding from pruning a pair at exactly the best distance's value.
-                        const double gap = std::max(axisGap(a.normals()[ta], pa, pb), axisGap(normalB, pa, pb));
-                        if (gap > result.distance + slack)
+                        const double enough = result.distance + slack;
+                        double gap = std::max(axisGap(a.normals()[ta], pa, pb), axisGap(normalB, pa, pb));
+                        if (!(gap > enough))
+                            gap = edgeAxesGap(pa, pb, enough);
+                        if (gap > enough)
                             continue;
                         ++result.triangleTests;
                         const double d = triangleDistance(ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]],
@@ -248,8 +281,9 @@ namespace meshgap
                 c1 = {e.a, nb.first};
                 c2 = {e.a, nb.first + 1};
             }
-            double b1 = lowerBound(a.nodes()[c1.a], b.nodes()[c1.b], X);
-            double b2 = lowerBound(a.nodes()[c2.a], b.nodes()[c2.b], X);
+            // A child above the best so far is pruned whatever its exact bound: stop computing it there.
+            double b1 = lowerBound(a.nodes()[c1.a], b.nodes()[c1.b], X, result.distance + slack);
+            double b2 = lowerBound(a.nodes()[c2.a], b.nodes()[c2.b], X, result.distance + slack);
             result.boxTests += 2;
             if (b1 < b2)
             {
