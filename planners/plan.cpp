@@ -22,6 +22,7 @@
 #include <fstream>
 #include <iostream>
 #include <mutex>
+#include <ompl/base/PlannerData.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/RandomNumbers.h>
@@ -300,8 +301,17 @@ namespace
             line("dense path free", d->collisions == 0 ? std::string("yes") :
                                                          "NO: " + std::to_string(d->collisions) + " states collide");
         }
+        {
+            ob::PlannerData data(problem.setup->getSpaceInformation());
+            problem.setup->getPlannerData(data);
+            line("graph states", data.numVertices());
+        }
         line("validity calls", stats.validityCalls);
         line("clearance calls", stats.clearanceCalls);
+        if (const auto *maxMin =
+                dynamic_cast<const MaxMinClearanceObjective *>(problem.setup->getOptimizationObjective().get()))
+            line("cost queries", std::to_string(maxMin->queriedStates()) + " states queried for " +
+                                  std::to_string(maxMin->gridStates()) + " motion grid states");
         line("query time", std::to_string(stats.seconds * 1e3) + " ms");
         std::cout << summary.str();
         if (!summaryFile.empty())

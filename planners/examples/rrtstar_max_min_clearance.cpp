@@ -5,9 +5,9 @@
 // It optimises for `seconds` (default 5), longer if it has no solution by then (at most ten times as long).
 //
 // meshgap builds the OMPL problem from the .cfg (space, bounds, robot and world meshes, start and goal) with a
-// ClearanceChecker whose clearance() is the exact distance to the nearest obstacle. OMPL's
-// MaximizeMinClearanceObjective calls that clearance() for every state it costs, so exact, fast clearance is what
-// makes this objective usable. The clearance motion validator certifies each motion by conservative advancement
+// ClearanceChecker whose clearance() is the exact distance to the nearest obstacle. The objective "max_min_clearance"
+// is meshgap's MaxMinClearanceObjective: OMPL's MaximizeMinClearanceObjective (the smallest clearance over the
+// states OMPL samples along each motion), computed from far fewer, cheaper queries. The clearance motion validator certifies each motion by conservative advancement
 // on the same exact clearance (no motion is sampled, so none can slip through a thin obstacle).
 
 #include <algorithm>

@@ -55,6 +55,15 @@ namespace meshgap
         throw Exception("ClearanceChecker", "state space '" + space.getName() + "' is neither SE(3) nor SE(2)");
     }
 
+    double sweepBound(const ompl::base::StateSpace &space, const ompl::base::State *s1, const ompl::base::State *s2,
+                      double radius)
+    {
+        const Eigen::Isometry3d X1 = poseFromState(space, s1), X2 = poseFromState(space, s2);
+        const double translation = (X2.translation() - X1.translation()).norm();
+        const double angle = Eigen::AngleAxisd(X1.linear().transpose() * X2.linear()).angle();
+        return translation + radius * angle;
+    }
+
     namespace
     {
         std::atomic<std::uint64_t> nextCheckerId{1};
@@ -119,6 +128,17 @@ namespace meshgap
         return query(state, false).distance;
     }
 
+    double ClearanceChecker::clearanceOrContact(const ompl::base::State *state) const
+    {
+        // Stopping at a distance of 0 stops only in collision: a free state's answer is complete.
+        return query(state, false, 0.0).distance;
+    }
+
+    double ClearanceChecker::clearanceBelow(const ompl::base::State *state, double bound) const
+    {
+        return std::min(query(state, false, 0.0, bound).distance, bound);  // fast mode has no bound: min() it
+    }
+
     double ClearanceChecker::clearance(const ompl::base::State *state, ompl::base::State *validState,
                                        bool &validStateAvailable) const
     {
@@ -169,13 +189,16 @@ namespace meshgap
         return query(state, false);
     }
 
-    SceneResult ClearanceChecker::query(const ompl::base::State *state, bool countAsValidity) const
+    SceneResult ClearanceChecker::query(const ompl::base::State *state, bool countAsValidity, double stopBelow,
+                                        double upperBound) const
     {
         const auto start = std::chrono::steady_clock::now();
         ++(countAsValidity ? validityCalls_ : clearanceCalls_);
         const Eigen::Isometry3d X = poseFromState(*si_->getStateSpace(), state);
         SceneRequest request;
         request.exact = mode_ == Mode::CERTIFIED;
+        request.stopBelow = stopBelow;
+        request.upperBound = upperBound;
         SceneResult result;
         if (request.exact)
             scene_->distance(X, request, warmStartFor(id_), result);

@@ -20,11 +20,7 @@ namespace meshgap
                                            double &lastFree) const
     {
         const ompl::base::StateSpace &space = *si_->getStateSpace();
-        const Eigen::Isometry3d X1 = poseFromState(space, s1), X2 = poseFromState(space, s2);
-        const double translation = (X2.translation() - X1.translation()).norm();
-        const double angle = Eigen::AngleAxisd(X1.linear().transpose() * X2.linear()).angle();
-        // Farthest any robot point moves over the whole motion (chord <= arc for the rotation).
-        const double sweep = translation + checker_->scene().robot().radiusAboutOrigin() * angle;
+        const double sweep = sweepBound(space, s1, s2, checker_->scene().robot().radiusAboutOrigin());
         lastFree = 0.0;
         if (sweep == 0.0)
             return true;  // s2 == s1 in pose

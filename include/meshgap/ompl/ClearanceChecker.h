@@ -20,6 +20,14 @@ namespace meshgap
         (the rotation's angle about z; any z translation or tilt is dropped). Throws for other spaces. */
     void stateFromPose(const ompl::base::StateSpace &space, const Eigen::Isometry3d &X, ompl::base::State *state);
 
+    /** \brief The farthest any point within \e radius of the robot's origin moves along OMPL's interpolation from
+        \e s1 to \e s2 (SE(3): translation linear, rotation by slerp; SE(2): x, y linear, yaw along the shorter
+        arc): |p2 - p1| + radius * theta, theta the rotation angle between the two states (an arc is longer than
+        its chord). A fraction df of the motion moves no such point further than df times this, so the clearance
+        (1-Lipschitz in the robot's displacement) changes by at most that much. */
+    double sweepBound(const ompl::base::StateSpace &space, const ompl::base::State *s1, const ompl::base::State *s2,
+                      double radius);
+
     /** \brief Counters summed over all threads, for benchmark run properties. */
     struct CheckerStats
     {
@@ -57,6 +65,14 @@ namespace meshgap
         bool isValid(const ompl::base::State *state, double &dist) const override;
         /** \brief Signed distance to the nearest obstacle: SceneResult::distance, negative (or 0) in collision. */
         double clearance(const ompl::base::State *state) const override;
+        /** \brief clearance() of a free state; for a state in collision a negative number (kContactDistance)
+            without the depth, found at about the price of isValid(): for a caller that only needs "in collision"
+            there. Counted as a clearance call. */
+        double clearanceOrContact(const ompl::base::State *state) const;
+        /** \brief min(clearanceOrContact(state), bound), found only as far as needed: once the clearance is proven
+            at least \e bound the search stops (cheap when the robot is far from everything; SceneRequest::upperBound;
+            \e bound must be positive). Counted as a clearance call. */
+        double clearanceBelow(const ompl::base::State *state, double bound) const;
         /** \brief clearance(state), and in \e validState a state away from the nearest obstacle
             (validStateAway()); \e validStateAvailable is true only if that state is valid (isValid()). */
         double clearance(const ompl::base::State *state, ompl::base::State *validState,
@@ -71,6 +87,8 @@ namespace meshgap
         bool validStateAway(const ompl::base::State *state, const SceneResult &r, ompl::base::State *out) const;
 
         Mode mode() const { return mode_; }
+        /** \brief Unique per checker, never reused (a later checker may reuse this one's address, never its id). */
+        std::uint64_t id() const { return id_; }
         const Scene &scene() const { return *scene_; }
         CheckerStats stats() const;
 
@@ -78,7 +96,10 @@ namespace meshgap
         SceneResult query(const ompl::base::State *state) const;
 
     private:
-        SceneResult query(const ompl::base::State *state, bool countAsValidity) const;
+        /** \brief The query, counted as a validity or a clearance call; \e stopBelow and \e upperBound as
+            SceneRequest's. */
+        SceneResult query(const ompl::base::State *state, bool countAsValidity, double stopBelow = -1.0,
+                          double upperBound = std::numeric_limits<double>::infinity()) const;
 
         SceneConstPtr scene_;
         Mode mode_;

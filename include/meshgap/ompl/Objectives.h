@@ -1,7 +1,9 @@
 #ifndef MESHGAP_OMPL_OBJECTIVES_H
 #define MESHGAP_OMPL_OBJECTIVES_H
 
+#include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
 #include <ompl/base/objectives/StateCostIntegralObjective.h>
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -9,6 +11,8 @@
 
 namespace meshgap
 {
+    class ClearanceChecker;
+
     /** \brief Settings of the objectives allocObjective() makes. */
     struct ObjectiveOptions
     {
@@ -40,13 +44,55 @@ namespace meshgap
         double minClearance_;
     };
 
+    /**
+       @anchor mgMaxMinClearanceObjective
+       @par Short description
+       OMPL's MaximizeMinClearanceObjective, the same costs from fewer clearance queries. A motion's cost is, as in
+       OMPL's MinimaxObjective, the smallest clearance over the states at j / n of the way (n = validSegmentCount(),
+       j = 1 .. n-1) and its end s2 (not s1: a path does not count its start); here a state of that grid is queried
+       only if it could lower the minimum found so far, and then only asked whether it does. Clearance is
+       1-Lipschitz in the robot's displacement, and sweepBound() bounds the displacement, so the known clearances
+       bound the states around them from below; the grid states are visited best-first by that bound (Piyavskii's
+       rule), and the search ends when the lowest bound left is at or above the minimum found: the unvisited states
+       cannot change it. Each query is ClearanceChecker::clearanceBelow(state, minimum so far): the exact clearance
+       if lower, else a proof that it is not, which the scene finds cheaply by pruning everything farther. More
+       savings:
+       - the clearances of motion endpoints (tree states, met again and again by RRT* and PRM*) are kept in a
+         small per-thread cache keyed by the state's pose;
+       - a motion with a state in collision costs that state's negative value as soon as it is found, without
+         its depth (ClearanceChecker::clearanceOrContact()) and without querying the rest: OMPL's would cost it the
+         most negative sample; either way the motion is invalid, and its exact cost is never used.
+       With a validity checker that is not a meshgap ClearanceChecker in CERTIFIED mode (FAST mode's node distance
+       is not Lipschitz: the node search may miss the closest pair) it is OMPL's objective unchanged. The checker
+       is the space's at each call, so a benchmark that installs another checker gets its costs from that one.
+    */
+    class MaxMinClearanceObjective : public ompl::base::MaximizeMinClearanceObjective
+    {
+    public:
+        explicit MaxMinClearanceObjective(const ompl::base::SpaceInformationPtr &si);
+        ompl::base::Cost motionCost(const ompl::base::State *s1, const ompl::base::State *s2) const override;
+
+        /** \brief Grid states OMPL's objective would have queried, and states this one did query (cache misses
+            and grid states), over all threads. */
+        std::uint64_t gridStates() const { return gridStates_; }
+        std::uint64_t queriedStates() const { return queried_; }
+
+    private:
+        /** \brief The clearance of \e s (clearanceOrContact()), from this thread's cache if \e checker gave it
+            recently. */
+        double cachedClearance(const ClearanceChecker &checker, const ompl::base::State *s) const;
+
+        mutable std::atomic<std::uint64_t> gridStates_{0}, queried_{0};
+    };
+
     /** \brief The objective names allocObjective() knows: length, clearance, max_min_clearance, weighted. */
     std::vector<std::string> objectiveNames();
 
     /** \brief A new optimization objective by name:
         - "length": path length (PathLengthOptimizationObjective);
         - "clearance": the integral of 1/clearance (ClearanceObjective);
-        - "max_min_clearance": maximise the smallest clearance along the path (MaximizeMinClearanceObjective);
+        - "max_min_clearance": maximise the smallest clearance along the path (MaxMinClearanceObjective: OMPL's
+          MaximizeMinClearanceObjective, computed with fewer queries);
         - "weighted": length + w * clearance (MultiOptimizationObjective; w is ObjectiveOptions::weight).
         The clearance objectives ask \e si's validity checker for clearance(). Throws meshgap::Exception listing the
         valid names for an unknown one. */
