@@ -12,7 +12,9 @@
 //
 // Each body is built from planar-faced polyhedra (meshgap/mesh/Shapes.h) gridded at the paper's grid sizes. Each
 // pose is designed by hand and then slid along one direction until the exact (triangle-triangle) distance between
-// the meshes equals the paper's "exact" minimum distance for that example (Tables III, V, VI).
+// the meshes equals the paper's "exact" minimum distance for that example (Tables III, V, VI). Each scene's .cfg is
+// also a planning problem that forces a clearance trade-off (its straight line from start to goal runs into A; see
+// maps/README.md); battery_fixture and hand_bowl start from poses of their own, not the paper's.
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -318,6 +320,7 @@ namespace
         std::string name, units, description;
         Mesh a, b;                               // A in the world frame; B in its body frame (not yet centred)
         std::vector<Eigen::Isometry3d> poses;    // B's body frame in A's frame
+        std::optional<Eigen::Isometry3d> start;  // the planning problem's start; unset: the first pose
         Eigen::Isometry3d goal;                  // a pose clear of A (for the planning problem)
         Parts partsA, partsB;                    // named groups of triangles (for the report)
         std::optional<Eigen::AlignedBox3d> volume;  // the cfg's state volume; unset: a box around everything
@@ -389,12 +392,20 @@ namespace
         const Eigen::Isometry3d p2 =
             pose(Vector3d(2.5, 0.0, shelfTop + 0.25), rotation(Vector3d::UnitZ(), 0.3));
         s.poses.push_back(placeAtGap(*bodyA, *bodyB, p2, Vector3d::UnitY(), 0.0987, "battery_fixture position 2"));
-        s.goal = pose(s.poses.front().translation() + Vector3d(40.0, 0.0, 30.0));
+        // The planning problem does not start at position 1: with the pegs 6 into the holes and 0.07 of play, the
+        // way out is a passage that sampling does not find. It starts just before insertion instead: the battery
+        // centred between the rails, 1.5 above the shelf, its back face 1.5 in front of the peg tips (then lowered
+        // 1.5 and pushed in, the holes would take the pegs), so the shelf, both rails and both peg tips are all
+        // 1.5 away. The goal is in front of the shelf's lip at the same height: the battery has to be lifted over
+        // the lip (6.5 higher at least). The shortest way skims the lip; one that keeps 1.5 goes higher.
+        s.start = pose(Vector3d(pegLength + 1.5, 0.0, shelfTop + 1.5));
+        s.goal = pose(Vector3d(61.0, 0.0, shelfTop + 1.5));
         auto near = [](double x, double y) { return std::abs(x - y) < 1e-9; };
         auto nearAxis = [](const Vector3d &c, const Vector2d &axis, double radius) {
             return (Vector2d(c.y(), c.z()) - axis).norm() <= radius + 1e-9;
         };
-        s.partsA = partsByPlace(s.a, {"peg1", "peg2", "plate", "shelf", "rails", "other"}, [&](const Vector3d &c) {
+        const std::vector<std::string> partNamesA = {"peg1", "peg2", "plate", "shelf", "rails", "lip", "other"};
+        s.partsA = partsByPlace(s.a, partNamesA, [&](const Vector3d &c) {
             for (std::size_t i = 0; i < 2; ++i)
                 if (c.x() > 1e-9 && c.x() <= pegLength + 1e-9 && nearAxis(c, pegAt[i], pegRadius))
                     return i;
@@ -402,9 +413,11 @@ namespace
                 return std::size_t(2);
             if (near(c.z(), shelfTop))
                 return std::size_t(3);
-            if (c.z() > shelfTop + 1e-9 && std::abs(c.y()) >= 38.5 - 1e-9 && c.x() > 1e-9)
+            if (c.z() > shelfTop + 1e-9 && std::abs(c.y()) >= 38.5 - 1e-9 && c.x() > 1e-9 && c.x() <= 44.0 + 1e-9)
                 return std::size_t(4);
-            return std::size_t(5);
+            if (c.x() >= 48.0 - 1e-9)
+                return std::size_t(5);
+            return std::size_t(6);
         });
         s.partsB = partsByPlace(s.b, {"hole1", "hole2", "back", "bottom", "other"}, [&](const Vector3d &c) {
             for (std::size_t i = 0; i < 2; ++i)
@@ -438,7 +451,14 @@ namespace
                 middleTip = tip.second;
         const Vector3d start = Vector3d(147.0, 4.0, 60.0 + 20.0) - R * middleTip;  // between rim nodes
         s.poses.push_back(placeAtGap(*bodyA, *bodyB, pose(start, R), -Vector3d::UnitZ(), 4.7527, "hand_bowl"));
-        s.goal = pose(s.poses.front().translation() + Vector3d(60.0, 0.0, 150.0), R);
+        // Planning: from beside the bowl, below its rim (the pose moved 40 down and out along +x until the hand is
+        // 25 from the bowl's outer wall; 4.75 would bound every path's minimum clearance), into the bowl: the hand
+        // moved over the bowl's middle and lowered into it, its fingertips above the floor (27.2 from the bowl).
+        // The straight line runs through the wall; the shortest way over the rim skims it, one that keeps 25 lifts
+        // the hand well above the rim first.
+        s.start = placeAtGap(*bodyA, *bodyB, pose(s.poses.front().translation() + Vector3d(60.0, 0.0, -40.0), R),
+                             -Vector3d::UnitX(), 25.0, "hand_bowl start");
+        s.goal = pose(s.poses.front().translation() + Vector3d(-240.0, 0.0, -30.0), R);
         s.partsA = partsByRuns({{"bowl", 0}}, s.a.triangles.size());
         s.partsB = partsByRuns(h.parts, s.b.triangles.size());
         return s;
@@ -470,7 +490,10 @@ namespace
         const Vector3d start = indexA + 45.0 * offset - thumbB;
         const meshgap::BodyPtr bodyA = exactBody(s.a), bodyB = exactBody(s.b);
         s.poses.push_back(placeAtGap(*bodyA, *bodyB, pose(start, RB), -offset, 18.95, "handshake"));
-        s.goal = pose(s.poses.front().translation() + Vector3d(-150.0, 0.0, 0.0), RB);
+        // Goal: B on the far side of A (behind the back of A's hand), same orientation. The straight line runs
+        // through A, so a path goes round A's fingers, thumb or wrist: the shortest way skims A, one that keeps
+        // the start's 18.95 swings wide.
+        s.goal = pose(s.poses.front().translation() + Vector3d(300.0, 0.0, 0.0), RB);
         s.partsA = partsByRuns(h.parts, s.a.triangles.size());
         s.partsB = partsByRuns(h.parts, s.b.triangles.size());
         return s;
@@ -627,6 +650,9 @@ namespace
         for (Eigen::Isometry3d &X : s.poses)
             X = X * pose(centre);
         s.goal = s.goal * pose(centre);
+        if (s.start)
+            *s.start = *s.start * pose(centre);
+        const Eigen::Isometry3d start = s.start ? *s.start : s.poses.front();
         s.a.source = s.name + "_a";
         s.b.source = s.name + "_b";
         meshgap::writeObj(s.a, (directory / (s.name + "_a.obj")).string());
@@ -644,6 +670,7 @@ namespace
 
         Eigen::AlignedBox3d volume = s.a.bounds();
         volume.extend(s.poses.front().translation());
+        volume.extend(start.translation());
         volume.extend(s.goal.translation());
         double margin = 0.25 * volume.diagonal().norm();
         if (s.volume)
@@ -673,13 +700,15 @@ namespace
         meshgap::LoadReport robotReport;
         meshgap::loadMesh((directory / (s.name + "_b.obj")).string(), &robotReport);
         const Eigen::Isometry3d toState = pose(robotReport.omplAppCenter);
-        state("start", s.poses.front() * toState);
+        state("start", start * toState);
         state("goal", s.goal * toState);
         const char *axes = "xyz";
         for (int k = 0; k < 3; ++k)
             cfg << "volume.min." << axes[k] << " = " << number(std::floor(volume.min()[k] - margin)) << '\n';
         for (int k = 0; k < 3; ++k)
             cfg << "volume.max." << axes[k] << " = " << number(std::ceil(volume.max()[k] + margin)) << '\n';
+        // RRTConnect solves every map well within this (bench/clearance_table.sh).
+        cfg << "\n[benchmark]\ntime_limit = 10\nmem_limit = 1000\nrun_count = 10\n";
         writeText(directory / (s.name + ".cfg"), cfg.str());
 
         // Report (and check) what was written.
@@ -736,6 +765,8 @@ namespace
         };
         for (std::size_t i = 0; i < s.poses.size(); ++i)
             check(("pose " + std::to_string(i + 1)).c_str(), s.poses[i]);
+        if (s.start)
+            check("start", *s.start);
         check("goal", s.goal);
     }
 }  // namespace
