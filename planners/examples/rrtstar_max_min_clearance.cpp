@@ -11,6 +11,7 @@
 // on the same exact clearance (no motion is sampled, so none can slip through a thin obstacle).
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <limits>
 #include <cstdlib>
@@ -45,12 +46,15 @@ int main(int argc, char **argv)
         auto rrtstar = std::make_shared<ompl::geometric::RRTstar>(si);
         rrtstar->setGoalBias(0.2);
         problem.setup->setPlanner(rrtstar);
-        // Optimise for `seconds`, but do not give up before a first solution (up to ten times as long).
+        // Optimise for `seconds`, but do not give up before a first solution (up to ten times as long). RRT* hands
+        // its problem definition a solution only when it returns, but reports each better one as it finds it.
         namespace ob = ompl::base;
+        std::atomic<bool> found{false};
+        problem.setup->getProblemDefinition()->setIntermediateSolutionCallback(
+            [&found](const ob::Planner *, const std::vector<const ob::State *> &, const ob::Cost &) { found = true; });
         const ob::PlannerTerminationCondition stop = ob::plannerOrTerminationCondition(
             ob::plannerAndTerminationCondition(ob::timedPlannerTerminationCondition(seconds),
-                                               ob::exactSolnPlannerTerminationCondition(
-                                                   problem.setup->getProblemDefinition())),
+                                               ob::PlannerTerminationCondition([&found] { return found.load(); })),
             ob::timedPlannerTerminationCondition(10.0 * seconds));
         const ompl::base::PlannerStatus status = problem.setup->solve(stop);
         if (status != ompl::base::PlannerStatus::EXACT_SOLUTION)
