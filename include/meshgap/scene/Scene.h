@@ -86,8 +86,9 @@ namespace meshgap
         bool inCollision(const Eigen::Isometry3d &X_WR) const;
 
         /** \brief Minimum distance from the robot at \e X_WR to the obstacles. Obstacles are visited in order of a
-            lower bound on their distance, the warm start's obstacle first, and skipped once that bound exceeds the
-            best distance found so far. Thread-safe given a warm start per caller.
+            lower bound on their distance (ties in R-tree order), the warm start's obstacle first, and skipped once that
+            bound exceeds the best distance found so far (or request.upperBound). Thread-safe given a warm start per
+            caller; allocates nothing once the calling thread has warmed up (tests/alloc).
 
             The bound is the distance between world-frame axis-aligned boxes: the obstacle's, and the robot's (its
             BVH root box and bounding sphere carried to the world frame, intersected, padded against roundoff), so
