@@ -13,9 +13,12 @@
 #
 # Settings (environment): PART (solve, clearance or all; default all), RUNS (10), TIME (10, the clearance runs),
 # SEED (1), JOBS (1 or 2: with 2, every benchmark runs as two shards at once, shard 2 seeded SEED + 1),
-# MAPS, PROBLEMS, SOLVE_CHECKERS, SOLVE_TIME (default: each cfg's time_limit). A problem's old .log files in
-# OUT_DIR are removed before it runs; the tables cover every .log in OUT_DIR. The .log files load into Planner
-# Arena: ompl_benchmark_statistics OUT_DIR/*/*.log -d results.db
+# MAPS, PROBLEMS, SOLVE_CHECKERS, SOLVE_TIME (default: each cfg's time_limit), RRTSTAR_PARAMS (RRT*'s OMPL
+# parameters, space-separated, default none: OMPL's own; RRTSTAR_PARAMS=use_k_nearest=0 takes the neighbours within
+# RRT*'s range instead of OMPL's k nearest, whose k in SE(3), 1.1 * 2^7 e (1 + 1/6) log n = 446 log n, makes every
+# state of a tree of a few thousand a neighbour of each new one). A problem's old .log files in OUT_DIR are removed
+# before it runs; the tables cover every .log in OUT_DIR. The .log files load into Planner Arena:
+# ompl_benchmark_statistics OUT_DIR/*/*.log -d results.db
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${1:-$here/../build}"
@@ -30,6 +33,8 @@ jobs="${JOBS:-1}"
 map_names="${MAPS:-battery_fixture hand_bowl handshake slotted_wall}"
 problems="${PROBLEMS:-Abstract bugtrap cubicles cubicles_opt Easy Twistycool}"
 solve_checkers="${SOLVE_CHECKERS:-meshgap-certified}"
+rrtstar_params=()
+for p in ${RRTSTAR_PARAMS:-}; do rrtstar_params+=(--param "rrtstar.$p"); done
 benchmark="$build/planners/meshgap_benchmark"
 if [ ! -x "$benchmark" ]; then
     echo "error: $benchmark: not built (cmake --build BUILD --target meshgap_benchmark)" >&2
@@ -73,14 +78,15 @@ if [ "$part" = all ] || [ "$part" = clearance ]; then
         # The planners' own paths (meshgap_plan does not simplify either); RRTConnect once more, simplified as
         # OMPL's Benchmark does by default, which pulls the path tight against the obstacles.
         bench "$out/clearance/max_min_clearance.raw" --cfg "$cfg" --planners rrtstar --objective max_min_clearance \
-            --checkers meshgap-certified-cmv --runs "$runs" --time "$time" --no-simplify
+            --checkers meshgap-certified-cmv --runs "$runs" --time "$time" --no-simplify "${rrtstar_params[@]}"
         bench "$out/clearance/length.raw" --cfg "$cfg" --planners rrtconnect --objective length \
             --checkers meshgap-certified-cmv,meshgap-certified --runs "$runs" --time "$time" --no-simplify
         bench "$out/clearance/length.simplified" --cfg "$cfg" --planners rrtconnect --objective length \
             --checkers meshgap-certified --runs "$runs" --time "$time"
     done
 fi
-echo "wall time: $((SECONDS - started)) s (PART=$part RUNS=$runs TIME=$time SEED=$seed JOBS=$jobs)" >&2
+echo "wall time: $((SECONDS - started)) s (PART=$part RUNS=$runs TIME=$time SEED=$seed JOBS=$jobs" \
+    "RRTSTAR_PARAMS=${RRTSTAR_PARAMS:-})" >&2
 
 if [ "$part" = all ] || [ "$part" = solve ]; then
     python3 "$here/clearance_summary.py" solve "$out"/solve/*.log

@@ -79,7 +79,11 @@ namespace
     struct PlannerSpec
     {
         std::string type, name;
-        std::vector<std::pair<std::string, std::string>> params;
+        struct Param
+        {
+            std::string key, value, where;  ///< where: the cfg line or the command-line option that set it
+        };
+        std::vector<Param> params;
     };
 
     /** \brief The cfg's [planner] section as OMPL.app reads it: "rrt=" starts an entry, "rrt.name=X" names it,
@@ -103,7 +107,7 @@ namespace
             if (rest == "name")
                 specs.back().name = value;
             else
-                specs.back().params.emplace_back(rest, value);
+                specs.back().params.push_back({rest, value, config.file + ": [planner] " + key});
         }
         return specs;
     }
@@ -333,11 +337,15 @@ namespace
     int run(int argc, char **argv)
     {
         std::string cfg, plannerList, checkerList, objective, shardText = "1/1";
+        std::vector<std::string> params;
         std::uint32_t seed = 0;
         Settings settings;
         po::options_description options("meshgap_benchmark --cfg FILE [options]\n\nOptions");
         options.add_options()("help,h", "print this help")("cfg", po::value(&cfg), "OMPL.app problem file (.cfg)")(
             "planners", po::value(&plannerList), "planners, comma-separated (default: the cfg's [planner] section)")(
+            "param", po::value(&params),
+            "PLANNER.NAME=VALUE: a parameter of every planner of that kind, after the cfg's, e.g. "
+            "rrtstar.use_k_nearest=0; repeatable")(
             "checkers", po::value(&checkerList),
             ("checkers, comma-separated (default: all of " + joined(checkerNames()) + ")").c_str())(
             "runs", po::value<unsigned>(), "runs per planner and checker (default: the cfg's run_count, else 10)")(
@@ -396,6 +404,22 @@ namespace
             if (std::find(known.begin(), known.end(), p.type) == known.end())
                 throw Exception("planner", "unknown planner '" + p.type + "'; valid names: " + joined(known) +
                                                (plannerList.empty() ? " (choose with --planners)" : ""));
+        for (const std::string &param : params)
+        {
+            const std::size_t dot = param.find('.'), eq = param.find('=');
+            if (dot == std::string::npos || eq == std::string::npos || dot == 0 || eq < dot + 2)
+                throw Exception("--param", "'" + param + "' is not PLANNER.NAME=VALUE");
+            const std::string type = boost::algorithm::to_lower_copy(param.substr(0, dot));
+            bool used = false;
+            for (PlannerSpec &p : planners)
+                if (p.type == type)
+                {
+                    p.params.push_back({param.substr(dot + 1, eq - dot - 1), param.substr(eq + 1), "--param " + param});
+                    used = true;
+                }
+            if (!used)
+                throw Exception("--param", "'" + param + "': no planner " + type + " in this benchmark");
+        }
         if (seed != 0)
             ompl::RNG::setSeed(seed + shard - 1);
 
@@ -404,10 +428,8 @@ namespace
         // Allocate each planner once now, so a bad parameter or a duplicate name fails before any run.
         auto allocate = [&](const PlannerSpec &spec) {
             ob::PlannerPtr planner = allocPlanner(spec.type, si);
-            for (const auto &[key, value] : spec.params)
-                if (!planner->params().hasParam(key) || !planner->params().setParam(key, value))
-                    throw Exception(config.file, "[planner] " + spec.type + "." + key + " = '" + value +
-                                                     "': no such parameter, or a bad value");
+            for (const PlannerSpec::Param &param : spec.params)
+                setPlannerParam(*planner, param.key, param.value, param.where);
             if (!spec.name.empty())
                 planner->setName(spec.name);
             return planner;

@@ -186,11 +186,15 @@ namespace
         std::string cfg, planner = "rrtconnect", objective, mode = "certified", motion = "discrete", out, csv, summaryFile,
                     glb;
         double time = 10.0, weight = 0.0;
+        std::vector<std::string> params;
         unsigned dense = 4, exportStates = 8;
         std::uint32_t seed = 1;
         po::options_description options("meshgap_plan --cfg FILE [options]\n\nOptions");
         options.add_options()("help,h", "print this help")("cfg", po::value(&cfg), "OMPL.app problem file (.cfg)")(
             "planner", po::value(&planner), ("planner: " + joined(plannerNames())).c_str())(
+            "param", po::value(&params),
+            "NAME=VALUE: one of the planner's OMPL parameters, e.g. range=5 or, for rrtstar, use_k_nearest=0; "
+            "repeatable")(
             "time", po::value(&time), "time limit in seconds (default 10)")(
             "objective", po::value(&objective),
             "length, clearance (integral of 1/clearance), max_min_clearance, or weighted (length + W * clearance); "
@@ -251,9 +255,18 @@ namespace
                                                                          ClearanceChecker::Mode::FAST,
                                            objective, BodyOptions(), objectiveOptions);
         const ob::SpaceInformationPtr si = problem.setup->getSpaceInformation();
+        std::shared_ptr<ClearanceMotionValidator> cmv;
         if (motion == "clearance")
-            si->setMotionValidator(std::make_shared<ClearanceMotionValidator>(si, problem.checker));
-        problem.setup->setPlanner(allocPlanner(planner, si));
+            si->setMotionValidator(cmv = std::make_shared<ClearanceMotionValidator>(si, problem.checker));
+        const ob::PlannerPtr plannerPtr = allocPlanner(planner, si);
+        for (const std::string &param : params)
+        {
+            const std::size_t eq = param.find('=');
+            if (eq == std::string::npos || eq == 0)
+                throw Exception("--param", "'" + param + "' is not NAME=VALUE");
+            setPlannerParam(*plannerPtr, param.substr(0, eq), param.substr(eq + 1), "--param");
+        }
+        problem.setup->setPlanner(plannerPtr);
         problem.setup->setup();
         OMPL_INFORM("%s: %s, %zu obstacles, planner %s, objective %s, clearance %s, motion %s", config.name.c_str(),
                     config.planar ? "SE(2)" : "SE(3)", problem.scene->obstacles().size(), planner.c_str(),
@@ -312,6 +325,10 @@ namespace
                 dynamic_cast<const MaxMinClearanceObjective *>(problem.setup->getOptimizationObjective().get()))
             line("cost queries", std::to_string(maxMin->queriedStates()) + " states queried for " +
                                   std::to_string(maxMin->gridStates()) + " motion grid states");
+        if (cmv)
+            line("motion checks", std::to_string(cmv->getValidMotionCount() + cmv->getInvalidMotionCount()) + " (" +
+                                      std::to_string(cmv->getValidMotionCount()) + " free), " +
+                                      std::to_string(cmv->queries()) + " clearance queries");
         line("query time", std::to_string(stats.seconds * 1e3) + " ms");
         std::cout << summary.str();
         if (!summaryFile.empty())

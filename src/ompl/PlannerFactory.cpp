@@ -73,4 +73,29 @@ namespace meshgap
             valid += (valid.empty() ? "" : ", ") + n;
         throw Exception("planner", "unknown planner '" + name + "'; valid names: " + valid);
     }
+
+    void setPlannerParam(ompl::base::Planner &planner, const std::string &key, const std::string &value,
+                         const std::string &where)
+    {
+        if (!planner.params().hasParam(key))
+        {
+            std::vector<std::string> names;
+            planner.params().getParamNames(names);
+            std::string valid;
+            for (const std::string &n : names)
+                valid += (valid.empty() ? "" : ", ") + n;
+            throw Exception(where, "'" + key + "' is no parameter of " + planner.getName() + "; its parameters: " +
+                                       (valid.empty() ? "none" : valid));
+        }
+        bool set = false;
+        try
+        {
+            set = planner.params().setParam(key, value);
+        }
+        catch (const std::exception &)  // OMPL's conversion of the text to the parameter's type
+        {
+        }
+        if (!set)
+            throw Exception(where, planner.getName() + "'s " + key + " refuses the value '" + value + "'");
+    }
 }  // namespace meshgap

@@ -162,6 +162,10 @@ TEST(BenchmarkCliErrors, BadInputGivesOneErrorAndExitOne)
         {ok + "--shard 0/2", "--shard"},
         {ok + "--shard half", "--shard"},
         {ok + "--runs 0", "positive"},
+        {ok + "--param rrtstar.range=3", "no planner rrtstar"},
+        {ok + "--param rrtconnect.reach=3", "'reach' is no parameter of RRTConnect"},
+        {ok + "--param rrtconnect.range=far", "'far'"},
+        {ok + "--param range=3", "PLANNER.NAME=VALUE"},
         {"--planners rrtconnect", "--cfg"},
     };
     for (const auto &[args, mention] : cases)

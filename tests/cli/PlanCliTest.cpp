@@ -39,6 +39,9 @@ TEST(PlanCli, BadInputGivesOneErrorAndExitOne)
         {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --objective speed", "max_min_clearance"},
         {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --objective length --weight 3", "--weight"},
         {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --objective weighted --weight -1", "--weight"},
+        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param speed=3", "use_k_nearest"},
+        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param range=far", "'far'"},
+        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param range", "NAME=VALUE"},
         {"", "--cfg"},
     };
     for (const auto &[args, mention] : cases)
@@ -51,6 +54,19 @@ TEST(PlanCli, BadInputGivesOneErrorAndExitOne)
 }
 
 // A start (or goal) in collision: exit 1, and the message says which, the obstacle, and the signed distance.
+TEST(PlanCli, ParamReachesThePlanner)
+{
+    // RRT* says which neighbourhood it uses as it starts: k nearest by default, a radius with use_k_nearest=0.
+    const std::string args = "--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --time 0.2";
+    const PlanRun byDefault = plan(args), radius = plan(args + " --param use_k_nearest=0");
+    ASSERT_EQ(byDefault.status, 0) << byDefault.err;
+    ASSERT_EQ(radius.status, 0) << radius.err;
+    const std::string both = byDefault.out + byDefault.err, radiusBoth = radius.out + radius.err;
+    EXPECT_NE(both.find("k-nearest"), std::string::npos) << both;
+    EXPECT_EQ(radiusBoth.find("k-nearest"), std::string::npos) << radiusBoth;
+    EXPECT_NE(radiusBoth.find("rewiring radius"), std::string::npos) << radiusBoth;
+}
+
 TEST(PlanCli, StartOrGoalInCollisionIsNamed)
 {
     const fs::path dir = fs::temp_directory_path() / ("meshgap_plan_collide_" + std::to_string(::getpid()));
