@@ -37,9 +37,8 @@ TEST(ClearanceMotionValidator, NeverAcceptsAMotionThatCollides)
 
     ompl::RNG::setSeed(11);
     ob::ScopedState<ob::SE3StateSpace> s1(space), s2(space), s(space);
-    int motions = 0, accepted = 0, rejectedFree = 0, discreteMisses = 0;
-    std::uint64_t discreteChecks = 0;
-    const std::uint64_t before = validator.queries();
+    int motions = 0, accepted = 0, rejectedFree = 0, discreteMisses = 0, refusedByProbes = 0;
+    std::uint64_t discreteChecks = 0, queries = 0, probes = 0;
     while (motions < 1500)
     {
         s1.random();
@@ -57,8 +56,12 @@ TEST(ClearanceMotionValidator, NeverAcceptsAMotionThatCollides)
             space->interpolate(s1.get(), s2.get(), k / 1000.0, s.get());
             collides = scene->inCollision(poseFromState(*space, s.get()));
         }
+        const std::uint64_t queriesBefore = validator.queries(), probesBefore = validator.probes();
         const bool ok = validator.checkMotion(s1.get(), s2.get());
         ASSERT_FALSE(ok && collides) << "motion " << motions << " accepted but collides";
+        queries += validator.queries() - queriesBefore;
+        probes += validator.probes() - probesBefore;
+        refusedByProbes += !ok && validator.queries() == queriesBefore;
         accepted += ok;
         rejectedFree += !ok && !collides;
         const std::uint64_t callsBefore = checker->stats().validityCalls;
@@ -66,20 +69,24 @@ TEST(ClearanceMotionValidator, NeverAcceptsAMotionThatCollides)
         discreteChecks += checker->stats().validityCalls - callsBefore;
         discreteMisses += discreteOk && collides;
         // lastValid: the state reported is collision-free and lies on the motion.
+        // The lastValid version advances without probing first: the probes must not change the answer.
         std::pair<ob::State *, double> last(s.get(), -1.0);
-        if (!validator.checkMotion(s1.get(), s2.get(), last))
+        const bool advanced = validator.checkMotion(s1.get(), s2.get(), last);
+        ASSERT_EQ(advanced, ok) << "motion " << motions;
+        if (!advanced)
         {
             EXPECT_GE(last.second, 0.0);
             EXPECT_LT(last.second, 1.0);
             EXPECT_TRUE(checker->isValid(s.get()));
         }
     }
-    const std::uint64_t queries = (validator.queries() - before) / 2;  // each motion was validated twice
-    std::printf("motions %d: accepted %d, refused though free %d; clearance queries %llu vs discrete state checks "
-                "%llu; collisions the discrete validator missed: %d\n",
-                motions, accepted, rejectedFree, static_cast<unsigned long long>(queries),
-                static_cast<unsigned long long>(discreteChecks), discreteMisses);
-    EXPECT_GT(accepted, 300);  // it does certify motions, not just refuse them
+    std::printf("motions %d: accepted %d, refused though free %d, refused by a probe %d; clearance queries %llu and "
+                "probes %llu vs discrete state checks %llu; collisions the discrete validator missed: %d\n",
+                motions, accepted, rejectedFree, refusedByProbes, static_cast<unsigned long long>(queries),
+                static_cast<unsigned long long>(probes), static_cast<unsigned long long>(discreteChecks),
+                discreteMisses);
+    EXPECT_GT(accepted, 300);        // it does certify motions, not just refuse them
+    EXPECT_GT(refusedByProbes, 100);  // and the probes refuse colliding ones before any advancing
 }
 
 TEST(ClearanceMotionValidator, NeedsACertifiedChecker)

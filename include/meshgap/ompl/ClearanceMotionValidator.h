@@ -36,14 +36,21 @@ namespace meshgap
 
         /** \brief Clearance queries made, over all threads. */
         std::uint64_t queries() const { return queries_; }
+        /** \brief Collision checks of states between s1 and s2 made before advancing (not counting s2), over all
+            threads. */
+        std::uint64_t probes() const { return probes_; }
 
     private:
         /** \brief Advance from s1 towards s2; returns true if s2 is reached, else the last fraction proven free. */
         bool advance(const ompl::base::State *s1, const ompl::base::State *s2, double &lastFree) const;
+        /** \brief Whether s2 or a state at k / n of the motion collides, n = min(validSegmentCount(), 4)
+            (exact isValid() checks, middle first). */
+        bool probesCollide(const ompl::base::State *s1, const ompl::base::State *s2) const;
+        static constexpr unsigned kProbeSegments = 4;
 
         ClearanceCheckerPtr checker_;
         double minStepFraction_{1e-4};
-        mutable std::atomic<std::uint64_t> queries_{0};
+        mutable std::atomic<std::uint64_t> queries_{0}, probes_{0};
     };
 }  // namespace meshgap
 
