@@ -53,7 +53,6 @@ TEST(PlanCli, BadInputGivesOneErrorAndExitOne)
     }
 }
 
-// A start (or goal) in collision: exit 1, and the message says which, the obstacle, and the signed distance.
 TEST(PlanCli, ParamReachesThePlanner)
 {
     // RRT* says which neighbourhood it uses as it starts: k nearest by default, a radius with use_k_nearest=0.
@@ -67,6 +66,7 @@ TEST(PlanCli, ParamReachesThePlanner)
     EXPECT_NE(radiusBoth.find("rewiring radius"), std::string::npos) << radiusBoth;
 }
 
+// A start (or goal) in collision: exit 1, and the message says which, the obstacle, and the signed distance.
 TEST(PlanCli, StartOrGoalInCollisionIsNamed)
 {
     const fs::path dir = fs::temp_directory_path() / ("meshgap_plan_collide_" + std::to_string(::getpid()));
