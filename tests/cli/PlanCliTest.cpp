@@ -58,8 +58,9 @@ TEST(PlanCli, ParamReachesThePlanner)
     // RRT* says which neighbourhood it uses as it starts: k nearest by default, a radius with use_k_nearest=0.
     const std::string args = "--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --time 0.2";
     const PlanRun byDefault = plan(args), radius = plan(args + " --param use_k_nearest=0");
-    ASSERT_EQ(byDefault.status, 0) << byDefault.err;
-    ASSERT_EQ(radius.status, 0) << radius.err;
+    // 0 (exact) or 2 (no exact solution in the time: a slow build, e.g. under a sanitizer), never 1 (bad input).
+    for (const PlanRun *r : {&byDefault, &radius})
+        ASSERT_TRUE(r->status == 0 || r->status == 2) << r->status << "\n" << r->err;
     const std::string both = byDefault.out + byDefault.err, radiusBoth = radius.out + radius.err;
     EXPECT_NE(both.find("k-nearest"), std::string::npos) << both;
     EXPECT_EQ(radiusBoth.find("k-nearest"), std::string::npos) << radiusBoth;
