@@ -53,6 +53,14 @@ namespace meshgap
             };
             return planners;
         }
+
+        std::string commaSeparated(const std::vector<std::string> &names)
+        {
+            std::string out;
+            for (const std::string &n : names)
+                out += (out.empty() ? "" : ", ") + n;
+            return out;
+        }
     }  // namespace
 
     std::vector<std::string> plannerNames()
@@ -68,10 +76,7 @@ namespace meshgap
         const auto it = registry().find(name);
         if (it != registry().end())
             return it->second(si);
-        std::string valid;
-        for (const std::string &n : plannerNames())
-            valid += (valid.empty() ? "" : ", ") + n;
-        throw Exception("planner", "unknown planner '" + name + "'; valid names: " + valid);
+        throw Exception("planner", "unknown planner '" + name + "'; valid names: " + commaSeparated(plannerNames()));
     }
 
     void setPlannerParam(ompl::base::Planner &planner, const std::string &key, const std::string &value,
@@ -81,11 +86,8 @@ namespace meshgap
         {
             std::vector<std::string> names;
             planner.params().getParamNames(names);
-            std::string valid;
-            for (const std::string &n : names)
-                valid += (valid.empty() ? "" : ", ") + n;
             throw Exception(where, "'" + key + "' is no parameter of " + planner.getName() + "; its parameters: " +
-                                       (valid.empty() ? "none" : valid));
+                                       (names.empty() ? "none" : commaSeparated(names)));
         }
         bool set = false;
         try
