@@ -4,7 +4,7 @@
 //     (SE(3): linear translation, slerp rotation) and queried in order, as a planner's motion checks ask them;
 //   - "random": --random poses uniform in the cfg's volume with a uniform rotation (fixed seed).
 // Per state, interleaved so machine load hits every column alike: FCL distance, FCL collision, meshgap cold
-// certified (Scene::distance, a fresh SceneWarmStart per query), warm certified (one warm start carried from state
+// certified (Scene::distance without a warm start), warm certified (one warm start carried from state
 // to state), fast (SceneRequest::exact = false, its own carried warm start), collision-only (Scene::inCollision),
 // and enumeration (the exact node-level minimum over every obstacle, on every --enum-every'th state). Median and
 // 90th percentile in microseconds, the ratio of the medians to FCL's (distance columns to FCL distance,
@@ -255,10 +255,7 @@ int main(int argc, char **argv)
                 t[FCL_C].push_back(timed([&] { cF = test::fclCollide(fw, fr, X); }));
                 t[COLD].push_back(timed(
                     [&]
-                    {
-                        SceneWarmStart fresh;
-                        scene->distance(X, certified, fresh, cold);
-                    }));
+                    { scene->distance(X, certified, cold); }));
                 t[WARM].push_back(timed([&] { scene->distance(X, certified, warm, hot); }));
                 t[FAST].push_back(timed([&] { scene->distance(X, fast, fastWarm, quick); }));
                 t[COLL].push_back(timed([&] { cM = scene->inCollision(X); }));

@@ -9,7 +9,7 @@
 // clusters; mesh distances are built on first use and listed on their own), FCL's BVH. Memory: heap bytes still in
 // use after the structure is built (glibc mallinfo2() in-use bytes, before and after, temporaries excluded).
 // Queries: the robot along a short motion (--poses poses; two parts interlocked, never touching), interleaved per pose:
-// meshgap cold certified (fresh SceneWarmStart), warm certified (carried), fast (exact = false), collision-only,
+// meshgap cold certified (no SceneWarmStart), warm certified (carried), fast (exact = false), collision-only,
 // FCL distance and FCL collision. Then every meshgap query kind is run once more over the motion with an allocation
 // counter on (global operator new / new[] and malloc / calloc / realloc replaced in this executable), after a warm-up
 // pass, and the allocations per query are reported; --trace-alloc lists each distinct allocating call chain (five
@@ -336,10 +336,7 @@ int main(int argc, char **argv)
             tFclC.push_back(timed([&] { cF = test::fclCollide(fcl, fcl, X); }));
             tCold.push_back(timed(
                 [&]
-                {
-                    SceneWarmStart fresh;
-                    scene.distance(X, certified, fresh, cold);
-                }));
+                { scene.distance(X, certified, cold); }));
             tWarm.push_back(timed([&] { scene.distance(X, certified, warm, hot); }));
             if (dense || &X - poses.data() < static_cast<std::ptrdiff_t>(fastOnDemand))
                 tFast.push_back(timed([&] { scene.distance(X, fast, fastWarm, quick); }));
@@ -373,10 +370,7 @@ int main(int argc, char **argv)
         const double aCold = allocsPerQuery(
             "cold",
             [&](const Eigen::Isometry3d &X)
-            {
-                SceneWarmStart fresh;
-                scene.distance(X, certified, fresh, r);
-            },
+            { scene.distance(X, certified, r); },
             poses.size());
         const double aWarm = allocsPerQuery(
             "warm", [&](const Eigen::Isometry3d &X) { scene.distance(X, certified, warm, r); }, poses.size());

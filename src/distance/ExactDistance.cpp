@@ -139,13 +139,19 @@ namespace meshgap
     }
 
     void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
-                     double stopBelow, double upperBound)
+                     double stopBelow, double upperBound, ExactWarmStart *warm)
     {
         result.nodeDistance = result.distance;
         TriangleCandidate best;
+        if (warm && warm->valid && warm->triangleA < a.surface().triangles.size() &&
+            warm->triangleB < b.surface().triangles.size())
+        {
+            // The last closest pair: one test, and most often still the closest pair (or near it).
+            consider(a, b, X_AB, warm->triangleA, warm->triangleB, best, result.triangleTests);
+        }
         // A seed whose nodes are not below the caller's bound is not worth its descent: the traversal, pruned at the
         // bound, is then cheaper than walking the surface towards a pair that most likely does not matter.
-        if (result.distance < upperBound && result.nodes.a < a.numNodes() && result.nodes.b < b.numNodes())
+        else if (result.distance < upperBound && result.nodes.a < a.numNodes() && result.nodes.b < b.numNodes())
             best = seedFromNodes(a, b, X_AB, result.nodes, result.triangleTests);
 
         // With an early stop, a seed at or below stopBelow is already the answer. Otherwise the traversal stops at
@@ -156,7 +162,7 @@ namespace meshgap
             BvhDistanceResult traversal;
             const bool seeded = std::isfinite(best.d);
             bvhDistance(a.bvh(), b.bvh(), X_AB, std::min(best.d, upperBound), mayStop ? stopBelow : 0.0, traversal,
-                        seeded ? best.ta : UINT32_MAX, seeded ? best.tb : UINT32_MAX);
+                        seeded ? best.ta : UINT32_MAX, seeded ? best.tb : UINT32_MAX, warm ? &warm->front : nullptr);
             result.triangleTests += traversal.triangleTests;
             if (traversal.found)
                 best = {traversal.distance, traversal.triangleA, traversal.triangleB, traversal.onA, traversal.onB};
@@ -174,6 +180,12 @@ namespace meshgap
             return;
         }
 
+        if (warm)
+        {
+            warm->valid = true;
+            warm->triangleA = best.ta;
+            warm->triangleB = best.tb;
+        }
         result.distance = best.d;
         result.onA = best.onA;
         result.onB = best.onB;

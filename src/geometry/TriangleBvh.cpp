@@ -196,111 +196,287 @@ namespace meshgap
         }
     }  // namespace
 
+    double nodeMotionBound(const Eigen::Vector3d &center, double radius, const Eigen::Isometry3d &from,
+                           const Eigen::Isometry3d &to)
+    {
+        const Eigen::Vector3d shift = to * center - from * center;
+        // |R_to - R_from|_2 = 2 sin(theta / 2) = sqrt(3 - trace(R_from^T R_to)); the trace is the sum of the
+        // elementwise product.
+        const double trace = from.linear().cwiseProduct(to.linear()).sum();
+        const double turn = std::sqrt(std::max(0.0, 3.0 - trace));
+        // Roundoff: in the trace (a few 1e-16, whose square root can reach 1e-8 of a small turn: pad the turn by
+        // 1e-7) and in the shift (relative to the coordinates).
+        const double scale = center.norm() + radius + from.translation().norm() + to.translation().norm();
+        return (shift.norm() + radius * (turn + 1e-7 * (turn > 0.0))) * (1.0 + 1e-12) + 1e-12 * scale;
+    }
+
+    double motionBound(const TriangleBvh &b, const Eigen::Isometry3d &from, const Eigen::Isometry3d &to)
+    {
+        if (b.nodes().empty())
+            return 0.0;
+        return nodeMotionBound(b.nodes()[0].center, b.nodes()[0].radius, from, to);
+    }
+
+    namespace
+    {
+        /** \brief One distance traversal: a depth-first search over node pairs, nearer child first, pruning pairs
+            whose lower bound exceeds the best distance (plus the tie slack); with \e record set, every pruned pair
+            and every tested leaf pair goes there with its bound (key = bound + motion): the traversal's front. */
+        class DistanceTraversal
+        {
+        public:
+            DistanceTraversal(const TriangleBvh &a, const TriangleBvh &b, const RelativePose &X, double slack,
+                              double stopBelow, BvhDistanceResult &result, std::uint32_t bestA, std::uint32_t bestB,
+                              std::vector<BvhFront::Entry> *record, double motion, std::uint32_t stamp)
+              : a_(a), b_(b), X_(X), slack_(slack), stopBelow_(stopBelow), result_(result), bestA_(bestA),
+                bestB_(bestB), record_(record), motion_(motion), stamp_(stamp), stack_(threadStack<PairEntry, 1>()),
+                bounds_(threadStack<double, 2>())
+            {
+            }
+
+            /** \brief Prune threshold: a pair whose bound is above it cannot beat or tie the best so far. */
+            double enough() const { return result_.distance + slack_; }
+            /** \brief Where a bound's computation may stop: once above enough() when no front is kept; when one is,
+                the whole bound, which later poses reuse. */
+            double exitAbove() const { return record_ ? std::numeric_limits<double>::infinity() : enough(); }
+            bool stopped() const { return stopped_; }
+
+            /** \brief The bound of pair \e e at this pose: its box bound, or for a leaf pair -infinity (the leaf
+                test makes its own). */
+            double bound(const PairEntry &e)
+            {
+                const TriangleBvh::Node &na = a_.nodes()[e.a], &nb = b_.nodes()[e.b];
+                if (na.isLeaf() && nb.isLeaf())
+                    return -std::numeric_limits<double>::infinity();
+                ++result_.boxTests;
+                return lowerBound(na, nb, X_, exitAbove());
+            }
+
+            /** \brief Keep pair \e e with lower bound \e bound in the front (if one is recorded). */
+            void keep(const PairEntry &e, double bound)
+            {
+                if (record_)
+                    record_->push_back({e.a, e.b, stamp_, bound + motion_});
+            }
+
+            /** \brief Search below pair \e start (lower bound \e startBound) to its end, or until the early stop. */
+            void run(const PairEntry &start, double startBound)
+            {
+                stack_.push_back(start);
+                bounds_.push_back(startBound);
+                while (!stack_.empty())
+                {
+                    const PairEntry e = stack_.back();
+                    const double bound = bounds_.back();
+                    stack_.pop_back();
+                    bounds_.pop_back();
+                    if (stopped_)
+                    {
+                        keep(e, bound);  // left unexplored by the early stop: still a lower bound
+                        continue;
+                    }
+                    if (bound > enough())
+                    {
+                        keep(e, bound);  // nothing in this pair can beat or tie the best so far
+                        continue;
+                    }
+                    const TriangleBvh::Node &na = a_.nodes()[e.a], &nb = b_.nodes()[e.b];
+                    if (na.isLeaf() && nb.isLeaf())
+                    {
+                        keep(e, leaves(na, nb, bound));
+                        continue;
+                    }
+                    descend(e, na, nb);
+                }
+            }
+
+        private:
+            /** \brief Test every triangle pair of two leaves; returns a lower bound on the leaf pair's distance
+                (the least of each triangle pair's gap or distance; \e boxBound if the early stop cut it short). */
+            double leaves(const TriangleBvh::Node &na, const TriangleBvh::Node &nb, double boxBound)
+            {
+                const Mesh &ma = a_.mesh(), &mb = b_.mesh();
+                double least = std::numeric_limits<double>::infinity();
+                Eigen::Vector3d pb[3], onA, onB;
+                for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
+                {
+                    const std::uint32_t tb = b_.order()[j];
+                    for (int k = 0; k < 3; ++k)
+                        pb[k] = X_.R * mb.vertices[mb.triangles[tb][k]] + X_.t;
+                    const Eigen::Vector3d normalB = X_.R * b_.normals()[tb];
+                    for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
+                    {
+                        const std::uint32_t ta = a_.order()[i];
+                        const Triangle &fa = ma.triangles[ta];
+                        const Eigen::Vector3d pa[3] = {ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]]};
+                        // Cheap exact bounds first: separation along either triangle's normal, then along the
+                        // nine edge-cross axes. The slack keeps rounding from pruning a pair at exactly the best
+                        // distance's value.
+                        const double limit = enough();
+                        double gap = std::max(axisGap(a_.normals()[ta], pa, pb), axisGap(normalB, pa, pb));
+                        if (!(gap > limit))
+                            gap = std::max(gap, edgeAxesGap(pa, pb, limit));
+                        if (gap > limit)
+                        {
+                            least = std::min(least, gap);
+                            continue;
+                        }
+                        ++result_.triangleTests;
+                        const double d = triangleDistance(pa[0], pa[1], pa[2], pb[0], pb[1], pb[2], onA, onB);
+                        least = std::min(least, d);
+                        const bool closer = d < result_.distance - slack_;
+                        const bool tieWins = !closer && d <= result_.distance + slack_ &&
+                                             (ta < bestA_ || (ta == bestA_ && tb < bestB_));
+                        if (closer || tieWins)
+                        {
+                            bestA_ = ta;
+                            bestB_ = tb;
+                            result_.distance = d;
+                            result_.found = true;
+                            result_.triangleA = ta;
+                            result_.triangleB = tb;
+                            result_.onA = onA;
+                            result_.onB = onB;
+                            if (d <= stopBelow_)
+                            {
+                                stopped_ = true;
+                                return boxBound;  // pairs of these leaves may be left untested
+                            }
+                        }
+                    }
+                }
+                return least;
+            }
+
+            /** \brief Split the pair and push its children, the nearer one on top; children that cannot beat the
+                best so far are pruned (kept in the front) at once. */
+            void descend(const PairEntry &e, const TriangleBvh::Node &na, const TriangleBvh::Node &nb)
+            {
+                PairEntry c1, c2;
+                if (splitA(na, nb))
+                {
+                    c1 = {na.first, e.b};
+                    c2 = {na.first + 1, e.b};
+                }
+                else
+                {
+                    c1 = {e.a, nb.first};
+                    c2 = {e.a, nb.first + 1};
+                }
+                // A child above the best so far is pruned whatever its exact bound: stop computing it there.
+                double b1 = lowerBound(a_.nodes()[c1.a], b_.nodes()[c1.b], X_, exitAbove());
+                double b2 = lowerBound(a_.nodes()[c2.a], b_.nodes()[c2.b], X_, exitAbove());
+                result_.boxTests += 2;
+                if (b1 < b2)
+                {
+                    std::swap(c1, c2);
+                    std::swap(b1, b2);
+                }
+                for (const auto &[c, cb] : {std::pair<PairEntry, double>{c1, b1}, {c2, b2}})
+                    if (cb <= enough())
+                    {
+                        stack_.push_back(c);
+                        bounds_.push_back(cb);
+                    }
+                    else
+                        keep(c, cb);
+            }
+
+            const TriangleBvh &a_, &b_;
+            const RelativePose &X_;
+            const double slack_, stopBelow_;
+            BvhDistanceResult &result_;
+            std::uint32_t bestA_, bestB_;  // UINT32_MAX: no pair yet (any real pair ranks before it)
+            std::vector<BvhFront::Entry> *record_;
+            const double motion_;
+            const std::uint32_t stamp_;
+            std::vector<PairEntry> &stack_;
+            std::vector<double> &bounds_;
+            bool stopped_{false};
+        };
+    }  // namespace
+
     void bvhDistance(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, double upperBound,
-                     double stopBelow, BvhDistanceResult &result, std::uint32_t seedA, std::uint32_t seedB)
+                     double stopBelow, BvhDistanceResult &result, std::uint32_t seedA, std::uint32_t seedB,
+                     BvhFront *front)
     {
         result = BvhDistanceResult();
         result.distance = upperBound;
         if (a.nodes().empty() || b.nodes().empty())
+        {
+            if (front)
+                front->valid = false;
             return;
+        }
         const RelativePose X(X_AB);
         // Distances within this slack of each other are ties, broken by the smaller triangle pair (see the header).
         const TriangleBvh::Node &rootA = a.nodes()[0], &rootB = b.nodes()[0];
         const double slack = 1e-12 * (rootA.center.norm() + rootA.radius + rootB.center.norm() + rootB.radius +
                                       X.t.norm());
-        std::uint32_t bestA = seedA, bestB = seedB;  // UINT32_MAX: no pair yet (any real pair ranks before it)
-        const Mesh &ma = a.mesh(), &mb = b.mesh();
-        std::vector<PairEntry> &stack = threadStack<PairEntry, 1>();
-        std::vector<double> &bounds = threadStack<double, 2>();
-        stack.push_back({0u, 0u});
-        bounds.push_back(lowerBound(a.nodes()[0], b.nodes()[0], X));
-        ++result.boxTests;
-        Eigen::Vector3d pb[3], onA, onB;
-        while (!stack.empty())
+        if (!front)
         {
-            const PairEntry e = stack.back();
-            const double bound = bounds.back();
-            stack.pop_back();
-            bounds.pop_back();
-            if (bound > result.distance + slack)
-                continue;  // nothing in this pair can beat or tie the best so far
-            const TriangleBvh::Node &na = a.nodes()[e.a], &nb = b.nodes()[e.b];
-            if (na.isLeaf() && nb.isLeaf())
-            {
-                for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
-                {
-                    const std::uint32_t tb = b.order()[j];
-                    for (int k = 0; k < 3; ++k)
-                        pb[k] = X.R * mb.vertices[mb.triangles[tb][k]] + X.t;
-                    const Eigen::Vector3d normalB = X.R * b.normals()[tb];
-                    for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
-                    {
-                        const std::uint32_t ta = a.order()[i];
-                        const Triangle &fa = ma.triangles[ta];
-                        const Eigen::Vector3d pa[3] = {ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]]};
-                        // Cheap exact bound first: separation along either triangle's normal. The slack keeps
-                        // rounding from pruning a pair at exactly the best distance's value.
-                        const double enough = result.distance + slack;
-                        double gap = std::max(axisGap(a.normals()[ta], pa, pb), axisGap(normalB, pa, pb));
-                        if (!(gap > enough))
-                            gap = edgeAxesGap(pa, pb, enough);
-                        if (gap > enough)
-                            continue;
-                        ++result.triangleTests;
-                        const double d = triangleDistance(ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]],
-                                                          pb[0], pb[1], pb[2], onA, onB);
-                        const bool closer = d < result.distance - slack;
-                        const bool tieWins = !closer && d <= result.distance + slack &&
-                                             (ta < bestA || (ta == bestA && tb < bestB));
-                        if (closer || tieWins)
-                        {
-                            bestA = ta;
-                            bestB = tb;
-                            result.distance = d;
-                            result.found = true;
-                            result.triangleA = ta;
-                            result.triangleB = tb;
-                            result.onA = onA;
-                            result.onB = onB;
-                            if (d <= stopBelow)
-                                return;
-                        }
-                    }
-                }
-                continue;
-            }
-            // Descend; push the farther child first so the nearer one is explored first.
-            PairEntry c1, c2;
-            if (splitA(na, nb))
-            {
-                c1 = {na.first, e.b};
-                c2 = {na.first + 1, e.b};
-            }
-            else
-            {
-                c1 = {e.a, nb.first};
-                c2 = {e.a, nb.first + 1};
-            }
-            // A child above the best so far is pruned whatever its exact bound: stop computing it there.
-            double b1 = lowerBound(a.nodes()[c1.a], b.nodes()[c1.b], X, result.distance + slack);
-            double b2 = lowerBound(a.nodes()[c2.a], b.nodes()[c2.b], X, result.distance + slack);
-            result.boxTests += 2;
-            if (b1 < b2)
-            {
-                std::swap(c1, c2);
-                std::swap(b1, b2);
-            }
-            if (b1 <= result.distance + slack)
-            {
-                stack.push_back(c1);
-                bounds.push_back(b1);
-            }
-            if (b2 <= result.distance + slack)
-            {
-                stack.push_back(c2);
-                bounds.push_back(b2);
-            }
+            DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, nullptr, 0.0, 0);
+            traversal.run({0u, 0u}, traversal.bound({0u, 0u}));
+            return;
         }
+
+        const std::uint32_t stamp = ++front->stamp;
+        if (front->valid)
+        {
+            // Every entry's bound falls by at most B's displacement since it was computed: lower it by the motion
+            // summed since then (key - motion), padded against the roundoff of that sum.
+            const BvhFront::Entry *const begin = front->entries.data();
+            const std::size_t count = front->entries.size();
+            const double motion = front->motion + motionBound(b, front->poses[(stamp - 1) % BvhFront::POSES], X_AB);
+            const double pad = 1e-12 * motion;
+            std::vector<BvhFront::Entry> &next = front->next;
+            next.clear();
+            std::size_t retested = 0;
+            DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, &next, motion, stamp);
+            for (std::size_t i = 0; i < count && !traversal.stopped(); ++i)
+            {
+                const BvhFront::Entry &e = begin[i];
+                if (e.key - motion - pad > traversal.enough())
+                    continue;  // still proven beyond the best
+                // Its own node's displacement since its bound was computed, if that pose is still known.
+                const std::uint32_t age = stamp - e.stamp;
+                if (age < BvhFront::POSES)
+                {
+                    const std::uint32_t slot = e.stamp % BvhFront::POSES;
+                    const TriangleBvh::Node &nb = b.nodes()[e.b];
+                    const double bound = e.key - front->motions[slot] -
+                                         nodeMotionBound(nb.center, nb.radius, front->poses[slot], X_AB);
+                    if (bound - pad > traversal.enough())
+                        continue;
+                }
+                ++retested;
+                const PairEntry pair{e.a, e.b};
+                traversal.run(pair, traversal.bound(pair));
+                // Its sub-front (at least one entry) replaces it: the last one in its place, the others appended.
+                front->entries[i] = next.back();
+                next.pop_back();
+            }
+            front->reused += count - retested;
+            front->retested += retested;
+            front->entries.insert(front->entries.end(), next.begin(), next.end());
+            front->motion = motion;
+            front->poses[stamp % BvhFront::POSES] = X_AB;
+            front->motions[stamp % BvhFront::POSES] = motion;
+            // Rebuild next time when the front has grown well past a fresh one (a cut refined for motions that have
+            // passed), or this motion made more re-tests than a fresh traversal's work.
+            front->valid = front->entries.size() <= BvhFront::FRONT_GROWTH * front->freshSize + 16 &&
+                           retested <= 2 * front->freshSize + 16;
+            return;
+        }
+        ++front->rebuilds;
+        front->entries.clear();
+        DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, &front->entries, 0.0, stamp);
+        traversal.run({0u, 0u}, traversal.bound({0u, 0u}));
+        front->motion = 0.0;
+        front->poses[stamp % BvhFront::POSES] = X_AB;
+        front->motions[stamp % BvhFront::POSES] = 0.0;
+        front->freshSize = front->entries.size();
+        front->valid = true;
     }
 
     bool bvhCollide(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, std::uint32_t *hitA,

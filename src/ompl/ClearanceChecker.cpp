@@ -205,8 +205,7 @@ namespace meshgap
         else
         {
             request.seed = seedOf(X);
-            SceneWarmStart cold;  // fast mode is a pure function of the state: no history
-            scene_->distance(X, request, cold, result);
+            scene_->distance(X, request, result);  // fast mode is a pure function of the state: no history
         }
         evaluations_ += result.evaluations;
         warmHits_ += result.warmStartHit;

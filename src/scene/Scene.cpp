@@ -1,6 +1,7 @@
 #include "meshgap/scene/Scene.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -34,30 +35,11 @@ namespace meshgap
 
         constexpr std::uint32_t NONE = std::numeric_limits<std::uint32_t>::max();
 
+        std::atomic<std::uint64_t> nextSceneId{1};
+
         Box toBox(const Eigen::Vector3d &lo, const Eigen::Vector3d &hi)
         {
             return Box(Point(lo.x(), lo.y(), lo.z()), Point(hi.x(), hi.y(), hi.z()));
-        }
-
-        /** \brief For each surface triangle of \e body, the node in it that lies in the fewest surface triangles (an
-            inner node if it has one, else an edge node, else a corner): a warm start's node for that triangle whose
-            seed in refineExact() costs the fewest triangle tests. */
-        std::vector<std::uint32_t> seedNodes(const Body &body)
-        {
-            const std::size_t n = body.surface().triangles.size();
-            std::vector<std::uint32_t> node(n, NONE);
-            std::vector<std::ptrdiff_t> count(n, std::numeric_limits<std::ptrdiff_t>::max());
-            for (std::uint32_t i = 0; i < body.numNodes(); ++i)
-            {
-                const std::ptrdiff_t c = body.endNodeTriangles(i) - body.beginNodeTriangles(i);
-                for (const std::uint32_t *t = body.beginNodeTriangles(i); t != body.endNodeTriangles(i); ++t)
-                    if (c < count[*t])
-                    {
-                        count[*t] = c;
-                        node[*t] = i;
-                    }
-            }
-            return node;
         }
 
         /** \brief An obstacle the nearest-first walk may visit: its box, its squared box distance from the robot's
@@ -128,14 +110,8 @@ namespace meshgap
 
     struct Scene::Impl
     {
-        Impl(const Body &robot, const std::vector<BodyConstPtr> &obstacles, const std::vector<Entry> &entries)
-            : tree(entries.begin(), entries.end())  // packed build
-              ,
-              robotSeeds(seedNodes(robot))
+        explicit Impl(const std::vector<Entry> &entries) : tree(entries.begin(), entries.end())  // packed build
         {
-            obstacleSeeds.reserve(obstacles.size());
-            for (const BodyConstPtr &o : obstacles)
-                obstacleSeeds.push_back(seedNodes(*o));
             for (const Entry &e : entries)
                 for (const Point &p : {e.first.min_corner(), e.first.max_corner()})
                     extent =
@@ -259,16 +235,13 @@ namespace meshgap
         /** \brief Every entry, in R-tree order (the order of the tree's spatial queries). */
         std::vector<Entry> inTreeOrder;
         double extent{0.0};  ///< largest absolute coordinate of any obstacle box
-        /** \brief seedNodes() of the robot and of each obstacle. */
-        std::vector<std::uint32_t> robotSeeds;
-        std::vector<std::vector<std::uint32_t>> obstacleSeeds;
         /** \brief comb-GA-wl for fast mode: solve() is const and keeps all per-query state in the call, so one
             instance serves every thread. */
         DistanceSolverConstPtr fast{allocSolver("comb-GA-wl")};
     };
 
     Scene::Scene(BodyConstPtr robot, std::vector<BodyConstPtr> obstacles)
-        : robot_(std::move(robot)), obstacles_(std::move(obstacles))
+        : robot_(std::move(robot)), obstacles_(std::move(obstacles)), id_(nextSceneId++)
     {
         if (!robot_)
             throw Exception("Scene", "no robot body");
@@ -282,7 +255,7 @@ namespace meshgap
             const Eigen::AlignedBox3d b = obstacles_[k]->surface().bounds();
             entries.emplace_back(toBox(b.min(), b.max()), k);
         }
-        impl_ = std::make_shared<const Impl>(*robot_, obstacles_, entries);
+        impl_ = std::make_shared<const Impl>(entries);
     }
 
     ScenePtr Scene::fromMeshes(const Mesh &robot, const Mesh &world, const BodyOptions &options)
@@ -344,11 +317,23 @@ namespace meshgap
     void Scene::distance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
                          SceneResult &result) const
     {
+        query(X_WR, request, &warm, result);
+    }
+
+    void Scene::distance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneResult &result) const
+    {
+        query(X_WR, request, nullptr, result);
+    }
+
+    void Scene::query(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart *warm,
+                      SceneResult &result) const
+    {
         result = SceneResult();
         if (obstacles_.empty())
         {
             result.certified = request.exact;  // nothing to be near: infinity is the exact answer
-            warm.valid = false;
+            if (warm)
+                warm->valid = false;
             return;
         }
         if (!(request.upperBound > 0.0))
@@ -356,7 +341,10 @@ namespace meshgap
         if (request.exact)
             exactDistance(X_WR, request, warm, result);
         else
-            fastDistance(X_WR, request, warm, result);
+        {
+            SceneWarmStart none;  // a node pair and no more: allocates nothing
+            fastDistance(X_WR, request, warm ? *warm : none, result);
+        }
     }
 
     // Both modes share the visiting order: the warm start's obstacle first, then increasing box distance (ties in
@@ -368,10 +356,18 @@ namespace meshgap
     // per thread too (capacity kept); DistanceResult::history is only filled on request. tests/alloc checks every
     // query kind.
 
-    void Scene::exactDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
+    void Scene::exactDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart *warm,
                               SceneResult &result) const
     {
-        const bool warmValid = warm.valid && warm.obstacle < obstacles_.size();
+        if (warm && (warm->scene != id_ || warm->pairs.size() != obstacles_.size()))
+        {
+            // First exact query with this warm start, or one made with another scene: nothing carries over.
+            warm->valid = false;
+            warm->pairs.clear();
+            warm->pairs.resize(obstacles_.size());
+            warm->scene = id_;
+        }
+        const bool warmValid = warm && warm->valid && warm->obstacle < obstacles_.size();
         const bool mayStop = request.stopBelow >= 0.0;
         DistanceResult best;
         std::size_t bestK = obstacles_.size();
@@ -384,15 +380,10 @@ namespace meshgap
         {
             const Body &obstacle = *obstacles_[k];
             DistanceResult r;
-            if (warmValid && k == warm.obstacle && warm.nodes.a < obstacle.numNodes() &&
-                warm.nodes.b < robot_->numNodes())
-            {
-                r.nodes = warm.nodes;
-                r.distance = (obstacle.node(warm.nodes.a) - X_WR * robot_->node(warm.nodes.b)).norm();
-            }
             // Without an early stop, a collision still ends the walk at once (stopBelow 0: no depth yet): the
             // depth pass below then looks at every obstacle that might collide.
-            refineExact(obstacle, *robot_, X_WR, r, mayStop ? request.stopBelow : 0.0, bound());
+            refineExact(obstacle, *robot_, X_WR, r, mayStop ? request.stopBelow : 0.0, bound(),
+                        warm ? &warm->pairs[k] : nullptr);
             ++result.pairsChecked;
             complete = complete && r.certified;
             if (r.distance < bound())  // else nothing on this obstacle is below the bound (refineExact's infinity)
@@ -405,7 +396,7 @@ namespace meshgap
 
         // Ending early (a collision, or the early stop) with an obstacle left that might be closer leaves the
         // distance uncertified; a collision is certified by its own pair.
-        if (impl_->visitNearestFirst(impl_->robotBox(*robot_, X_WR), warmValid ? warm.obstacle : obstacles_.size(),
+        if (impl_->visitNearestFirst(impl_->robotBox(*robot_, X_WR), warmValid ? warm->obstacle : obstacles_.size(),
                                      bound, visit))
             complete = false;
         if (bestK == obstacles_.size())
@@ -436,12 +427,12 @@ namespace meshgap
         result.penetrationDepth = best.penetrationDepth;
         result.penetration = best.penetration;
         result.certified = best.inCollision ? best.certified : complete;
-        result.warmStartHit = warmValid && bestK == warm.obstacle;
-
-        const NodePair nodes{impl_->obstacleSeeds[bestK][best.triangleA], impl_->robotSeeds[best.triangleB]};
-        warm.valid = nodes.a != NONE && nodes.b != NONE;
-        warm.obstacle = bestK;
-        warm.nodes = nodes;
+        result.warmStartHit = warmValid && bestK == warm->obstacle;
+        if (warm)
+        {
+            warm->valid = true;
+            warm->obstacle = bestK;
+        }
     }
 
     void Scene::fastDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,

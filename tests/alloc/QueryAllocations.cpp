@@ -87,7 +87,7 @@ namespace meshgap
         };
 
         /** \brief Runs \e query over \e poses twice (warm-up, then counted) with one warm start carried through
-            (reset before each query if \e cold); returns the allocations of the second pass and checks that both
+            (no warm start at all if \e cold); returns the allocations of the second pass and checks that both
             passes gave the same answers. */
         std::size_t allocationsAfterWarmUp(const Scene &scene, const std::vector<Eigen::Isometry3d> &poses,
                                            const SceneRequest &request, bool cold, std::size_t &collisions)
@@ -97,17 +97,21 @@ namespace meshgap
             second.reserve(poses.size());
             std::size_t counted = 0;
             collisions = 0;
+            // The warm start is the caller's: it warms up with the thread, and each pass starts it afresh (reset()
+            // keeps its memory). A cold query takes none.
+            SceneWarmStart warm;
             for (int pass = 0; pass < 2; ++pass)
             {
                 std::vector<Answer> &answers = pass == 0 ? first : second;
-                SceneWarmStart warm;
+                warm.reset();
                 SceneResult result;
                 for (const Eigen::Isometry3d &X : poses)
                 {
-                    if (cold)
-                        warm = SceneWarmStart();
                     const std::size_t before = allocationCount;
-                    scene.distance(X, request, warm, result);
+                    if (cold)
+                        scene.distance(X, request, result);
+                    else
+                        scene.distance(X, request, warm, result);
                     counted += pass == 1 ? allocationCount - before : 0;
                     answers.push_back({result.distance, result.obstacle, result.inCollision});
                     collisions += pass == 1 && result.inCollision;

@@ -4,9 +4,23 @@
 #include <limits>
 
 #include "meshgap/distance/DistanceSolver.h"
+#include "meshgap/geometry/TriangleBvh.h"
 
 namespace meshgap
 {
+    /** \brief What exact queries between one pair of bodies carry from one pose to the next, nearby one (the paper's
+        warm start, III-D, carried to the exact layer): the closest triangle pair of the last query, tested first as
+        the best first guess, and the certificate of its traversal (BvhFront), re-tested only where the motion since
+        may have changed it. Never changes an answer, only its cost. Belongs to one caller (one thread). */
+    struct ExactWarmStart
+    {
+        bool valid{false};  ///< triangleA / triangleB hold the last closest pair
+        std::uint32_t triangleA{0}, triangleB{0};
+        BvhFront front;
+        /** \brief Bytes held, this object included. */
+        std::size_t memoryBytes() const { return sizeof(*this) + front.memoryBytes(); }
+    };
+
     /** \brief The exact stage after a node-level search (the paper's future work, Section V): turn \e result's node
         answer into the exact distance between the two surfaces, with a certificate.
 
@@ -42,9 +56,13 @@ namespace meshgap
         distance found on its other obstacles), so the traversal prunes everything at or above it. When nothing is
         closer, distance is +infinity, certified (nothing below the bound exists) and the witnesses unset; the
         collision verdict is still exact (a containment cannot hide behind the bound). Infinity (the default): no
-        bound. */
+        bound.
+
+        \param warm The caller's warm start for this pair of bodies, if any: its triangle pair seeds the search
+        instead of the result's node pair, its front starts the traversal, and both are updated. */
     void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
-                     double stopBelow = -1.0, double upperBound = std::numeric_limits<double>::infinity());
+                     double stopBelow = -1.0, double upperBound = std::numeric_limits<double>::infinity(),
+                     ExactWarmStart *warm = nullptr);
 
     /** \brief Exact collision test alone: a touching or intersecting surface triangle pair (bvhCollide()), or one
         closed body wholly inside the other. Cheaper than refineExact(); the same verdict. */

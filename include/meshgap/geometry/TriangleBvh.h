@@ -2,6 +2,7 @@
 #define MESHGAP_GEOMETRY_TRIANGLE_BVH_H
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -58,6 +59,63 @@ namespace meshgap
         std::size_t boxTests{0}, triangleTests{0};
     };
 
+    /** \brief The certificate of the last distance traversal between two trees, kept by a caller (a warm start) for
+        the next, nearby pose: the front of that traversal, a cut through the tree of node pairs (every pair of
+        triangles lies under exactly one entry), each entry with a lower bound on its distance.
+
+        A bound computed at one pose stays a lower bound at a later one once the largest displacement of B's points
+        between the two poses is subtracted. Two such displacements are used:
+        - for all entries at once, the whole of B (motionBound()), summed over the steps since the front was rebuilt
+          (motion): each entry stores key = bound + motion at the time, and key - motion is its bound now; a scan of
+          the keys keeps most entries without any work;
+        - for an entry that fails that test and was computed within the last POSES traversals, the displacement of
+          its own node of B between that traversal's pose and this one (nodeMotionBound()), much smaller for a part
+          near the centre of a rotation.
+        An entry that fails both is re-tested (its bound recomputed, descended where it could beat the best), and its
+        sub-front replaces it. The answer is the cold traversal's: same prune rule, same tie rule. The front is
+        rebuilt from the roots when it has grown past FRONT_GROWTH times the size of a fresh one, or when a
+        traversal had to re-test more entries than a fresh front holds twice over (a motion too large to pay).
+        Belongs to one caller; not thread-safe. */
+    struct BvhFront
+    {
+        static constexpr std::size_t FRONT_GROWTH = 4;
+        static constexpr std::uint32_t POSES = 8;
+
+        struct Entry
+        {
+            std::uint32_t a, b;  ///< node of tree A, node of tree B
+            std::uint32_t stamp;  ///< the traversal that computed the bound
+            double key;           ///< that lower bound on the pair's distance + motion at the time
+        };
+
+        std::vector<Entry> entries;  ///< the front (valid when valid is set)
+        std::vector<Entry> next;     ///< sub-fronts of the entries being re-tested (kept for its capacity)
+        std::array<Eigen::Isometry3d, POSES> poses;  ///< X_AB of the last POSES traversals, by stamp % POSES
+        std::array<double, POSES> motions{};          ///< motion at each of them
+        double motion{0.0};          ///< displacement bounds summed since the front was rebuilt
+        std::uint32_t stamp{0};      ///< the last traversal's number
+        std::size_t freshSize{0};    ///< size of the front the last traversal from the roots wrote
+        bool valid{false};           ///< entries cover the whole pair tree (false: start from the roots)
+        std::size_t reused{0};       ///< statistics: entries kept without a test, over the front's lifetime
+        std::size_t retested{0};     ///< entries re-tested
+        std::size_t rebuilds{0};     ///< traversals from the roots
+
+        /** \brief Heap bytes held (both buffers' capacity). */
+        std::size_t memoryBytes() const { return (entries.capacity() + next.capacity()) * sizeof(Entry); }
+        void clear() { valid = false; }
+    };
+
+    /** \brief Upper bound on how far any point within \e radius of \e center (B's frame) moves between B's poses
+        \e from and \e to (both in A's frame): |to c - from c| + radius |R_to - R_from|_2, the spectral norm of the
+        rotation difference being 2 sin(theta / 2) for the relative angle theta. Padded against roundoff. */
+    double nodeMotionBound(const Eigen::Vector3d &center, double radius, const Eigen::Isometry3d &from,
+                           const Eigen::Isometry3d &to);
+
+    /** \brief Upper bound on how far any point of \e b (its root sphere) moves between B's poses \e from and \e to
+        (both in A's frame): |to c - from c| + r |R_to - R_from|_2 for the root sphere (c, r), the spectral norm of
+        the rotation difference being 2 sin(theta / 2) for the relative angle theta. Padded against roundoff. */
+    double motionBound(const TriangleBvh &b, const Eigen::Isometry3d &from, const Eigen::Isometry3d &to);
+
     /** \brief Exact minimum distance between the triangles of \e a (frame A) and of \e b placed by \e X_AB, searching
         only for pairs closer than \e upperBound (pass a distance some real pair achieves to prune with it, or
         infinity; \e seedA / \e seedB name that pair, if any). Completes the whole traversal unless \e stopBelow is
@@ -68,10 +126,13 @@ namespace meshgap
         Ties are canonical: pairs whose distances agree within a rounding slack (1e-12 of the scene's scale) count
         as equally close, and the one with the smallest (triangle of A, triangle of B) wins. So the answer, pair and
         witness points do not depend on the seed or the visiting order: a warm-started query gives the cold query's
-        answer bit for bit. */
+        answer bit for bit.
+
+        With \e front, the traversal starts from that certificate of an earlier query between the same trees (if it
+        is valid) instead of the roots, and leaves its own front there (BvhFront); the answer is the same. */
     void bvhDistance(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, double upperBound,
                      double stopBelow, BvhDistanceResult &result, std::uint32_t seedA = UINT32_MAX,
-                     std::uint32_t seedB = UINT32_MAX);
+                     std::uint32_t seedB = UINT32_MAX, BvhFront *front = nullptr);
 
     /** \brief True when some triangle of \e a intersects (or touches) some triangle of \e b placed by \e X_AB;
         stops at the first such pair, which is reported through \e hitA / \e hitB when given. */

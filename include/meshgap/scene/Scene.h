@@ -7,6 +7,7 @@
 
 #include "meshgap/ClassForward.h"
 #include "meshgap/distance/DistanceQuery.h"
+#include "meshgap/distance/ExactDistance.h"
 #include "meshgap/mesh/Body.h"
 
 namespace meshgap
@@ -34,13 +35,39 @@ namespace meshgap
         double upperBound{std::numeric_limits<double>::infinity()};
     };
 
-    /** \brief The last answer of one caller (one thread): the best first guess for the next, nearby pose (paper
-        III-D). Never shared between threads. */
+    /** \brief What one caller (one thread) carries from one query to the next, nearby pose (paper III-D): the
+        obstacle of the last minimum, visited first; in exact mode, per obstacle, the closest triangle pair and the
+        certificate of the last traversal (ExactWarmStart); in fast mode, the last node pair. Changes the cost of a
+        query, never its answer. Never shared between threads; bound to the scene it was last used with (another
+        scene starts it afresh). */
     struct SceneWarmStart
     {
         bool valid{false};
         std::size_t obstacle{0};  ///< obstacle of the last minimum
-        NodePair nodes;           ///< its node pair
+        NodePair nodes;           ///< fast mode: its node pair
+        std::vector<ExactWarmStart> pairs;  ///< exact mode: one per obstacle, sized by the first exact query
+        std::uint64_t scene{0};   ///< Scene::id() of the scene pairs belongs to
+
+        /** \brief Forget the history (the next query is answered as a cold one would be) but keep the memory, so
+            that a caller who resets allocates nothing. */
+        void reset()
+        {
+            valid = false;
+            for (ExactWarmStart &p : pairs)
+            {
+                p.valid = false;
+                p.front.clear();
+            }
+        }
+
+        /** \brief Bytes held, this object included (the fronts grow with the geometry, not with the queries). */
+        std::size_t memoryBytes() const
+        {
+            std::size_t bytes = sizeof(*this) + (pairs.capacity() - pairs.size()) * sizeof(ExactWarmStart);
+            for (const ExactWarmStart &p : pairs)
+                bytes += p.memoryBytes();
+            return bytes;
+        }
     };
 
     /** \brief The answer for one robot pose. */
@@ -80,6 +107,8 @@ namespace meshgap
         static ScenePtr fromMeshes(const Mesh &robot, const Mesh &world, const BodyOptions &options = BodyOptions());
 
         const Body &robot() const { return *robot_; }
+        /** \brief Unique per scene, never reused (keys the warm starts made with it). */
+        std::uint64_t id() const { return id_; }
         const std::vector<BodyConstPtr> &obstacles() const { return obstacles_; }
 
         /** \brief Exact collision test of the robot at \e X_WR against every obstacle; stops at the first hit. */
@@ -93,8 +122,8 @@ namespace meshgap
             The bound is the distance between world-frame axis-aligned boxes: the obstacle's, and the robot's (its
             BVH root box and bounding sphere carried to the world frame, intersected, padded against roundoff), so
             only obstacles that cannot be closer than the best so far are skipped.
-            - Exact mode: refineExact() per visited obstacle, seeded from the warm start's node pair on the warm
-              start's obstacle (cold elsewhere). certified when every visited pair completed and none was left
+            - Exact mode: refineExact() per visited obstacle with the warm start's ExactWarmStart of that obstacle
+              (its last closest triangle pair and traversal front). certified when every visited pair completed and none was left
               unvisited that could be closer. Containment is decided per obstacle: a robot inside a closed part of
               the world collides.
             - In collision (both modes) distance is the signed distance, negative: the minimum over every colliding
@@ -112,13 +141,16 @@ namespace meshgap
               in exact mode, inCollision is then set only if a touching pair was met). A collision then gets no
               depth (it is not needed to refuse the pose): distance kContactDistance, penetration NotComputed, and
               the first collision met ends the query.
-            \e warm is updated to the closest obstacle and a node pair there (in exact mode, a node of each of the two
-            closest surface triangles), whatever it held before. The warm start changes the cost, never the verdict;
+            \e warm is updated to the closest obstacle (and, in exact mode, the pair and front of every obstacle
+            visited; in fast mode, the node pair), whatever it held before. The warm start changes the cost, never the verdict;
             the exact distance may differ from a cold query's in the last bits (at a minimum that several triangle
             pairs reach, as at a vertex or between parallel faces, each pair's roundoff differs; measured: at most
             5e-15 relative). */
         void distance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
                       SceneResult &result) const;
+        /** \brief The same answer with no warm start: a cold query, which keeps nothing (and allocates nothing once
+            the calling thread has warmed up). */
+        void distance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneResult &result) const;
 
     private:
         /** \brief The broad phase (an R-tree over the obstacles' world-frame boxes, Boost.Geometry) and the fast
@@ -133,13 +165,16 @@ namespace meshgap
             again), or obstacles_.size(); pairs tested are added to \e pairsChecked. */
         std::size_t deepestCollision(const Eigen::Isometry3d &X_WR, std::size_t known, DistanceResult &best,
                                      std::size_t &pairsChecked) const;
-        void exactDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
+        void query(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart *warm,
+                   SceneResult &result) const;
+        void exactDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart *warm,
                            SceneResult &result) const;
         void fastDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
                           SceneResult &result) const;
 
         BodyConstPtr robot_;
         std::vector<BodyConstPtr> obstacles_;
+        std::uint64_t id_;
         std::shared_ptr<const Impl> impl_;
     };
 }  // namespace meshgap
