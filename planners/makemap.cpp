@@ -9,7 +9,7 @@
 //
 //   slotted_wall     a C-shaped payload (B) to pass through a wall (A) by a narrow slot (short, little clearance)
 //                    or a wide one off to the side (long, four times the play): a length/clearance trade-off
-//   twisted          a stress scene for the exact layer: a thin helical ribbon (B, two turns of long thin
+//   twisted          a stress scene for the exact layer: a thin helical strip (B, three turns of long thin
 //                    triangles) screwed through a helical channel of the same pitch (A) with 0.3 of play on every
 //                    side; its .poses are the whole screw motion, a collision-free path close to A all the way
 //
@@ -592,19 +592,20 @@ namespace
     }
 
     // Twisted, in its own units: a stress scene for the exact layer (issue 13), not from the paper. A long, thin
-    // ribbon wound as a helix (two turns: the flight of an auger) screws through a helical channel of the same
-    // pitch (four turns, a hollow coil whose bore is the ribbon's section grown by the play on every side). Both
-    // are concave, twisted everywhere and made of long thin triangles (slivers). The motion is a screw about z:
-    // one that the channel maps onto itself, so inside it the ribbon keeps its play on every side, the whole way.
-    constexpr double twistRadius = 12.0;     // the ribbon's mid radius about z
-    constexpr double twistWidth = 6.0;       // radial width: r in [9, 15]
+    // flat strip (section 1.5 x 0.4) wound as a helix, three turns (a coil spring of flat wire), screws through a
+    // helical channel of the same pitch (five turns, a hollow coil whose bore is the strip's section grown by the
+    // play on every side). Both are concave, twisted everywhere and made of long thin triangles (slivers, 15 degrees
+    // of arc long). The motion is a screw about z that the channel maps onto itself, so inside it the strip keeps
+    // about its play on every side (less the chords' sagitta), the whole way.
+    constexpr double twistRadius = 12.0;     // the strip's mid radius about z
+    constexpr double twistWidth = 1.5;       // radial width: r in [11.25, 12.75]
     constexpr double twistThickness = 0.4;   // along z
-    constexpr double twistPitch = 8.0;       // rise per turn (ribbon and channel)
-    constexpr double twistPlay = 0.3;        // the channel's bore: the ribbon's section grown by this on each side
+    constexpr double twistPitch = 8.0;       // rise per turn (strip and channel)
+    constexpr double twistPlay = 0.3;        // the channel's bore: the strip's section grown by this on each side
     constexpr double twistWall = 1.0;        // the channel's wall thickness
-    constexpr double twistStepDegrees = 7.5; // stations of both sweeps (the same angles, so faces line up)
-    constexpr int twistRibbonTurns = 2, twistChannelTurns = 4;
-    constexpr double twistApproachDegrees = 15.0;  // the ribbon's end this far before the channel at the start
+    constexpr double twistStepDegrees = 15.0; // stations of both sweeps (the same angles, so faces line up)
+    constexpr int twistStripTurns = 3, twistChannelTurns = 5;
+    constexpr double twistApproachDegrees = 15.0;  // the strip's end this far before the channel at the start
     constexpr double twistPoseStepDegrees = 3.75;  // the screw turned this much between two .poses lines
 
     /** \brief The solid swept by the section \e outer (minus \e hole, if not empty), drawn in the (r, z) half-plane
@@ -680,26 +681,27 @@ namespace
         const double r0 = twistRadius - 0.5 * twistWidth, r1 = twistRadius + 0.5 * twistWidth,
                      h = 0.5 * twistThickness;
         const double huge = 1e3;  // sizing above every edge: the sweeps' triangles are kept as they are (slivers)
-        const unsigned int ribbonSteps = static_cast<unsigned int>(std::lround(360.0 * twistRibbonTurns / twistStepDegrees));
+        const unsigned int stripSteps =
+            static_cast<unsigned int>(std::lround(360.0 * twistStripTurns / twistStepDegrees));
         const unsigned int channelSteps =
             static_cast<unsigned int>(std::lround(360.0 * twistChannelTurns / twistStepDegrees));
-        const double ribbonEnd = 2.0 * pi * twistRibbonTurns, channelEnd = 2.0 * pi * twistChannelTurns;
-        s.b = helicalSweep(sectionRectangle(r0, r1, h), {}, 0.0, ribbonEnd, ribbonSteps, twistPitch)
-                  .mesh(meshgap::uniformSizing(huge), "twisted ribbon");
+        const double stripEnd = 2.0 * pi * twistStripTurns, channelEnd = 2.0 * pi * twistChannelTurns;
+        s.b = helicalSweep(sectionRectangle(r0, r1, h), {}, 0.0, stripEnd, stripSteps, twistPitch)
+                  .mesh(meshgap::uniformSizing(huge), "twisted strip");
         const double bore = twistPlay, wall = twistPlay + twistWall;
         s.a = helicalSweep(sectionRectangle(r0 - wall, r1 + wall, h + wall),
                            sectionRectangle(r0 - bore, r1 + bore, h + bore), 0.0, channelEnd, channelSteps, twistPitch)
                   .mesh(meshgap::uniformSizing(huge), "twisted channel");
-        // The path: the screw from the ribbon's end twistApproachDegrees before the channel's mouth to its start
-        // as far beyond the channel's far end; the ribbon occupies the screw angles [u, u + ribbonEnd].
+        // The path: the screw from the strip's end twistApproachDegrees before the channel's mouth to its start
+        // as far beyond the channel's far end; the strip occupies the screw angles [u, u + stripEnd].
         const double approach = radians(twistApproachDegrees);
-        const double u0 = -ribbonEnd - approach, u1 = channelEnd + approach;
+        const double u0 = -stripEnd - approach, u1 = channelEnd + approach;
         const int count = static_cast<int>(std::lround((u1 - u0) / radians(twistPoseStepDegrees)));
         for (int k = 0; k <= count; ++k)
             s.poses.push_back(twistScrew(u0 + (u1 - u0) * k / count));
         s.goal = s.poses.back();
         s.partsA = partsByRuns({{"channel", 0}}, s.a.triangles.size());
-        s.partsB = partsByRuns({{"ribbon", 0}}, s.b.triangles.size());
+        s.partsB = partsByRuns({{"strip", 0}}, s.b.triangles.size());
         return s;
     }
 

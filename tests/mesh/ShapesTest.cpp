@@ -552,13 +552,13 @@ TEST(Maps, GeneratedScenesAreClosedAndSeparatedAtTheirPoses)
 
 TEST(Maps, TwistedPathIsFreeAndCloseToTheChannel)
 {
-    // maps/twisted (the stress scene of issue 13): a thin helical ribbon screwed through a helical channel. Checked
-    // here, independently of the generator: both meshes closed and outward, the ribbon made of hundreds of long thin
+    // maps/twisted (the stress scene of issue 13): a thin helical strip screwed through a helical channel. Checked
+    // here, independently of the generator: both meshes closed and outward, the strip made of hundreds of long thin
     // triangles, the cfg's start and goal the first and last of the .poses (OMPL.app's centre shift undone), and
     // with FCL as the oracle every pose of the path, and the midpoint of each step between two poses (linear
     // translation, slerp: how a planner or the query bench interpolates), free of the channel, the path passing
-    // close to it (within 1% of the ribbon's size, every fifth pose measured) and the straight line from start to goal colliding (only the
-    // screw gets through).
+    // close to it (within 1% of the strip's size, every fifth pose measured) and the straight line from start to
+    // goal colliding (only the screw gets through).
     const std::filesystem::path dir =
         std::filesystem::path(MESHGAP_TEST_RESOURCES_DIR) / ".." / ".." / "maps" / "twisted";
     const Mesh a = readObj((dir / "twisted_a.obj").string()), b = readObj((dir / "twisted_b.obj").string());
