@@ -183,7 +183,7 @@ namespace
             return out;
         if (!fs::is_directory(dir))
             throw Exception(dir, "not a folder");
-        for (const auto &entry : fs::recursive_directory_iterator(dir, fs::directory_options::follow_directory_symlink))
+        for (const auto &entry : fs::recursive_directory_iterator(dir))
             if (entry.is_regular_file() && entry.path().extension() == extension)
                 out.push_back(entry.path());
         std::sort(out.begin(), out.end());
@@ -372,6 +372,8 @@ int main(int argc, char **argv)
         }
         if (enumEvery == 0)
             active[ENUM] = false;
+        if (runPath && states < 2)
+            throw Exception("--states", std::to_string(states) + " is too few: a path needs at least 2 states");
 
         std::vector<Source> sources = findOmplAppProblems(data), found = findMaps(maps);
         sources.insert(sources.end(), found.begin(), found.end());
@@ -390,9 +392,15 @@ int main(int argc, char **argv)
             {
                 const auto it = std::find(names.begin(), names.end(), name);
                 if (it == names.end())
-                    throw Exception("--problems", "no problem '" + name + "' with a .cfg and a .path under '" + data +
-                                                      "' or a .cfg and a .poses under '" + maps + "' (valid: " +
+                {
+                    std::string where;
+                    if (!data.empty())
+                        where += " a .cfg and a .path under '" + data + "'";
+                    if (!maps.empty())
+                        where += std::string(where.empty() ? "" : " or") + " a .cfg and a .poses under '" + maps + "'";
+                    throw Exception("--problems", "no problem '" + name + "' with" + where + " (valid: " +
                                                       (names.empty() ? std::string("none found") : joined(names)) + ")");
+                }
                 chosen.push_back(sources[std::size_t(it - names.begin())]);
             }
             sources = chosen;
