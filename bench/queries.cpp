@@ -335,11 +335,11 @@ int main(int argc, char **argv)
             "data", po::value(&data), "folder searched for OMPL.app problems (NAME.cfg + NAME*.path); '' for none")(
             "maps", po::value(&maps), "folder searched for maps (NAME.cfg + NAME.poses); '' for none")(
             "problems", po::value(&problemList), "comma-separated problem names (default: every one found)")(
-            "skip", po::value(&skipList), "comma-separated columns or sets to leave out: cold, warm, fast, collision, "
-                                          "enumeration, path, random")(
-            "states", po::value(&states), "interpolated states per path")("random", po::value(&random),
-                                                                          "random poses per problem")(
-            "enum-every", po::value(&enumEvery), "run enumeration on every N-th state (0: never)")(
+            "skip", po::value(&skipList),
+            "comma-separated columns or sets to leave out: cold, warm, fast, collision, "
+            "enumeration, path, random")("states", po::value(&states), "interpolated states per path")(
+            "random", po::value(&random), "random poses per problem")("enum-every", po::value(&enumEvery),
+                                                                      "run enumeration on every N-th state (0: never)")(
             "seed", po::value(&seed), "seed of the random poses")("csv", po::value(&csvFile), "also write CSV here");
         po::variables_map vm;
         po::store(po::parse_command_line(argc, argv, cli), vm);
@@ -383,8 +383,8 @@ int main(int argc, char **argv)
         for (std::size_t i = 0; i < names.size(); ++i)
             for (std::size_t j = i + 1; j < names.size(); ++j)
                 if (names[i] == names[j])
-                    throw Exception(sources[j].cfg.string(), "a second problem named '" + names[i] + "' (the first: " +
-                                                                 sources[i].cfg.string() + ")");
+                    throw Exception(sources[j].cfg.string(), "a second problem named '" + names[i] +
+                                                                 "' (the first: " + sources[i].cfg.string() + ")");
         if (!problemList.empty())
         {
             std::vector<Source> chosen;
@@ -399,7 +399,8 @@ int main(int argc, char **argv)
                     if (!maps.empty())
                         where += std::string(where.empty() ? "" : " or") + " a .cfg and a .poses under '" + maps + "'";
                     throw Exception("--problems", "no problem '" + name + "' with" + where + " (valid: " +
-                                                      (names.empty() ? std::string("none found") : joined(names)) + ")");
+                                                      (names.empty() ? std::string("none found") : joined(names)) +
+                                                      ")");
                 }
                 chosen.push_back(sources[std::size_t(it - names.begin())]);
             }
@@ -457,8 +458,8 @@ int main(int argc, char **argv)
                 if (poses.empty())
                     continue;
                 std::vector<double> t[NUM_COLUMNS];
-                std::size_t verdicts[NUM_COLUMNS] = {}, distances[NUM_COLUMNS] = {}, colliding = 0,
-                            fastBelowExact = 0, warmCold = 0;
+                std::size_t verdicts[NUM_COLUMNS] = {}, distances[NUM_COLUMNS] = {}, colliding = 0, fastBelowExact = 0,
+                            warmCold = 0;
                 SceneWarmStart warm, fastWarm;
                 SceneRequest certified, fast;
                 fast.exact = false;
@@ -562,8 +563,7 @@ int main(int argc, char **argv)
                 for (int c = 0; c < NUM_COLUMNS; ++c)
                     if (active[c])
                         std::printf(" %s |", cell(c).c_str());
-                std::printf(" %s | %s |\n", warmBytes ? (std::to_string(*warmBytes) + " B").c_str() : "-",
-                            dis.c_str());
+                std::printf(" %s | %s |\n", warmBytes ? (std::to_string(*warmBytes) + " B").c_str() : "-", dis.c_str());
                 std::fflush(stdout);
                 if (csv)
                     for (int c = 0; c < NUM_COLUMNS; ++c)

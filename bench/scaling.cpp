@@ -300,12 +300,11 @@ int main(int argc, char **argv)
     if (!csvFile.empty())
     {
         csv = std::make_unique<std::ofstream>(csvFile);
-        *csv
-            << "triangles,nodes,distances,graph_s,graph_bytes,distances_s,distances_bytes,bvh_s,bvh_bytes,body_s,"
-               "body_bytes,fcl_build_s,fcl_bytes,cold_us,cold_p90_us,warm_us,warm_p90_us,fast_us,fast_p90_us,"
-               "collision_us,collision_p90_us,fcl_distance_us,fcl_distance_p90_us,fcl_collision_us,"
-               "fcl_collision_p90_us,allocs_cold,allocs_warm,allocs_fast,allocs_collision,min_distance,disagreements,"
-               "obstacle_triangles\n";
+        *csv << "triangles,nodes,distances,graph_s,graph_bytes,distances_s,distances_bytes,bvh_s,bvh_bytes,body_s,"
+                "body_bytes,fcl_build_s,fcl_bytes,cold_us,cold_p90_us,warm_us,warm_p90_us,fast_us,fast_p90_us,"
+                "collision_us,collision_p90_us,fcl_distance_us,fcl_distance_p90_us,fcl_collision_us,"
+                "fcl_collision_p90_us,allocs_cold,allocs_warm,allocs_fast,allocs_collision,min_distance,disagreements,"
+                "obstacle_triangles\n";
     }
     std::printf(
         "Preprocessing (%s; seconds, and MiB of heap retained):\n\n"
@@ -357,9 +356,9 @@ int main(int argc, char **argv)
         bool obstacleDense = dense;
         if (baseWorld)
         {
-            const Mesh world = refineTo(*baseWorld, static_cast<std::size_t>(double(target) *
-                                                                              double(baseWorld->triangles.size()) /
-                                                                              double(base.triangles.size())));
+            const Mesh world =
+                refineTo(*baseWorld, static_cast<std::size_t>(double(target) * double(baseWorld->triangles.size()) /
+                                                              double(base.triangles.size())));
             BodyPtr worldBody = Body::build(world, options);
             obstacleDense = worldBody->distances().isDense();  // built here, not in the fast column's times
             obstacle = worldBody;
@@ -435,16 +434,16 @@ int main(int argc, char **argv)
         const Stats c = stats(tCold), w = stats(tWarm), q = stats(tFast), k = stats(tColl), fd = stats(tFclD),
                     fc = stats(tFclC);
         char text[512];
-        std::snprintf(
-            text, sizeof text,
-            "| %zu%s | %.1f / %.1f (**%.2f**) | %.1f / %.1f (**%.2f**) | %.1f / %.1f (%.2f)%s | %.1f / %.1f (**%.2f**) | "
-            "%.1f / %.1f | %.1f / %.1f | %g / %g / %g / %g | %zu |",
-            mesh.triangles.size(),
-            baseWorld ? (" / " + std::to_string(obstacleTriangles)).c_str() : "", c.median, c.p90, c.median / fd.median, w.median, w.p90, w.median / fd.median,
-            q.median, q.p90, q.median / fd.median,
-            tFast.size() < poses.size() ? (" [first " + std::to_string(tFast.size()) + "]").c_str() : "", k.median,
-            k.p90, k.median / fc.median, fd.median, fd.p90, fc.median, fc.p90, aCold, aWarm, aFast, aColl,
-            disagreements);
+        std::snprintf(text, sizeof text,
+                      "| %zu%s | %.1f / %.1f (**%.2f**) | %.1f / %.1f (**%.2f**) | %.1f / %.1f (%.2f)%s | %.1f / %.1f "
+                      "(**%.2f**) | "
+                      "%.1f / %.1f | %.1f / %.1f | %g / %g / %g / %g | %zu |",
+                      mesh.triangles.size(), baseWorld ? (" / " + std::to_string(obstacleTriangles)).c_str() : "",
+                      c.median, c.p90, c.median / fd.median, w.median, w.p90, w.median / fd.median, q.median, q.p90,
+                      q.median / fd.median,
+                      tFast.size() < poses.size() ? (" [first " + std::to_string(tFast.size()) + "]").c_str() : "",
+                      k.median, k.p90, k.median / fc.median, fd.median, fd.p90, fc.median, fc.p90, aCold, aWarm, aFast,
+                      aColl, disagreements);
         queryRows.push_back({mesh.triangles.size(), text});
         std::fprintf(stderr, "%s\n", text);
         if (csv)

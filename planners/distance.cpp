@@ -13,13 +13,14 @@
 // CSV with --poses, or JSON with --json); the log, and with --poses the time per query (median and mean), go to
 // stderr. In collision (always decided exactly) the distance is signed: negative, minus a penetration depth estimate.
 
+#include <ompl/util/Console.h>
+
 #include <algorithm>
 #include <boost/program_options.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <ompl/util/Console.h>
 #include <sstream>
 
 #include "CliMain.h"
@@ -119,8 +120,8 @@ namespace
         double sum = 0.0;
         for (double us : micros)
             sum += us;
-        std::fprintf(stderr, "meshgap_distance: %zu poses, %s: median %.1f us, mean %.1f us per query\n",
-                     micros.size(), label.c_str(), sorted[sorted.size() / 2], sum / double(micros.size()));
+        std::fprintf(stderr, "meshgap_distance: %zu poses, %s: median %.1f us, mean %.1f us per query\n", micros.size(),
+                     label.c_str(), sorted[sorted.size() / 2], sum / double(micros.size()));
     }
 
     std::string sceneJson(const SceneResult &r, bool warm, double micros)
@@ -143,16 +144,17 @@ namespace
                         const std::vector<Eigen::Isometry3d> &poses, bool many, bool asJson, bool cold)
     {
         const ScenePtr scene = Scene::fromMeshes(robot, world, options);
-        OMPL_INFORM("scene: robot %zu triangles, world %zu triangles in %zu parts (obstacles); %s", robot.triangles.size(),
-                    world.triangles.size(), scene->obstacles().size(),
+        OMPL_INFORM("scene: robot %zu triangles, world %zu triangles in %zu parts (obstacles); %s",
+                    robot.triangles.size(), world.triangles.size(), scene->obstacles().size(),
                     cold ? "a fresh warm start per pose (--cold)" : "one warm start carried from pose to pose");
         const SceneRequest request;  // exact and certified, no bound: the checker's clearance()
         SceneWarmStart warm;
         std::vector<double> micros;
         if (many)
-            std::cout << (asJson ? "[\n" : "index,distance,time_us,obstacle,witness_a_x,witness_a_y,witness_a_z,"
-                                           "witness_b_x,witness_b_y,witness_b_z,in_collision,certified,pairs_checked,"
-                                           "warm_start_hit\n");
+            std::cout << (asJson ? "[\n"
+                                 : "index,distance,time_us,obstacle,witness_a_x,witness_a_y,witness_a_z,"
+                                   "witness_b_x,witness_b_y,witness_b_z,in_collision,certified,pairs_checked,"
+                                   "warm_start_hit\n");
         auto lastReport = std::chrono::steady_clock::now();
         for (std::size_t i = 0; i < poses.size(); ++i)
         {
@@ -176,15 +178,16 @@ namespace
                             vec(r.onObstacle, ",").c_str(), vec(r.onRobot, ",").c_str(), r.inCollision ? 1 : 0,
                             r.certified ? 1 : 0, r.pairsChecked, r.warmStartHit ? 1 : 0);
             else
-                std::printf("answer         scene (the checker's: broad phase over the world's parts, %zu)\n"
-                            "distance       %.10g (%s)\nin collision   %s\nobstacle       %zu\n"
-                            "witness on A   %s\nwitness on B   %s\ntime           %.3f ms\n",
-                            scene->obstacles().size(), r.distance,
-                            r.inCollision ? penetrationText(r.penetration)
-                            : r.certified ? "exact, certified"
-                                          : "exact, not certified",
-                            r.inCollision ? "yes" : "no", r.obstacle, vec(r.onObstacle, " ").c_str(),
-                            vec(r.onRobot, " ").c_str(), us * 1e-3);
+                std::printf(
+                    "answer         scene (the checker's: broad phase over the world's parts, %zu)\n"
+                    "distance       %.10g (%s)\nin collision   %s\nobstacle       %zu\n"
+                    "witness on A   %s\nwitness on B   %s\ntime           %.3f ms\n",
+                    scene->obstacles().size(), r.distance,
+                    r.inCollision ? penetrationText(r.penetration)
+                    : r.certified ? "exact, certified"
+                                  : "exact, not certified",
+                    r.inCollision ? "yes" : "no", r.obstacle, vec(r.onObstacle, " ").c_str(),
+                    vec(r.onRobot, " ").c_str(), us * 1e-3);
             const auto now = std::chrono::steady_clock::now();
             if (now - lastReport > std::chrono::seconds(2))
             {
@@ -219,7 +222,7 @@ namespace
             ("cache", po::value(&cacheDir), "folder for cached mesh-distance tables")
             ("memory-budget", po::value(&budgetMiB), "largest all-pairs mesh-distance table, MiB (default 512)")
             ("exact", "refine the answer to the exact, certified surface distance (triangles + BVH)")
-            ("cold", "with --cfg and no --algorithm: a fresh warm start at every pose (default: carried from pose to pose)")
+            ("cold", "with --cfg and no --algorithm: a fresh warm start at every pose (default: one carried along)")
             ("json", "print JSON instead of text or CSV")
             ("quiet,q", "print warnings and errors only");
         po::options_description hidden;

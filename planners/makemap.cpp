@@ -597,13 +597,13 @@ namespace
     // play on every side). Both are concave, twisted everywhere and made of long thin triangles (slivers, 15 degrees
     // of arc long). The motion is a screw about z that the channel maps onto itself, so inside it the strip keeps
     // about its play on every side (less the chords' sagitta), the whole way.
-    constexpr double twistRadius = 12.0;     // the strip's mid radius about z
-    constexpr double twistWidth = 1.5;       // radial width: r in [11.25, 12.75]
-    constexpr double twistThickness = 0.4;   // along z
-    constexpr double twistPitch = 8.0;       // rise per turn (strip and channel)
-    constexpr double twistPlay = 0.3;        // the channel's bore: the strip's section grown by this on each side
-    constexpr double twistWall = 1.0;        // the channel's wall thickness
-    constexpr double twistStepDegrees = 15.0; // stations of both sweeps (the same angles, so faces line up)
+    constexpr double twistRadius = 12.0;       // the strip's mid radius about z
+    constexpr double twistWidth = 1.5;         // radial width: r in [11.25, 12.75]
+    constexpr double twistThickness = 0.4;     // along z
+    constexpr double twistPitch = 8.0;         // rise per turn (strip and channel)
+    constexpr double twistPlay = 0.3;          // the channel's bore: the strip's section grown by this on each side
+    constexpr double twistWall = 1.0;          // the channel's wall thickness
+    constexpr double twistStepDegrees = 15.0;  // stations of both sweeps (the same angles, so faces line up)
     constexpr int twistStripTurns = 3, twistChannelTurns = 5;
     constexpr double twistApproachDegrees = 15.0;  // the strip's end this far before the channel at the start
     constexpr double twistPoseStepDegrees = 3.75;  // the screw turned this much between two .poses lines
@@ -670,7 +670,8 @@ namespace
     /** \brief The screw about z by \e theta radians (the rise of twistPitch per turn). */
     Eigen::Isometry3d twistScrew(double theta)
     {
-        return pose(Vector3d(0.0, 0.0, twistPitch * theta / (2.0 * pi)), rotation(Vector3d::UnitZ(), theta * 180.0 / pi));
+        return pose(Vector3d(0.0, 0.0, twistPitch * theta / (2.0 * pi)),
+                    rotation(Vector3d::UnitZ(), theta * 180.0 / pi));
     }
 
     Scene twistedScene()
@@ -678,8 +679,7 @@ namespace
         Scene s;
         s.name = "twisted";
         s.units = "units";
-        const double r0 = twistRadius - 0.5 * twistWidth, r1 = twistRadius + 0.5 * twistWidth,
-                     h = 0.5 * twistThickness;
+        const double r0 = twistRadius - 0.5 * twistWidth, r1 = twistRadius + 0.5 * twistWidth, h = 0.5 * twistThickness;
         const double huge = 1e3;  // sizing above every edge: the sweeps' triangles are kept as they are (slivers)
         const unsigned int stripSteps =
             static_cast<unsigned int>(std::lround(360.0 * twistStripTurns / twistStepDegrees));

@@ -1,6 +1,8 @@
 // The distance executable as a user runs it: exit codes, one clear error line, CSV and JSON output.
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -10,8 +12,6 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "CliRun.h"
 #include "FclOracle.h"
@@ -233,7 +233,8 @@ TEST(DistanceCli, CfgPosesGiveTheSceneAnswerWarmOrCold)
         X.translation() += (k / 8.0) * (problem.goal->translation() - problem.start.translation());
         poses.push_back(X);
     }
-    const std::string file = (fs::temp_directory_path() / ("meshgap_cli_s" + std::to_string(::getpid()) + ".path")).string();
+    const std::string file =
+        (fs::temp_directory_path() / ("meshgap_cli_s" + std::to_string(::getpid()) + ".path")).string();
     {
         std::ofstream out(file);
         out << std::setprecision(17);
