@@ -191,7 +191,7 @@ namespace
     }
 
     /** \brief OMPL.app problems under \e dir: each NAME.cfg with a solution path beside it, NAME.path or else the
-        first NAME*.path (sorted) that no longer cfg name in the same folder claims. */
+        first NAME*.path (sorted) not claimed by a cfg with a longer name in the same folder. */
     std::vector<Source> findOmplAppProblems(const std::string &dir)
     {
         const std::vector<fs::path> cfgs = filesUnder(dir, ".cfg"), paths = filesUnder(dir, ".path");
