@@ -18,8 +18,13 @@
 // Fast mode beyond the dense budget answers mesh distances by Dijkstra on demand and takes seconds per query at 256k
 // triangles, so there it is timed on the first --fast-on-demand poses only (the table says so). About 4 minutes.
 //
+// --map DIR (a maps/ folder: NAME_a.obj, NAME_b.obj, NAME.poses) scales a scene instead, such as maps/twisted, the
+// stress scene of issue 13: its B is the part refined to each size (the robot, and the preprocessing table's body),
+// its A the obstacle, refined to the same multiple of its own size, and its .poses, evenly subsampled to --poses,
+// the motion.
+//
 //   build/bench/meshgap_bench_scaling [--max 262144] [--poses 100] [--fast-on-demand 10] [--csv FILE] [--mesh FILE]
-//                                     [--trace-alloc]
+//                                     [--map DIR] [--trace-alloc]
 
 #include <dlfcn.h>
 #include <execinfo.h>
@@ -38,6 +43,7 @@
 #include <fstream>
 #include <iostream>
 #include <new>
+#include <optional>
 
 #include "FclOracle.h"
 #include "meshgap/mesh/Body.h"
@@ -45,6 +51,7 @@
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/mesh/Refine.h"
 #include "meshgap/mesh/SurfaceGraph.h"
+#include "meshgap/scene/Pose.h"
 #include "meshgap/scene/Scene.h"
 
 // ---- allocation counting (this executable only) ----
@@ -222,11 +229,12 @@ int main(int argc, char **argv)
 #else
     std::string meshFile =
         (fs::path(__FILE__).parent_path().parent_path() / "maps" / "slotted_wall" / "slotted_wall_b.obj").string();
-    std::string csvFile;
+    std::string csvFile, mapDir;
     std::size_t maxTriangles = 262144, numPoses = 100, fastOnDemand = 10;
     namespace po = boost::program_options;
     po::options_description cli("meshgap_bench_scaling");
     cli.add_options()("help,h", "print this help")("mesh", po::value(&meshFile), "the part to refine")(
+        "map", po::value(&mapDir), "a maps/ folder (e.g. maps/twisted): B refined, A the obstacle, .poses the motion")(
         "max", po::value(&maxTriangles), "largest size (triangles): 1024, 4096, ... up to this (default 262144)")(
         "poses", po::value(&numPoses), "poses along the motion")(
         "fast-on-demand", po::value(&fastOnDemand),
@@ -248,6 +256,23 @@ int main(int argc, char **argv)
         void *frames[4];
         ::backtrace(frames, 4);  // loads the unwinder now, not inside a counted loop
     }
+    std::optional<Mesh> baseWorld;  // --map: the obstacle, refined alongside the part
+    std::vector<Eigen::Isometry3d> mapPoses;
+    if (!mapDir.empty())
+    {
+        fs::path dir = fs::path(mapDir).lexically_normal();
+        if (dir.filename().empty())
+            dir = dir.parent_path();
+        const std::string name = dir.filename().string();
+        meshFile = (dir / (name + "_b.obj")).string();
+        baseWorld = loadMesh((dir / (name + "_a.obj")).string());
+        mapPoses = readPoses((dir / (name + ".poses")).string());
+        if (mapPoses.empty())
+        {
+            std::fprintf(stderr, "error: %s: no poses\n", (dir / (name + ".poses")).c_str());
+            return 1;
+        }
+    }
     const Mesh base = loadMesh(meshFile);
     const Eigen::Vector3d extent = base.bounds().sizes();
 
@@ -258,7 +283,9 @@ int main(int argc, char **argv)
     // distance printed).
     std::vector<Eigen::Isometry3d> poses;
     const Eigen::Vector3d centre = base.bounds().center();
-    for (std::size_t i = 0; i < numPoses; ++i)
+    for (std::size_t i = 0; i < numPoses && baseWorld; ++i)  // --map: its .poses, evenly subsampled
+        poses.push_back(mapPoses[numPoses > 1 ? i * (mapPoses.size() - 1) / (numPoses - 1) : 0]);
+    for (std::size_t i = 0; i < numPoses && !baseWorld; ++i)
     {
         const double t = numPoses > 1 ? double(i) / double(numPoses - 1) : 0.0;
         Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
@@ -273,16 +300,18 @@ int main(int argc, char **argv)
     if (!csvFile.empty())
     {
         csv = std::make_unique<std::ofstream>(csvFile);
-        *csv
-            << "triangles,nodes,distances,graph_s,graph_bytes,distances_s,distances_bytes,bvh_s,bvh_bytes,body_s,"
-               "body_bytes,fcl_build_s,fcl_bytes,cold_us,cold_p90_us,warm_us,warm_p90_us,fast_us,fast_p90_us,"
-               "collision_us,collision_p90_us,fcl_distance_us,fcl_distance_p90_us,fcl_collision_us,"
-               "fcl_collision_p90_us,allocs_cold,allocs_warm,allocs_fast,allocs_collision,min_distance,disagreements\n";
+        *csv << "triangles,nodes,distances,graph_s,graph_bytes,distances_s,distances_bytes,bvh_s,bvh_bytes,body_s,"
+                "body_bytes,fcl_build_s,fcl_bytes,cold_us,cold_p90_us,warm_us,warm_p90_us,fast_us,fast_p90_us,"
+                "collision_us,collision_p90_us,fcl_distance_us,fcl_distance_p90_us,fcl_collision_us,"
+                "fcl_collision_p90_us,allocs_cold,allocs_warm,allocs_fast,allocs_collision,min_distance,disagreements,"
+                "obstacle_triangles\n";
     }
     std::printf(
-        "Preprocessing (one body, used as both robot and obstacle; seconds, and MiB of heap retained):\n\n"
+        "Preprocessing (%s; seconds, and MiB of heap retained):\n\n"
         "| triangles | nodes | surface graph | mesh distances | triangle BVH | Body::build (without distances) | "
-        "FCL BVH (OBBRSS) |\n|---|---|---|---|---|---|---|\n");
+        "FCL BVH (OBBRSS) |\n|---|---|---|---|---|---|---|\n",
+        baseWorld ? ("the map's B, the robot; its A, the obstacle, refined alongside: " + mapDir).c_str()
+                  : "one body, used as both robot and obstacle");
     std::fflush(stdout);
     struct Row
     {
@@ -319,8 +348,24 @@ int main(int argc, char **argv)
             mib(f.second).c_str());
         std::fflush(stdout);
 
-        // Queries: the same body fixed (obstacle, world frame = its frame) and moving (robot).
-        const Scene scene(body, {body});
+        // Queries: the same body fixed (obstacle, world frame = its frame) and moving (robot); with --map, the map's
+        // A (refined to the same multiple of its own size) fixed.
+        BodyConstPtr obstacle = body;
+        std::shared_ptr<test::FclModel> fclObstacle = fcl;
+        std::size_t obstacleTriangles = mesh.triangles.size();
+        bool obstacleDense = dense;
+        if (baseWorld)
+        {
+            const Mesh world =
+                refineTo(*baseWorld, static_cast<std::size_t>(double(target) * double(baseWorld->triangles.size()) /
+                                                              double(base.triangles.size())));
+            BodyPtr worldBody = Body::build(world, options);
+            obstacleDense = worldBody->distances().isDense();  // built here, not in the fast column's times
+            obstacle = worldBody;
+            fclObstacle = test::fclModel(world);
+            obstacleTriangles = world.triangles.size();
+        }
+        const Scene scene(body, {obstacle});
         SceneRequest certified, fast;
         fast.exact = false;
         std::vector<double> tCold, tWarm, tFast, tColl, tFclD, tFclC;
@@ -332,13 +377,13 @@ int main(int argc, char **argv)
             SceneResult cold, hot, quick;
             double dF = 0;
             bool cF = false, cM = false;
-            tFclD.push_back(timed([&] { dF = test::fclDistance(fcl, fcl, X); }));
-            tFclC.push_back(timed([&] { cF = test::fclCollide(fcl, fcl, X); }));
+            tFclD.push_back(timed([&] { dF = test::fclDistance(fclObstacle, fcl, X); }));
+            tFclC.push_back(timed([&] { cF = test::fclCollide(fclObstacle, fcl, X); }));
             tCold.push_back(timed(
                 [&]
                 { scene.distance(X, certified, cold); }));
             tWarm.push_back(timed([&] { scene.distance(X, certified, warm, hot); }));
-            if (dense || &X - poses.data() < static_cast<std::ptrdiff_t>(fastOnDemand))
+            if ((dense && obstacleDense) || &X - poses.data() < static_cast<std::ptrdiff_t>(fastOnDemand))
                 tFast.push_back(timed([&] { scene.distance(X, fast, fastWarm, quick); }));
             tColl.push_back(timed([&] { cM = scene.inCollision(X); }));
             minDistance = std::min(minDistance, dF);
@@ -376,22 +421,23 @@ int main(int argc, char **argv)
             "warm", [&](const Eigen::Isometry3d &X) { scene.distance(X, certified, warm, r); }, poses.size());
         const double aFast = allocsPerQuery(
             "fast", [&](const Eigen::Isometry3d &X) { scene.distance(X, fast, fastWarm, r); },
-            dense ? poses.size() : fastOnDemand);
+            dense && obstacleDense ? poses.size() : fastOnDemand);
         const double aColl = allocsPerQuery(
             "collision", [&](const Eigen::Isometry3d &X) { (void)scene.inCollision(X); }, poses.size());
 
         const Stats c = stats(tCold), w = stats(tWarm), q = stats(tFast), k = stats(tColl), fd = stats(tFclD),
                     fc = stats(tFclC);
         char text[512];
-        std::snprintf(
-            text, sizeof text,
-            "| %zu | %.1f / %.1f (**%.2f**) | %.1f / %.1f (**%.2f**) | %.1f / %.1f (%.2f)%s | %.1f / %.1f (**%.2f**) | "
-            "%.1f / %.1f | %.1f / %.1f | %g / %g / %g / %g | %zu |",
-            mesh.triangles.size(), c.median, c.p90, c.median / fd.median, w.median, w.p90, w.median / fd.median,
-            q.median, q.p90, q.median / fd.median,
-            tFast.size() < poses.size() ? (" [first " + std::to_string(tFast.size()) + "]").c_str() : "", k.median,
-            k.p90, k.median / fc.median, fd.median, fd.p90, fc.median, fc.p90, aCold, aWarm, aFast, aColl,
-            disagreements);
+        std::snprintf(text, sizeof text,
+                      "| %zu%s | %.1f / %.1f (**%.2f**) | %.1f / %.1f (**%.2f**) | %.1f / %.1f (%.2f)%s | %.1f / %.1f "
+                      "(**%.2f**) | "
+                      "%.1f / %.1f | %.1f / %.1f | %g / %g / %g / %g | %zu |",
+                      mesh.triangles.size(), baseWorld ? (" / " + std::to_string(obstacleTriangles)).c_str() : "",
+                      c.median, c.p90, c.median / fd.median, w.median, w.p90, w.median / fd.median, q.median, q.p90,
+                      q.median / fd.median,
+                      tFast.size() < poses.size() ? (" [first " + std::to_string(tFast.size()) + "]").c_str() : "",
+                      k.median, k.p90, k.median / fc.median, fd.median, fd.p90, fc.median, fc.p90, aCold, aWarm, aFast,
+                      aColl, disagreements);
         queryRows.push_back({mesh.triangles.size(), text});
         std::fprintf(stderr, "%s\n", text);
         if (csv)
@@ -400,16 +446,17 @@ int main(int argc, char **argv)
                  << bb.first << "," << bb.second << "," << f.first << "," << f.second << "," << c.median << "," << c.p90
                  << "," << w.median << "," << w.p90 << "," << q.median << "," << q.p90 << "," << k.median << ","
                  << k.p90 << "," << fd.median << "," << fd.p90 << "," << fc.median << "," << fc.p90 << "," << aCold
-                 << "," << aWarm << "," << aFast << "," << aColl << "," << minDistance << "," << disagreements << "\n";
+                 << "," << aWarm << "," << aFast << "," << aColl << "," << minDistance << "," << disagreements << ","
+                 << obstacleTriangles << "\n";
         std::fprintf(stderr, "%zu triangles: min distance along the motion %g (FCL)\n", mesh.triangles.size(),
                      minDistance);
     }
     std::printf(
         "\nQueries along a %zu-pose motion (µs per query, median / p90, ratio of medians to FCL distance; "
         "collision-only to FCL collision); allocations per query after warm-up (cold / warm / fast / "
-        "collision-only):\n\n| triangles | cold certified | warm certified | fast | collision-only | FCL distance | "
+        "collision-only):\n\n| %s | cold certified | warm certified | fast | collision-only | FCL distance | "
         "FCL collision | allocations per query | disagreements |\n|---|---|---|---|---|---|---|---|---|\n",
-        poses.size());
+        poses.size(), baseWorld ? "triangles (robot / obstacle)" : "triangles");
     for (const Row &row : queryRows)
         std::printf("%s\n", row.text.c_str());
     return 0;

@@ -1,19 +1,26 @@
 // meshgap_distance: minimum distance between two bodies at one or many poses.
 //
 //   meshgap_distance A.obj B.obj --pose "x y z qx qy qz qw" [--algorithm NAME]
-//   meshgap_distance --cfg problem.cfg [--pose ...] [--poses path.path] [--json]
+//   meshgap_distance --cfg problem.cfg [--pose ...] [--poses path.path] [--cold] [--json]
+//   meshgap_distance --cfg problem.cfg --algorithm NAME [--exact] [--pose ...] [--poses path.path] [--json]
 //
 // A is fixed (the world frame); B is placed by the pose. With --cfg, A is the problem's world and B its robot in
 // OMPL.app's conventions (robot shifted by its centre; the pose is the robot's state), and the default pose is the
-// problem's start. Results go to stdout (text, CSV with --poses, or JSON with --json); the log goes to stderr.
-// In collision (always decided exactly) the distance is signed: negative, minus a penetration depth estimate.
+// problem's start. With --cfg and no --algorithm the answer is the one the checker gives (ClearanceChecker,
+// certified): the Scene (the world split into its parts, the broad phase), exact and certified, with one warm start
+// carried from pose to pose (--cold: none, a cold query per pose). With --algorithm (or two mesh files) it is the named
+// node-level solver on the two whole bodies, refined to the exact distance with --exact. Results go to stdout (text,
+// CSV with --poses, or JSON with --json); the log, and with --poses the time per query (median and mean), go to
+// stderr. In collision (always decided exactly) the distance is signed: negative, minus a penetration depth estimate.
 
+#include <ompl/util/Console.h>
+
+#include <algorithm>
 #include <boost/program_options.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <ompl/util/Console.h>
 #include <sstream>
 
 #include "CliMain.h"
@@ -26,6 +33,7 @@
 #include "meshgap/scene/Pose.h"
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/RobotMesh.h"
+#include "meshgap/scene/Scene.h"
 
 namespace po = boost::program_options;
 using namespace meshgap;
@@ -102,6 +110,95 @@ namespace
         return out.str();
     }
 
+    /** \brief "N poses, LABEL: median X us, mean Y us per query" on stderr (printed whatever the log level). */
+    void printTimes(const std::vector<double> &micros, const std::string &label)
+    {
+        if (micros.empty())
+            return;
+        std::vector<double> sorted = micros;
+        std::sort(sorted.begin(), sorted.end());
+        double sum = 0.0;
+        for (double us : micros)
+            sum += us;
+        std::fprintf(stderr, "meshgap_distance: %zu poses, %s: median %.1f us, mean %.1f us per query\n", micros.size(),
+                     label.c_str(), sorted[sorted.size() / 2], sum / double(micros.size()));
+    }
+
+    std::string sceneJson(const SceneResult &r, bool warm, double micros)
+    {
+        std::ostringstream out;
+        out.precision(17);
+        out << "{\"answer\": \"scene\", \"warm_start\": " << (warm ? "true" : "false")
+            << ", \"distance\": " << r.distance << ", \"obstacle\": " << r.obstacle << ", \"witness_a\": ["
+            << vec(r.onObstacle, ", ") << "], \"witness_b\": [" << vec(r.onRobot, ", ") << "], \"time_us\": " << micros
+            << ", \"in_collision\": " << (r.inCollision ? "true" : "false")
+            << ", \"certified\": " << (r.certified ? "true" : "false") << ", \"pairs_checked\": " << r.pairsChecked
+            << ", \"warm_start_hit\": " << (r.warmStartHit ? "true" : "false") << "}";
+        return out.str();
+    }
+
+    /** \brief The checker's answer (ClearanceChecker, certified mode) at each pose: Scene::distance() on the world
+        split into its parts, exact and certified, one SceneWarmStart carried from pose to pose (a fresh one per
+        pose with \e cold, its construction timed with the query, as a cold query pays it). */
+    int answerWithScene(const Mesh &robot, const Mesh &world, const BodyOptions &options,
+                        const std::vector<Eigen::Isometry3d> &poses, bool many, bool asJson, bool cold)
+    {
+        const ScenePtr scene = Scene::fromMeshes(robot, world, options);
+        OMPL_INFORM("scene: robot %zu triangles, world %zu triangles in %zu parts (obstacles); %s",
+                    robot.triangles.size(), world.triangles.size(), scene->obstacles().size(),
+                    cold ? "no warm start, a cold query per pose (--cold)" : "one warm start carried from pose to pose");
+        const SceneRequest request;  // exact and certified, no bound: the checker's clearance()
+        SceneWarmStart warm;
+        std::vector<double> micros;
+        if (many)
+            std::cout << (asJson ? "[\n"
+                                 : "index,distance,time_us,obstacle,witness_a_x,witness_a_y,witness_a_z,"
+                                   "witness_b_x,witness_b_y,witness_b_z,in_collision,certified,pairs_checked,"
+                                   "warm_start_hit\n");
+        auto lastReport = std::chrono::steady_clock::now();
+        for (std::size_t i = 0; i < poses.size(); ++i)
+        {
+            SceneResult r;
+            const auto queryStart = std::chrono::steady_clock::now();
+            if (cold)
+                scene->distance(poses[i], request, r);  // no warm start: a cold query
+            else
+                scene->distance(poses[i], request, warm, r);
+            const double us =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - queryStart).count() * 1e6;
+            micros.push_back(us);
+            if (asJson)
+                std::cout << (many ? "  " : "") << sceneJson(r, !cold, us)
+                          << (many && i + 1 < poses.size() ? ",\n" : "\n");
+            else if (many)
+                std::printf("%zu,%.17g,%.3f,%zu,%s,%s,%d,%d,%zu,%d\n", i, r.distance, us, r.obstacle,
+                            vec(r.onObstacle, ",").c_str(), vec(r.onRobot, ",").c_str(), r.inCollision ? 1 : 0,
+                            r.certified ? 1 : 0, r.pairsChecked, r.warmStartHit ? 1 : 0);
+            else
+                std::printf(
+                    "answer         scene (the checker's: broad phase over the world's parts, %zu)\n"
+                    "distance       %.10g (%s)\nin collision   %s\nobstacle       %zu\n"
+                    "witness on A   %s\nwitness on B   %s\ntime           %.3f ms\n",
+                    scene->obstacles().size(), r.distance,
+                    r.inCollision ? penetrationText(r.penetration)
+                    : r.certified ? "exact, certified"
+                                  : "exact, not certified",
+                    r.inCollision ? "yes" : "no", r.obstacle, vec(r.onObstacle, " ").c_str(),
+                    vec(r.onRobot, " ").c_str(), us * 1e-3);
+            const auto now = std::chrono::steady_clock::now();
+            if (now - lastReport > std::chrono::seconds(2))
+            {
+                OMPL_INFORM("pose %zu of %zu", i + 1, poses.size());
+                lastReport = now;
+            }
+        }
+        if (many && asJson)
+            std::cout << "]\n";
+        if (many)
+            printTimes(micros, std::string("scene, ") + (cold ? "cold" : "warm start carried"));
+        return 0;
+    }
+
     int run(int argc, char **argv)
     {
         std::string cfg, poseText, posesFile, algorithm = "enumeration", grid = "auto", gridA, gridB, cacheDir;
@@ -122,6 +219,7 @@ namespace
             ("cache", po::value(&cacheDir), "folder for cached mesh-distance tables")
             ("memory-budget", po::value(&budgetMiB), "largest all-pairs mesh-distance table, MiB (default 512)")
             ("exact", "refine the answer to the exact, certified surface distance (triangles + BVH)")
+            ("cold", "with --cfg and no --algorithm: a cold query at every pose, no warm start (default: one carried along)")
             ("json", "print JSON instead of text or CSV")
             ("quiet,q", "print warnings and errors only");
         po::options_description hidden;
@@ -141,6 +239,12 @@ namespace
         if (vm.count("quiet"))
             ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
 
+        // With --cfg and no --algorithm: the checker's answer (the scene), not a node-level solver.
+        const bool scene = !cfg.empty() && vm.count("algorithm") == 0;
+        if (vm.count("cold") && !scene)
+            throw Exception("--cold", "applies to the scene's answer only (--cfg without --algorithm)");
+        if (scene && !settings.empty())
+            throw Exception("--set", "solver parameters need --algorithm (with --cfg alone the answer is the scene's)");
         // Fail on a bad algorithm or parameter before any expensive loading.
         DistanceSolverPtr solver = allocSolver(algorithm);
         for (const std::string &s : settings)
@@ -182,6 +286,14 @@ namespace
         if (!posesFile.empty())
             poses = readPoses(posesFile);
 
+        if (scene)
+        {
+            BodyOptions options;  // exact answers use each surface as given, whatever the grid
+            options.gridSize = hA;
+            options.distances = distances;
+            return answerWithScene(meshB, meshA, options, poses, !posesFile.empty(), vm.count("json") > 0,
+                                   vm.count("cold") > 0);
+        }
         const BodyPtr a = makeBody(meshA, reportA, hA, distances, "A");
         const BodyPtr b = makeBody(meshB, reportB, hB, distances, "B");
 
@@ -192,6 +304,7 @@ namespace
             std::cout << (asJson ? "[\n" : "index,distance,evaluations,time_us,node_a,node_b,"
                                            "witness_a_x,witness_a_y,witness_a_z,witness_b_x,witness_b_y,witness_b_z,"
                                            "in_collision,certified,node_distance\n");
+        std::vector<double> micros;
         auto lastReport = std::chrono::steady_clock::now();
         for (std::size_t i = 0; i < poses.size(); ++i)
         {
@@ -207,6 +320,7 @@ namespace
                 setPenetration(*a, *b, poses[i], result);
             }
             result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - queryStart).count();
+            micros.push_back(result.seconds * 1e6);
             if (!many)
             {
                 if (asJson)
@@ -244,6 +358,8 @@ namespace
         }
         if (many && asJson)
             std::cout << "]\n";
+        if (many)
+            printTimes(micros, algorithm + (exact && algorithm != "exact" ? " + exact" : ""));
         return 0;
     }
 }  // namespace

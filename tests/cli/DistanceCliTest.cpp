@@ -1,17 +1,20 @@
 // The distance executable as a user runs it: exit codes, one clear error line, CSV and JSON output.
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "CliRun.h"
+#include "FclOracle.h"
 #include "TestMeshes.h"
 #include "meshgap/distance/Enumeration.h"
 #include "meshgap/mesh/MeshLoader.h"
@@ -40,6 +43,7 @@ TEST(DistanceCli, BadInputGivesOneErrorNamingTheFileAndExitOne)
         {RES + "/cube.obj " + RES + "/cube.obj --pose '1 2 3'", "--pose"},
         {RES + "/cube.obj " + RES + "/cube.obj --grid -3", "--grid"},
         {RES + "/cube.obj", "two mesh files"},
+        {RES + "/cube.obj " + RES + "/cube.obj --cold", "--cold"},  // the scene's answer only
     };
     for (const auto &entry : fs::directory_iterator(RES + "/bad"))
         if (entry.path().extension() != ".cfg" && entry.path().filename() != "degenerate.obj")
@@ -178,7 +182,7 @@ TEST(DistanceCli, CfgStartPoseGivesTheEnumerationMinimum)
     const fs::path cfg = fs::path(MESHGAP_SHARED_DATA_DIR) / "omplapp" / "Easy.cfg";
     if (!fs::exists(cfg))
         GTEST_SKIP() << "OMPL.app problems not found at " << cfg << "; skipping";
-    const CliRun r = run("--cfg " + cfg.string() + " --json");
+    const CliRun r = run("--cfg " + cfg.string() + " --algorithm enumeration --json");
     ASSERT_EQ(r.status, 0) << r.err;
     const ProblemConfig problem = readProblemConfig(cfg.string());
     DistanceResult expected;
@@ -187,4 +191,97 @@ TEST(DistanceCli, CfgStartPoseGivesTheEnumerationMinimum)
     char number[64];
     std::snprintf(number, sizeof number, "\"distance\": %.17g,", expected.distance);
     EXPECT_NE(r.out.find(number), std::string::npos) << r.out << " expected " << number;
+}
+
+namespace
+{
+    /** \brief The CSV rows of a --poses run, cells split at commas, after checking the header starts with
+        \e headerStart. */
+    std::vector<std::vector<std::string>> csvRows(const std::string &out, const std::string &headerStart)
+    {
+        std::istringstream in(out);
+        std::string line;
+        std::getline(in, line);
+        EXPECT_EQ(line.rfind(headerStart, 0), 0u) << line;
+        std::vector<std::vector<std::string>> rows;
+        while (std::getline(in, line))
+        {
+            std::vector<std::string> cells;
+            std::istringstream split(line);
+            std::string cell;
+            while (std::getline(split, cell, ','))
+                cells.push_back(cell);
+            rows.push_back(cells);
+        }
+        return rows;
+    }
+}  // namespace
+
+TEST(DistanceCli, CfgPosesGiveTheSceneAnswerWarmOrCold)
+{
+    // --cfg without --algorithm answers as the checker does: the scene (handshake's world, a hand, splits into its
+    // six parts), exact and certified, one warm start carried from pose to pose, or a fresh one with --cold. Poses:
+    // the cfg's start, the goal and the straight line between them, which runs through the world (colliding
+    // stretch). Oracle: FCL's distance and collision on the same meshes; warm and cold must agree to 1e-12.
+    const fs::path cfg = fs::path(MESHGAP_SOURCE_DIR) / "maps" / "handshake" / "handshake.cfg";
+    const ProblemConfig problem = readProblemConfig(cfg.string());
+    ASSERT_TRUE(problem.goal.has_value());
+    std::vector<Eigen::Isometry3d> poses;
+    for (int k = 0; k <= 8; ++k)
+    {
+        Eigen::Isometry3d X = problem.start;
+        X.translation() += (k / 8.0) * (problem.goal->translation() - problem.start.translation());
+        poses.push_back(X);
+    }
+    const std::string file =
+        (fs::temp_directory_path() / ("meshgap_cli_s" + std::to_string(::getpid()) + ".path")).string();
+    {
+        std::ofstream out(file);
+        out << std::setprecision(17);
+        for (const Eigen::Isometry3d &X : poses)
+        {
+            const Eigen::Quaterniond q(X.linear());
+            out << X.translation().x() << " " << X.translation().y() << " " << X.translation().z() << " " << q.x()
+                << " " << q.y() << " " << q.z() << " " << q.w() << "\n";
+        }
+    }
+    const std::string header = "index,distance,time_us,obstacle,";
+    const CliRun warm = run("--cfg " + cfg.string() + " --poses " + file + " -q");
+    const CliRun cold = run("--cfg " + cfg.string() + " --poses " + file + " --cold -q");
+    fs::remove(file);
+    ASSERT_EQ(warm.status, 0) << warm.err;
+    ASSERT_EQ(cold.status, 0) << cold.err;
+    EXPECT_NE(warm.err.find("median"), std::string::npos) << warm.err;  // time per query, on stderr
+    EXPECT_NE(cold.err.find("cold"), std::string::npos) << cold.err;
+    const auto w = csvRows(warm.out, header), c = csvRows(cold.out, header);
+    ASSERT_EQ(w.size(), poses.size());
+    ASSERT_EQ(c.size(), poses.size());
+    const std::size_t collision = 10, certified = 11;
+    std::size_t colliding = 0;
+    for (std::size_t i = 0; i < poses.size(); ++i)
+    {
+        SCOPED_TRACE("pose " + std::to_string(i));
+        ASSERT_EQ(w[i].size(), 14u);
+        EXPECT_EQ(w[i][collision], c[i][collision]);
+        const double dw = std::stod(w[i][1]), dc = std::stod(c[i][1]);
+        EXPECT_LE(std::abs(dw - dc), 1e-12 * std::max(std::abs(dw), std::abs(dc)));
+        EXPECT_EQ(w[i][certified], "1");
+        EXPECT_EQ(c[i][certified], "1");
+        colliding += w[i][collision] == "1";
+#ifdef MESHGAP_HAVE_FCL
+        static const auto world = test::fclModel(loadMesh(problem.world)),
+                          robot = test::fclModel(loadRobotMesh(problem.robot));
+        const bool hit = test::fclCollide(world, robot, poses[i]);
+        EXPECT_EQ(w[i][collision] == "1", hit);
+        if (!hit)
+        {
+            const double d = test::fclDistance(world, robot, poses[i]);
+            EXPECT_NEAR(dw, d, 1e-6 * d);
+        }
+        else
+            EXPECT_LT(dw, 0.0);  // signed: negative in collision
+#endif
+    }
+    EXPECT_GT(colliding, 0u);  // the straight line runs through the other hand
+    EXPECT_LT(colliding, poses.size());
 }

@@ -549,3 +549,75 @@ TEST(Maps, GeneratedScenesAreClosedAndSeparatedAtTheirPoses)
 #endif
     }
 }
+
+TEST(Maps, TwistedPathIsFreeAndCloseToTheChannel)
+{
+    // maps/twisted (the stress scene of issue 13): a thin helical strip screwed through a helical channel. Checked
+    // here, independently of the generator: both meshes closed and outward, the strip made of hundreds of long thin
+    // triangles, the cfg's start and goal the first and last of the .poses (OMPL.app's centre shift undone), and
+    // with FCL as the oracle every pose of the path, and the midpoint of each step between two poses (linear
+    // translation, slerp: how a planner or the query bench interpolates), free of the channel, the path passing
+    // close to it (within 1% of the strip's size, every fifth pose measured) and the straight line from start to
+    // goal colliding (only the screw gets through).
+    const std::filesystem::path dir =
+        std::filesystem::path(MESHGAP_TEST_RESOURCES_DIR) / ".." / ".." / "maps" / "twisted";
+    const Mesh a = readObj((dir / "twisted_a.obj").string()), b = readObj((dir / "twisted_b.obj").string());
+    for (const Mesh *m : {&a, &b})
+    {
+        EXPECT_TRUE(closedAndConsistent(*m));
+        EXPECT_GT(volume(*m), 0.0);
+    }
+    ASSERT_GE(b.triangles.size(), 300u);
+    std::size_t slivers = 0;  // longest edge over 5 times the height on it
+    for (const meshgap::Triangle &t : b.triangles)
+    {
+        const Vector3d &p = b.vertices[t[0]], &q = b.vertices[t[1]], &r = b.vertices[t[2]];
+        const double longest = std::max({(q - p).norm(), (r - q).norm(), (p - r).norm()});
+        const double height = (q - p).cross(r - p).norm() / longest;
+        slivers += longest > 5.0 * height;
+    }
+    EXPECT_GE(slivers, b.triangles.size() / 3);
+
+    const std::vector<Eigen::Isometry3d> poses = readPoses((dir / "twisted.poses").string());
+    ASSERT_GE(poses.size(), 100u);
+    const meshgap::ProblemConfig cfg = meshgap::readProblemConfig((dir / "twisted.cfg").string());
+    const Mesh robot = meshgap::loadRobotMesh(cfg.robot), raw = meshgap::loadMesh(cfg.robot);
+    ASSERT_EQ(robot.vertices.size(), raw.vertices.size());
+    ASSERT_TRUE(cfg.goal.has_value());
+    double startOff = 0.0, goalOff = 0.0;
+    for (std::size_t i = 0; i < robot.vertices.size(); ++i)
+    {
+        startOff = std::max(startOff, (cfg.start * robot.vertices[i] - poses.front() * raw.vertices[i]).norm());
+        goalOff = std::max(goalOff, (*cfg.goal * robot.vertices[i] - poses.back() * raw.vertices[i]).norm());
+    }
+    EXPECT_LT(startOff, 1e-5 * b.size());
+    EXPECT_LT(goalOff, 1e-5 * b.size());
+#ifdef MESHGAP_HAVE_FCL
+    const auto fa = meshgap::test::fclModel(a), fb = meshgap::test::fclModel(b);
+    double closest = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < poses.size(); ++i)
+    {
+        EXPECT_FALSE(meshgap::test::fclCollide(fa, fb, poses[i])) << "pose " << i + 1;
+        if (i % 5 == 0)  // FCL's distance is slow on slivers: every fifth pose, enough for "close"
+            closest = std::min(closest, meshgap::test::fclDistance(fa, fb, poses[i]));
+        if (i + 1 == poses.size())
+            break;
+        Eigen::Isometry3d mid = Eigen::Isometry3d::Identity();
+        mid.translation() = 0.5 * (poses[i].translation() + poses[i + 1].translation());
+        mid.linear() = Eigen::Quaterniond(poses[i].linear())
+                           .slerp(0.5, Eigen::Quaterniond(poses[i + 1].linear()))
+                           .toRotationMatrix();
+        EXPECT_FALSE(meshgap::test::fclCollide(fa, fb, mid)) << "between poses " << i + 1 << " and " << i + 2;
+    }
+    EXPECT_GT(closest, 0.0);
+    EXPECT_LT(closest, 0.01 * b.bounds().sizes().maxCoeff());
+    std::size_t colliding = 0;
+    for (int k = 1; k < 100; ++k)
+    {
+        Eigen::Isometry3d X = poses.front();
+        X.translation() += (k / 100.0) * (poses.back().translation() - poses.front().translation());
+        colliding += meshgap::test::fclCollide(fa, fb, X);
+    }
+    EXPECT_GT(colliding, 0u) << "the straight line from start to goal is free";
+#endif
+}
