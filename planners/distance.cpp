@@ -138,8 +138,8 @@ namespace
     }
 
     /** \brief The checker's answer (ClearanceChecker, certified mode) at each pose: Scene::distance() on the world
-        split into its parts, exact and certified, one SceneWarmStart carried from pose to pose (a fresh one per
-        pose with \e cold, its construction timed with the query, as a cold query pays it). */
+        split into its parts, exact and certified, one SceneWarmStart carried from pose to pose (none with \e cold:
+        a cold query per pose). */
     int answerWithScene(const Mesh &robot, const Mesh &world, const BodyOptions &options,
                         const std::vector<Eigen::Isometry3d> &poses, bool many, bool asJson, bool cold)
     {

@@ -1,5 +1,6 @@
 #include "meshgap/ompl/ClearanceChecker.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -68,11 +69,22 @@ namespace meshgap
     {
         std::atomic<std::uint64_t> nextCheckerId{1};
 
+        /** \brief A thread keeps the warm starts of its last few checkers: a warm start holds certificates (up to
+            megabytes on large meshes), and a benchmark makes a checker per run, so the oldest (the smallest id, a
+            checker made earlier) goes when a new one arrives. A checker whose warm start went starts cold again. */
+        constexpr std::size_t kWarmStartsPerThread = 8;
+
         /** \brief This thread's warm starts, one per checker (keyed by the checker's unique id, never its address,
             which a later checker could reuse). */
         SceneWarmStart &warmStartFor(std::uint64_t id)
         {
             thread_local std::unordered_map<std::uint64_t, SceneWarmStart> warm;
+            auto found = warm.find(id);
+            if (found != warm.end())
+                return found->second;
+            if (warm.size() >= kWarmStartsPerThread)
+                warm.erase(std::min_element(warm.begin(), warm.end(),
+                                            [](const auto &p, const auto &q) { return p.first < q.first; }));
             return warm[id];
         }
 

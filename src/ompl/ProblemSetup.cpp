@@ -89,9 +89,8 @@ namespace meshgap
             {
                 // Exact answer for the message, whatever the checker's mode.
                 SceneRequest request;
-                SceneWarmStart warm;
                 SceneResult r;
-                problem.scene->distance(poseFromState(*space, state->get()), request, warm, r);
+                problem.scene->distance(poseFromState(*space, state->get()), request, r);
                 throw Exception(config.file, std::string(label) + " " + collisionReport(*problem.scene, r));
             }
         }
