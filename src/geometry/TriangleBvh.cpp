@@ -139,38 +139,37 @@ namespace meshgap
             return false;
         }
 
-        /** \brief Lower bound on the distance between triangles p and q from their separation along unit axis n:
-            the gap between the two intervals the corners project to (0 when they overlap or n is zero). */
-        double axisGap(const Eigen::Vector3d &n, const Eigen::Vector3d *p, const Eigen::Vector3d *q)
+        /** \brief The gap between triangles p and q along unit axis \e n, either way round, and that axis pointing
+            from p's side to q's (a lower bound on their distance; 0 and no axis when the projections overlap). */
+        struct Separation
         {
-            const double p0 = n.dot(p[0]), p1 = n.dot(p[1]), p2 = n.dot(p[2]);
-            const double q0 = n.dot(q[0]), q1 = n.dot(q[1]), q2 = n.dot(q[2]);
-            const double gap1 = std::min({q0, q1, q2}) - std::max({p0, p1, p2});
-            const double gap2 = std::min({p0, p1, p2}) - std::max({q0, q1, q2});
-            return std::max({gap1, gap2, 0.0});
-        }
+            double gap{0.0};
+            Eigen::Vector3d axis{Eigen::Vector3d::Zero()};
 
-        /** \brief The largest gap (a lower bound on the distance between triangles p and q) along the nine axes
-            normal to one edge of each, stopping at the first above \e enough. Cheaper than an exact triangle
-            test by far, and it proves most pairs of nearby but not closest triangles apart. */
-        double edgeAxesGap(const Eigen::Vector3d *p, const Eigen::Vector3d *q, double enough)
-        {
-            double gap = 0.0;
-            for (int i = 0; i < 3; ++i)
+            void consider(const Eigen::Vector3d &n, const Eigen::Vector3d *p, const Eigen::Vector3d *q)
             {
-                const Eigen::Vector3d e = p[(i + 1) % 3] - p[i];
-                for (int j = 0; j < 3; ++j)
+                const double p0 = n.dot(p[0]), p1 = n.dot(p[1]), p2 = n.dot(p[2]);
+                const double q0 = n.dot(q[0]), q1 = n.dot(q[1]), q2 = n.dot(q[2]);
+                const double up = std::min({q0, q1, q2}) - std::max({p0, p1, p2});    // q beyond p along n
+                const double down = std::min({p0, p1, p2}) - std::max({q0, q1, q2});  // p beyond q
+                if (up > gap)
                 {
-                    const Eigen::Vector3d n = e.cross(q[(j + 1) % 3] - q[j]);
-                    const double length = n.norm();
-                    if (!(length > 0.0))
-                        continue;  // parallel edges: no axis
-                    gap = std::max(gap, axisGap(n, p, q) / length);
-                    if (gap > enough)
-                        return gap;
+                    gap = up;
+                    axis = n;
+                }
+                if (down > gap)
+                {
+                    gap = down;
+                    axis = -n;
                 }
             }
-            return gap;
+        };
+
+        /** \brief The gap of triangles p and q along \e axis (unit, from p's side to q's): may be negative. */
+        double gapAlong(const Eigen::Vector3d &axis, const Eigen::Vector3d *p, const Eigen::Vector3d *q)
+        {
+            return std::min({axis.dot(q[0]), axis.dot(q[1]), axis.dot(q[2])}) -
+                   std::max({axis.dot(p[0]), axis.dot(p[1]), axis.dot(p[2])});
         }
 
         struct PairEntry
@@ -252,11 +251,36 @@ namespace meshgap
                 return lowerBound(na, nb, X_, exitAbove());
             }
 
-            /** \brief Keep pair \e e with lower bound \e bound in the front (if one is recorded). */
-            void keep(const PairEntry &e, double bound)
+            /** \brief Keep pair \e e with lower bound \e bound (and the axis that gave it, for a pair of leaves) in
+                the front, if one is recorded. The axis is kept in single precision and normalised again when read:
+                any unit axis gives a lower bound. */
+            void keep(const PairEntry &e, double bound, const Eigen::Vector3d &axis = Eigen::Vector3d::Zero())
             {
                 if (record_)
-                    record_->push_back({e.a, e.b, stamp_, bound + motion_});
+                    record_->push_back({e.a,
+                                        e.b,
+                                        stamp_,
+                                        {static_cast<float>(axis.x()), static_cast<float>(axis.y()),
+                                         static_cast<float>(axis.z())},
+                                        bound + motion_});
+            }
+
+            /** \brief A pair of leaves with a separating axis from an earlier pose: its gap along that axis now (a
+                lower bound on the distance of its triangles), or -infinity when it has none. */
+            double axisBound(const BvhFront::Entry &e) const
+            {
+                const Eigen::Vector3d axis(e.axis[0], e.axis[1], e.axis[2]);
+                const double length = axis.norm();
+                if (!(length > 0.0))
+                    return -std::numeric_limits<double>::infinity();
+                const Mesh &ma = a_.mesh(), &mb = b_.mesh();
+                const TriangleBvh::Node &na = a_.nodes()[e.a], &nb = b_.nodes()[e.b];
+                const Triangle &fa = ma.triangles[a_.order()[na.first]], &fb = mb.triangles[b_.order()[nb.first]];
+                const Eigen::Vector3d pa[3] = {ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]]};
+                Eigen::Vector3d pb[3];
+                for (int k = 0; k < 3; ++k)
+                    pb[k] = X_.R * mb.vertices[fb[k]] + X_.t;
+                return gapAlong(axis / length, pa, pb);
             }
 
             /** \brief Search below pair \e start (lower bound \e startBound) to its end, or until the early stop. */
@@ -283,7 +307,9 @@ namespace meshgap
                     const TriangleBvh::Node &na = a_.nodes()[e.a], &nb = b_.nodes()[e.b];
                     if (na.isLeaf() && nb.isLeaf())
                     {
-                        keep(e, leaves(na, nb, bound));
+                        Eigen::Vector3d axis;
+                        const double least = leaves(na, nb, bound, axis);
+                        keep(e, least, axis);
                         continue;
                     }
                     descend(e, na, nb);
@@ -292,11 +318,14 @@ namespace meshgap
 
         private:
             /** \brief Test every triangle pair of two leaves; returns a lower bound on the leaf pair's distance
-                (the least of each triangle pair's gap or distance; \e boxBound if the early stop cut it short). */
-            double leaves(const TriangleBvh::Node &na, const TriangleBvh::Node &nb, double boxBound)
+                (the least of each triangle pair's gap or distance; \e boxBound if the early stop cut it short) and,
+                for a single pair of triangles, in \e axis the axis that gave it (zero if none). */
+            double leaves(const TriangleBvh::Node &na, const TriangleBvh::Node &nb, double boxBound,
+                          Eigen::Vector3d &axis)
             {
                 const Mesh &ma = a_.mesh(), &mb = b_.mesh();
                 double least = std::numeric_limits<double>::infinity();
+                axis.setZero();
                 Eigen::Vector3d pb[3], onA, onB;
                 for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
                 {
@@ -313,17 +342,35 @@ namespace meshgap
                         // nine edge-cross axes. The slack keeps rounding from pruning a pair at exactly the best
                         // distance's value.
                         const double limit = enough();
-                        double gap = std::max(axisGap(a_.normals()[ta], pa, pb), axisGap(normalB, pa, pb));
-                        if (!(gap > limit))
-                            gap = std::max(gap, edgeAxesGap(pa, pb, limit));
-                        if (gap > limit)
+                        Separation s;
+                        s.consider(a_.normals()[ta], pa, pb);
+                        s.consider(normalB, pa, pb);
+                        for (int m = 0; m < 9 && !(s.gap > limit); ++m)
                         {
-                            least = std::min(least, gap);
+                            const Eigen::Vector3d n = (pa[(m / 3 + 1) % 3] - pa[m / 3]).cross(pb[(m % 3 + 1) % 3] -
+                                                                                              pb[m % 3]);
+                            const double length = n.norm();
+                            if (length > 0.0)  // else parallel edges: no axis
+                                s.consider(n / length, pa, pb);
+                        }
+                        if (s.gap > limit)
+                        {
+                            if (s.gap < least)
+                            {
+                                least = s.gap;
+                                axis = s.axis;
+                            }
                             continue;
                         }
                         ++result_.triangleTests;
                         const double d = triangleDistance(pa[0], pa[1], pa[2], pb[0], pb[1], pb[2], onA, onB);
-                        least = std::min(least, d);
+                        if (d < least)
+                        {
+                            least = d;
+                            // The closest points' direction separates the triangles by exactly d.
+                            axis = d > 0.0 ? Eigen::Vector3d((onB - onA) / (onB - onA).norm())
+                                           : Eigen::Vector3d::Zero();
+                        }
                         const bool closer = d < result_.distance - slack_;
                         const bool tieWins = !closer && d <= result_.distance + slack_ &&
                                              (ta < bestA_ || (ta == bestA_ && tb < bestB_));
@@ -340,11 +387,14 @@ namespace meshgap
                             if (d <= stopBelow_)
                             {
                                 stopped_ = true;
+                                axis.setZero();
                                 return boxBound;  // pairs of these leaves may be left untested
                             }
                         }
                     }
                 }
+                if (na.count != 1 || nb.count != 1)
+                    axis.setZero();  // one axis per pair of triangles
                 return least;
             }
 
@@ -432,22 +482,53 @@ namespace meshgap
             std::vector<BvhFront::Entry> &next = front->next;
             next.clear();
             std::size_t retested = 0;
+            struct SlotMotion
+            {
+                bool ready{false};
+                Eigen::Matrix3d dR;
+                Eigen::Vector3d dt;
+                double turn, pad;
+            };
+            std::array<SlotMotion, BvhFront::POSES> slots;
             DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, &next, motion, stamp);
             for (std::size_t i = 0; i < count && !traversal.stopped(); ++i)
             {
                 const BvhFront::Entry &e = begin[i];
                 if (e.key - motion - pad > traversal.enough())
                     continue;  // still proven beyond the best
-                // Its own node's displacement since its bound was computed, if that pose is still known.
+                // Its own node's displacement since its bound was computed, if that pose is still known: the
+                // motion's difference worked out once per pose (nodeMotionBound() term by term).
                 const std::uint32_t age = stamp - e.stamp;
                 if (age < BvhFront::POSES)
                 {
                     const std::uint32_t slot = e.stamp % BvhFront::POSES;
+                    SlotMotion &m = slots[slot];
+                    if (!m.ready)
+                    {
+                        const Eigen::Isometry3d &P = front->poses[slot];
+                        m.dR = X_AB.linear() - P.linear();
+                        m.dt = X_AB.translation() - P.translation();
+                        const double turn =
+                            std::sqrt(std::max(0.0, 3.0 - P.linear().cwiseProduct(X_AB.linear()).sum()));
+                        m.turn = turn + 1e-7 * (turn > 0.0);
+                        m.pad = 1e-12 * (rootB.center.norm() + rootB.radius + P.translation().norm() +
+                                         X_AB.translation().norm());
+                        m.ready = true;
+                    }
                     const TriangleBvh::Node &nb = b.nodes()[e.b];
-                    const double bound = e.key - front->motions[slot] -
-                                         nodeMotionBound(nb.center, nb.radius, front->poses[slot], X_AB);
-                    if (bound - pad > traversal.enough())
+                    const double displacement =
+                        ((m.dR * nb.center + m.dt).norm() + nb.radius * m.turn) * (1.0 + 1e-12) + m.pad;
+                    if (e.key - front->motions[slot] - displacement - pad > traversal.enough())
                         continue;
+                }
+                // A pair of leaves: its gap along the axis that separated it last time.
+                const double gap = traversal.axisBound(e);
+                if (gap > traversal.enough())
+                {
+                    front->entries[i].key = gap + motion;
+                    front->entries[i].stamp = stamp;
+                    ++front->axisKept;
+                    continue;
                 }
                 ++retested;
                 const PairEntry pair{e.a, e.b};

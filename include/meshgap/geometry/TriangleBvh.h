@@ -71,8 +71,9 @@ namespace meshgap
         - for an entry that fails that test and was computed within the last POSES traversals, the displacement of
           its own node of B between that traversal's pose and this one (nodeMotionBound()), much smaller for a part
           near the centre of a rotation.
-        An entry that fails both is re-tested (its bound recomputed, descended where it could beat the best), and its
-        sub-front replaces it. The answer is the cold traversal's: same prune rule, same tie rule. The front is
+        An entry that fails both is re-tested: a pair of leaves first along the axis that separated it last time
+        (a sliding motion leaves that gap unchanged), then in full; any other pair by its box bound, descended where
+        it could beat the best, its sub-front replacing it. The answer is the cold traversal's: same prune rule, same tie rule. The front is
         rebuilt from the roots when it has grown past FRONT_GROWTH times the size of a fresh one, or when a
         traversal had to re-test more entries than a fresh front holds twice over (a motion too large to pay).
         Belongs to one caller; not thread-safe. */
@@ -83,8 +84,11 @@ namespace meshgap
 
         struct Entry
         {
-            std::uint32_t a, b;  ///< node of tree A, node of tree B
+            std::uint32_t a, b;   ///< node of tree A, node of tree B
             std::uint32_t stamp;  ///< the traversal that computed the bound
+            /** \brief A pair of leaves: the axis that separated its triangles (unit, from A's towards B's; zero if
+                none), re-tested first: the gap along it is a fresh lower bound for about a tenth of a full test. */
+            float axis[3];
             double key;           ///< that lower bound on the pair's distance + motion at the time
         };
 
@@ -97,7 +101,8 @@ namespace meshgap
         std::size_t freshSize{0};    ///< size of the front the last traversal from the roots wrote
         bool valid{false};           ///< entries cover the whole pair tree (false: start from the roots)
         std::size_t reused{0};       ///< statistics: entries kept without a test, over the front's lifetime
-        std::size_t retested{0};     ///< entries re-tested
+        std::size_t retested{0};     ///< entries re-tested in full
+        std::size_t axisKept{0};     ///< entries kept by their separating axis
         std::size_t rebuilds{0};     ///< traversals from the roots
 
         /** \brief Heap bytes held (both buffers' capacity). */
