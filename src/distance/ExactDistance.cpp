@@ -83,7 +83,7 @@ namespace meshgap
         if (!body.isClosed())
             return false;
         const TriangleBvh::Node &root = body.bvh().nodes()[0];
-        if (((p - root.center).cwiseAbs() - root.half).maxCoeff() > 0.0)
+        if (root.outside(p))
             return false;  // outside the bounding box
         const Mesh &m = body.surface();
         double total = 0.0;

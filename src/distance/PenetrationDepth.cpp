@@ -141,7 +141,7 @@ namespace meshgap
             {
                 const NodeCluster &cluster = mover.clusters()[k];
                 const Eigen::Vector3d c = R * cluster.center + t;
-                if (((c - root.center).cwiseAbs() - root.half).cwiseMax(0.0).norm() > cluster.radius)
+                if ((root.local(c).cwiseAbs() - root.half).cwiseMax(0.0).norm() > cluster.radius)
                     continue;  // no node of it in the host's box
                 BvhPointResult r;
                 bvhPointDistance(host.bvh(), c, infinity, -1.0, r);
@@ -165,7 +165,7 @@ namespace meshgap
                 {
                     const std::uint32_t i = mover.clusterOrder()[k];
                     const Eigen::Vector3d p = R * mover.node(i) + t;
-                    if (((p - root.center).cwiseAbs() - root.half).maxCoeff() > 0.0)
+                    if (root.outside(p))
                         continue;
                     // Nearer to the surface than the deepest so far: cannot be the deepest, inside or not. The
                     // centre's nearest point is at most |p - c| farther from p: a bound that may settle that at once,
@@ -206,7 +206,7 @@ namespace meshgap
         if (!body.isClosed())
             return false;
         const TriangleBvh::Node &root = body.bvh().nodes()[0];
-        if (((p - root.center).cwiseAbs() - root.half).maxCoeff() > 0.0)
+        if (root.outside(p))
             return false;  // outside the bounding box
         // Directions off every axis and diagonal (OMPL.app's walls are axis-aligned: a ray along an axis would graze
         // their edges).

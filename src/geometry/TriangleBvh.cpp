@@ -1,6 +1,7 @@
 #include "meshgap/geometry/TriangleBvh.h"
 
 #include <algorithm>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 
 #include "meshgap/geometry/TriangleDistance.h"
@@ -40,23 +41,50 @@ namespace meshgap
         {
             const Work w = stack.back();
             stack.pop_back();
-            Eigen::AlignedBox3d box, centres;
+            Eigen::AlignedBox3d box;
+            Eigen::Vector3d mean = Eigen::Vector3d::Zero();
             for (std::uint32_t k = w.first; k < w.first + w.count; ++k)
-            {
-                const Triangle &f = mesh.triangles[order_[k]];
-                for (std::uint32_t v : f)
+                for (std::uint32_t v : mesh.triangles[order_[k]])
+                {
                     box.extend(mesh.vertices[v]);
-                centres.extend(centroid[order_[k]]);
-            }
+                    mean += mesh.vertices[v];
+                }
+            mean /= 3.0 * w.count;
             Node node;
             node.center = box.center();
             node.half = 0.5 * box.sizes();
+            // The principal box: along the eigenvectors of the corners' covariance. Kept if clearly smaller (an
+            // aligned box makes cheaper tests).
+            Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+            for (std::uint32_t k = w.first; k < w.first + w.count; ++k)
+                for (std::uint32_t v : mesh.triangles[order_[k]])
+                {
+                    const Eigen::Vector3d d = mesh.vertices[v] - mean;
+                    covariance += d * d.transpose();
+                }
+            Eigen::Matrix3d axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors();
+            if (axes.determinant() < 0.0)
+                axes.col(2) = -axes.col(2);
+            Eigen::AlignedBox3d principal;
+            for (std::uint32_t k = w.first; k < w.first + w.count; ++k)
+                for (std::uint32_t v : mesh.triangles[order_[k]])
+                    principal.extend(Eigen::Vector3d(axes.transpose() * mesh.vertices[v]));
+            const Eigen::Vector3d principalHalf = 0.5 * principal.sizes();
+            auto measure = [](const Eigen::Vector3d &h) { return h.prod() + 1e-3 * h.squaredNorm() * h.minCoeff(); };
+            if (axes.allFinite() && measure(principalHalf) < 0.8 * measure(node.half))
+            {
+                node.axes = axes;
+                node.aligned = false;
+                node.center = axes * principal.center();
+                node.half = principalHalf;
+            }
             double r2 = 0.0;
             for (std::uint32_t k = w.first; k < w.first + w.count; ++k)
                 for (std::uint32_t v : mesh.triangles[order_[k]])
                     r2 = std::max(r2, (mesh.vertices[v] - node.center).squaredNorm());
-            // Rounding slack: bounds must never cut into the geometry they bound.
-            const double slack = 1e-12 * (node.center.norm() + node.half.norm());
+            // Rounding slack: bounds must never cut into the geometry they bound (a rotated box's corners are
+            // projected with roundoff of a few 1e-16 of the coordinates).
+            const double slack = 1e-12 * (node.center.norm() + node.half.norm() + mean.norm());
             node.radius = std::sqrt(r2) + slack;
             node.half.array() += slack;
             if (w.count <= LEAF_SIZE)
@@ -66,12 +94,17 @@ namespace meshgap
                 nodes_[w.node] = node;
                 continue;
             }
+            // Split across the box axis along which the centroids spread most.
+            Eigen::AlignedBox3d centres;
+            for (std::uint32_t k = w.first; k < w.first + w.count; ++k)
+                centres.extend(Eigen::Vector3d(node.axes.transpose() * centroid[order_[k]]));
             int axis;
             centres.sizes().maxCoeff(&axis);
+            const Eigen::Vector3d direction = node.axes.col(axis);
             const std::uint32_t half = w.count / 2;
             std::nth_element(order_.begin() + w.first, order_.begin() + w.first + half,
-                             order_.begin() + w.first + w.count,
-                             [&](std::uint32_t i, std::uint32_t j) { return centroid[i][axis] < centroid[j][axis]; });
+                             order_.begin() + w.first + w.count, [&](std::uint32_t i, std::uint32_t j)
+                             { return direction.dot(centroid[i]) < direction.dot(centroid[j]); });
             const auto left = static_cast<std::uint32_t>(nodes_.size());
             nodes_.push_back(Node());
             nodes_.push_back(Node());
@@ -96,23 +129,46 @@ namespace meshgap
             }
         };
 
+        /** \brief Box \e b (placed by X) seen from box \e a: the rotation C from b's box axes to a's, |C| padded
+            (so parallel axes never make a bound too large), and the centre offset T along a's axes. */
+        struct BoxPair
+        {
+            Eigen::Matrix3d C, absC;
+            Eigen::Vector3d T;
+            BoxPair(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X,
+                    const Eigen::Vector3d &offset)
+            {
+                if (a.aligned && b.aligned)
+                {
+                    C = X.R;
+                    absC = X.absR;
+                    T = offset;
+                    return;
+                }
+                C = a.axes.transpose() * (X.R * b.axes);
+                absC = C.cwiseAbs().array() + 1e-12;
+                T = a.aligned ? offset : Eigen::Vector3d(a.axes.transpose() * offset);
+            }
+        };
+
         /** \brief Lower bound on the distance between anything in box \e a and anything in box \e b (B's frame),
-            from the six face-axis gaps and the sphere gap; <= 0 means the boxes may touch. Once a partial bound
-            exceeds \e enough (the caller prunes above it) that one is returned: still a lower bound, just not the
-            best of the three. */
+            from the sphere gap (cheapest, and rotation-free), then the six face-axis gaps; <= 0 means the boxes may
+            touch. Once a partial bound exceeds \e enough (the caller prunes above it) that one is returned: still a
+            lower bound, just not the best of the three. */
         double lowerBound(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X,
                           double enough = std::numeric_limits<double>::infinity())
         {
-            const Eigen::Vector3d T = X.R * b.center + X.t - a.center;
-            double bound = T.norm() - a.radius - b.radius;
+            const Eigen::Vector3d offset = X.R * b.center + X.t - a.center;
+            double bound = offset.norm() - a.radius - b.radius;
             if (bound > enough)
                 return bound;
-            const Eigen::Vector3d rb = X.absR * b.half;             // B's box projected on A's axes
-            bound = std::max(bound, (T.cwiseAbs() - a.half - rb).maxCoeff());
+            const BoxPair P(a, b, X, offset);
+            const Eigen::Vector3d rb = P.absC * b.half;  // B's box projected on A's axes
+            bound = std::max(bound, (P.T.cwiseAbs() - a.half - rb).maxCoeff());
             if (bound > enough)
                 return bound;
-            const Eigen::Vector3d s = X.R.transpose() * T;          // T on B's axes
-            const Eigen::Vector3d ra = X.absR.transpose() * a.half;  // A's box projected on B's axes
+            const Eigen::Vector3d s = P.C.transpose() * P.T;          // T on B's axes
+            const Eigen::Vector3d ra = P.absC.transpose() * a.half;  // A's box projected on B's axes
             bound = std::max(bound, (s.cwiseAbs() - ra - b.half).maxCoeff());
             return bound;
         }
@@ -120,9 +176,15 @@ namespace meshgap
         /** \brief Full separating-axis test of the two oriented boxes (15 axes): true if they are disjoint. */
         bool separated(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X)
         {
-            if (lowerBound(a, b, X) > 0.0)
+            const Eigen::Vector3d offset = X.R * b.center + X.t - a.center;
+            if (offset.norm() > a.radius + b.radius)
                 return true;
-            const Eigen::Vector3d T = X.R * b.center + X.t - a.center;
+            const BoxPair P(a, b, X, offset);
+            const Eigen::Vector3d &T = P.T;
+            if (((T.cwiseAbs() - a.half - P.absC * b.half).array() > 0.0).any())
+                return true;
+            if ((((P.C.transpose() * T).cwiseAbs() - P.absC.transpose() * a.half - b.half).array() > 0.0).any())
+                return true;
             const Eigen::Vector3d &ea = a.half, &eb = b.half;
             for (int i = 0; i < 3; ++i)
             {
@@ -130,9 +192,9 @@ namespace meshgap
                 for (int j = 0; j < 3; ++j)
                 {
                     const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-                    const double ra = ea[i1] * X.absR(i2, j) + ea[i2] * X.absR(i1, j);
-                    const double rb = eb[j1] * X.absR(i, j2) + eb[j2] * X.absR(i, j1);
-                    if (std::abs(T[i2] * X.R(i1, j) - T[i1] * X.R(i2, j)) > ra + rb)
+                    const double ra = ea[i1] * P.absC(i2, j) + ea[i2] * P.absC(i1, j);
+                    const double rb = eb[j1] * P.absC(i, j2) + eb[j2] * P.absC(i, j1);
+                    if (std::abs(T[i2] * P.C(i1, j) - T[i1] * P.C(i2, j)) > ra + rb)
                         return true;
                 }
             }
@@ -544,9 +606,9 @@ namespace meshgap
             front->poses[stamp % BvhFront::POSES] = X_AB;
             front->motions[stamp % BvhFront::POSES] = motion;
             // Rebuild next time when the front has grown well past a fresh one (a cut refined for motions that have
-            // passed), or this motion made more re-tests than a fresh traversal's work.
+            // passed), or this motion made more full re-tests than half a fresh front: the front does not pay.
             front->valid = front->entries.size() <= BvhFront::FRONT_GROWTH * front->freshSize + 16 &&
-                           retested <= 2 * front->freshSize + 16;
+                           retested <= front->freshSize / 2 + 16;
             return;
         }
         ++front->rebuilds;
@@ -624,7 +686,7 @@ namespace meshgap
         // Lower bound on the distance from p to anything in a node: the box distance, or the sphere's.
         auto bound = [&p](const TriangleBvh::Node &n)
         {
-            const Eigen::Vector3d d = p - n.center;
+            const Eigen::Vector3d d = n.local(p);
             return std::max((d.cwiseAbs() - n.half).cwiseMax(0.0).norm(), d.norm() - n.radius);
         };
         struct Entry
@@ -690,19 +752,20 @@ namespace meshgap
         {
             const TriangleBvh::Node &n = tree.nodes()[stack.back()];
             stack.pop_back();
-            // Slab test of the ray against the node's box, padded against roundoff.
-            const Eigen::Vector3d lo = n.center - p;
+            // Slab test of the ray against the node's box (in the box's frame), padded against roundoff.
+            const Eigen::Vector3d lo = -n.local(p);
+            const Eigen::Vector3d dir = n.aligned ? d : Eigen::Vector3d(n.axes.transpose() * d);
             const Eigen::Vector3d half = n.half.array() + 1e-9 * (n.center.norm() + n.half.norm() + p.norm());
             double enter = 0.0, leave = std::numeric_limits<double>::infinity();
             bool hit = true;
             for (int k = 0; k < 3 && hit; ++k)
             {
-                if (d[k] == 0.0)
+                if (dir[k] == 0.0)
                 {
                     hit = std::abs(lo[k]) <= half[k];
                     continue;
                 }
-                double t0 = (lo[k] - half[k]) / d[k], t1 = (lo[k] + half[k]) / d[k];
+                double t0 = (lo[k] - half[k]) / dir[k], t1 = (lo[k] + half[k]) / dir[k];
                 if (t0 > t1)
                     std::swap(t0, t1);
                 enter = std::max(enter, t0);

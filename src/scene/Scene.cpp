@@ -221,7 +221,7 @@ namespace meshgap
         {
             const TriangleBvh::Node &root = robot.bvh().nodes()[0];
             const Eigen::Vector3d c = X_WR * root.center;
-            const Eigen::Vector3d half = X_WR.linear().cwiseAbs() * root.half;
+            const Eigen::Vector3d half = (X_WR.linear() * root.axes).cwiseAbs() * root.half;
             const Eigen::Vector3d r = Eigen::Vector3d::Constant(root.radius);
             // Roundoff in the box distances is relative to the largest coordinate involved, the robot's or the
             // obstacles'; 1e-9 of it is far above roundoff and far below any useful pruning margin.

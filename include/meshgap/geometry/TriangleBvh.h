@@ -11,11 +11,13 @@
 
 namespace meshgap
 {
-    /** \brief A bounding-volume hierarchy over a mesh's triangles: a binary tree of axis-aligned boxes in the body
-        frame (each with a bounding sphere about the box centre), built top-down by median split of the triangle
-        centroids along the longest axis, leaves of at most LEAF_SIZE triangles. Between two trees at a relative
-        pose, a box pair is bounded from below by the largest separating-axis gap (the boxes are oriented boxes in
-        each other's frame) and by the gap of the spheres. Immutable; the mesh must outlive the tree. */
+    /** \brief A bounding-volume hierarchy over a mesh's triangles: a binary tree of boxes in the body frame, each the
+        tighter (smaller volume) of the axis-aligned box and the box along the principal axes of its triangles'
+        corners, with a bounding sphere about the box centre; built top-down by median split of the triangle
+        centroids along the box axis where they spread most, leaves of at most LEAF_SIZE triangles (a leaf's
+        principal box is flat: a triangle's own plane). Between two trees at a relative pose, a box pair is bounded
+        from below by the gap of the spheres, then by the largest separating-axis gap along the six face axes.
+        Immutable; the mesh must outlive the tree. */
     class TriangleBvh
     {
     public:
@@ -24,11 +26,21 @@ namespace meshgap
         struct Node
         {
             Eigen::Vector3d center{Eigen::Vector3d::Zero()};  ///< box centre, body frame
-            Eigen::Vector3d half{Eigen::Vector3d::Zero()};    ///< box half extents
+            Eigen::Vector3d half{Eigen::Vector3d::Zero()};    ///< box half extents along its axes
+            /** \brief The box's axes (columns, body frame; a rotation); the identity when aligned. */
+            Eigen::Matrix3d axes{Eigen::Matrix3d::Identity()};
             double radius{0.0};      ///< every triangle corner of the node lies within radius of center
             std::uint32_t first{0};  ///< leaf: first index in order(); inner: index of the left child
             std::uint32_t count{0};  ///< leaf: number of triangles (> 0); inner: 0 (right child is first + 1)
+            bool aligned{true};      ///< axes is the identity (the cheaper tests apply)
             bool isLeaf() const { return count > 0; }
+            /** \brief \e p (body frame) in the box's frame: relative to its centre, along its axes. */
+            Eigen::Vector3d local(const Eigen::Vector3d &p) const
+            {
+                return aligned ? Eigen::Vector3d(p - center) : Eigen::Vector3d(axes.transpose() * (p - center));
+            }
+            /** \brief Whether \e p (body frame) lies outside the box. */
+            bool outside(const Eigen::Vector3d &p) const { return (local(p).cwiseAbs() - half).maxCoeff() > 0.0; }
         };
 
         explicit TriangleBvh(const Mesh &mesh);
