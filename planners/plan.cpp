@@ -36,6 +36,7 @@
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/ProblemSetup.h"
+#include "support/DenseClearance.h"
 
 namespace po = boost::program_options;
 namespace ob = ompl::base;
@@ -103,51 +104,6 @@ namespace
         bool done_{false};
         std::thread thread_;
     };
-
-    /** \brief The solution path interpolated densely (\e perSegment states per OMPL validity-check segment) and
-        the exact signed clearance at each state (a warm-started exact query, whatever the checker's mode). */
-    struct DenseClearance
-    {
-        explicit DenseClearance(const ompl::geometric::PathGeometric &solution) : path(solution) {}
-
-        ompl::geometric::PathGeometric path;
-        std::vector<double> arcLength, clearance;
-        std::vector<char> inCollision;
-        double minClearance{std::numeric_limits<double>::infinity()};
-        std::size_t argmin{0}, collisions{0};
-    };
-
-    DenseClearance denseClearance(const ompl::geometric::PathGeometric &solution, const Scene &scene,
-                                  unsigned perSegment)
-    {
-        DenseClearance d(solution);
-        const ob::SpaceInformationPtr &si = solution.getSpaceInformation();
-        unsigned count = 1;
-        for (std::size_t i = 1; i < solution.getStateCount(); ++i)
-            count += perSegment * std::max(1u, si->getStateSpace()->validSegmentCount(solution.getState(i - 1),
-                                                                                      solution.getState(i)));
-        d.path.interpolate(count);
-        SceneRequest request;  // exact
-        SceneWarmStart warm;
-        double s = 0.0;
-        for (std::size_t i = 0; i < d.path.getStateCount(); ++i)
-        {
-            if (i > 0)
-                s += si->distance(d.path.getState(i - 1), d.path.getState(i));
-            SceneResult r;
-            scene.distance(poseFromState(*si->getStateSpace(), d.path.getState(i)), request, warm, r);
-            d.arcLength.push_back(s);
-            d.clearance.push_back(r.distance);
-            d.inCollision.push_back(r.inCollision);
-            d.collisions += r.inCollision;
-            if (r.distance < d.minClearance)
-            {
-                d.minClearance = r.distance;
-                d.argmin = i;
-            }
-        }
-        return d;
-    }
 
     void writeClearanceCsv(const DenseClearance &d, const std::string &file)
     {
