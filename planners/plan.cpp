@@ -4,6 +4,7 @@
 //   meshgap_plan --cfg problem.cfg [--planner rrtconnect] [--time 10] [--objective NAME [--weight W]]
 //                [--mode certified|fast] [--motion discrete|clearance] [--seed N] [--out solution.path]
 //                [--clearance-csv clearance.csv] [--summary summary.txt] [--export-glb scene.glb [--export-states N]]
+//                [--report plan.html]
 //
 // While it plans, one progress line a second goes to stderr (elapsed time, validity checks, the planner's best cost
 // when it reports one). Then it prints a summary (solved, exact or approximate, planning time, path length, cost,
@@ -37,6 +38,7 @@
 #include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/ProblemSetup.h"
 #include "support/DenseClearance.h"
+#include "support/PlanReport.h"
 
 namespace po = boost::program_options;
 namespace ob = ompl::base;
@@ -140,7 +142,7 @@ namespace
     int run(int argc, char **argv)
     {
         std::string cfg, planner = "rrtconnect", objective, mode = "certified", motion = "discrete", out, csv, summaryFile,
-                    glb;
+                    glb, report;
         double time = 10.0, weight = 0.0;
         std::vector<std::string> params;
         unsigned dense = 4, exportStates = 8;
@@ -170,6 +172,9 @@ namespace
             "write the scene as glTF 2.0 binary (.glb): the world, the robot at --export-states states evenly spaced "
             "along the dense path (start and goal without a path) and the exact closest-point segment at each")(
             "export-states", po::value(&exportStates), "robot states in the --export-glb file (default 8)")(
+            "report", po::value(&report),
+            "write a self-contained HTML report (3D scene with the robot along the dense path, clearance plot, "
+            "summary) here")(
             "quiet,q", "print warnings and errors only (no OMPL messages, no progress)");
         po::variables_map vm;
         po::store(po::parse_command_line(argc, argv, options), vm);
@@ -315,6 +320,13 @@ namespace
             }
             writeGlb(sceneExportParts(*problem.scene, poses), glb);
             std::printf("scene written   %s (%zu robot states)\n", glb.c_str(), poses.size());
+        }
+        if (!report.empty())
+        {
+            const auto rows = summaryRows(summary.str());
+            writePlanReport(*problem.scene, havePath ? reportFromDense(*d, rows) : reportWithoutPath(config, rows),
+                            report);
+            std::printf("report written  %s\n", report.c_str());
         }
         if (!havePath)
         {

@@ -308,7 +308,14 @@ namespace
             throw Exception("dense", "must be at least 1");
 
         py::gil_scoped_release release;
-        ompl::RNG::setSeed(seed);
+        {
+            // OMPL logs an error when the seed is set again in one process, yet it does restart its seed
+            // generator: the same seed gives the same path (tested). Keep that message out of a notebook.
+            const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+            ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+            ompl::RNG::setSeed(seed);
+            ompl::msg::setLogLevel(level);
+        }
         const ProblemConfig config = readProblemConfig(cfg);
         OmplProblem problem = setupProblem(config, mode == "certified" ? ClearanceChecker::Mode::CERTIFIED :
                                                                          ClearanceChecker::Mode::FAST,
@@ -411,10 +418,13 @@ PYBIND11_MODULE(meshgap, m)
                 const std::size_t n = std::strlen(tail);
                 return what.size() >= n && what.compare(what.size() - n, n, tail) == 0;
             };
-            if (endsWith(": no such file") || endsWith("' does not exist"))
-                PyErr_SetString(PyExc_FileNotFoundError, what.c_str());
-            else
-                PyErr_SetString(PyExc_ValueError, what.c_str());
+            // A message may quote bytes of a binary file that are not UTF-8: those become \x escapes.
+            PyObject *message = PyUnicode_DecodeUTF8(what.data(), static_cast<Py_ssize_t>(what.size()),
+                                                     "backslashreplace");
+            PyErr_SetObject(endsWith(": no such file") || endsWith("' does not exist") ? PyExc_FileNotFoundError :
+                                                                                        PyExc_ValueError,
+                            message);
+            Py_XDECREF(message);
         }
     });
 

@@ -1,9 +1,11 @@
 #include "support/PlanReport.h"
 
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -91,6 +93,8 @@ namespace meshgap
             return buffer;
         }
 
+        std::atomic<unsigned long> nextGlb{0};  ///< distinct temporary names for reports written concurrently
+
         /** \brief The scene as glTF 2.0 binary: obstacles, then the robot in its own frame, named "robot". */
         std::string sceneGlb(const Scene &scene, const std::string &file)
         {
@@ -99,7 +103,12 @@ namespace meshgap
             for (std::size_t i = 0; i < scene.obstacles().size(); ++i)
                 parts.push_back({"obstacle " + std::to_string(i), scene.obstacles()[i]->surface(), colors.worldColor});
             parts.push_back({"robot", scene.robot().surface(), colors.robotColor});
-            const std::string temporary = file + ".glb.tmp." + std::to_string(static_cast<long>(::getpid()));
+            // In the system's temporary folder: the report's own folder is checked first, by its own temporary file.
+            const std::string temporary =
+                (std::filesystem::temp_directory_path() /
+                 ("meshgap_report_" + std::to_string(static_cast<long>(::getpid())) + "_" +
+                  std::to_string(nextGlb++) + ".glb"))
+                    .string();
             writeGlb(parts, temporary);
             std::ifstream in(temporary, std::ios::binary);
             std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -230,30 +239,30 @@ namespace meshgap
         }
         else
             json << ", \"clearance\": null";
-        json << ", \"glb\": \"" << sceneGlb(scene, file) << "\"}";
 
-        std::string html = REPORT_TEMPLATE;
-        replaceOnce(html, "/*MESHGAP_THREE_JS*/", REPORT_THREE_JS);
-        replaceOnce(html, "/*MESHGAP_DATA*/null", json.str());
-
+        // The temporary file first, so an output folder that cannot be written fails before any work.
         const std::string temporary = file + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+        std::ofstream out(temporary, std::ios::binary);
+        if (!out)
+            throw Exception(file, "cannot open " + temporary + " for writing");
+        try
         {
-            std::ofstream out(temporary, std::ios::binary);
-            if (!out)
-                throw Exception(file, "cannot open " + temporary + " for writing");
+            json << ", \"glb\": \"" << sceneGlb(scene, file) << "\"}";
+            std::string html = REPORT_TEMPLATE;
+            replaceOnce(html, "/*MESHGAP_THREE_JS*/", REPORT_THREE_JS);
+            replaceOnce(html, "/*MESHGAP_DATA*/null", json.str());
             out << html;
             out.close();
             if (!out)
-            {
-                std::remove(temporary.c_str());
                 throw Exception(file, "write failed");
-            }
+            if (std::rename(temporary.c_str(), file.c_str()) != 0)
+                throw Exception(file, "cannot rename " + temporary + " to it: " + std::strerror(errno));
         }
-        if (std::rename(temporary.c_str(), file.c_str()) != 0)
+        catch (...)
         {
-            const std::string reason = std::strerror(errno);
+            out.close();
             std::remove(temporary.c_str());
-            throw Exception(file, "cannot rename " + temporary + " to it: " + reason);
+            throw;
         }
     }
 }  // namespace meshgap
