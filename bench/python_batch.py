@@ -73,19 +73,21 @@ def main():
             f.write(" ".join("%.17g" % x for x in p) + "\n")
         poses_file = f.name
     scene.distance(poses[:1000])  # warm up this thread
-    python_us, cpp_us, one_s, two_s = [], [], [], []
+    python_us, cpp_us, one_s, two_s, one_cpu, two_cpu = [], [], [], [], [], []
     for r in range(args.rounds):
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), time.process_time()
         result = scene.distance(poses, exact=True, warm=True, threads=1)
         one = time.perf_counter() - start
+        one_cpu.append(time.process_time() - cpu)
         python_us.append(one / len(poses) * 1e6)
         one_s.append(one)
         run = subprocess.run([loop, "--cfg", cfg, "--poses", poses_file, "--repeat", "1"], capture_output=True,
                              text=True, check=True)
         cpp_us.append(float(run.stdout.split("median ")[1].split()[0]))
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), time.process_time()
         two = scene.distance(poses, exact=True, warm=True, threads=2)
         two_s.append(time.perf_counter() - start)
+        two_cpu.append(time.process_time() - cpu)
         assert all(np.array_equal(result[k], two[k]) for k in result)
         print("round %d: python %.2f us/query, C++ loop %.2f us/query, threads=1 %.3f s, threads=2 %.3f s, load %s"
               % (r + 1, python_us[-1], cpp_us[-1], one, two_s[-1], os.getloadavg()[0]))
@@ -96,6 +98,9 @@ def main():
     print("median: python %.2f us/query, C++ %.2f us/query, ratio %.3f" % (mp, mc, mp / mc))
     m1, m2 = statistics.median(one_s), statistics.median(two_s)
     print("median wall: threads=1 %.3f s, threads=2 %.3f s, ratio %.3f" % (m1, m2, m2 / m1))
+    print("median CPU (both threads): threads=1 %.3f s, threads=2 %.3f s, ratio %.3f"
+          % (statistics.median(one_cpu), statistics.median(two_cpu),
+             statistics.median(two_cpu) / statistics.median(one_cpu)))
     if args.million:
         rss = [rss_mib()]
         for b in range(100):

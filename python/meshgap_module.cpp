@@ -10,7 +10,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <map>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
@@ -291,7 +290,7 @@ namespace
         solve, then the dense clearance (support/DenseClearance.h); the summary with meshgap_plan's fields. */
     py::tuple plan(const py::handle &cfgObject, const std::string &planner, const std::string &objective,
                    double time, std::uint32_t seed, const std::string &mode, const std::string &motion,
-                   unsigned dense, const std::map<std::string, std::string> &params, const py::object &reportObject)
+                   unsigned dense, const py::dict &paramsObject, const py::object &reportObject)
     {
         namespace ob = ompl::base;
         const std::string cfg = pathArg(cfgObject, "cfg");
@@ -306,6 +305,11 @@ namespace
             throw Exception("time", "must be positive and finite");
         if (dense < 1)
             throw Exception("dense", "must be at least 1");
+        std::vector<std::pair<std::string, std::string>> params;  // values as text, as --param NAME=VALUE gives them
+        for (const auto &[name, value] : paramsObject)
+            params.emplace_back(py::str(name).cast<std::string>(),
+                                py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "1" : "0") :
+                                                                    py::str(value).cast<std::string>());
 
         py::gil_scoped_release release;
         {
@@ -485,7 +489,7 @@ PYBIND11_MODULE(meshgap, m)
           "Load a mesh file as meshgap does (welded, cleaned): a (V, F) pair of numpy arrays.");
     m.def("plan", &plan, py::arg("cfg"), py::kw_only(), py::arg("planner") = "rrtconnect", py::arg("objective") = "",
           py::arg("time") = 10.0, py::arg("seed") = 1, py::arg("mode") = "certified", py::arg("motion") = "discrete",
-          py::arg("dense") = 4, py::arg("params") = std::map<std::string, std::string>(),
+          py::arg("dense") = 4, py::arg("params") = py::dict(),
           py::arg("report") = py::none(),
           "Plan for an OMPL.app .cfg problem as meshgap_plan does. Returns (path, summary): the solution's states "
           "as an (M, 7) or (M, 3) array (empty when none was found) and a dict (problem, planner, objective, status, "

@@ -41,7 +41,7 @@ def test_same_seed_same_path():
 
 def test_plan_with_clearance_objective_and_params():
     path, summary = meshgap.plan(str(HAND_BOWL), planner="rrtstar", objective="max_min_clearance", time=0.5,
-                                 params={"use_k_nearest": "0"}, motion="clearance")
+                                 params={"use_k_nearest": False, "range": 50}, motion="clearance")
     assert summary["objective"] == "max_min_clearance" and summary["planner"] == "rrtstar"
     if summary["solved"]:
         assert path.shape[1] == 7
