@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <boost/program_options.hpp>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <iostream>
 #include <ompl/util/Console.h>
@@ -40,13 +41,14 @@ int main(int argc, char **argv)
         const std::vector<Eigen::Isometry3d> poses = readPoses(posesFile);
         SceneRequest request;
         request.exact = exact;
-        std::vector<double> perQuery;
+        std::vector<double> perQuery, cpuPerQuery;
         double sink = 0.0;
         for (unsigned r = 0; r < repeat; ++r)
         {
             SceneWarmStart warm;
             SceneResult result;
             const auto start = std::chrono::steady_clock::now();
+            const std::clock_t cpuStart = std::clock();
             for (const Eigen::Isometry3d &X : poses)
             {
                 scene->distance(X, request, warm, result);
@@ -54,11 +56,14 @@ int main(int argc, char **argv)
             }
             perQuery.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() /
                                double(poses.size()) * 1e6);
-            std::printf("pass %u: %.3f us/query\n", r + 1, perQuery.back());
+            cpuPerQuery.push_back(double(std::clock() - cpuStart) / CLOCKS_PER_SEC / double(poses.size()) * 1e6);
+            std::printf("pass %u: %.3f us/query wall, %.3f us/query CPU\n", r + 1, perQuery.back(),
+                        cpuPerQuery.back());
         }
         std::sort(perQuery.begin(), perQuery.end());
-        std::printf("median %.3f us/query over %zu poses (checksum %.6g)\n", perQuery[perQuery.size() / 2],
-                    poses.size(), sink);
+        std::sort(cpuPerQuery.begin(), cpuPerQuery.end());
+        std::printf("median %.3f us/query wall, cpu %.3f us/query over %zu poses (checksum %.6g)\n",
+                    perQuery[perQuery.size() / 2], cpuPerQuery[cpuPerQuery.size() / 2], poses.size(), sink);
     }
     catch (const std::exception &e)
     {

@@ -73,7 +73,7 @@ def main():
             f.write(" ".join("%.17g" % x for x in p) + "\n")
         poses_file = f.name
     scene.distance(poses[:1000])  # warm up this thread
-    python_us, cpp_us, one_s, two_s, one_cpu, two_cpu = [], [], [], [], [], []
+    python_us, cpp_us, one_s, two_s, one_cpu, two_cpu, cpp_cpu_us = [], [], [], [], [], [], []
     for r in range(args.rounds):
         start, cpu = time.perf_counter(), time.process_time()
         result = scene.distance(poses, exact=True, warm=True, threads=1)
@@ -84,18 +84,22 @@ def main():
         run = subprocess.run([loop, "--cfg", cfg, "--poses", poses_file, "--repeat", "1"], capture_output=True,
                              text=True, check=True)
         cpp_us.append(float(run.stdout.split("median ")[1].split()[0]))
+        cpp_cpu_us.append(float(run.stdout.split(" cpu ")[1].split()[0]))
         start, cpu = time.perf_counter(), time.process_time()
         two = scene.distance(poses, exact=True, warm=True, threads=2)
         two_s.append(time.perf_counter() - start)
         two_cpu.append(time.process_time() - cpu)
         assert all(np.array_equal(result[k], two[k]) for k in result)
-        print("round %d: python %.2f us/query, C++ loop %.2f us/query, threads=1 %.3f s, threads=2 %.3f s, load %s"
-              % (r + 1, python_us[-1], cpp_us[-1], one, two_s[-1], os.getloadavg()[0]))
+        print("round %d: wall python %.2f us/query, C++ loop %.2f; CPU python %.2f, C++ %.2f; threads=1 %.3f s, "
+              "threads=2 %.3f s wall; load %.1f" % (r + 1, python_us[-1], cpp_us[-1], one_cpu[-1] / len(poses) * 1e6,
+                                                   cpp_cpu_us[-1], one, two_s[-1], os.getloadavg()[0]))
     os.unlink(poses_file)
     print("poses %d, certified %d, in collision %d, min distance %.6g" %
           (len(poses), result["certified"].sum(), result["in_collision"].sum(), result["distance"].min()))
     mp, mc = statistics.median(python_us), statistics.median(cpp_us)
-    print("median: python %.2f us/query, C++ %.2f us/query, ratio %.3f" % (mp, mc, mp / mc))
+    print("median wall per query: python %.2f us, C++ %.2f us, ratio %.3f" % (mp, mc, mp / mc))
+    pc, cc = statistics.median(one_cpu) / len(poses) * 1e6, statistics.median(cpp_cpu_us)
+    print("median CPU per query: python %.2f us, C++ %.2f us, ratio %.3f" % (pc, cc, pc / cc))
     m1, m2 = statistics.median(one_s), statistics.median(two_s)
     print("median wall: threads=1 %.3f s, threads=2 %.3f s, ratio %.3f" % (m1, m2, m2 / m1))
     print("median CPU (both threads): threads=1 %.3f s, threads=2 %.3f s, ratio %.3f"
