@@ -53,6 +53,7 @@ namespace
 
         const ProblemConfig config = readProblemConfig(cfg);
         const OmplProblem problem = setupProblem(config, ClearanceChecker::Mode::CERTIFIED);
+        problem.setup->getSpaceInformation()->setup();  // the longest valid segment, which the dense path uses
         const ompl::geometric::PathGeometric path = readPathFile(pathFile, problem.setup->getSpaceInformation());
         const DenseClearance d = denseClearance(path, *problem.scene, dense);
         std::ostringstream length;
