@@ -449,6 +449,16 @@ PYBIND11_MODULE(meshgap, m)
              "(identical answers). The GIL is released while it runs.")
         .def("in_collision", &inCollision, py::arg("poses"), py::kw_only(), py::arg("threads") = 1,
              "Exact collision test at every pose; a bool array (N,).")
+        .def("__repr__",
+             [](const PyScene &s) {
+                 std::size_t world = 0;
+                 for (const BodyConstPtr &b : s.scene->obstacles())
+                     world += b->surface().triangles.size();
+                 return "<meshgap.Scene" + (s.config ? " " + s.config->name : std::string()) + ": robot " +
+                        std::to_string(s.scene->robot().surface().triangles.size()) + " triangles, " +
+                        std::to_string(s.scene->obstacles().size()) + " obstacles (" + std::to_string(world) +
+                        " triangles)>";
+             })
         .def_property_readonly("obstacles", [](const PyScene &s) { return s.scene->obstacles().size(); })
         .def_property_readonly("robot_triangles",
                                [](const PyScene &s) { return s.scene->robot().surface().triangles.size(); })

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import meshgap
-from conftest import MAPS, RESOURCES, cli_error, executable, omplapp
+from conftest import MAPS, RESOURCES, box, cli_error, executable, omplapp, write_obj
 
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader", "--disable-quic",
                   "--no-first-run", "--disable-background-networking", "--disable-component-update", "--disable-sync",
@@ -41,7 +41,19 @@ def report(tmp_path, name):
     """The report of a map planned by meshgap_plan --report, or of cubicles' own .path by meshgap_report; with the
     scene it shows and its number of dense states, as the executables print them."""
     out = tmp_path / (name + ".html")
-    if name == "cubicles":
+    if name == "blocked":
+        # A planar problem with no path (a wall across the whole volume): meshgap.plan() writes the report of the
+        # start and the goal (BIT* gives no approximate path).
+        write_obj(tmp_path / "wall.obj", box(0.3, 6, 0.5, (0, 0, 0.5)))
+        write_obj(tmp_path / "bar.obj", box(0.6, 0.2, 0.5, (0.25, 0.1, 0.5)))
+        cfg = tmp_path / "blocked.cfg"
+        cfg.write_text("[problem]\nname = blocked\nrobot = bar.obj\nworld = wall.obj\nstart.x = -3\nstart.y = 0.5\n"
+                       "start.theta = 0\ngoal.x = 3\ngoal.y = -0.5\ngoal.theta = 0\n"
+                       "volume.min.x = -5\nvolume.min.y = -5\nvolume.max.x = 5\nvolume.max.y = 5\n")
+        path, summary = meshgap.plan(cfg, planner="bitstar", time=0.3, report=out)
+        assert not summary["solved"] and path.shape == (0, 3)
+        states = 2
+    elif name == "cubicles":
         cfg = omplapp("cubicles.cfg")
         run = subprocess.run([executable("report"), "--cfg", str(cfg), "--path", str(omplapp("cubicles.path")),
                               "--out", str(out), "-q"], capture_output=True, text=True, timeout=300)
@@ -57,7 +69,7 @@ def report(tmp_path, name):
     return out, meshgap.Scene.from_cfg(cfg), states
 
 
-@pytest.mark.parametrize("name", ["hand_bowl", "slotted_wall", "cubicles"])
+@pytest.mark.parametrize("name", ["hand_bowl", "slotted_wall", "cubicles", "blocked"])
 def test_report_loads_and_draws(tmp_path, name):
     chromium()
     html, scene, states = report(tmp_path, name)
@@ -69,7 +81,7 @@ def test_report_loads_and_draws(tmp_path, name):
     assert int(match.group(1)) == scene.world_triangles + scene.robot_triangles
     assert int(match.group(2)) == states and int(match.group(3)) >= 2
     assert console == []
-    assert "<table" in dom and "<polyline" in dom  # the summary table and the clearance plot
+    assert "<table" in dom and ("<polyline" in dom) == (name != "blocked")  # the summary, the clearance plot
 
     from PIL import Image
     png = tmp_path / (name + ".png")
