@@ -507,4 +507,5 @@ PYBIND11_MODULE(meshgap, m)
           "'dense': the dense path's poses, arc_length, clearance, in_collision). report: also write the HTML plan "
           "report there.");
     m.attr("SCENE_BATCH_BLOCK") = SCENE_BATCH_BLOCK;
+    m.attr("REPORT_AVAILABLE") = planReportAvailable();  // three.js was found at build time: plan(report=...) works
 }

@@ -196,9 +196,14 @@ namespace meshgap
         return rows;
     }
 
+    bool planReportAvailable()
+    {
+        return std::strlen(REPORT_THREE_JS) > 0;
+    }
+
     void writePlanReport(const Scene &scene, const PlanReportData &data, const std::string &file)
     {
-        if (std::strlen(REPORT_THREE_JS) == 0)
+        if (!planReportAvailable())
             throw Exception(file, "cannot write a plan report: three.js (Debian's libjs-three) was not found when "
                                   "meshgap was built");
         if (data.poses.empty())

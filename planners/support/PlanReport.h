@@ -36,6 +36,9 @@ namespace meshgap
     /** \brief meshgap_plan's summary text ("key" padded to 16 columns, then the value, one per line) as rows. */
     std::vector<std::pair<std::string, std::string>> summaryRows(const std::string &text);
 
+    /** \brief Whether three.js was found when meshgap was built, so writePlanReport() can run. */
+    bool planReportAvailable();
+
     /** \brief Write one self-contained HTML file (no network access needed): three.js from Debian's libjs-three
         (embedded at build time), the scene as glTF 2.0 binary (writeGlb(): every obstacle, and the robot in its own
         frame) in base64, and the per-state arrays as base64 float32. The page draws the world and the robot at the

@@ -27,6 +27,11 @@ def chromium():
     pytest.skip("headless Chromium not found (Debian: apt-get install chromium): the report is not tested in a browser")
 
 
+def report_available():
+    if not meshgap.REPORT_AVAILABLE:
+        pytest.skip("three.js (Debian: libjs-three) was not found when meshgap was built: no reports")
+
+
 def browse(html, *args):
     """Run Chromium on the file with a fresh profile; return (stdout, the page's console lines)."""
     with tempfile.TemporaryDirectory() as profile:
@@ -71,6 +76,7 @@ def report(tmp_path, name):
 
 @pytest.mark.parametrize("name", ["hand_bowl", "slotted_wall", "cubicles", "blocked"])
 def test_report_loads_and_draws(tmp_path, name):
+    report_available()
     chromium()
     html, scene, states = report(tmp_path, name)
     dom, console = browse(html, "--dump-dom")
