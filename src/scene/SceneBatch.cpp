@@ -1,6 +1,7 @@
 #include "meshgap/scene/SceneBatch.h"
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <string>
 #include <thread>
@@ -11,23 +12,27 @@ namespace meshgap
 {
     namespace
     {
-        /** \brief Run \e work(firstBlock, endBlock) over \e blocks blocks split into at most \e threads contiguous
-            runs, the first on the calling thread; rethrow the first exception once all have stopped. */
+        /** \brief Run \e work(block) for every block in [0, blocks) on at most \e threads threads (the calling thread
+            one of them), each taking the next block not yet taken, so the threads finish together however the cost
+            varies along the batch; rethrow the first exception once all have stopped. */
         template <typename Work>
-        void splitBlocks(std::size_t blocks, unsigned threads, Work work)
+        void forEachBlock(std::size_t blocks, unsigned threads, Work work)
         {
             if (threads < 1)
                 throw Exception("threads", "must be at least 1, not " + std::to_string(threads));
             const std::size_t runs = std::max<std::size_t>(1, std::min<std::size_t>(threads, blocks));
+            std::atomic<std::size_t> next{0};
             std::vector<std::exception_ptr> errors(runs);
             auto runOne = [&](std::size_t k) {
                 try
                 {
-                    work(k * blocks / runs, (k + 1) * blocks / runs);
+                    for (std::size_t b = next++; b < blocks; b = next++)
+                        work(b);
                 }
                 catch (...)
                 {
                     errors[k] = std::current_exception();
+                    next = blocks;  // the others stop after their current block
                 }
             };
             std::vector<std::thread> pool;
@@ -48,16 +53,13 @@ namespace meshgap
     {
         results.assign(poses.size(), SceneResult());
         const std::size_t n = poses.size(), blocks = (n + SCENE_BATCH_BLOCK - 1) / SCENE_BATCH_BLOCK;
-        splitBlocks(blocks, threads, [&](std::size_t firstBlock, std::size_t endBlock) {
-            for (std::size_t b = firstBlock; b < endBlock; ++b)
+        forEachBlock(blocks, threads, [&](std::size_t b) {
+            SceneWarmStart start;
+            for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
             {
-                SceneWarmStart start;
-                for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
-                {
-                    if (!warm)
-                        start = SceneWarmStart();
-                    scene.distance(poses[i], request, start, results[i]);
-                }
+                if (!warm)
+                    start = SceneWarmStart();
+                scene.distance(poses[i], request, start, results[i]);
             }
         });
     }
@@ -67,8 +69,8 @@ namespace meshgap
     {
         results.assign(poses.size(), 0);
         const std::size_t n = poses.size(), blocks = (n + SCENE_BATCH_BLOCK - 1) / SCENE_BATCH_BLOCK;
-        splitBlocks(blocks, threads, [&](std::size_t firstBlock, std::size_t endBlock) {
-            for (std::size_t i = firstBlock * SCENE_BATCH_BLOCK; i < std::min(n, endBlock * SCENE_BATCH_BLOCK); ++i)
+        forEachBlock(blocks, threads, [&](std::size_t b) {
+            for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
                 results[i] = scene.inCollision(poses[i]) ? 1 : 0;
         });
     }
