@@ -248,3 +248,29 @@ def test_bad_cfg_gives_the_cli_message(cfg, error):
     with pytest.raises(error) as raised:
         meshgap.Scene.from_cfg(path)
     assert str(raised.value) == cli_error([executable("distance"), "--cfg", path, "-q"])
+
+
+def test_the_gil_is_released_during_a_batch(hand_bowl):
+    """Python code runs while a batch runs in another thread. Holding the GIL, the batch would let no Python line run
+    from its start to its end (only around the call, at the interpreter's switch interval, a few ms): so count the
+    main thread's loop turns timed in the middle half of the batch's run."""
+    import threading
+    import time
+    poses = path_poses(hand_bowl, 600, seed=9)
+    span, done = [], threading.Event()
+
+    def batch():
+        span.append(time.perf_counter())
+        hand_bowl.distance(poses)
+        span.append(time.perf_counter())
+        done.set()
+
+    worker = threading.Thread(target=batch)
+    worker.start()
+    turns = []
+    while not done.is_set():
+        turns.append(time.perf_counter())
+    worker.join()
+    start, end = span
+    middle = [t for t in turns if start + (end - start) / 4 < t < end - (end - start) / 4]
+    assert end - start > 0.02 and len(middle) > 100, (end - start, len(middle))
