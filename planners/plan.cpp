@@ -4,6 +4,7 @@
 //   meshgap_plan --cfg problem.cfg [--planner rrtconnect] [--time 10] [--objective NAME [--weight W]]
 //                [--mode certified|fast] [--motion discrete|clearance] [--seed N] [--out solution.path]
 //                [--clearance-csv clearance.csv] [--summary summary.txt] [--export-glb scene.glb [--export-states N]]
+//                [--report plan.html]
 //
 // While it plans, one progress line a second goes to stderr (elapsed time, validity checks, the planner's best cost
 // when it reports one). Then it prints a summary (solved, exact or approximate, planning time, path length, cost,
@@ -36,6 +37,8 @@
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/ProblemSetup.h"
+#include "support/DenseClearance.h"
+#include "support/PlanReport.h"
 
 namespace po = boost::program_options;
 namespace ob = ompl::base;
@@ -104,51 +107,6 @@ namespace
         std::thread thread_;
     };
 
-    /** \brief The solution path interpolated densely (\e perSegment states per OMPL validity-check segment) and
-        the exact signed clearance at each state (a warm-started exact query, whatever the checker's mode). */
-    struct DenseClearance
-    {
-        explicit DenseClearance(const ompl::geometric::PathGeometric &solution) : path(solution) {}
-
-        ompl::geometric::PathGeometric path;
-        std::vector<double> arcLength, clearance;
-        std::vector<char> inCollision;
-        double minClearance{std::numeric_limits<double>::infinity()};
-        std::size_t argmin{0}, collisions{0};
-    };
-
-    DenseClearance denseClearance(const ompl::geometric::PathGeometric &solution, const Scene &scene,
-                                  unsigned perSegment)
-    {
-        DenseClearance d(solution);
-        const ob::SpaceInformationPtr &si = solution.getSpaceInformation();
-        unsigned count = 1;
-        for (std::size_t i = 1; i < solution.getStateCount(); ++i)
-            count += perSegment * std::max(1u, si->getStateSpace()->validSegmentCount(solution.getState(i - 1),
-                                                                                      solution.getState(i)));
-        d.path.interpolate(count);
-        SceneRequest request;  // exact
-        SceneWarmStart warm;
-        double s = 0.0;
-        for (std::size_t i = 0; i < d.path.getStateCount(); ++i)
-        {
-            if (i > 0)
-                s += si->distance(d.path.getState(i - 1), d.path.getState(i));
-            SceneResult r;
-            scene.distance(poseFromState(*si->getStateSpace(), d.path.getState(i)), request, warm, r);
-            d.arcLength.push_back(s);
-            d.clearance.push_back(r.distance);
-            d.inCollision.push_back(r.inCollision);
-            d.collisions += r.inCollision;
-            if (r.distance < d.minClearance)
-            {
-                d.minClearance = r.distance;
-                d.argmin = i;
-            }
-        }
-        return d;
-    }
-
     void writeClearanceCsv(const DenseClearance &d, const std::string &file)
     {
         std::ofstream out(file);
@@ -184,7 +142,7 @@ namespace
     int run(int argc, char **argv)
     {
         std::string cfg, planner = "rrtconnect", objective, mode = "certified", motion = "discrete", out, csv, summaryFile,
-                    glb;
+                    glb, report;
         double time = 10.0, weight = 0.0;
         std::vector<std::string> params;
         unsigned dense = 4, exportStates = 8;
@@ -214,6 +172,9 @@ namespace
             "write the scene as glTF 2.0 binary (.glb): the world, the robot at --export-states states evenly spaced "
             "along the dense path (start and goal without a path) and the exact closest-point segment at each")(
             "export-states", po::value(&exportStates), "robot states in the --export-glb file (default 8)")(
+            "report", po::value(&report),
+            "write a self-contained HTML report (3D scene with the robot along the dense path, clearance plot, "
+            "summary) here")(
             "quiet,q", "print warnings and errors only (no OMPL messages, no progress)");
         po::variables_map vm;
         po::store(po::parse_command_line(argc, argv, options), vm);
@@ -359,6 +320,13 @@ namespace
             }
             writeGlb(sceneExportParts(*problem.scene, poses), glb);
             std::printf("scene written   %s (%zu robot states)\n", glb.c_str(), poses.size());
+        }
+        if (!report.empty())
+        {
+            const auto rows = summaryRows(summary.str());
+            writePlanReport(*problem.scene, havePath ? reportFromDense(*d, rows) : reportWithoutPath(config, rows),
+                            report);
+            std::printf("report written  %s\n", report.c_str());
         }
         if (!havePath)
         {

@@ -2,7 +2,8 @@
 # The test suite under the sanitizers (issue 7), as CI runs it after the Release suite:
 #   1. AddressSanitizer + UndefinedBehaviorSanitizer: every test, the executables the CLI tests run included;
 #   2. ThreadSanitizer: the tests that query one checker or scene from several threads.
-# Each has its own build directory beside `build`. A sanitizer report fails the run (UBSan does not recover).
+# Each has its own build directory beside `build`. No Python module there (an instrumented .so cannot be loaded by
+# an uninstrumented python3). A sanitizer report fails the run (UBSan does not recover).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=${MESHGAP_JOBS:-2}
@@ -16,7 +17,7 @@ export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/t
 echo "== AddressSanitizer + UBSan =="
 # -O1: the sanitized builds take most of CI's time, and -O1 compiles them faster than -O3 at a modest cost in run time.
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" -DMESHGAP_SANITIZE=address \
-      -DMESHGAP_BUILD_BENCH=OFF
+      -DMESHGAP_BUILD_BENCH=OFF -DMESHGAP_PYTHON=OFF
 cmake --build build-asan -j"$jobs"
 # Release only: the install-and-consume test (it builds an uninstrumented consumer against the instrumented
 # library), and the examples (RRT* and PRM* runs with a time limit: slowed down 2-5x, they would test the clock).
@@ -24,7 +25,7 @@ ctest --test-dir build-asan --output-on-failure -j"$jobs" -E '^(cmake_export|exa
 
 echo "== ThreadSanitizer =="
 cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" -DMESHGAP_SANITIZE=thread \
-      -DMESHGAP_BUILD_BENCH=OFF \
+      -DMESHGAP_BUILD_BENCH=OFF -DMESHGAP_PYTHON=OFF \
       -DMESHGAP_BUILD_PLANNERS=OFF
 cmake --build build-tsan -j"$jobs" --target meshgap_tests
 ctest --test-dir build-tsan --output-on-failure -j"$jobs" -R 'Thread'

@@ -1,0 +1,78 @@
+// meshgap_report: turn an OMPL.app problem and a path for it into one self-contained HTML report, as
+// meshgap_plan --report writes after planning.
+//
+//   meshgap_report --cfg problem.cfg --path solution.path --out report.html [--dense 4] [-q]
+//
+// The path (OMPL's .path format: x y z qx qy qz qw, or x y theta for a 2D problem) is interpolated with --dense
+// states per OMPL validity-check segment and the exact clearance computed at each state, as meshgap_plan does; the
+// report shows the scene with the robot along it (a slider), the closest-point segment, clearance against arc length
+// and a summary table (see planners/support/PlanReport.h). Exit status 0, or 1 with one error line for bad input
+// (nothing is written then).
+
+#include <boost/program_options.hpp>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "CliMain.h"
+#include "meshgap/Exception.h"
+#include "meshgap/ompl/ProblemSetup.h"
+#include "support/DenseClearance.h"
+#include "support/PathFile.h"
+#include "support/PlanReport.h"
+
+namespace po = boost::program_options;
+using namespace meshgap;
+
+namespace
+{
+    int run(int argc, char **argv)
+    {
+        std::string cfg, pathFile, out;
+        unsigned dense = 4;
+        po::options_description options("meshgap_report --cfg FILE --path FILE --out FILE [options]\n\nOptions");
+        options.add_options()("help,h", "print this help")("cfg", po::value(&cfg), "OMPL.app problem file (.cfg)")(
+            "path", po::value(&pathFile), "the path (.path: one state a line)")(
+            "out", po::value(&out), "write the HTML report here")(
+            "dense", po::value(&dense), "states per OMPL validity-check segment of the dense path (default 4)")(
+            "quiet,q", "print warnings and errors only");
+        po::variables_map vm;
+        po::store(po::parse_command_line(argc, argv, options), vm);
+        po::notify(vm);
+        if (vm.count("help"))
+        {
+            std::cout << options << "\n";
+            return 0;
+        }
+        if (vm.count("quiet"))
+            ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+        if (cfg.empty() || pathFile.empty() || out.empty())
+            throw Exception("command line", "--cfg FILE, --path FILE and --out FILE are required; see --help");
+        if (dense < 1)
+            throw Exception("--dense", "must be at least 1");
+
+        const ProblemConfig config = readProblemConfig(cfg);
+        const OmplProblem problem = setupProblem(config, ClearanceChecker::Mode::CERTIFIED);
+        problem.setup->getSpaceInformation()->setup();  // the longest valid segment, which the dense path uses
+        const ompl::geometric::PathGeometric path = readPathFile(pathFile, problem.setup->getSpaceInformation());
+        const DenseClearance d = denseClearance(path, *problem.scene, dense);
+        std::ostringstream length;
+        length.precision(6);
+        length << path.length();
+        const std::vector<std::pair<std::string, std::string>> rows = {
+            {"problem", config.name + (config.planar ? " (SE(2))" : " (SE(3))")},
+            {"path", pathFile},
+            {"states", std::to_string(path.getStateCount()) + " (dense: " + std::to_string(d.path.getStateCount()) +
+                           ")"},
+            {"length", length.str()}};
+        writePlanReport(*problem.scene, reportFromDense(d, rows), out);
+        std::printf("report written  %s (%zu dense states, min clearance %g)\n", out.c_str(), d.path.getStateCount(),
+                    d.minClearance);
+        return 0;
+    }
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    return cli::runMain(argc, argv, run);
+}

@@ -1,0 +1,78 @@
+#include "support/PathFile.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "meshgap/Exception.h"
+#include "meshgap/ompl/ClearanceChecker.h"
+#include "meshgap/scene/Pose.h"
+
+namespace meshgap
+{
+    ompl::geometric::PathGeometric readPathFile(const std::string &file, const ompl::base::SpaceInformationPtr &si)
+    {
+        namespace ob = ompl::base;
+        if (!std::filesystem::exists(file))
+            throw Exception(file, "no such file");
+        std::ifstream in(file);
+        if (!in)
+            throw Exception(file, "cannot open the path file");
+        const ob::StateSpace &space = *si->getStateSpace();
+        const bool planar = space.getType() == ob::STATE_SPACE_SE2;
+        ompl::geometric::PathGeometric path(si);
+        ob::State *state = si->allocState();
+        std::string line;
+        try
+        {
+            for (std::size_t number = 1; std::getline(in, line); ++number)
+            {
+                const auto first = line.find_first_not_of(" \t\r");
+                if (first == std::string::npos || line[first] == '#')
+                    continue;
+                const std::string where = file + ":" + std::to_string(number);
+                Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+                if (planar)
+                {
+                    std::istringstream fields(line);
+                    std::vector<double> v;
+                    std::string token;
+                    while (fields >> token)
+                    {
+                        std::size_t used = 0;
+                        double x = 0.0;
+                        try
+                        {
+                            x = std::stod(token, &used);
+                        }
+                        catch (const std::exception &)
+                        {
+                        }
+                        if (used != token.size() || !std::isfinite(x))
+                            throw Exception(where, "'" + token + "' is not a finite number (expected x y theta)");
+                        v.push_back(x);
+                    }
+                    if (v.size() != 3)
+                        throw Exception(where, "expected 3 numbers (x y theta) for this SE(2) problem, found " +
+                                                   std::to_string(v.size()));
+                    X.linear() = Eigen::AngleAxisd(v[2], Eigen::Vector3d::UnitZ()).toRotationMatrix();
+                    X.translation() = Eigen::Vector3d(v[0], v[1], 0.0);
+                }
+                else
+                    X = parsePose(line, where);
+                stateFromPose(space, X, state);
+                path.append(state);
+            }
+        }
+        catch (...)
+        {
+            si->freeState(state);
+            throw;
+        }
+        si->freeState(state);
+        if (path.getStateCount() == 0)
+            throw Exception(file, "no states in the path file");
+        return path;
+    }
+}  // namespace meshgap

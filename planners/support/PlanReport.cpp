@@ -1,0 +1,273 @@
+#include "support/PlanReport.h"
+
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <unistd.h>
+
+#include "meshgap/Exception.h"
+#include "meshgap/mesh/MeshWriter.h"
+#include "meshgap/mesh/SceneExport.h"
+#include "meshgap/ompl/ClearanceChecker.h"
+
+namespace meshgap
+{
+    // Generated at configure time (planners/support/CMakeLists.txt): three.js r111 with its OrbitControls and
+    // GLTFLoader from Debian's libjs-three (empty when it was not found), and report_template.html.
+    extern const char *const REPORT_THREE_JS;
+    extern const char *const REPORT_TEMPLATE;
+
+    namespace
+    {
+        std::string base64(const unsigned char *data, std::size_t size)
+        {
+            static const char alphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+            std::string out;
+            out.reserve((size + 2) / 3 * 4);
+            for (std::size_t i = 0; i < size; i += 3)
+            {
+                const unsigned v = (unsigned(data[i]) << 16) | (i + 1 < size ? unsigned(data[i + 1]) << 8 : 0u) |
+                                   (i + 2 < size ? unsigned(data[i + 2]) : 0u);
+                out += alphabet[(v >> 18) & 63];
+                out += alphabet[(v >> 12) & 63];
+                out += i + 1 < size ? alphabet[(v >> 6) & 63] : '=';
+                out += i + 2 < size ? alphabet[v & 63] : '=';
+            }
+            return out;
+        }
+
+        /** \brief Doubles as little-endian float32 (x86-64's byte order, which the page's Float32Array reads), in
+            base64: a quarter of the size of decimal text. */
+        std::string floats(const std::vector<double> &values)
+        {
+            std::vector<float> f(values.begin(), values.end());
+            return base64(reinterpret_cast<const unsigned char *>(f.data()), f.size() * sizeof(float));
+        }
+
+        /** \brief A JSON string literal, safe inside <script> (no "</" can close it). */
+        std::string jsonString(const std::string &s)
+        {
+            std::string out = "\"";
+            for (const char c : s)
+            {
+                switch (c)
+                {
+                    case '"':
+                        out += "\\\"";
+                        break;
+                    case '\\':
+                        out += "\\\\";
+                        break;
+                    case '\n':
+                        out += "\\n";
+                        break;
+                    case '<':
+                        out += "\\u003c";
+                        break;
+                    default:
+                        if (static_cast<unsigned char>(c) < 0x20)
+                        {
+                            char buffer[8];
+                            std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
+                            out += buffer;
+                        }
+                        else
+                            out += c;
+                }
+            }
+            return out + "\"";
+        }
+
+        std::string jsonNumber(double x)
+        {
+            if (!std::isfinite(x))
+                return "null";
+            char buffer[32];
+            std::snprintf(buffer, sizeof buffer, "%.9g", x);
+            return buffer;
+        }
+
+        std::atomic<unsigned long> nextGlb{0};  ///< distinct temporary names for reports written concurrently
+
+        /** \brief The scene as glTF 2.0 binary: obstacles, then the robot in its own frame, named "robot". */
+        std::string sceneGlb(const Scene &scene, const std::string &file)
+        {
+            const SceneExportOptions colors;
+            std::vector<ColoredMesh> parts;
+            for (std::size_t i = 0; i < scene.obstacles().size(); ++i)
+                parts.push_back({"obstacle " + std::to_string(i), scene.obstacles()[i]->surface(), colors.worldColor});
+            parts.push_back({"robot", scene.robot().surface(), colors.robotColor});
+            // In the system's temporary folder: the report's own folder is checked first, by its own temporary file.
+            const std::string temporary =
+                (std::filesystem::temp_directory_path() /
+                 ("meshgap_report_" + std::to_string(static_cast<long>(::getpid())) + "_" +
+                  std::to_string(nextGlb++) + ".glb"))
+                    .string();
+            writeGlb(parts, temporary);
+            std::ifstream in(temporary, std::ios::binary);
+            std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+            const bool ok = static_cast<bool>(in) || in.eof();
+            in.close();
+            std::remove(temporary.c_str());
+            if (!ok || bytes.empty())
+                throw Exception(file, "cannot read back the scene written to " + temporary);
+            return base64(reinterpret_cast<const unsigned char *>(bytes.data()), bytes.size());
+        }
+
+        void replaceOnce(std::string &text, const std::string &placeholder, const std::string &value)
+        {
+            const std::size_t at = text.find(placeholder);
+            if (at == std::string::npos)
+                throw Exception("report template", "no placeholder " + placeholder);
+            text.replace(at, placeholder.size(), value);
+        }
+    }  // namespace
+
+    PlanReportData reportFromDense(const DenseClearance &dense,
+                                   std::vector<std::pair<std::string, std::string>> summary)
+    {
+        PlanReportData r;
+        const ompl::base::StateSpace &space = *dense.path.getSpaceInformation()->getStateSpace();
+        for (std::size_t i = 0; i < dense.path.getStateCount(); ++i)
+            r.poses.push_back(poseFromState(space, dense.path.getState(i)));
+        r.arcLength = dense.arcLength;
+        r.clearance = dense.clearance;
+        r.inCollision = dense.inCollision;
+        r.onRobot = dense.onRobot;
+        r.onObstacle = dense.onObstacle;
+        auto has = [&summary](const std::string &key) {
+            for (const auto &row : summary)
+                if (row.first == key)
+                    return true;
+            return false;
+        };
+        if (!has("min clearance"))
+        {
+            std::ostringstream mc;
+            mc.precision(6);
+            mc << dense.minClearance << " (exact, at arc length " << dense.arcLength[dense.argmin] << " of "
+               << dense.arcLength.back() << ")";
+            summary.emplace_back("min clearance", mc.str());
+        }
+        if (!has("dense path free"))
+            summary.emplace_back("dense path free", dense.collisions == 0 ? std::string("yes") :
+                                                    "NO: " + std::to_string(dense.collisions) + " states collide");
+        r.summary = std::move(summary);
+        r.title = r.summary.empty() ? std::string("meshgap plan") : r.summary.front().second;
+        return r;
+    }
+
+    PlanReportData reportWithoutPath(const ProblemConfig &config,
+                                     std::vector<std::pair<std::string, std::string>> summary)
+    {
+        PlanReportData r;
+        r.poses.push_back(config.start);
+        if (config.goal)
+            r.poses.push_back(*config.goal);
+        r.summary = std::move(summary);
+        r.title = config.name;
+        return r;
+    }
+
+    std::vector<std::pair<std::string, std::string>> summaryRows(const std::string &text)
+    {
+        std::vector<std::pair<std::string, std::string>> rows;
+        std::istringstream in(text);
+        std::string line;
+        while (std::getline(in, line))
+        {
+            // "key" padded to 16 columns; a longer key is followed by at least one space.
+            std::size_t split = line.size() > 16 && line[15] == ' ' ? 16 : line.find(' ');
+            if (split == std::string::npos)
+                split = line.size();
+            std::string key = line.substr(0, split), value = split < line.size() ? line.substr(split) : "";
+            key.erase(key.find_last_not_of(' ') + 1);
+            value.erase(0, value.find_first_not_of(' ') == std::string::npos ? value.size() :
+                                                                                value.find_first_not_of(' '));
+            if (!key.empty())
+                rows.emplace_back(key, value);
+        }
+        return rows;
+    }
+
+    bool planReportAvailable()
+    {
+        return std::strlen(REPORT_THREE_JS) > 0;
+    }
+
+    void writePlanReport(const Scene &scene, const PlanReportData &data, const std::string &file)
+    {
+        if (!planReportAvailable())
+            throw Exception(file, "cannot write a plan report: three.js (Debian's libjs-three) was not found when "
+                                  "meshgap was built");
+        if (data.poses.empty())
+            throw Exception(file, "a plan report needs at least one robot pose");
+        const std::size_t n = data.poses.size();
+        const bool hasPath = data.clearance.size() == n && n > 0;
+        std::vector<double> poses, onRobot, onObstacle;
+        for (const Eigen::Isometry3d &X : data.poses)
+        {
+            const Eigen::Quaterniond q(X.linear());
+            poses.insert(poses.end(), {X.translation().x(), X.translation().y(), X.translation().z(), q.x(), q.y(),
+                                       q.z(), q.w()});
+        }
+        std::ostringstream json;
+        json << "{\"title\": " << jsonString(data.title) << ", \"summary\": [";
+        for (std::size_t i = 0; i < data.summary.size(); ++i)
+            json << (i ? ", " : "") << "[" << jsonString(data.summary[i].first) << ", "
+                 << jsonString(data.summary[i].second) << "]";
+        json << "], \"states\": " << n << ", \"poses\": \"" << floats(poses) << "\"";
+        if (hasPath)
+        {
+            std::size_t argmin = 0;
+            for (std::size_t i = 0; i < n; ++i)
+            {
+                if (data.clearance[i] < data.clearance[argmin])
+                    argmin = i;
+                for (int k = 0; k < 3; ++k)
+                {
+                    onRobot.push_back(data.onRobot[i][k]);
+                    onObstacle.push_back(data.onObstacle[i][k]);
+                }
+            }
+            std::vector<unsigned char> collide(data.inCollision.begin(), data.inCollision.end());
+            json << ", \"arcLength\": \"" << floats(data.arcLength) << "\", \"clearance\": \""
+                 << floats(data.clearance) << "\", \"inCollision\": \"" << base64(collide.data(), collide.size())
+                 << "\", \"onRobot\": \"" << floats(onRobot) << "\", \"onObstacle\": \"" << floats(onObstacle)
+                 << "\", \"argmin\": " << argmin << ", \"minClearance\": " << jsonNumber(data.clearance[argmin]);
+        }
+        else
+            json << ", \"clearance\": null";
+
+        // The temporary file first, so an output folder that cannot be written fails before any work.
+        const std::string temporary = file + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+        std::ofstream out(temporary, std::ios::binary);
+        if (!out)
+            throw Exception(file, "cannot open " + temporary + " for writing");
+        try
+        {
+            json << ", \"glb\": \"" << sceneGlb(scene, file) << "\"}";
+            std::string html = REPORT_TEMPLATE;
+            replaceOnce(html, "/*MESHGAP_THREE_JS*/", REPORT_THREE_JS);
+            replaceOnce(html, "/*MESHGAP_DATA*/null", json.str());
+            out << html;
+            out.close();
+            if (!out)
+                throw Exception(file, "write failed");
+            if (std::rename(temporary.c_str(), file.c_str()) != 0)
+                throw Exception(file, "cannot rename " + temporary + " to it: " + std::strerror(errno));
+        }
+        catch (...)
+        {
+            out.close();
+            std::remove(temporary.c_str());
+            throw;
+        }
+    }
+}  // namespace meshgap

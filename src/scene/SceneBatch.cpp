@@ -1,0 +1,77 @@
+#include "meshgap/scene/SceneBatch.h"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <string>
+#include <thread>
+
+#include "meshgap/Exception.h"
+
+namespace meshgap
+{
+    namespace
+    {
+        /** \brief Run \e work(block) for every block in [0, blocks) on at most \e threads threads (the calling thread
+            one of them), each taking the next block not yet taken, so the threads finish together however the cost
+            varies along the batch; rethrow the first exception once all have stopped. */
+        template <typename Work>
+        void forEachBlock(std::size_t blocks, unsigned threads, Work work)
+        {
+            if (threads < 1)
+                throw Exception("threads", "must be at least 1, not " + std::to_string(threads));
+            const std::size_t runs = std::max<std::size_t>(1, std::min<std::size_t>(threads, blocks));
+            std::atomic<std::size_t> next{0};
+            std::vector<std::exception_ptr> errors(runs);
+            auto runOne = [&](std::size_t k) {
+                try
+                {
+                    for (std::size_t b = next++; b < blocks; b = next++)
+                        work(b);
+                }
+                catch (...)
+                {
+                    errors[k] = std::current_exception();
+                    next = blocks;  // the others stop after their current block
+                }
+            };
+            std::vector<std::thread> pool;
+            pool.reserve(runs - 1);
+            for (std::size_t k = 1; k < runs; ++k)
+                pool.emplace_back(runOne, k);
+            runOne(0);
+            for (std::thread &t : pool)
+                t.join();
+            for (const std::exception_ptr &e : errors)
+                if (e)
+                    std::rethrow_exception(e);
+        }
+    }  // namespace
+
+    void distanceBatch(const Scene &scene, const std::vector<Eigen::Isometry3d> &poses, const SceneRequest &request,
+                       bool warm, unsigned threads, std::vector<SceneResult> &results)
+    {
+        results.assign(poses.size(), SceneResult());
+        const std::size_t n = poses.size(), blocks = (n + SCENE_BATCH_BLOCK - 1) / SCENE_BATCH_BLOCK;
+        forEachBlock(blocks, threads, [&](std::size_t b) {
+            SceneWarmStart start;
+            for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
+            {
+                if (!warm)
+                    start = SceneWarmStart();
+                scene.distance(poses[i], request, start, results[i]);
+            }
+        });
+    }
+
+    void inCollisionBatch(const Scene &scene, const std::vector<Eigen::Isometry3d> &poses, unsigned threads,
+                          std::vector<char> &results)
+    {
+        results.assign(poses.size(), 0);
+        const std::size_t n = poses.size(), blocks = (n + SCENE_BATCH_BLOCK - 1) / SCENE_BATCH_BLOCK;
+        forEachBlock(blocks, threads, [&](std::size_t b) {
+            for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
+                results[i] = scene.inCollision(poses[i]) ? 1 : 0;
+        });
+    }
+}  // namespace meshgap
