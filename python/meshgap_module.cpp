@@ -235,7 +235,7 @@ namespace
         return out;
     }
 
-    py::array_t<bool> inCollision(const PyScene &self, const py::handle &posesObject, int threads)
+    py::array_t<bool> inCollisionPoses(const PyScene &self, const py::handle &posesObject, int threads)
     {
         const std::vector<Eigen::Isometry3d> poses = posesArg(posesObject);
         const unsigned t = threadsArg(threads);
@@ -447,7 +447,7 @@ PYBIND11_MODULE(meshgap, m)
              "certified surface distance (else the paper's node distance; collision still exact). warm: carry a warm "
              "start along each block of 256 consecutive poses. threads: split the blocks over this many threads "
              "(identical answers). The GIL is released while it runs.")
-        .def("in_collision", &inCollision, py::arg("poses"), py::kw_only(), py::arg("threads") = 1,
+        .def("in_collision", &inCollisionPoses, py::arg("poses"), py::kw_only(), py::arg("threads") = 1,
              "Exact collision test at every pose; a bool array (N,).")
         .def("__repr__",
              [](const PyScene &s) {

@@ -57,9 +57,10 @@ namespace meshgap
             SceneWarmStart start;
             for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
             {
-                if (!warm)
-                    start = SceneWarmStart();
-                scene.distance(poses[i], request, start, results[i]);
+                if (warm)
+                    scene.distance(poses[i], request, start, results[i]);
+                else
+                    scene.distance(poses[i], request, results[i]);  // a cold query: no warm start
             }
         });
     }
