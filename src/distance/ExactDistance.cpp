@@ -139,8 +139,9 @@ namespace meshgap
     }
 
     void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
-                     double stopBelow, double upperBound, ExactWarmStart *warm)
+                     const DistanceRequest &request, ExactWarmStart *warm)
     {
+        const double stopBelow = request.stopBelow, upperBound = request.upperBound;
         result.nodeDistance = result.distance;
         TriangleCandidate best;
         if (warm && warm->valid && warm->triangleA < a.surface().triangles.size() &&
@@ -215,7 +216,7 @@ namespace meshgap
             result.localSteps = hillClimb(evaluator, pair, d2, request.maxEvaluations);
             evaluator.fill(pair, d2, result);
         }
-        refineExact(a, b, X_AB, result);
+        refineExact(a, b, X_AB, result, request);
         result.iterations = 1;
         result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "meshgap/Exception.h"
+#include "meshgap/distance/SolverFactory.h"
 
 namespace meshgap
 {
@@ -103,11 +104,14 @@ namespace meshgap
         }
     }  // namespace
 
-    ClearanceChecker::ClearanceChecker(const ompl::base::SpaceInformationPtr &si, SceneConstPtr scene, Mode mode)
-      : ompl::base::StateValidityChecker(si), scene_(std::move(scene)), mode_(mode), id_(nextCheckerId++)
+    ClearanceChecker::ClearanceChecker(const ompl::base::SpaceInformationPtr &si, SceneConstPtr scene, Mode mode,
+                                       std::string fastSolver)
+      : ompl::base::StateValidityChecker(si), scene_(std::move(scene)), mode_(mode), fastSolver_(std::move(fastSolver)),
+        id_(nextCheckerId++)
     {
         if (!scene_)
             throw Exception("ClearanceChecker", "no scene");
+        allocSolver(fastSolver_);  // an unknown name: one error listing the valid ones
         specs_.clearanceComputationType = mode_ == Mode::CERTIFIED ? ompl::base::StateValidityCheckerSpecs::EXACT :
                                                                      ompl::base::StateValidityCheckerSpecs::APPROXIMATE;
         specs_.hasValidDirectionComputation = true;
@@ -143,12 +147,17 @@ namespace meshgap
     double ClearanceChecker::clearanceOrContact(const ompl::base::State *state) const
     {
         // Stopping at a distance of 0 stops only in collision: a free state's answer is complete.
-        return query(state, false, 0.0).distance;
+        SceneRequest request;
+        request.stopBelow = 0.0;
+        return query(state, false, request).distance;
     }
 
     double ClearanceChecker::clearanceBelow(const ompl::base::State *state, double bound) const
     {
-        return std::min(query(state, false, 0.0, bound).distance, bound);  // fast mode has no bound: min() it
+        SceneRequest request;
+        request.stopBelow = 0.0;
+        request.upperBound = bound;
+        return std::min(query(state, false, request).distance, bound);  // fast mode has no bound: min() it
     }
 
     double ClearanceChecker::clearance(const ompl::base::State *state, ompl::base::State *validState,
@@ -201,16 +210,14 @@ namespace meshgap
         return query(state, false);
     }
 
-    SceneResult ClearanceChecker::query(const ompl::base::State *state, bool countAsValidity, double stopBelow,
-                                        double upperBound) const
+    SceneResult ClearanceChecker::query(const ompl::base::State *state, bool countAsValidity,
+                                        SceneRequest request) const
     {
         const auto start = std::chrono::steady_clock::now();
         ++(countAsValidity ? validityCalls_ : clearanceCalls_);
         const Eigen::Isometry3d X = poseFromState(*si_->getStateSpace(), state);
-        SceneRequest request;
         request.exact = mode_ == Mode::CERTIFIED;
-        request.stopBelow = stopBelow;
-        request.upperBound = upperBound;
+        request.solver = fastSolver_;
         SceneResult result;
         if (request.exact)
             scene_->distance(X, request, warmStartFor(id_), result);

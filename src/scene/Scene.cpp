@@ -235,9 +235,24 @@ namespace meshgap
         /** \brief Every entry, in R-tree order (the order of the tree's spatial queries). */
         std::vector<Entry> inTreeOrder;
         double extent{0.0};  ///< largest absolute coordinate of any obstacle box
-        /** \brief comb-GA-wl for fast mode: solve() is const and keeps all per-query state in the call, so one
-            instance serves every thread. */
-        DistanceSolverConstPtr fast{allocSolver("comb-GA-wl")};
+        /** \brief The node-level solvers fast mode may name (solve() is const and keeps all per-query state in
+            the call, so one instance serves every thread), found by name without allocating. */
+        std::vector<std::pair<std::string, DistanceSolverConstPtr>> solvers = []
+        {
+            std::vector<std::pair<std::string, DistanceSolverConstPtr>> all;
+            for (const std::string &name : solverNames())
+                all.emplace_back(name, allocSolver(name));
+            return all;
+        }();
+
+        const DistanceSolver &solver(const std::string &name) const
+        {
+            for (const auto &[known, solver] : solvers)
+                if (known == name)
+                    return *solver;
+            allocSolver(name);  // throws, listing the valid names
+            throw Exception("Scene", "no solver '" + name + "'");
+        }
     };
 
     Scene::Scene(BodyConstPtr robot, std::vector<BodyConstPtr> obstacles)
@@ -382,8 +397,10 @@ namespace meshgap
             DistanceResult r;
             // Without an early stop, a collision still ends the walk at once (stopBelow 0: no depth yet): the
             // depth pass below then looks at every obstacle that might collide.
-            refineExact(obstacle, *robot_, X_WR, r, mayStop ? request.stopBelow : 0.0, bound(),
-                        warm ? &warm->pairs[k] : nullptr);
+            DistanceRequest pairRequest = request;
+            pairRequest.stopBelow = mayStop ? request.stopBelow : 0.0;
+            pairRequest.upperBound = bound();
+            refineExact(obstacle, *robot_, X_WR, r, pairRequest, warm ? &warm->pairs[k] : nullptr);
             ++result.pairsChecked;
             complete = complete && r.certified;
             if (r.distance < bound())  // else nothing on this obstacle is below the bound (refineExact's infinity)
@@ -438,6 +455,7 @@ namespace meshgap
     void Scene::fastDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
                              SceneResult &result) const
     {
+        const DistanceSolver &fastSolver = impl_->solver(request.solver);  // an unknown name throws, whatever the pose
         const bool warmValid = warm.valid && warm.obstacle < obstacles_.size();
         result.certified = false;  // a node-level answer is never proven
 
@@ -486,7 +504,7 @@ namespace meshgap
                 warm.nodes.b < robot_->numNodes())
                 pairRequest.start = warm.nodes;
             DistanceResult r;
-            impl_->fast->solve(obstacle, *robot_, X_WR, pairRequest, r);
+            fastSolver.solve(obstacle, *robot_, X_WR, pairRequest, r);
             ++result.pairsChecked;
             result.evaluations += r.evaluations;
             if (bestK == obstacles_.size() || r.distance < best.distance)

@@ -19,6 +19,14 @@ namespace fs = std::filesystem;
 
 namespace
 {
+    /** \brief A request that only a distance below \e upperBound matters. */
+    DistanceRequest bounded(double upperBound)
+    {
+        DistanceRequest r;
+        r.upperBound = upperBound;
+        return r;
+    }
+
     BodyPtr body(const Mesh &m, double grid = -1.0)
     {
         BodyOptions options;
@@ -63,17 +71,17 @@ TEST(ExactDistance, AnUpperBoundPrunesOnlyWhatCannotBeCloserAndNeverAContainment
     ASSERT_FALSE(free.inCollision);
     // A bound above the distance changes nothing; one below it leaves nothing to report, proven.
     DistanceResult above;
-    refineExact(*box, *ball, apart, above, -1.0, free.distance + 0.1);
+    refineExact(*box, *ball, apart, above, bounded(free.distance + 0.1));
     EXPECT_EQ(above.distance, free.distance);
     EXPECT_TRUE(above.certified);
     DistanceResult below;
-    refineExact(*box, *ball, apart, below, -1.0, free.distance - 0.1);
+    refineExact(*box, *ball, apart, below, bounded(free.distance - 0.1));
     EXPECT_EQ(below.distance, std::numeric_limits<double>::infinity());
     EXPECT_TRUE(below.certified);
     EXPECT_FALSE(below.inCollision);
     // The ball wholly inside the box is far from its surface, beyond any small bound: still a collision, with depth.
     DistanceResult inside;
-    refineExact(*box, *ball, test::translation(0.1, 0.0, 0.0), inside, -1.0, 1e-3);
+    refineExact(*box, *ball, test::translation(0.1, 0.0, 0.0), inside, bounded(1e-3));
     EXPECT_TRUE(inside.inCollision);
     EXPECT_LT(inside.distance, 0.0);
 }

@@ -464,6 +464,50 @@ TEST(Scene, FastModeNeverCallsACollidingPoseFreeAndIsNeverBelowTheExactDistance)
     EXPECT_GT(free, 10u);
 }
 
+TEST(Scene, FastModeRunsTheNamedSolverAndRefusesAnUnknownName)
+{
+    // SceneRequest::solver: each node-level solver named gives its own answer (enumeration the node minimum, the
+    // others never below it), and an unknown name is one error listing the valid ones.
+    const ScenePtr scene = Scene::fromMeshes(uRobot(), scatteredWorld(), coarse());
+    SceneRequest request;
+    request.exact = false;
+    std::size_t compared = 0;
+    for (const Eigen::Isometry3d &X : randomPoses(77, 12))
+    {
+        if (scene->inCollision(X))
+            continue;
+        SceneResult exact, enumerated, climbed;
+        scene->distance(X, SceneRequest(), exact);
+        request.solver = "enumeration";
+        scene->distance(X, request, enumerated);
+        request.solver = "hill-climb";
+        scene->distance(X, request, climbed);
+        // The minimum over node pairs (brute force per obstacle) is what enumeration must give.
+        double minimum = std::numeric_limits<double>::infinity();
+        for (const BodyConstPtr &o : scene->obstacles())
+            for (std::uint32_t i = 0; i < o->numNodes(); ++i)
+                for (std::uint32_t j = 0; j < scene->robot().numNodes(); ++j)
+                    minimum = std::min(minimum, (o->node(i) - X * scene->robot().node(j)).norm());
+        EXPECT_NEAR(enumerated.distance, minimum, 1e-12 * (1.0 + minimum));
+        EXPECT_GE(climbed.distance, enumerated.distance - 1e-12 * (1.0 + minimum));
+        EXPECT_GE(enumerated.distance, exact.distance);
+        ++compared;
+    }
+    EXPECT_GT(compared, 4u);
+    request.solver = "comb-XX";
+    SceneResult r;
+    try
+    {
+        scene->distance(test::translation(0, 0, 0), request, r);
+        ADD_FAILURE() << "an unknown solver name was accepted";
+    }
+    catch (const Exception &e)
+    {
+        EXPECT_NE(std::string(e.what()).find("comb-XX"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("comb-GA-wl"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Scene, ThreadsSharingASceneGiveTheSingleThreadedAnswers)
 {
     // One scene, two threads, each with its own warm start, both modes (the fast mode's mesh distances are built

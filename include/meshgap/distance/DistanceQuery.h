@@ -29,6 +29,15 @@ namespace meshgap
         std::size_t maxEvaluations{0};
         /** \brief Record the best value after every iteration/generation in DistanceResult::history. */
         bool recordHistory{false};
+        /** \brief Exact stage and scene: stop as soon as a distance at or below this is known (a validity check
+            needs no more); the answer is then an upper bound, not certified, and a collision gets no depth.
+            Negative (the default): never stop early. Node-level solvers ignore it. */
+        double stopBelow{-1.0};
+        /** \brief Exact stage and scene: only a distance below this matters to the caller, so everything at or
+            above it is pruned (cheap when the bodies are far apart); when nothing is closer the answer says so
+            (refineExact(): distance infinity; Scene: SceneResult::atLeast) and is proven. The collision verdict
+            is exact whatever the bound. Infinity (the default): no bound. Node-level solvers ignore it. */
+        double upperBound{std::numeric_limits<double>::infinity()};
     };
 
     /** \brief What a colliding pair's (negative) distance is: how its penetration depth was found. */
@@ -74,7 +83,9 @@ namespace meshgap
             a collision, by an intersecting triangle pair or a contained body). */
         bool certified{false};
         /** \brief The bodies intersect, touch, or one (closed) body lies inside the other. distance is then
-            negative (a signed distance): -penetrationDepth, or kContactDistance when that depth is 0 or not known. */
+            negative (a signed distance): -penetrationDepth, or kContactDistance when that depth is 0 or not known.
+            Always equal to distance < 0 once the exact stage has run; kept as a flag because a node-level answer
+            (no exact stage) has decided nothing, and the flag says so where the sign could not. */
         bool inCollision{false};
         /** \brief In collision: the penetration depth estimate (>= 0; a lower bound on the translational penetration
             depth, see penetrationDepth() in PenetrationDepth.h) and how it was found. Outside collision: 0, None. */

@@ -44,7 +44,8 @@ namespace meshgap
         Overwrites distance, onA/onB, triangleA/B, certified, inCollision, penetrationDepth, penetration,
         nodeDistance and adds to triangleTests; keeps nodes and the node-level counters.
 
-        \param stopBelow Early stop (a validity check against a clearance needs no more): as soon as a surface pair
+        \param request Its stopBelow and upperBound (the rest is the node search's):
+        - stopBelow: early stop (a validity check against a clearance needs no more): as soon as a surface pair
         at or below \e stopBelow is known (from the seed or in the traversal), stop there. An answer above
         \e stopBelow is exact and certified as usual; one at or below it is an upper bound on the distance, not
         necessarily the minimum, so certified stays false (except for a proven collision), and inCollision is set
@@ -52,7 +53,7 @@ namespace meshgap
         With stopBelow >= 0 a collision gets no depth (penetration NotComputed, distance kContactDistance): the
         caller asked for the verdict only. Negative (the default): never stop early.
 
-        \param upperBound Only a surface pair closer than this matters to the caller (a scene passes the best
+        - upperBound: only a surface pair closer than this matters to the caller (a scene passes the best
         distance found on its other obstacles), so the traversal prunes everything at or above it. When nothing is
         closer, distance is +infinity, certified (nothing below the bound exists) and the witnesses unset; the
         collision verdict is still exact (a containment cannot hide behind the bound). Infinity (the default): no
@@ -61,8 +62,7 @@ namespace meshgap
         \param warm The caller's warm start for this pair of bodies, if any: its triangle pair seeds the search
         instead of the result's node pair, its front starts the traversal, and both are updated. */
     void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
-                     double stopBelow = -1.0, double upperBound = std::numeric_limits<double>::infinity(),
-                     ExactWarmStart *warm = nullptr);
+                     const DistanceRequest &request = DistanceRequest(), ExactWarmStart *warm = nullptr);
 
     /** \brief Exact collision test alone: a touching or intersecting surface triangle pair (bvhCollide()), or one
         closed body wholly inside the other. Cheaper than refineExact(); the same verdict. */

@@ -42,9 +42,9 @@ namespace meshgap
        containment; a state in collision is never valid) and stops at the first colliding obstacle. clearance() is
        the distance to the nearest obstacle: in CERTIFIED mode the exact surface distance, proven by a BVH traversal
        (specs: EXACT), with a warm start per thread (the last answer of the same thread, paper III-D); in FAST mode
-       the paper's node-to-node distance from comb-GA-wl (specs: APPROXIMATE; never below the exact value), seeded
-       from the state's own coordinates and not warm-started, so it is a pure function of the state, as
-       RRT*'s and PRM*'s repeated cost comparisons need. clearance() is signed: it returns SceneResult::distance as
+       the paper's node-to-node distance from its fast solver (comb-GA-wl unless named; specs: APPROXIMATE; never
+       below the exact value), seeded from the state's own coordinates and not warm-started, so it is a pure
+       function of the state, as RRT*'s and PRM*'s repeated cost comparisons need. clearance() is signed: it returns SceneResult::distance as
        the scene computes it, which in collision is the penetration depth as a negative number (or 0 where the scene
        computes no depth). clearance(state, validState, validStateAvailable) (specs: hasValidDirectionComputation)
        also proposes a valid state away from the nearest obstacle (validStateAway()). Thread-safe: the scene is
@@ -59,7 +59,10 @@ namespace meshgap
             FAST
         };
 
-        ClearanceChecker(const ompl::base::SpaceInformationPtr &si, SceneConstPtr scene, Mode mode = Mode::CERTIFIED);
+        /** \brief \e fastSolver: the node-level solver of FAST mode, by its SolverFactory name (an unknown name
+            throws, listing the valid ones). */
+        ClearanceChecker(const ompl::base::SpaceInformationPtr &si, SceneConstPtr scene, Mode mode = Mode::CERTIFIED,
+                         std::string fastSolver = "comb-GA-wl");
 
         bool isValid(const ompl::base::State *state) const override;
         bool isValid(const ompl::base::State *state, double &dist) const override;
@@ -96,13 +99,14 @@ namespace meshgap
         SceneResult query(const ompl::base::State *state) const;
 
     private:
-        /** \brief The query, counted as a validity or a clearance call; \e stopBelow and \e upperBound as
-            SceneRequest's. */
-        SceneResult query(const ompl::base::State *state, bool countAsValidity, double stopBelow = -1.0,
-                          double upperBound = std::numeric_limits<double>::infinity()) const;
+        /** \brief The query, counted as a validity or a clearance call: \e request (its stopBelow, upperBound)
+            with this checker's mode and fast solver. */
+        SceneResult query(const ompl::base::State *state, bool countAsValidity,
+                          SceneRequest request = SceneRequest()) const;
 
         SceneConstPtr scene_;
         Mode mode_;
+        std::string fastSolver_;
         std::uint64_t id_;  ///< unique per checker: keys this checker's per-thread warm starts
         mutable std::atomic<std::uint64_t> validityCalls_{0}, clearanceCalls_{0}, evaluations_{0}, warmHits_{0};
         mutable std::atomic<std::uint64_t> nanoseconds_{0};

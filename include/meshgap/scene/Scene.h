@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "meshgap/ClassForward.h"
@@ -18,21 +19,15 @@ namespace meshgap
         vertices it uses, in order of first triangle. A world file becomes one obstacle per part. */
     std::vector<Mesh> splitComponents(const Mesh &mesh);
 
-    /** \brief What one scene query should do. */
-    struct SceneRequest
+    /** \brief What one scene query should do: a DistanceRequest (its stopBelow and upperBound apply to the whole
+        scene, its seed to the node-level search) and which answer. */
+    struct SceneRequest : DistanceRequest
     {
         /** \brief Exact, certified surface distance (true) or the node-level answer of the paper (false). */
         bool exact{true};
-        /** \brief Stop as soon as the distance is known to be at or below this (a validity check needs no more);
-            the answer is then an upper bound, not certified. Negative: never stop early. */
-        double stopBelow{-1.0};
-        /** \brief Seed of the node-level search (fast mode); the same seed gives the same answer. */
-        std::uint64_t seed{1};
-        /** \brief Exact mode: only a distance below this matters to the caller, so obstacles and surface pairs at or
-            above it are pruned (a cheap query when the robot is far from everything). When the distance is at or
-            above it, the answer is distance = upperBound with atLeast set: proven, not the distance itself. The
-            collision verdict is exact whatever the bound. Infinity (the default): no bound. */
-        double upperBound{std::numeric_limits<double>::infinity()};
+        /** \brief The node-level solver of fast mode (exact == false), by its SolverFactory name; its seed is
+            DistanceRequest::seed (the same seed gives the same answer). */
+        std::string solver{"comb-GA-wl"};
     };
 
     /** \brief What one caller (one thread) carries from one query to the next, nearby pose (paper III-D): the
