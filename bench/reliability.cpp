@@ -119,6 +119,7 @@ int main(int argc, char **argv)
     int runs = 20, posesPerProblem = 20;
     unsigned int population = 0, generations = 0;
     double scalePopulation = 0.0;
+    AdaptiveSizing rule;
     std::uint64_t seed = 1;
     namespace po = boost::program_options;
     po::options_description cli("meshgap_bench_reliability");
@@ -134,6 +135,10 @@ int main(int argc, char **argv)
         "generations", po::value(&generations), "comb-GA G_max (0: the default)")(
         "scale-population", po::value(&scalePopulation),
         "comb-GA population = max(default, ceil(c * sqrt(nodes A x nodes B) / 100)) for c > 0")(
+        "feature-fraction", po::value(&rule.featureFraction), "adaptive: h = this x local feature size")(
+        "min-fraction", po::value(&rule.minFraction), "adaptive: smallest h / body size")(
+        "max-fraction", po::value(&rule.maxFraction), "adaptive: largest h / body size")(
+        "grading", po::value(&rule.grading), "adaptive: size growth per unit mesh distance")(
         "csv", po::value(&csvFile), "also write one CSV row per scene-pose and algorithm");
     po::variables_map vm;
     try
@@ -166,7 +171,10 @@ int main(int argc, char **argv)
     if (sizing == "none")
         options.gridSize = 0.0;
     else if (sizing == "adaptive")
+    {
         options.sizing = GridSizing::Adaptive;
+        options.adaptive = rule;
+    }
     const std::vector<std::string> algorithms = splitList(algorithmsText);
     std::vector<DistanceSolverPtr> solvers;
     try
@@ -255,6 +263,9 @@ int main(int argc, char **argv)
         *csv << "sizing,problem,pose,nodes_a,nodes_b,population,algorithm,runs,successes,mean_evaluations,"
                 "max_evaluations,enum_evaluations,unpruned,median_ms,node_distance,exact_distance\n";
     }
+    if (sizing == "adaptive")
+        std::printf("Adaptive rule: h = clamp(%g x feature size, %g x body size, %g x body size), grading %g.\n", rule.featureFraction,
+                    rule.minFraction, rule.maxFraction, rule.grading);
     std::printf("Sizing: %s; %d seeds (%llu..%llu) per scene-pose and algorithm.\n\n", sizing.c_str(), runs,
                 static_cast<unsigned long long>(seed), static_cast<unsigned long long>(seed + runs - 1));
     std::printf("| problem | pose | nodes A / B | node min / exact | algorithm | success | mean evaluations | "
