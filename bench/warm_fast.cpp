@@ -111,6 +111,7 @@ int main(int argc, char **argv)
     std::size_t states = 1000;
     unsigned int globalEvery = WarmFast::DEFAULT_GLOBAL_EVERY;
     double gap = WarmFast::DEFAULT_GAP_TOLERANCE, budgetMiB = 512;
+    bool noPatch = false;
     namespace po = boost::program_options;
     po::options_description cli("meshgap_bench_warm_fast");
     cli.add_options()("help,h", "print this help")("data", po::value(&data), "folder with OMPL.app problems")(
@@ -118,7 +119,8 @@ int main(int argc, char **argv)
         "global-every", po::value(&globalEvery), "warm-fast global_every")("gap", po::value(&gap),
                                                                            "warm-fast gap_tolerance")(
         "budget-mib", po::value(&budgetMiB), "dense mesh-distance budget per body (MiB)")(
-        "sizing", po::value(&sizing), "node meshes: uniform or adaptive")("csv", po::value(&csvFile), "CSV output");
+        "sizing", po::value(&sizing), "node meshes: uniform or adaptive")(
+        "no-patch", po::bool_switch(&noPatch), "warm-fast without surface_patch (node distances)")("csv", po::value(&csvFile), "CSV output");
     po::variables_map vm;
     try
     {
@@ -148,6 +150,7 @@ int main(int argc, char **argv)
     WarmFast solver;
     solver.setGlobalEvery(globalEvery);
     solver.setGapTolerance(gap);
+    solver.setSurfacePatch(!noPatch);
 
     std::vector<Problem> problems;
     try

@@ -1,5 +1,6 @@
 #include "meshgap/distance/WarmFast.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -97,16 +98,24 @@ namespace meshgap
         result.iterations = climbs;
     }
 
-    void WarmFast::patch(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result) const
+    void WarmFast::patch(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, std::uint32_t warmA,
+                         std::uint32_t warmB, DistanceResult &result) const
     {
         const Mesh &sa = a.surface(), &sb = b.surface();
         auto test = [&](std::uint32_t ta, std::uint32_t tb, double &best, std::uint32_t &bestA, std::uint32_t &bestB)
         {
             const Triangle &fa = sa.triangles[ta], &fb = sb.triangles[tb];
+            const Eigen::Vector3d &a0 = sa.vertices[fa[0]], &a1 = sa.vertices[fa[1]], &a2 = sa.vertices[fa[2]];
+            const Eigen::Vector3d b0 = X_AB * sb.vertices[fb[0]], b1 = X_AB * sb.vertices[fb[1]],
+                                  b2 = X_AB * sb.vertices[fb[2]];
+            // Exact pruning: the gap between the triangles' centroid spheres is a lower bound on their distance.
+            const Eigen::Vector3d ca = (a0 + a1 + a2) / 3.0, cb = (b0 + b1 + b2) / 3.0;
+            const double ra = std::sqrt(std::max({(a0 - ca).squaredNorm(), (a1 - ca).squaredNorm(), (a2 - ca).squaredNorm()}));
+            const double rb = std::sqrt(std::max({(b0 - cb).squaredNorm(), (b1 - cb).squaredNorm(), (b2 - cb).squaredNorm()}));
+            if ((ca - cb).norm() - ra - rb >= best)
+                return;
             Eigen::Vector3d onA, onB;
-            const double d =
-                triangleDistance(sa.vertices[fa[0]], sa.vertices[fa[1]], sa.vertices[fa[2]], X_AB * sb.vertices[fb[0]],
-                                 X_AB * sb.vertices[fb[1]], X_AB * sb.vertices[fb[2]], onA, onB);
+            const double d = triangleDistance(a0, a1, a2, b0, b1, b2, onA, onB);
             ++result.triangleTests;
             if (d < best)
             {
@@ -119,10 +128,28 @@ namespace meshgap
         };
         double best = result.distance;  // the node pair's own distance: the patch only improves on it
         std::uint32_t ta = UINT32_MAX, tb = UINT32_MAX;
-        for (const std::uint32_t *i = a.beginNodeTriangles(result.nodes.a); i != a.endNodeTriangles(result.nodes.a); ++i)
-            for (const std::uint32_t *j = b.beginNodeTriangles(result.nodes.b); j != b.endNodeTriangles(result.nodes.b);
-                 ++j)
-                test(*i, *j, best, ta, tb);
+        // Seeds: the last answer's triangle pair (a warm start), then the triangles around the two nodes: every pair
+        // of them when there are at most 64 pairs, otherwise (large fans, as at CAD vertices) each triangle around
+        // one node against the best triangle around the other (or the first one there).
+        if (warmA != UINT32_MAX && warmA < sa.triangles.size() && warmB < sb.triangles.size())
+            test(warmA, warmB, best, ta, tb);
+        const std::uint32_t *beginA = a.beginNodeTriangles(result.nodes.a), *endA = a.endNodeTriangles(result.nodes.a);
+        const std::uint32_t *beginB = b.beginNodeTriangles(result.nodes.b), *endB = b.endNodeTriangles(result.nodes.b);
+        if ((endA - beginA) * (endB - beginB) <= 64)  // small fans: every pair
+        {
+            for (const std::uint32_t *i = beginA; i != endA; ++i)
+                for (const std::uint32_t *j = beginB; j != endB; ++j)
+                    test(*i, *j, best, ta, tb);
+        }
+        else if (beginA != endA && beginB != endB)
+        {
+            const std::uint32_t fixedB = tb != UINT32_MAX ? tb : *beginB;
+            for (const std::uint32_t *i = beginA; i != endA; ++i)
+                test(*i, fixedB, best, ta, tb);
+            const std::uint32_t fixedA = ta != UINT32_MAX ? ta : *beginA;
+            for (const std::uint32_t *j = beginB; j != endB; ++j)
+                test(fixedA, *j, best, ta, tb);
+        }
         // Descent over corner-sharing neighbours while the pair improves.
         for (bool improved = ta != UINT32_MAX; improved;)
         {
@@ -194,7 +221,14 @@ namespace meshgap
         result.localSteps = steps;
         result.iterations = iterations;
         if (surfacePatch_)
-            patch(a, b, X_AB, result);
+        {
+            patch(a, b, X_AB, state.triangleA, state.triangleB, result);
+            if (result.triangleTests > 0 && result.distance < std::sqrt(d2))
+            {
+                state.triangleA = result.triangleA;
+                state.triangleB = result.triangleB;
+            }
+        }
         result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
 

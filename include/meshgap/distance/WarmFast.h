@@ -17,6 +17,7 @@ namespace meshgap
     {
         bool valid{false};         ///< false: the next query is a cold start (global search)
         NodePair pair;             ///< the last answer's node pair
+        std::uint32_t triangleA{UINT32_MAX}, triangleB{UINT32_MAX};  ///< the last surface patch's closest triangles
         Eigen::Isometry3d X_AB{Eigen::Isometry3d::Identity()};  ///< the pose of the last query
         double globalDistance{std::numeric_limits<double>::infinity()};  ///< node distance the last global search found
         double drift{0.0};          ///< how far B's nodes may have moved (summed) since that search
@@ -38,10 +39,12 @@ namespace meshgap
        climbs (random starts, \e global_evaluations d^2 in all), which needs no mesh distances, so no query costs
        seconds. comb-GA-wl is capped at \e global_evaluations too.
 
-       The answer is APPROXIMATE: a node pair's distance, or with \e surface_patch the exact distance between the
-       surface triangles around the two nodes and their corner-sharing neighbours; either is the distance of a real
-       pair of surface points, so an upper bound on the exact distance, never below it, but not a proof of the
-       minimum. No collision verdict: two nodes never coincide unless the surfaces meet, so a caller that needs the
+       The answer is APPROXIMATE: a node pair's distance, or with \e surface_patch (the default) the exact distance
+       of the best surface triangle pair found by a descent over corner-sharing neighbouring triangles, seeded with
+       the last answer's triangle pair and with the triangles around the two nodes (all pairs of them, or for fans of
+       more than 64 pairs each triangle around one node against the best one around the other);
+       either is the distance of a real pair of surface points, so an upper bound on the exact distance, never
+       below it, but not a proof of the minimum. No collision verdict: two nodes never coincide unless the surfaces meet, so a caller that needs the
        verdict tests collision exactly (inCollision() in ExactDistance.h). distance is set, nodes (the node pair),
        onA/onB (A's frame), evaluations, localSteps, iterations (1 + the global search's), triangleTests.
 
@@ -85,7 +88,8 @@ namespace meshgap
     private:
         void global(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, std::uint64_t seed,
                     DistanceResult &result) const;
-        void patch(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result) const;
+        void patch(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, std::uint32_t warmA, std::uint32_t warmB,
+                   DistanceResult &result) const;
 
         CombGA ga_{true};
         unsigned int globalEvery_{DEFAULT_GLOBAL_EVERY};
