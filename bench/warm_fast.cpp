@@ -234,7 +234,7 @@ int main(int argc, char **argv)
         SceneWarmStart warm;
         SceneRequest certified;
         std::vector<double> tF, tW, tFast, tColl, errors;
-        std::size_t below = 0, free = 0;
+        std::size_t below = 0, free = 0, triangleTests = 0, evaluations = 0;
         for (std::size_t i = 0; i < poses.size(); ++i)
         {
             const Eigen::Isometry3d &X = poses[i];
@@ -257,6 +257,8 @@ int main(int argc, char **argv)
                         DistanceResult r;
                         solver.solveWarm(*scene->obstacles()[o], scene->robot(), X, fastStates[o], 1 + i, r);
                         fast = std::min(fast, r.distance);
+                        triangleTests += r.triangleTests;
+                        evaluations += r.evaluations;
                     }
                 });
             tFast.push_back(tf);
@@ -282,6 +284,8 @@ int main(int argc, char **argv)
                     problem.name.c_str(), poses.size(), free, n, scene->robot().numNodes(), mF, mW, mFast, mFast / mW,
                     maxFast,
                     mColl, mColl / mW, mFast / mF, 100 * e50, 100 * e90, 100 * emax, below, globals);
+        std::fprintf(stderr, "%s: warm-fast per query: %.1f triangle tests, %.1f evaluations (global searches included)\n",
+                     problem.name.c_str(), double(triangleTests) / poses.size(), double(evaluations) / poses.size());
         std::fflush(stdout);
         if (csv)
             *csv << problem.name << "," << poses.size() << "," << free << "," << n << "," << mF << "," << mW << ","

@@ -114,6 +114,24 @@ namespace meshgap
             const double rb = std::sqrt(std::max({(b0 - cb).squaredNorm(), (b1 - cb).squaredNorm(), (b2 - cb).squaredNorm()}));
             if ((ca - cb).norm() - ra - rb >= best)
                 return;
+            // And the plane bound: when one triangle lies wholly on one side of the other's plane, its nearest
+            // corner's distance to that plane is a lower bound too.
+            auto planeGap = [](const Eigen::Vector3d &p0, const Eigen::Vector3d &p1, const Eigen::Vector3d &p2,
+                               const Eigen::Vector3d &q0, const Eigen::Vector3d &q1, const Eigen::Vector3d &q2)
+            {
+                const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
+                const double len = n.norm();
+                if (!(len > 0.0))
+                    return 0.0;
+                const double s0 = n.dot(q0 - p0) / len, s1 = n.dot(q1 - p0) / len, s2 = n.dot(q2 - p0) / len;
+                if (s0 > 0.0 && s1 > 0.0 && s2 > 0.0)
+                    return std::min({s0, s1, s2});
+                if (s0 < 0.0 && s1 < 0.0 && s2 < 0.0)
+                    return -std::max({s0, s1, s2});
+                return 0.0;
+            };
+            if (planeGap(a0, a1, a2, b0, b1, b2) >= best || planeGap(b0, b1, b2, a0, a1, a2) >= best)
+                return;
             Eigen::Vector3d onA, onB;
             const double d = triangleDistance(a0, a1, a2, b0, b1, b2, onA, onB);
             ++result.triangleTests;
