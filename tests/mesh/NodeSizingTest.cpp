@@ -246,3 +246,64 @@ TEST(AdaptiveRefine, BodyUsesTheAdaptiveNodesAndKeepsTheSurface)
     EXPECT_EQ(body->surface().vertices, mesh.vertices);
     EXPECT_LE(longestEdge(body->mesh()), body->gridSize() * (1.0 + 1e-12));
 }
+
+namespace
+{
+    double minimumAngle(const Mesh &m)
+    {
+        double minAngle = M_PI;
+        for (const Triangle &t : m.triangles)
+            for (int k = 0; k < 3; ++k)
+            {
+                const Eigen::Vector3d u = m.vertices[t[(k + 1) % 3]] - m.vertices[t[k]];
+                const Eigen::Vector3d w = m.vertices[t[(k + 2) % 3]] - m.vertices[t[k]];
+                minAngle = std::min(minAngle, std::acos(u.normalized().dot(w.normalized())));
+            }
+        return minAngle;
+    }
+}  // namespace
+
+TEST(AdaptiveRefine, AFineRegionBesideACoarseOneKeepsTheInputAnglesBounded)
+{
+    // Right triangles (45 degrees) of 0.5; a size of 0.1 left of x = 5 and 1 right of it. Rivara's rule (a
+    // triangle's longest edge first) keeps every angle at least half the smallest input angle.
+    const Mesh square = test::grid(10.0, 10.0, 20, 20);
+    std::vector<double> size(square.vertices.size());
+    for (std::size_t v = 0; v < size.size(); ++v)
+        size[v] = square.vertices[v].x() < 5.0 - 1e-9 ? 0.1 : 1.0;
+    const Mesh fine = refineMesh(square, size);
+    EXPECT_GE(minimumAngle(fine), 0.5 * M_PI / 4.0);
+    for (const auto &e : edgeUse(fine))
+        EXPECT_LE(e.second, 2);
+    EXPECT_NEAR(area(fine), 100.0, 1e-9);
+}
+
+TEST(AdaptiveRefine, SizesVaryingAlongASliverKeepBoundedAngles)
+{
+    // One 100 x 1 wall (two slivers, as OMPL.app walls are) with a size of 0.05 at one end and 5 at the other:
+    // without Rivara's rule (split a triangle's longest edge first) the fine end's short splits cut slivers again.
+    const Mesh wall = test::grid(100.0, 1.0, 1, 1);
+    std::vector<double> size(wall.vertices.size());
+    for (std::size_t v = 0; v < size.size(); ++v)
+        size[v] = wall.vertices[v].x() < 50.0 ? 0.05 : 5.0;
+    std::vector<std::uint32_t> parent;
+    const Mesh fine = refineMesh(wall, size, nullptr, &parent);
+    double minAngle = M_PI;
+    for (const Triangle &t : fine.triangles)
+        for (int k = 0; k < 3; ++k)
+        {
+            const Eigen::Vector3d u = fine.vertices[t[(k + 1) % 3]] - fine.vertices[t[k]];
+            const Eigen::Vector3d w = fine.vertices[t[(k + 2) % 3]] - fine.vertices[t[k]];
+            minAngle = std::min(minAngle, std::acos(u.normalized().dot(w.normalized())));
+        }
+    EXPECT_GE(minAngle, 0.5 * std::atan(0.01));
+    EXPECT_NEAR(area(fine), 100.0, 1e-9);
+    for (const auto &e : edgeUse(fine))
+        EXPECT_LE(e.second, 2);
+    for (std::size_t t = 0; t < fine.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k)
+        {
+            const Eigen::Vector3d &p = fine.vertices[fine.triangles[t][k]], &q = fine.vertices[fine.triangles[t][(k + 1) % 3]];
+            EXPECT_LE((p - q).norm(), fieldAt(wall, size, parent[t], 0.5 * (p + q)) * (1.0 + 1e-12));
+        }
+}
