@@ -48,6 +48,10 @@ namespace meshgap
        verdict tests collision exactly (inCollision() in ExactDistance.h). distance is set, nodes (the node pair),
        onA/onB (A's frame), evaluations, localSteps, iterations (1 + the global search's), triangleTests.
 
+       The first global search asks both bodies for their mesh distances (Body::distances(), built once per body on
+       first use: an all-pairs table can take a second or more for a few thousand nodes), so build them beforehand to
+       keep that out of the queries. After that, a climb and the patch allocate nothing.
+
        Use solveWarm() with one WarmFastState per body pair along a path (a scene calls it per obstacle with the
        obstacle as A and the robot as B); solve() is the stateless form: a warm start from DistanceRequest::start
        when given (climb only, with the patch), a cold start (global search) otherwise.
