@@ -10,7 +10,8 @@
 #   4. warm-fast along the paths against the warm certified query (meshgap_bench_warm_fast: warm_fast.md / .csv).
 #
 #   bench/paper/regenerate.sh [BUILD_DIR]
-#   RUNS=100 RELIABILITY_RUNS=100 POSES=20 STATES=1000 PARTS="reproduction plots reliability warm" bench/paper/regenerate.sh build
+#   RUNS=100 RELIABILITY_RUNS=100 ADAPTIVE_OMPL_RUNS=5 POSES=20 STATES=1000 \
+#       PARTS="reproduction plots reliability warm" bench/paper/regenerate.sh build      (the defaults; about 15 min)
 #
 # Needs the targets meshgap_bench_paper_reproduction, meshgap_bench_reliability and meshgap_bench_warm_fast built in
 # BUILD_DIR (default: build), python3-matplotlib for the figures, and ../shared/data/omplapp for the OMPL.app rows
@@ -20,7 +21,8 @@ here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(cd "$here/../.." && pwd)"
 build="$(cd "${1:-$repo/build}" && pwd)"
 runs="${RUNS:-100}"
-reliabilityRuns="${RELIABILITY_RUNS:-20}"
+reliabilityRuns="${RELIABILITY_RUNS:-100}"
+adaptiveOmplRuns="${ADAPTIVE_OMPL_RUNS:-5}"  # on-demand mesh distances: about a second per comb-SA-wl run
 poses="${POSES:-20}"
 states="${STATES:-1000}"
 parts="${PARTS:-reproduction plots reliability warm}"
@@ -40,14 +42,21 @@ for part in $parts; do
                 --sizing none --csv "$here/reliability_maps_none.csv" > "$here/reliability_maps_none.md"
             "$build/bench/meshgap_bench_reliability" --maps maps --problems none --runs "$reliabilityRuns" \
                 --sizing adaptive --csv "$here/reliability_maps_adaptive.csv" > "$here/reliability_maps_adaptive.md"
-            for sizing in uniform adaptive; do
-                "$build/bench/meshgap_bench_reliability" --data "$data" --scenes "" --runs "$reliabilityRuns" \
-                    --poses "$poses" --sizing "$sizing" --csv "$here/reliability_omplapp_$sizing.csv" \
-                    > "$here/reliability_omplapp_$sizing.md"
-            done ;;
+            "$build/bench/meshgap_bench_reliability" --data "$data" --scenes "" --runs "$reliabilityRuns" \
+                --poses "$poses" --sizing uniform --csv "$here/reliability_omplapp_uniform.csv" \
+                > "$here/reliability_omplapp_uniform.md"
+            "$build/bench/meshgap_bench_reliability" --data "$data" --scenes "" --runs "$adaptiveOmplRuns" \
+                --poses "$poses" --sizing adaptive --csv "$here/reliability_omplapp_adaptive.csv" \
+                > "$here/reliability_omplapp_adaptive.md" ;;
         warm)
             "$build/bench/meshgap_bench_warm_fast" --maps maps --data "$data" --states "$states" \
-                --csv "$here/warm_fast.csv" > "$here/warm_fast.md" ;;
+                --csv "$here/warm_fast.csv" > "$here/warm_fast.md"
+            "$build/bench/meshgap_bench_warm_fast" --maps maps --data "$data" --states "$states" --budget-mib 1 \
+                --csv "$here/warm_fast_ondemand.csv" > "$here/warm_fast_ondemand.md"
+            "$build/bench/meshgap_bench_warm_fast" --maps maps --data "$data" --states "$states" --no-patch \
+                > "$here/warm_fast_nopatch.md"
+            "$build/bench/meshgap_bench_warm_fast" --maps maps --data "$data" --states "$states" --gap 1e300 \
+                > "$here/warm_fast_nogap.md" ;;
         *)
             echo "unknown part '$part' (valid: reproduction plots reliability warm)" >&2
             exit 1 ;;
