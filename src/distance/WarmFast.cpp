@@ -99,7 +99,7 @@ namespace meshgap
     }
 
     void WarmFast::patch(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, std::uint32_t warmA,
-                         std::uint32_t warmB, DistanceResult &result) const
+                         std::uint32_t warmB, bool fans, DistanceResult &result) const
     {
         const Mesh &sa = a.surface(), &sb = b.surface();
         auto test = [&](std::uint32_t ta, std::uint32_t tb, double &best, std::uint32_t &bestA, std::uint32_t &bestB)
@@ -146,20 +146,23 @@ namespace meshgap
         };
         double best = result.distance;  // the node pair's own distance: the patch only improves on it
         std::uint32_t ta = UINT32_MAX, tb = UINT32_MAX;
-        // Seeds: the last answer's triangle pair (a warm start), then the triangles around the two nodes: every pair
+        // Seeds: the last answer's triangle pair (a warm start), then, if \e fans, the triangles around the two nodes: every pair
         // of them when there are at most 64 pairs, otherwise (large fans, as at CAD vertices) each triangle around
         // one node against the best triangle around the other (or the first one there).
         if (warmA != UINT32_MAX && warmA < sa.triangles.size() && warmB < sb.triangles.size())
             test(warmA, warmB, best, ta, tb);
         const std::uint32_t *beginA = a.beginNodeTriangles(result.nodes.a), *endA = a.endNodeTriangles(result.nodes.a);
         const std::uint32_t *beginB = b.beginNodeTriangles(result.nodes.b), *endB = b.endNodeTriangles(result.nodes.b);
-        if ((endA - beginA) * (endB - beginB) <= 64)  // small fans: every pair
+        // When the node pair did not move, the last triangle pair and the descent suffice, unless it did not beat
+        // the node pair.
+        fans = fans || ta == UINT32_MAX;
+        if (fans && (endA - beginA) * (endB - beginB) <= 64)  // small fans: every pair
         {
             for (const std::uint32_t *i = beginA; i != endA; ++i)
                 for (const std::uint32_t *j = beginB; j != endB; ++j)
                     test(*i, *j, best, ta, tb);
         }
-        else if (beginA != endA && beginB != endB)
+        else if (fans && beginA != endA && beginB != endB)
         {
             const std::uint32_t fixedB = tb != UINT32_MAX ? tb : *beginB;
             for (const std::uint32_t *i = beginA; i != endA; ++i)
@@ -196,6 +199,8 @@ namespace meshgap
         double d2 = std::numeric_limits<double>::infinity();
         std::size_t evaluations = 0, steps = 0;
         bool runGlobal = !state.valid;
+        const bool wasValid = state.valid;
+        const NodePair previous = state.pair;
         if (state.valid)
         {
             state.drift += displacement(state.X_AB, X_AB, b.radiusAboutOrigin());
@@ -240,7 +245,9 @@ namespace meshgap
         result.iterations = iterations;
         if (surfacePatch_)
         {
-            patch(a, b, X_AB, state.triangleA, state.triangleB, result);
+            // The triangles around the nodes only need a look when the node pair moved (or nothing is warm).
+            const bool fans = !wasValid || !(pair == previous) || state.triangleA == UINT32_MAX;
+            patch(a, b, X_AB, state.triangleA, state.triangleB, fans, result);
             if (result.triangleTests > 0 && result.distance < std::sqrt(d2))
             {
                 state.triangleA = result.triangleA;

@@ -41,8 +41,9 @@ namespace meshgap
 
        The answer is APPROXIMATE: a node pair's distance, or with \e surface_patch (the default) the exact distance
        of the best surface triangle pair found by a descent over corner-sharing neighbouring triangles, seeded with
-       the last answer's triangle pair and with the triangles around the two nodes (all pairs of them, or for fans of
-       more than 64 pairs each triangle around one node against the best one around the other);
+       the last answer's triangle pair and, when the climb moved the node pair (or on a cold start), with the triangles
+       around the two nodes (all pairs of them, or for fans of more than 64 pairs each triangle around one node
+       against the best one around the other);
        either is the distance of a real pair of surface points, so an upper bound on the exact distance, never
        below it, but not a proof of the minimum. No collision verdict: two nodes never coincide unless the surfaces meet, so a caller that needs the
        verdict tests collision exactly (inCollision() in ExactDistance.h). distance is set, nodes (the node pair),
@@ -93,7 +94,7 @@ namespace meshgap
         void global(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, std::uint64_t seed,
                     DistanceResult &result) const;
         void patch(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, std::uint32_t warmA, std::uint32_t warmB,
-                   DistanceResult &result) const;
+                   bool fans, DistanceResult &result) const;
 
         CombGA ga_{true};
         unsigned int globalEvery_{DEFAULT_GLOBAL_EVERY};
