@@ -15,6 +15,8 @@
 // pass, and the allocations per query are reported; --trace-alloc lists each distinct allocating call chain (five
 // frames, names by addr2line) and how often it allocated per query.
 //
+// Also times issue 15's warm-fast solver (WarmFast.h) on the same body pair and motion, in a table of its own.
+//
 // Fast mode beyond the dense budget answers mesh distances by Dijkstra on demand and takes seconds per query at 256k
 // triangles, so there it is timed on the first --fast-on-demand poses only (the table says so). About 4 minutes.
 //
@@ -46,6 +48,7 @@
 #include <optional>
 
 #include "FclOracle.h"
+#include "meshgap/distance/WarmFast.h"
 #include "meshgap/mesh/Body.h"
 #include "meshgap/mesh/MeshDistances.h"
 #include "meshgap/mesh/MeshLoader.h"
@@ -319,6 +322,7 @@ int main(int argc, char **argv)
         std::string text;
     };
     std::vector<Row> queryRows;
+    std::vector<std::string> warmFastRows;
     for (std::size_t target = 1024; target <= maxTriangles; target *= 4)
     {
         const Mesh mesh = refineTo(base, target);
@@ -368,7 +372,10 @@ int main(int argc, char **argv)
         const Scene scene(body, {obstacle});
         SceneRequest certified, fast;
         fast.exact = false;
-        std::vector<double> tCold, tWarm, tFast, tColl, tFclD, tFclC;
+        std::vector<double> tCold, tWarm, tFast, tColl, tFclD, tFclC, tWarmFast;
+        const WarmFast warmFast;  // issue 15's warm-started fast solver, the same pair as the scene's
+        WarmFastState warmFastState;
+        std::size_t warmFastBelow = 0;
         SceneWarmStart warm, fastWarm;
         double minDistance = std::numeric_limits<double>::infinity();
         std::size_t disagreements = 0;
@@ -386,6 +393,9 @@ int main(int argc, char **argv)
             if ((dense && obstacleDense) || &X - poses.data() < static_cast<std::ptrdiff_t>(fastOnDemand))
                 tFast.push_back(timed([&] { scene.distance(X, fast, fastWarm, quick); }));
             tColl.push_back(timed([&] { cM = scene.inCollision(X); }));
+            DistanceResult wf;
+            tWarmFast.push_back(timed([&] { warmFast.solveWarm(*body, *body, X, warmFastState, 1, wf); }));
+            warmFastBelow += !cF && wf.distance < dF - 1e-9 * (1.0 + dF);
             minDistance = std::min(minDistance, dF);
             disagreements += cF != cM || cF != cold.inCollision || cF != hot.inCollision ||
                              (!cF && (std::abs(cold.distance - dF) > 1e-6 * dF + 1e-9 ||
@@ -424,6 +434,10 @@ int main(int argc, char **argv)
             dense && obstacleDense ? poses.size() : fastOnDemand);
         const double aColl = allocsPerQuery(
             "collision", [&](const Eigen::Isometry3d &X) { (void)scene.inCollision(X); }, poses.size());
+        DistanceResult wfResult;
+        const double aWarmFast = allocsPerQuery(
+            "warm-fast", [&](const Eigen::Isometry3d &X) { warmFast.solveWarm(*body, *body, X, warmFastState, 1, wfResult); },
+            poses.size());
 
         const Stats c = stats(tCold), w = stats(tWarm), q = stats(tFast), k = stats(tColl), fd = stats(tFclD),
                     fc = stats(tFclC);
@@ -439,6 +453,15 @@ int main(int argc, char **argv)
                       k.median, k.p90, k.median / fc.median, fd.median, fd.p90, fc.median, fc.p90, aCold, aWarm, aFast,
                       aColl, disagreements);
         queryRows.push_back({mesh.triangles.size(), text});
+        {
+            const Stats wfs = stats(tWarmFast);
+            char row[256];
+            std::snprintf(row, sizeof row, "| %zu | %s | %.1f / %.1f (**%.2f**) | %.0f | %.1f | %g | %zu |",
+                          mesh.triangles.size(), dense ? "dense" : "on demand", wfs.median, wfs.p90,
+                          wfs.median / fd.median, 1e6 * *std::max_element(tWarmFast.begin(), tWarmFast.end()),
+                          fd.median, aWarmFast, warmFastBelow);
+            warmFastRows.push_back(row);
+        }
         std::fprintf(stderr, "%s\n", text);
         if (csv)
             *csv << mesh.triangles.size() << "," << nodes << "," << (dense ? "dense" : "on_demand") << "," << g.first
@@ -459,6 +482,13 @@ int main(int argc, char **argv)
         poses.size(), baseWorld ? "triangles (robot / obstacle)" : "triangles");
     for (const Row &row : queryRows)
         std::printf("%s\n", row.text.c_str());
+    std::printf("\nwarm-fast (WarmFast.h: hill climb from the last pair, bounded global search, surface patch; an upper "
+                "bound) along the same motion: µs per query, median / p90 (ratio of medians to FCL distance), the "
+                "slowest query, allocations per query after warm-up, answers below FCL's distance:\n\n| triangles | "
+                "mesh distances | warm-fast | max µs | FCL distance median | allocations per query | below exact "
+                "|\n|---|---|---|---|---|---|---|\n");
+    for (const std::string &row : warmFastRows)
+        std::printf("%s\n", row.c_str());
     return 0;
 #endif
 }

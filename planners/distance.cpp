@@ -57,18 +57,24 @@ namespace
         throw Exception("--" + option, "'" + text + "' is not a grid size (a number >= 0, 0 = no refinement, or auto)");
     }
 
-    BodyPtr makeBody(const Mesh &mesh, const LoadReport &report, double grid, const MeshDistancesOptions &distances,
-                     const char *label)
+    BodyPtr makeBody(const Mesh &mesh, const LoadReport &report, double grid, bool adaptive,
+                     const MeshDistancesOptions &distances, const char *label)
     {
         BodyOptions options;
         options.gridSize = grid;
+        if (adaptive)
+            options.sizing = GridSizing::Adaptive;
         options.distances = distances;
         BodyPtr body = Body::build(mesh, options);
         const Eigen::AlignedBox3d box = mesh.bounds();
         OMPL_INFORM("%s: %s: %zu vertices, %zu triangles, components: %zu, box [%g %g %g]..[%g %g %g]", label,
                     mesh.source.c_str(), mesh.vertices.size(), mesh.triangles.size(), report.components,
                     box.min().x(), box.min().y(), box.min().z(), box.max().x(), box.max().y(), box.max().z());
-        if (body->gridSize() > 0.0)
+        if (body->adaptiveSizing())
+            OMPL_INFORM("%s: adaptive node sizing (largest size %g): %zu nodes, %zu triangles, longest edge %g", label,
+                        body->gridSize(), body->refinement().nodesAfter, body->refinement().trianglesAfter,
+                        body->refinement().longestEdge);
+        else if (body->gridSize() > 0.0)
             OMPL_INFORM("%s: refined to grid size %g: %zu nodes, %zu triangles, longest edge %g", label,
                         body->gridSize(), body->refinement().nodesAfter, body->refinement().trianglesAfter,
                         body->refinement().longestEdge);
@@ -202,6 +208,7 @@ namespace
     int run(int argc, char **argv)
     {
         std::string cfg, poseText, posesFile, algorithm = "enumeration", grid = "auto", gridA, gridB, cacheDir;
+        std::string sizing = "uniform";
         std::vector<std::string> meshes, settings;
         std::uint64_t seed = 1;
         double budgetMiB = 512;
@@ -216,6 +223,7 @@ namespace
             ("grid", po::value(&grid), "grid size h for both bodies: a length, 0 (no refinement) or auto (1/25 of body size)")
             ("grid-a", po::value(&gridA), "grid size for body A only")
             ("grid-b", po::value(&gridB), "grid size for body B only")
+            ("sizing", po::value(&sizing), "node sizing of both bodies: uniform (the --grid sizes) or adaptive (finer at thin parts, holes and creases, coarser on thick parts; --grid is then ignored)")
             ("cache", po::value(&cacheDir), "folder for cached mesh-distance tables")
             ("memory-budget", po::value(&budgetMiB), "largest all-pairs mesh-distance table, MiB (default 512)")
             ("exact", "refine the answer to the exact, certified surface distance (triangles + BVH)")
@@ -255,6 +263,8 @@ namespace
             if (!solver->params().hasParam(s.substr(0, eq)) || !solver->params().setParam(s.substr(0, eq), s.substr(eq + 1)))
                 throw Exception("--set", "'" + s + "' is not a valid parameter of " + algorithm);
         }
+        if (sizing != "uniform" && sizing != "adaptive")
+            throw Exception("--sizing", "'" + sizing + "' is not a node sizing (uniform or adaptive)");
         const double hA = gridValue(gridA.empty() ? grid : gridA, gridA.empty() ? "grid" : "grid-a");
         const double hB = gridValue(gridB.empty() ? grid : gridB, gridB.empty() ? "grid" : "grid-b");
         MeshDistancesOptions distances;
@@ -294,8 +304,8 @@ namespace
             return answerWithScene(meshB, meshA, options, poses, !posesFile.empty(), vm.count("json") > 0,
                                    vm.count("cold") > 0);
         }
-        const BodyPtr a = makeBody(meshA, reportA, hA, distances, "A");
-        const BodyPtr b = makeBody(meshB, reportB, hB, distances, "B");
+        const BodyPtr a = makeBody(meshA, reportA, hA, sizing == "adaptive", distances, "A");
+        const BodyPtr b = makeBody(meshB, reportB, hB, sizing == "adaptive", distances, "B");
 
         DistanceRequest request;
         request.seed = seed;

@@ -138,7 +138,7 @@ namespace
     // The paper's "grid size" g is read as the spacing of a square grid cut into right triangles: edges g and
     // g * sqrt(2). So bodies are meshed with edges at most sqrt(2) g (they then average about g).
     const double sqrt2 = std::sqrt(2.0);
-    const double batteryGrid = 5.0 * sqrt2;     // Table II's 0.05 m = 5 cm (see maps/README.md)
+    double batteryGrid = 5.0 * sqrt2;           // Table II's 0.05 m = 5 cm (see maps/README.md); --battery-grid
     constexpr double holeRadius = 3.0;          // alignment holes: hexagons of circumradius 3, 12 deep
     constexpr double holeDepth = 12.0;
     constexpr double pegRadius = 2.5;           // pegs: hexagons of circumradius 2.5, 10 long
@@ -924,7 +924,10 @@ int main(int argc, char **argv)
         options.add_options()("help,h", "show this help")(
             "out", po::value<std::string>(&out)->required(), "output directory (one sub-directory per scene)")(
             "scene", po::value<std::string>(&which)->default_value("all"),
-            "battery_fixture, hand_bowl, handshake, slotted_wall, twisted or all");
+            "battery_fixture, hand_bowl, handshake, slotted_wall, twisted or all")(
+            "battery-grid", po::value<double>(&batteryGrid),
+            "largest edge of the battery and fixture meshes in cm (default 5 sqrt 2, Table II's grid; a larger value "
+            "gives coarse meshes for adaptive node sizing to refine)");
         po::variables_map vm;
         po::store(po::parse_command_line(ac, av, options), vm);
         if (vm.count("help"))

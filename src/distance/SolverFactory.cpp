@@ -9,6 +9,7 @@
 #include "meshgap/distance/Enumeration.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/HillClimb.h"
+#include "meshgap/distance/WarmFast.h"
 
 namespace meshgap
 {
@@ -24,6 +25,7 @@ namespace meshgap
                 {"enumeration", [] { return std::make_shared<Enumeration>(); }},
                 {"exact", [] { return std::make_shared<ExactSolver>(); }},
                 {"hill-climb", [] { return std::make_shared<HillClimb>(); }},
+                {"warm-fast", [] { return std::make_shared<WarmFast>(); }},
             };
             return solvers;
         }

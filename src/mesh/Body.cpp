@@ -10,14 +10,24 @@ namespace meshgap
     {
         mesh.validate();
         BodyPtr body(new Body());
-        double h = options.gridSize;
-        if (h < 0.0)
-            h = BodyOptions::DEFAULT_GRID_FRACTION * mesh.size();
-        if (!std::isfinite(h))
-            h = 0.0;
-        body->gridSize_ = h;
         std::vector<std::uint32_t> parent;
-        body->mesh_ = refineMesh(mesh, h, &body->refinement_, &parent);
+        if (options.sizing == GridSizing::Adaptive)
+        {
+            const std::vector<double> sizes = adaptiveNodeSizes(mesh, options.adaptive);
+            body->adaptive_ = true;
+            body->gridSize_ = sizes.empty() ? 0.0 : *std::max_element(sizes.begin(), sizes.end());
+            body->mesh_ = refineMesh(mesh, sizes, &body->refinement_, &parent);
+        }
+        else
+        {
+            double h = options.gridSize;
+            if (h < 0.0)
+                h = BodyOptions::DEFAULT_GRID_FRACTION * mesh.size();
+            if (!std::isfinite(h))
+                h = 0.0;
+            body->gridSize_ = h;
+            body->mesh_ = refineMesh(mesh, h, &body->refinement_, &parent);
+        }
         body->surface_ = std::move(mesh);
         body->bvh_ = std::make_unique<TriangleBvh>(body->surface_);
         body->buildSurfaceMaps(parent);

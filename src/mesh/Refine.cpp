@@ -2,9 +2,13 @@
 
 #include <cmath>
 #include <queue>
+#include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
+
+#include "meshgap/Exception.h"
 
 namespace meshgap
 {
@@ -17,36 +21,26 @@ namespace meshgap
                 std::swap(a, b);
             return (EdgeKey(a) << 32) | b;
         }
-    }  // namespace
 
-    Mesh refineMesh(const Mesh &input, double h, RefineReport *report, std::vector<std::uint32_t> *parentOut)
-    {
-        Mesh mesh = input;
-        std::vector<std::uint32_t> parent(mesh.triangles.size());
-        for (std::uint32_t t = 0; t < parent.size(); ++t)
-            parent[t] = t;
-        if (report)
+        /** \brief Longest-edge bisection of \e mesh while some edge ab is longer than (size[a] + size[b]) / 2;
+            \e size grows with the mesh (a midpoint gets its edge's mean). */
+        void bisect(Mesh &mesh, std::vector<double> &size, std::vector<std::uint32_t> &parent)
         {
-            report->nodesBefore = input.vertices.size();
-            report->trianglesBefore = input.triangles.size();
-        }
-        if (h > 0.0 && std::isfinite(h))
-        {
-            // Edge -> triangles that use it; a max-heap of edges longer than h (entries may be stale).
+            // Edge -> triangles that use it; a max-heap of edges to split (entries may be stale).
             std::unordered_map<EdgeKey, std::vector<std::uint32_t>> edgeTriangles;
             edgeTriangles.reserve(mesh.triangles.size() * 2);
             std::priority_queue<std::pair<double, EdgeKey>> longest;
+            std::unordered_set<EdgeKey> forced;  // not over their size, but longest in a triangle of one that is
             auto length = [&mesh](std::uint32_t a, std::uint32_t b) {
                 return (mesh.vertices[a] - mesh.vertices[b]).norm();
             };
+            auto tooLong = [&](std::uint32_t a, std::uint32_t b) {
+                return length(a, b) > 0.5 * (size[a] + size[b]);
+            };
             auto addEdge = [&](std::uint32_t a, std::uint32_t b, std::uint32_t t) {
                 auto &list = edgeTriangles[key(a, b)];
-                if (list.empty())
-                {
-                    const double len = length(a, b);
-                    if (len > h)
-                        longest.emplace(len, key(a, b));
-                }
+                if (list.empty() && tooLong(a, b))
+                    longest.emplace(length(a, b), key(a, b));
                 list.push_back(t);
             };
             auto removeFromEdge = [&](std::uint32_t a, std::uint32_t b, std::uint32_t t) {
@@ -65,16 +59,38 @@ namespace meshgap
 
             while (!longest.empty())
             {
-                const EdgeKey e = longest.top().second;
+                const auto [len, e] = longest.top();
                 longest.pop();
                 auto found = edgeTriangles.find(e);
                 if (found == edgeTriangles.end() || found->second.empty())
                     continue;  // already split
+                const auto a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e & 0xffffffffu);
+                // Rivara: a longer edge of a triangle sharing e goes first (then e comes back).
+                bool deferred = false;
+                for (std::uint32_t t : found->second)
+                    for (int k = 0; k < 3; ++k)
+                    {
+                        const std::uint32_t p = mesh.triangles[t][k], q = mesh.triangles[t][(k + 1) % 3];
+                        const double l = length(p, q);
+                        if (l > len && forced.insert(key(p, q)).second)
+                        {
+                            longest.emplace(l, key(p, q));
+                            deferred = true;
+                        }
+                        else if (l > len)
+                            deferred = true;  // already queued, and longer, so it is popped before e again
+                    }
+                if (deferred)
+                {
+                    longest.emplace(len, e);
+                    continue;
+                }
+                forced.erase(e);
                 const std::vector<std::uint32_t> incident = std::move(found->second);
                 edgeTriangles.erase(found);
-                const auto a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e & 0xffffffffu);
                 const auto m = static_cast<std::uint32_t>(mesh.vertices.size());
                 mesh.vertices.push_back(0.5 * (mesh.vertices[a] + mesh.vertices[b]));
+                size.push_back(0.5 * (size[a] + size[b]));
                 for (std::uint32_t t : incident)
                 {
                     // Rotate so that the split edge is (p, q) in the triangle's own winding: (p, q, r).
@@ -96,14 +112,52 @@ namespace meshgap
                 }
             }
         }
-        if (parentOut)
-            parentOut->swap(parent);
-        if (report)
+
+        Mesh refine(const Mesh &input, std::vector<double> size, RefineReport *report,
+                    std::vector<std::uint32_t> *parentOut)
         {
-            report->nodesAfter = mesh.vertices.size();
-            report->trianglesAfter = mesh.triangles.size();
-            report->longestEdge = longestEdge(mesh);
+            Mesh mesh = input;
+            std::vector<std::uint32_t> parent(mesh.triangles.size());
+            for (std::uint32_t t = 0; t < parent.size(); ++t)
+                parent[t] = t;
+            if (report)
+            {
+                report->nodesBefore = input.vertices.size();
+                report->trianglesBefore = input.triangles.size();
+            }
+            if (!size.empty())
+                bisect(mesh, size, parent);
+            if (parentOut)
+                parentOut->swap(parent);
+            if (report)
+            {
+                report->nodesAfter = mesh.vertices.size();
+                report->trianglesAfter = mesh.triangles.size();
+                report->longestEdge = longestEdge(mesh);
+            }
+            return mesh;
         }
-        return mesh;
+    }  // namespace
+
+    Mesh refineMesh(const Mesh &input, double h, RefineReport *report, std::vector<std::uint32_t> *parentOut)
+    {
+        std::vector<double> size;
+        if (h > 0.0 && std::isfinite(h))
+            size.assign(input.vertices.size(), h);
+        return refine(input, std::move(size), report, parentOut);
+    }
+
+    Mesh refineMesh(const Mesh &input, const std::vector<double> &vertexSize, RefineReport *report,
+                    std::vector<std::uint32_t> *parentOut)
+    {
+        if (vertexSize.size() != input.vertices.size())
+            throw Exception("refineMesh", std::to_string(vertexSize.size()) + " sizes for the " +
+                                              std::to_string(input.vertices.size()) + " vertices of " + input.source);
+        for (std::size_t v = 0; v < vertexSize.size(); ++v)
+            if (!(vertexSize[v] > 0.0) || !std::isfinite(vertexSize[v]))
+                throw Exception("refineMesh", "size " + std::to_string(vertexSize[v]) + " at vertex " +
+                                                  std::to_string(v) + " of " + input.source +
+                                                  " is not positive and finite");
+        return refine(input, vertexSize, report, parentOut);
     }
 }  // namespace meshgap

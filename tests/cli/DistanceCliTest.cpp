@@ -42,6 +42,7 @@ TEST(DistanceCli, BadInputGivesOneErrorNamingTheFileAndExitOne)
         {RES + "/cube.obj " + RES + "/cube.obj --algorithm comb-XX", "comb-XX"},
         {RES + "/cube.obj " + RES + "/cube.obj --pose '1 2 3'", "--pose"},
         {RES + "/cube.obj " + RES + "/cube.obj --grid -3", "--grid"},
+        {RES + "/cube.obj " + RES + "/cube.obj --sizing bogus", "bogus"},
         {RES + "/cube.obj", "two mesh files"},
         {RES + "/cube.obj " + RES + "/cube.obj --cold", "--cold"},  // the scene's answer only
     };
@@ -284,4 +285,28 @@ TEST(DistanceCli, CfgPosesGiveTheSceneAnswerWarmOrCold)
     }
     EXPECT_GT(colliding, 0u);  // the straight line runs through the other hand
     EXPECT_LT(colliding, poses.size());
+}
+
+TEST(DistanceCli, AdaptiveSizingGivesTheEnumerationMinimumOverAdaptiveNodes)
+{
+    const std::string pose = "3.1 0.2 0.3 0.1 0.2 0.3 0.927";
+    const CliRun r = run(RES + "/cube.obj " + RES + "/cube.obj --sizing adaptive --json --pose '" + pose + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("adaptive node sizing"), std::string::npos) << r.err;
+    BodyOptions options;
+    options.sizing = GridSizing::Adaptive;
+    const Mesh cube = loadMesh(RES + "/cube.obj");
+    const BodyPtr body = Body::build(cube, options);
+    EXPECT_GT(body->numNodes(), cube.vertices.size());  // the rule refined it
+    std::istringstream in(pose);
+    double x, y, z, qx, qy, qz, qw;
+    in >> x >> y >> z >> qx >> qy >> qz >> qw;
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.linear() = Eigen::Quaterniond(qw, qx, qy, qz).normalized().toRotationMatrix();
+    X.translation() = Eigen::Vector3d(x, y, z);
+    DistanceResult expected;
+    Enumeration().solve(*body, *body, X, DistanceRequest(), expected);
+    char number[64];
+    std::snprintf(number, sizeof number, "\"distance\": %.17g,", expected.distance);
+    EXPECT_NE(r.out.find(number), std::string::npos) << r.out << " expected " << number;
 }

@@ -11,12 +11,20 @@
 #include "meshgap/geometry/TriangleBvh.h"
 #include "meshgap/mesh/Mesh.h"
 #include "meshgap/mesh/MeshDistances.h"
+#include "meshgap/mesh/NodeSizing.h"
 #include "meshgap/mesh/Refine.h"
 #include "meshgap/mesh/SurfaceGraph.h"
 
 namespace meshgap
 {
     MESHGAP_CLASS_FORWARD(Body);
+
+    /** \brief How the grid size of a body's nodes is chosen. */
+    enum class GridSizing
+    {
+        Uniform,  ///< one size h everywhere (BodyOptions::gridSize)
+        Adaptive  ///< a size that follows the local feature size (BodyOptions::adaptive, adaptiveNodeSizes())
+    };
 
     /** \brief How to turn a mesh into a body. */
     struct BodyOptions
@@ -27,6 +35,12 @@ namespace meshgap
         /** \brief Target grid size h: edges longer than h are split (see refineMesh()). A negative value means
             DEFAULT_GRID_FRACTION times the body's size; 0 (or +infinity) keeps the mesh as it is. */
         double gridSize{-1.0};
+        /** \brief Uniform (gridSize) or adaptive (finer at thin parts, pegs, holes and creases, coarser on large
+            thick parts: refineMesh() with the sizes of adaptiveNodeSizes(adaptive)); gridSize is ignored when
+            Adaptive. */
+        GridSizing sizing{GridSizing::Uniform};
+        /** \brief The adaptive rule (used when sizing is Adaptive). */
+        AdaptiveSizing adaptive;
         /** \brief Mesh distances (built on first use of distances()). */
         MeshDistancesOptions distances;
     };
@@ -83,8 +97,11 @@ namespace meshgap
             contact with another body lies wholly inside or wholly outside it, so one point per part decides. */
         const std::vector<std::uint32_t> &componentNodes() const { return componentNodes_; }
         const RefineReport &refinement() const { return refinement_; }
-        /** \brief The grid size used (0 when not refined). */
+        /** \brief The grid size used (0 when not refined); with adaptive sizing, the largest target size (every
+            node-mesh edge is at most that long unless the input's was). */
         double gridSize() const { return gridSize_; }
+        /** \brief True when the nodes were placed by adaptive sizing. */
+        bool adaptiveSizing() const { return adaptive_; }
         std::uint32_t numNodes() const { return static_cast<std::uint32_t>(mesh_.vertices.size()); }
         const Eigen::Vector3d &node(std::uint32_t i) const { return mesh_.vertices[i]; }
 
@@ -116,6 +133,7 @@ namespace meshgap
         bool closed_{false};
         RefineReport refinement_;
         double gridSize_{0.0};
+        bool adaptive_{false};
         std::shared_ptr<const SurfaceGraph> graph_;
         std::vector<std::uint32_t> componentNodes_;
         MeshDistancesOptions distanceOptions_;

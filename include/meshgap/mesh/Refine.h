@@ -22,6 +22,19 @@ namespace meshgap
         index of the input triangle it lies in. */
     Mesh refineMesh(const Mesh &mesh, double h, RefineReport *report = nullptr,
                     std::vector<std::uint32_t> *parent = nullptr);
+
+    /** \brief Adaptive refinement: the grid size varies over the surface. \e vertexSize gives a target size h_v > 0
+        at each vertex of \e mesh; the size field is its linear (barycentric) interpolation over each input triangle,
+        so a vertex made at an edge's midpoint gets (h_a + h_b) / 2. The rule: an edge ab is split while
+        |ab| > (h_a + h_b) / 2, the size at its midpoint. The splits are the same conforming longest-edge bisection
+        as above (Rivara): edges over their size are taken longest first, and before an edge is split, any longer
+        edge of a triangle that shares it is split first, so every triangle is still cut across its own longest edge
+        (bounded shapes), no node hangs (an edge is split in all its triangles), and new nodes lie on the input
+        surface. Where the field is constant this is exactly refineMesh(mesh, h). Body builds the field with
+        adaptiveNodeSizes() (NodeSizing.h: a fraction of the local feature size, clamped and graded). Throws
+        meshgap::Exception when \e vertexSize has the wrong length or a value that is not positive and finite. */
+    Mesh refineMesh(const Mesh &mesh, const std::vector<double> &vertexSize, RefineReport *report = nullptr,
+                    std::vector<std::uint32_t> *parent = nullptr);
 }  // namespace meshgap
 
 #endif

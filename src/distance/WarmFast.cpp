@@ -1,0 +1,275 @@
+#include "meshgap/distance/WarmFast.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "meshgap/distance/HillClimb.h"
+#include "meshgap/distance/PairEvaluator.h"
+#include "meshgap/geometry/TriangleDistance.h"
+
+namespace meshgap
+{
+    namespace
+    {
+        /** \brief Bound on how far any node of B (radius r about its origin) moves between poses X1 and X2 in A's
+            frame: |(R2 - R1) b + (t2 - t1)| <= 2 sin(theta / 2) r + |t2 - t1|, theta the angle of R1^T R2. */
+        double displacement(const Eigen::Isometry3d &X1, const Eigen::Isometry3d &X2, double r)
+        {
+            const double theta = Eigen::Quaterniond(X1.linear()).angularDistance(Eigen::Quaterniond(X2.linear()));
+            return 2.0 * std::sin(0.5 * std::min(theta, M_PI)) * r + (X2.translation() - X1.translation()).norm();
+        }
+    }  // namespace
+
+    WarmFast::WarmFast() : DistanceSolver("warm-fast")
+    {
+        params_.declareParam<int>(
+            "global_every",
+            [this](int n)
+            {
+                if (n < 0)
+                    throw std::invalid_argument("global_every must not be negative");
+                setGlobalEvery(static_cast<unsigned int>(n));
+            },
+            [this] { return static_cast<int>(getGlobalEvery()); });
+        params_.declareParam<double>(
+            "gap_tolerance", [this](double g) { setGapTolerance(g); }, [this] { return getGapTolerance(); });
+        params_.declareParam<int>(
+            "global_evaluations",
+            [this](int n)
+            {
+                if (n <= 0)
+                    throw std::invalid_argument("global_evaluations must be positive");
+                setGlobalEvaluations(static_cast<unsigned int>(n));
+            },
+            [this] { return static_cast<int>(getGlobalEvaluations()); });
+        params_.declareParam<bool>(
+            "surface_patch", [this](bool on) { setSurfacePatch(on); }, [this] { return getSurfacePatch(); });
+    }
+
+    void WarmFast::setGapTolerance(double g)
+    {
+        if (!(g >= 0.0))
+            throw std::invalid_argument("gap_tolerance must be >= 0");
+        gapTolerance_ = g;
+    }
+
+    void WarmFast::setGlobalEvaluations(unsigned int n)
+    {
+        if (n == 0)
+            throw std::invalid_argument("global_evaluations must be positive");
+        globalEvaluations_ = n;
+    }
+
+    void WarmFast::global(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, std::uint64_t seed,
+                          DistanceResult &result) const
+    {
+        DistanceRequest request;
+        request.seed = seed;
+        request.maxEvaluations = globalEvaluations_;
+        if (a.distances().isDense() && b.distances().isDense())
+        {
+            ga_.solve(a, b, X_AB, request, result);
+            return;
+        }
+        // Beyond the dense budget: random-start climbs, no mesh distances needed, globalEvaluations_ d^2 in all.
+        PairEvaluator evaluator(a, b, X_AB);
+        std::mt19937_64 rng(seed);
+        std::uniform_int_distribution<std::uint32_t> na(0, a.numNodes() - 1), nb(0, b.numNodes() - 1);
+        NodePair best;
+        double bestD2 = std::numeric_limits<double>::infinity();
+        std::size_t steps = 0, climbs = 0;
+        while (evaluator.evaluations() < globalEvaluations_)
+        {
+            NodePair pair{na(rng), nb(rng)};
+            double d2 = evaluator.d2(pair);
+            steps += hillClimb(evaluator, pair, d2, globalEvaluations_);
+            ++climbs;
+            if (d2 < bestD2)
+            {
+                bestD2 = d2;
+                best = pair;
+            }
+        }
+        evaluator.fill(best, bestD2, result);
+        result.localSteps = steps;
+        result.iterations = climbs;
+    }
+
+    void WarmFast::patch(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, std::uint32_t warmA,
+                         std::uint32_t warmB, bool fans, DistanceResult &result) const
+    {
+        const Mesh &sa = a.surface(), &sb = b.surface();
+        auto test = [&](std::uint32_t ta, std::uint32_t tb, double &best, std::uint32_t &bestA, std::uint32_t &bestB)
+        {
+            const Triangle &fa = sa.triangles[ta], &fb = sb.triangles[tb];
+            const Eigen::Vector3d &a0 = sa.vertices[fa[0]], &a1 = sa.vertices[fa[1]], &a2 = sa.vertices[fa[2]];
+            const Eigen::Vector3d b0 = X_AB * sb.vertices[fb[0]], b1 = X_AB * sb.vertices[fb[1]],
+                                  b2 = X_AB * sb.vertices[fb[2]];
+            // Exact pruning: the gap between the triangles' centroid spheres is a lower bound on their distance.
+            const Eigen::Vector3d ca = (a0 + a1 + a2) / 3.0, cb = (b0 + b1 + b2) / 3.0;
+            const double ra = std::sqrt(std::max({(a0 - ca).squaredNorm(), (a1 - ca).squaredNorm(), (a2 - ca).squaredNorm()}));
+            const double rb = std::sqrt(std::max({(b0 - cb).squaredNorm(), (b1 - cb).squaredNorm(), (b2 - cb).squaredNorm()}));
+            if ((ca - cb).norm() - ra - rb >= best)
+                return;
+            // And the plane bound: when one triangle lies wholly on one side of the other's plane, its nearest
+            // corner's distance to that plane is a lower bound too.
+            auto planeGap = [](const Eigen::Vector3d &p0, const Eigen::Vector3d &p1, const Eigen::Vector3d &p2,
+                               const Eigen::Vector3d &q0, const Eigen::Vector3d &q1, const Eigen::Vector3d &q2)
+            {
+                const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
+                const double len = n.norm();
+                if (!(len > 0.0))
+                    return 0.0;
+                const double s0 = n.dot(q0 - p0) / len, s1 = n.dot(q1 - p0) / len, s2 = n.dot(q2 - p0) / len;
+                if (s0 > 0.0 && s1 > 0.0 && s2 > 0.0)
+                    return std::min({s0, s1, s2});
+                if (s0 < 0.0 && s1 < 0.0 && s2 < 0.0)
+                    return -std::max({s0, s1, s2});
+                return 0.0;
+            };
+            if (planeGap(a0, a1, a2, b0, b1, b2) >= best || planeGap(b0, b1, b2, a0, a1, a2) >= best)
+                return;
+            Eigen::Vector3d onA, onB;
+            const double d = triangleDistance(a0, a1, a2, b0, b1, b2, onA, onB);
+            ++result.triangleTests;
+            if (d < best)
+            {
+                best = d;
+                bestA = ta;
+                bestB = tb;
+                result.onA = onA;
+                result.onB = onB;
+            }
+        };
+        double best = result.distance;  // the node pair's own distance: the patch only improves on it
+        std::uint32_t ta = UINT32_MAX, tb = UINT32_MAX;
+        // Seeds: the last answer's triangle pair (a warm start), then, if \e fans, the triangles around the two nodes: every pair
+        // of them when there are at most 64 pairs, otherwise (large fans, as at CAD vertices) each triangle around
+        // one node against the best triangle around the other (or the first one there).
+        if (warmA != UINT32_MAX && warmA < sa.triangles.size() && warmB < sb.triangles.size())
+            test(warmA, warmB, best, ta, tb);
+        const std::uint32_t *beginA = a.beginNodeTriangles(result.nodes.a), *endA = a.endNodeTriangles(result.nodes.a);
+        const std::uint32_t *beginB = b.beginNodeTriangles(result.nodes.b), *endB = b.endNodeTriangles(result.nodes.b);
+        // When the node pair did not move, the last triangle pair and the descent suffice, unless it did not beat
+        // the node pair.
+        fans = fans || ta == UINT32_MAX;
+        if (fans && (endA - beginA) * (endB - beginB) <= 64)  // small fans: every pair
+        {
+            for (const std::uint32_t *i = beginA; i != endA; ++i)
+                for (const std::uint32_t *j = beginB; j != endB; ++j)
+                    test(*i, *j, best, ta, tb);
+        }
+        else if (fans && beginA != endA && beginB != endB)
+        {
+            const std::uint32_t fixedB = tb != UINT32_MAX ? tb : *beginB;
+            for (const std::uint32_t *i = beginA; i != endA; ++i)
+                test(*i, fixedB, best, ta, tb);
+            const std::uint32_t fixedA = ta != UINT32_MAX ? ta : *beginA;
+            for (const std::uint32_t *j = beginB; j != endB; ++j)
+                test(fixedA, *j, best, ta, tb);
+        }
+        // Descent over corner-sharing neighbours while the pair improves.
+        for (bool improved = ta != UINT32_MAX; improved;)
+        {
+            improved = false;
+            const std::uint32_t ca = ta, cb = tb;
+            for (const std::uint32_t *i = a.beginTriangleNeighbours(ca); i != a.endTriangleNeighbours(ca); ++i)
+                test(*i, cb, best, ta, tb);
+            for (const std::uint32_t *j = b.beginTriangleNeighbours(cb); j != b.endTriangleNeighbours(cb); ++j)
+                test(ca, *j, best, ta, tb);
+            improved = ta != ca || tb != cb;
+        }
+        if (ta != UINT32_MAX)
+        {
+            result.distance = best;
+            result.triangleA = ta;
+            result.triangleB = tb;
+        }
+    }
+
+    void WarmFast::solveWarm(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, WarmFastState &state,
+                             std::uint64_t seed, DistanceResult &result) const
+    {
+        const auto start = std::chrono::steady_clock::now();
+        result = DistanceResult();
+        NodePair pair;
+        double d2 = std::numeric_limits<double>::infinity();
+        std::size_t evaluations = 0, steps = 0;
+        bool runGlobal = !state.valid;
+        const bool wasValid = state.valid;
+        const NodePair previous = state.pair;
+        if (state.valid)
+        {
+            state.drift += displacement(state.X_AB, X_AB, b.radiusAboutOrigin());
+            PairEvaluator evaluator(a, b, X_AB);
+            pair = state.pair;
+            d2 = evaluator.d2(pair);
+            steps += hillClimb(evaluator, pair, d2);
+            evaluations += evaluator.evaluations();
+            const double d = std::sqrt(d2), lower = state.globalDistance - state.drift;
+            runGlobal = (globalEvery_ > 0 && state.sinceGlobal + 1 >= globalEvery_) ||
+                        (std::isfinite(gapTolerance_) && lower < (1.0 - gapTolerance_) * d);
+        }
+        std::size_t iterations = 1;
+        if (runGlobal)
+        {
+            DistanceResult g;
+            global(a, b, X_AB, seed, g);
+            evaluations += g.evaluations;
+            steps += g.localSteps;
+            iterations += g.iterations;
+            if (g.distance * g.distance < d2)
+            {
+                pair = g.nodes;
+                d2 = g.distance * g.distance;
+            }
+            state.globalDistance = std::sqrt(d2);
+            state.drift = 0.0;
+            state.sinceGlobal = 0;
+            ++state.globalSearches;
+        }
+        else
+            ++state.sinceGlobal;
+        state.valid = true;
+        state.pair = pair;
+        state.X_AB = X_AB;
+        ++state.queries;
+
+        const PairEvaluator evaluator(a, b, X_AB);
+        evaluator.fill(pair, d2, result);
+        result.evaluations = evaluations;
+        result.localSteps = steps;
+        result.iterations = iterations;
+        if (surfacePatch_)
+        {
+            // The triangles around the nodes only need a look when the node pair moved (or nothing is warm).
+            const bool fans = !wasValid || !(pair == previous) || state.triangleA == UINT32_MAX;
+            patch(a, b, X_AB, state.triangleA, state.triangleB, fans, result);
+            if (result.triangleTests > 0 && result.distance < std::sqrt(d2))
+            {
+                state.triangleA = result.triangleA;
+                state.triangleB = result.triangleB;
+            }
+        }
+        result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+
+    void WarmFast::solve(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, const DistanceRequest &request,
+                         DistanceResult &result) const
+    {
+        checkRequest(a, b, request);
+        WarmFastState state;
+        if (request.start)
+        {
+            state.valid = true;
+            state.pair = *request.start;
+            state.X_AB = X_AB;
+            // No gap test (nothing is known of the global minimum): a stateless warm query climbs only.
+            state.globalDistance = std::numeric_limits<double>::infinity();
+        }
+        solveWarm(a, b, X_AB, state, request.seed, result);
+    }
+}  // namespace meshgap
