@@ -219,7 +219,7 @@ namespace meshgap
         request.exact = mode_ == Mode::CERTIFIED;
         request.solver = fastSolver_;
         SceneResult result;
-        if (request.exact)
+        if (request.exact || fastSolver_ == "warm-fast")  // warm-fast: the paper's warm start along this thread's run
             scene_->distance(X, request, warmStartFor(id_), result);
         else
         {

@@ -20,6 +20,7 @@
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/PenetrationDepth.h"
 #include "meshgap/distance/SolverFactory.h"
+#include "meshgap/distance/WarmFast.h"
 
 namespace bg = boost::geometry;
 namespace bgi = boost::geometry::index;
@@ -358,7 +359,7 @@ namespace meshgap
         else
         {
             SceneWarmStart none;  // a node pair and no more: allocates nothing
-            fastDistance(X_WR, request, warm ? *warm : none, result);
+            fastDistance(X_WR, request, warm ? *warm : none, warm != nullptr, result);
         }
     }
 
@@ -380,6 +381,7 @@ namespace meshgap
             warm->valid = false;
             warm->pairs.clear();
             warm->pairs.resize(obstacles_.size());
+            warm->fast.clear();
             warm->scene = id_;
         }
         const bool warmValid = warm && warm->valid && warm->obstacle < obstacles_.size();
@@ -453,9 +455,19 @@ namespace meshgap
     }
 
     void Scene::fastDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
-                             SceneResult &result) const
+                             bool carried, SceneResult &result) const
     {
         const DistanceSolver &fastSolver = impl_->solver(request.solver);  // an unknown name throws, whatever the pose
+        // warm-fast follows a run of poses per obstacle (WarmFastState) when the caller carries a warm start.
+        const auto *warmFast = carried ? dynamic_cast<const WarmFast *>(&fastSolver) : nullptr;
+        if (warmFast && (warm.scene != id_ || warm.fast.size() != obstacles_.size()))
+        {
+            warm.valid = false;
+            warm.pairs.clear();
+            warm.pairs.resize(obstacles_.size());
+            warm.fast.assign(obstacles_.size(), WarmFastState());
+            warm.scene = id_;
+        }
         const bool warmValid = warm.valid && warm.obstacle < obstacles_.size();
         result.certified = false;  // a node-level answer is never proven
 
@@ -504,7 +516,10 @@ namespace meshgap
                 warm.nodes.b < robot_->numNodes())
                 pairRequest.start = warm.nodes;
             DistanceResult r;
-            fastSolver.solve(obstacle, *robot_, X_WR, pairRequest, r);
+            if (warmFast)
+                warmFast->solveWarm(obstacle, *robot_, X_WR, warm.fast[k], request.seed, r);
+            else
+                fastSolver.solve(obstacle, *robot_, X_WR, pairRequest, r);
             ++result.pairsChecked;
             result.evaluations += r.evaluations;
             if (bestK == obstacles_.size() || r.distance < best.distance)

@@ -44,7 +44,9 @@ namespace meshgap
        (specs: EXACT), with a warm start per thread (the last answer of the same thread, paper III-D); in FAST mode
        the paper's node-to-node distance from its fast solver (comb-GA-wl unless named; specs: APPROXIMATE; never
        below the exact value), seeded from the state's own coordinates and not warm-started, so it is a pure
-       function of the state, as RRT*'s and PRM*'s repeated cost comparisons need. clearance() is signed: it returns SceneResult::distance as
+       function of the state, as RRT*'s and PRM*'s repeated cost comparisons need; except "warm-fast", the
+       paper's warm start (III-D), which climbs from this thread's last answer and so depends on the thread's
+       history (still never below the exact value). clearance() is signed: it returns SceneResult::distance as
        the scene computes it, which in collision is the penetration depth as a negative number (or 0 where the scene
        computes no depth). clearance(state, validState, validStateAvailable) (specs: hasValidDirectionComputation)
        also proposes a valid state away from the nearest obstacle (validStateAway()). Thread-safe: the scene is

@@ -9,6 +9,7 @@
 #include "meshgap/ClassForward.h"
 #include "meshgap/distance/DistanceQuery.h"
 #include "meshgap/distance/ExactDistance.h"
+#include "meshgap/distance/WarmFast.h"
 #include "meshgap/mesh/Body.h"
 
 namespace meshgap
@@ -41,6 +42,7 @@ namespace meshgap
         std::size_t obstacle{0};  ///< obstacle of the last minimum
         NodePair nodes;           ///< fast mode: its node pair
         std::vector<ExactWarmStart> pairs;  ///< exact mode: one per obstacle, sized by the first exact query
+        std::vector<WarmFastState> fast;    ///< fast mode with the warm-fast solver: one per obstacle
         std::uint64_t scene{0};   ///< Scene::id() of the scene pairs belongs to
 
         /** \brief Forget the history (the next query is answered as a cold one would be) but keep the memory, so
@@ -48,6 +50,8 @@ namespace meshgap
         void reset()
         {
             valid = false;
+            for (WarmFastState &f : fast)
+                f.valid = false;
             for (ExactWarmStart &p : pairs)
             {
                 p.valid = false;
@@ -58,7 +62,8 @@ namespace meshgap
         /** \brief Bytes held, this object included (the fronts grow with the geometry, not with the queries). */
         std::size_t memoryBytes() const
         {
-            std::size_t bytes = sizeof(*this) + (pairs.capacity() - pairs.size()) * sizeof(ExactWarmStart);
+            std::size_t bytes = sizeof(*this) + (pairs.capacity() - pairs.size()) * sizeof(ExactWarmStart) +
+                                fast.capacity() * sizeof(WarmFastState);
             for (const ExactWarmStart &p : pairs)
                 bytes += p.memoryBytes();
             return bytes;
@@ -129,7 +134,8 @@ namespace meshgap
               the answer (distance, obstacle, penetration, witness points: the deepest node and its nearest surface
               point) is a pure function of the pose, whatever the warm start or the visiting order. certified (the
               verdict is proven).
-            - Fast mode: comb-GA-wl per visited obstacle (request.seed; the warm pair as the start on its obstacle),
+            - Fast mode: request.solver per visited obstacle (request.seed; the warm pair as the start on its
+              obstacle; warm-fast follows the run of poses with a WarmFastState per obstacle in the warm start),
               never certified; but the collision verdict is exact (decided first), so a colliding pose is never
               reported free, and its signed distance is the exact mode's.
             - stopBelow: the query ends once the best distance is at or below it (an upper bound then, not certified;
@@ -165,7 +171,7 @@ namespace meshgap
         void exactDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart *warm,
                            SceneResult &result) const;
         void fastDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
-                          SceneResult &result) const;
+                          bool carried, SceneResult &result) const;
 
         BodyConstPtr robot_;
         std::vector<BodyConstPtr> obstacles_;
