@@ -4,6 +4,7 @@
 //   meshgap_plan --cfg problem.cfg [--planner rrtconnect] [--time 10] [--objective NAME [--weight W]]
 //                [--mode certified|fast] [--motion discrete|clearance] [--seed N] [--out solution.path]
 //                [--clearance-csv clearance.csv] [--summary summary.txt] [--export-glb scene.glb [--export-states N]]
+//                [--optimize clearance [--optimize-time S]]
 //
 // While it plans, one progress line a second goes to stderr (elapsed time, validity checks, the planner's best cost
 // when it reports one). Then it prints a summary (solved, exact or approximate, planning time, path length, cost,
@@ -12,7 +13,8 @@
 // read, the exact clearance along the dense path as CSV, and the scene (world, the robot at N states along the path,
 // the closest-point segment at each) as a glTF 2.0 binary file for any 3D viewer. Exit status: 0 exact solution,
 // 2 approximate or none, 1 bad input (including a start or goal in collision: the message says which, the obstacle
-// and the distance).
+// and the distance). --optimize clearance runs the ClearancePathOptimizer on the planner's path before any of this
+// (the summary gives its minimum clearance and length before and after; everything else is of the optimised path).
 
 #include <boost/program_options.hpp>
 #include <chrono>
@@ -30,6 +32,7 @@
 #include <thread>
 
 #include "CliMain.h"
+#include "OptimizeOption.h"
 #include "meshgap/Exception.h"
 #include "meshgap/mesh/SceneExport.h"
 #include "meshgap/ompl/ClearanceMotionValidator.h"
@@ -184,8 +187,8 @@ namespace
     int run(int argc, char **argv)
     {
         std::string cfg, planner = "rrtconnect", objective, mode = "certified", motion = "discrete", out, csv, summaryFile,
-                    glb;
-        double time = 10.0, weight = 0.0;
+                    glb, optimize;
+        double time = 10.0, weight = 0.0, optimizeTime = 5.0;
         std::vector<std::string> params;
         unsigned dense = 4, exportStates = 8;
         std::uint32_t seed = 1;
@@ -214,6 +217,10 @@ namespace
             "write the scene as glTF 2.0 binary (.glb): the world, the robot at --export-states states evenly spaced "
             "along the dense path (start and goal without a path) and the exact closest-point segment at each")(
             "export-states", po::value(&exportStates), "robot states in the --export-glb file (default 8)")(
+            "optimize", po::value(&optimize),
+            "after planning, optimise the path: clearance (raise its minimum clearance up the exact gradient, every "
+            "motion certified; needs --mode certified)")(
+            "optimize-time", po::value(&optimizeTime), "time limit of --optimize in seconds (default 5)")(
             "quiet,q", "print warnings and errors only (no OMPL messages, no progress)");
         po::variables_map vm;
         po::store(po::parse_command_line(argc, argv, options), vm);
@@ -240,6 +247,7 @@ namespace
             throw Exception("--dense", "must be at least 1");
         if (exportStates < 1)
             throw Exception("--export-states", "must be at least 1");
+        cli::checkOptimizeOptions(optimize, vm.count("optimize-time") > 0, optimizeTime, mode);
         if (vm.count("weight") && !(weight > 0.0 && std::isfinite(weight)))
             throw Exception("--weight", "must be positive and finite");
         ompl::RNG::setSeed(seed);
@@ -296,6 +304,8 @@ namespace
         line("solved", !havePath ? "no" : exact ? "yes (exact)" : "approximate");
         line("exact solution", exact ? "yes" : "no");
         line("planning time", std::to_string(problem.setup->getLastPlanComputationTime()) + " s");
+        if (havePath && !optimize.empty())
+            summary << cli::optimizeSolution(*problem.setup, problem.checker, optimizeTime, seed);
         std::unique_ptr<DenseClearance> d;
         if (havePath)
         {

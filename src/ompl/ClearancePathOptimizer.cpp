@@ -351,7 +351,9 @@ namespace meshgap
         }
 
         std::vector<std::size_t> order;
-        while (!ptc() && stats_.rounds < maxRounds_ && currentMin() < target_)
+        // The path's minimum can never exceed its ends' clearance: once the bound is there, only time is left to spend.
+        const double ceiling = (1.0 - relative) * std::min(w.c.front(), w.c.back()) - tolerance;
+        while (!ptc() && stats_.rounds < maxRounds_ && currentMin() < target_ && currentMin() < ceiling)
         {
             ++stats_.rounds;
             bool changed = false;
