@@ -98,7 +98,7 @@ TEST(ClearancePathOptimizer, NeverLessClearAndEveryAcceptedMotionIsFree)
         og::PathGeometric path = p.setup->getSolutionPath();
 
         ClearancePathOptimizer optimizer(si, p.checker);
-        optimizer.setMaxRounds(15);
+        optimizer.setMaxRounds(6);
         optimizer.setTimeLimit(60.0);  // the rounds end it: repeatable
         optimizer.setSeed(static_cast<unsigned long>(seed));
         int accepted = 0;
