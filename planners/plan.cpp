@@ -4,7 +4,7 @@
 //   meshgap_plan --cfg problem.cfg [--planner rrtconnect] [--time 10] [--objective NAME [--weight W]]
 //                [--mode certified|fast] [--motion discrete|clearance] [--seed N] [--out solution.path]
 //                [--clearance-csv clearance.csv] [--summary summary.txt] [--export-glb scene.glb [--export-states N]]
-//                [--optimize clearance [--optimize-time S]]
+//                [--optimize clearance [--optimize-time S]] [--sampler NAME]
 //
 // While it plans, one progress line a second goes to stderr (elapsed time, validity checks, the planner's best cost
 // when it reports one). Then it prints a summary (solved, exact or approximate, planning time, path length, cost,
@@ -39,6 +39,7 @@
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/ProblemSetup.h"
+#include "meshgap/ompl/SamplerFactory.h"
 
 namespace po = boost::program_options;
 namespace ob = ompl::base;
@@ -187,7 +188,7 @@ namespace
     int run(int argc, char **argv)
     {
         std::string cfg, planner = "rrtconnect", objective, mode = "certified", motion = "discrete", out, csv, summaryFile,
-                    glb, optimize;
+                    glb, optimize, sampler;
         double time = 10.0, weight = 0.0, optimizeTime = 5.0;
         std::vector<std::string> params;
         unsigned dense = 4, exportStates = 8;
@@ -221,6 +222,9 @@ namespace
             "after planning, optimise the path: clearance (raise its minimum clearance up the exact gradient, every "
             "motion certified; needs --mode certified)")(
             "optimize-time", po::value(&optimizeTime), "time limit of --optimize in seconds (default 5)")(
+            "sampler", po::value(&sampler),
+            ("valid-state sampler of planners that use one (PRM, EST, ...; default: the cfg's sampler, else "
+             "uniform): " + joined(validStateSamplerNames())).c_str())(
             "quiet,q", "print warnings and errors only (no OMPL messages, no progress)");
         po::variables_map vm;
         po::store(po::parse_command_line(argc, argv, options), vm);
@@ -263,6 +267,8 @@ namespace
                                                                          ClearanceChecker::Mode::FAST,
                                            objective, BodyOptions(), objectiveOptions);
         const ob::SpaceInformationPtr si = problem.setup->getSpaceInformation();
+        if (!sampler.empty())
+            setValidStateSampler(*si, sampler, "--sampler");
         std::shared_ptr<ClearanceMotionValidator> cmv;
         if (motion == "clearance")
             si->setMotionValidator(cmv = std::make_shared<ClearanceMotionValidator>(si, problem.checker));
