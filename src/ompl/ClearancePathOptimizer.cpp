@@ -127,7 +127,9 @@ namespace meshgap
             tolerance = defaultTolerance(c);
         double best = c[0];
         for (std::size_t i = 0; i + 1 < n; ++i)
-            best = std::min(best, motionBound(path.getState(i), path.getState(i + 1), c[i], c[i + 1], tolerance).best);
+            best = std::min(best, motionBound(path.getState(i), path.getState(i + 1), c[i], c[i + 1], tolerance,
+                                              kMeasureRelativeTolerance)
+                                      .best);
         return best;
     }
 
@@ -183,6 +185,8 @@ namespace meshgap
         for (std::size_t i = 0; i < n0; ++i)
             w.c[i] = checker_->clearance(w.states[i]);
         const double tolerance = tolerance_ > 0.0 ? tolerance_ : defaultTolerance(w.c);
+        // The input measured now (before the clock matters), the output at the end, the same way.
+        const double inputMeasure = minClearance(input, tolerance);
         // While optimising, a motion's bound need only be as tight as a fraction of its own clearance: a motion far
         // above the path's minimum is not worth many queries. The bounds kept (m) are certified lower bounds.
         const double relative = 0.02;
@@ -407,8 +411,9 @@ namespace meshgap
         stats_.lowerBoundAfter = currentMin();
 
         // Measured again from scratch, the same way as the input: never hand back a less clear path.
-        const double after = minClearance(path, tolerance);
-        const double inputAgain = minClearance(input, tolerance);
+        const bool changed = stats_.moves + stats_.inserted + stats_.removed > 0;
+        const double after = changed ? minClearance(path, tolerance) : inputMeasure;
+        const double inputAgain = inputMeasure;
         if (after < inputAgain)
         {
             path = input;

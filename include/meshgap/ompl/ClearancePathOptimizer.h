@@ -23,17 +23,20 @@ namespace meshgap
        single motion is no less clear (redundant states, random shortcuts). Every change it accepts keeps every
        motion of the path accepted by the certified ClearanceMotionValidator (conservative advancement on exact
        clearance: the path is collision-free everywhere, not only at samples), keeps the path within its length
-       cap, and does not lower the clearance of the stretch it replaces: a change is accepted only if the minimum
-       over the motions it creates is at least the minimum over the motions it removes (and, for a moved state, its
-       own clearance rises). So the path's minimum clearance never falls; at the end it is measured again from
-       scratch with minClearance() and, should it be below the input's measured the same way (roundoff of
-       warm-started queries), the input is returned unchanged.
+       cap, and does not lower the clearance of the stretch it replaces. For that it keeps, for each motion, a
+       certified lower bound on its clearance, by Lipschitz branch and bound along the motion (clearance is
+       1-Lipschitz in the robot's displacement and sweepBound() bounds the displacement, so an interval of the
+       motion whose ends have clearances ca, cb is no less clear than (ca + cb - sweep * length) / 2; the most
+       promising interval is halved until the bound is within 2% of the least clear sample, or a sample falls below
+       what the change must keep): a change is accepted only if the bounds of the motions it creates are at least
+       the smallest bound of the motions it removes (and, for a moved state, its own clearance rises). So the
+       path's certified lower bound never falls. At the end the path is measured again from scratch with
+       minClearance(), and if it is below the input's measured the same way (at the start), the input is
+       returned unchanged: the result is never less clear than the input by that measure.
 
-       minClearance() is the measure: the minimum over the path's motions of each motion's minimum clearance,
-       found by Lipschitz branch and bound along the motion (clearance is 1-Lipschitz in the robot's displacement
-       and sweepBound() bounds the displacement, so halving the most promising interval until no interval's lower
-       bound is more than the tolerance below the best sample finds the minimum to within the tolerance; it is
-       the best sample, an upper estimate, and the true minimum is at least it minus the tolerance).
+       minClearance() is the measure: the minimum over the path's motions of each motion's least clear sample,
+       the same branch and bound run until no interval's bound is more than max(tolerance, 1e-3 * the sample)
+       below it: an upper estimate of the true minimum, which is at least it minus that tolerance.
 
        Parameters (OMPL ParamSet, params(); setters alike): time_limit (s, default 5), target_clearance (stop once
        the minimum reaches it; default infinity), max_length_factor (the path may grow to this times its input
@@ -70,8 +73,8 @@ namespace meshgap
         /** \brief Optimise \e path in place until \e ptc (or max_rounds, target_clearance, convergence). */
         bool optimize(ompl::geometric::PathGeometric &path, const ompl::base::PlannerTerminationCondition &ptc);
 
-        /** \brief The measure optimize() never lowers (see the class description), with \e tolerance (0: the
-            default rule applied to this path). */
+        /** \brief The measure optimize() never lowers (see the class description): each motion's minimum to within
+            the larger of \e tolerance (0: the default rule applied to this path) and 1e-3 of that minimum. */
         double minClearance(const ompl::geometric::PathGeometric &path, double tolerance = 0.0) const;
 
         const Stats &lastStats() const { return stats_; }
@@ -112,6 +115,9 @@ namespace meshgap
             bool refuted{false};  ///< a sample below refuteBelow was found (the search stopped there)
         };
         static constexpr unsigned kMaxSamplesPerMotion = 4000;
+        /** \brief minClearance()'s relative tolerance: a motion's minimum is found to within the larger of the
+            tolerance and this fraction of it. */
+        static constexpr double kMeasureRelativeTolerance = 1e-3;
         /** \brief The minimum clearance along s1 -> s2 (clearances \e c1, \e c2 at the ends) by Lipschitz branch
             and bound, until best - lower <= max(tolerance, relative * best), or a sample below \e refuteBelow. */
         MotionBound motionBound(const ompl::base::State *s1, const ompl::base::State *s2, double c1, double c2,
