@@ -188,24 +188,73 @@ namespace meshgap
                 }
             }
         }
-        out.activePairs = k;
         out.hasDirection = true;
 
-        Vector6 result = g[0];
-        if (k > 1)
+        // Minimum norm in the metric |g_t|^2 + |g_w|^2 / L^2: scale the rotation part by 1 / L, solve, scale back.
+        const double L = radius > 0.0 ? radius : 1.0;
+        Vector6 scale = Vector6::Ones();
+        if (planar)
+            scale(2) = 1.0 / L;
+        else
+            scale.tail<3>().setConstant(1.0 / L);
+        auto combine = [&]
         {
-            // Minimum norm in the metric |g_t|^2 + |g_w|^2 / L^2: scale the rotation part by 1 / L, solve, scale back.
-            const double L = radius > 0.0 ? radius : 1.0;
-            Vector6 scale = Vector6::Ones();
-            if (planar)
-                scale(2) = 1.0 / L;
-            else
-                scale.tail<3>().setConstant(1.0 / L);
+            if (k == 1)
+                return g[0];
             Vector6 h[kMaxPairs];
             for (unsigned i = 0; i < k; ++i)
                 h[i] = g[i].cwiseProduct(scale);
-            result = minNormPoint(h, k, dim).cwiseQuotient(scale);
+            return Vector6(minNormPoint(h, k, dim).cwiseQuotient(scale));
+        };
+        Vector6 result = combine();
+
+        // Probes for ties the per-obstacle test cannot see (two closest pairs on one obstacle): a step of length
+        // probeStep along the ascent direction should raise the clearance by about probeStep * ||g||; if it raises
+        // it by less than half that, the pair met there is a nearly active one: its gradient joins the bundle.
+        if (!r.inCollision && options.probes > 0)
+        {
+            const double h = options.probeStep > 0.0 ? options.probeStep : 0.05 * r.distance;
+            SceneWarmStart warm;
+            SceneRequest request;
+            for (unsigned probe = 0; probe < options.probes && k < kMaxPairs; ++probe)
+            {
+                const Vector6 scaled = result.cwiseProduct(scale);
+                const double norm = scaled.head(dim).norm();  // ||g||
+                if (!(norm > 1e-9))
+                    break;
+                // The step v = alpha M^-1 g with alpha = h / ||g||: it moves no robot point much further than h.
+                const double alpha = h / norm;
+                Eigen::Isometry3d Y = X;
+                if (planar)
+                {
+                    Y.translation() += alpha * Eigen::Vector3d(result(0), result(1), 0.0);
+                    Y.linear() =
+                        Eigen::AngleAxisd(alpha * result(2) / (L * L), Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                        X.linear();
+                }
+                else
+                {
+                    Y.translation() += alpha * result.head<3>();
+                    const Eigen::Vector3d w = alpha * result.tail<3>() / (L * L);
+                    if (w.norm() > 0.0)
+                        Y.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix() * X.linear();
+                }
+                SceneResult q;
+                scene.distance(Y, request, warm, q);
+                if (q.inCollision || !std::isfinite(q.distance))
+                    break;
+                if (q.distance >= r.distance + 0.5 * alpha * norm * norm)
+                    break;  // the direction raises the clearance as predicted: no hidden pair in the way
+                const Eigen::Vector3d d = q.onRobot - q.onObstacle;
+                if (d.norm() <= tiny)
+                    break;
+                g[k] = pairGradient(planar, Y.translation(), q.onRobot, d.normalized());
+                distances[k++] = q.distance;
+                ++out.probedPairs;
+                result = combine();
+            }
         }
+        out.activePairs = k;
         for (unsigned i = 0; i < dim; ++i)
             gradient[i] = result(i);
         return r.distance;

@@ -84,7 +84,8 @@ namespace meshgap
         for (unsigned samples = 0; !open.empty() && samples < kMaxSamplesPerMotion; ++samples)
         {
             const Interval iv = open.top();
-            if (iv.bound >= r.best - std::max(tolerance, relative * r.best))
+            // Tight enough, and (when a floor is given) the floor proven: every interval bounded at or above it.
+            if (iv.bound >= std::max(r.best - std::max(tolerance, relative * r.best), refuteBelow))
                 break;
             open.pop();
             const double mid = 0.5 * (iv.a + iv.b);
@@ -239,17 +240,17 @@ namespace meshgap
             ob::State *s = si_->allocState();
             space.interpolate(w.states[i], w.states[i + 1], fraction, s);
             const double cs = checker_->clearance(s);
-            const double floor = w.m[i];
-            MotionBound ra, rb;
-            const bool ok =
-                cs > 0.0 && (ra = motionBound(w.states[i], s, w.c[i], cs, tolerance, relative, floor)).lower >= floor &&
-                (rb = motionBound(s, w.states[i + 1], cs, w.c[i + 1], tolerance, relative, floor)).lower >= floor &&
-                validator_->checkMotion(w.states[i], s) && validator_->checkMotion(s, w.states[i + 1]);
-            if (!ok)
+            if (!(cs > 0.0) || !validator_->checkMotion(w.states[i], s) || !validator_->checkMotion(s, w.states[i + 1]))
             {
                 si_->freeState(s);
                 return false;
             }
+            // The halves trace the same curve as the whole (OMPL's interpolation along a geodesic), so the whole's
+            // certified bound holds for both; their own bounds can only tighten it.
+            MotionBound ra = motionBound(w.states[i], s, w.c[i], cs, tolerance, relative);
+            MotionBound rb = motionBound(s, w.states[i + 1], cs, w.c[i + 1], tolerance, relative);
+            ra.lower = std::max(ra.lower, w.m[i]);
+            rb.lower = std::max(rb.lower, w.m[i]);
             report(w.states[i], s);
             report(s, w.states[i + 1]);
             insertAt(i, s, cs, std::max(0.5 * cs, 1e-3 * L), ra, rb);
@@ -269,6 +270,7 @@ namespace meshgap
             ob::State *prev = w.states[i - 1], *next = w.states[i + 1];
             ClearanceGradientOptions options;
             options.tieTolerance = 0.05 * std::max(w.c[i], 0.0) + 1e-9 * (1.0 + L);
+            options.probes = 3;
             ClearanceGradientInfo info;
             clearanceGradient(*checker_, w.states[i], gradient, options, &info);
             double g2 = 0.0;
@@ -281,7 +283,7 @@ namespace meshgap
             const double oldSegments = si_->distance(prev, w.states[i]) + si_->distance(w.states[i], next);
             // alpha is the step's length scale; normalise so the first trial moves about alpha.
             double alpha = w.alpha[i] / std::sqrt(g2);
-            for (int trial = 0; trial < 6; ++trial, alpha *= 0.5)
+            for (int trial = 0; trial < 6 && !ptc(); ++trial, alpha *= 0.5)
             {
                 ascentStep(gradient, L, alpha, step);
                 applyTangentStep(space, w.states[i], step.data(), candidate);

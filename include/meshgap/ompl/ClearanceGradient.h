@@ -15,6 +15,14 @@ namespace meshgap
             i.e. ties up to roundoff. A larger tolerance gives an epsilon-subgradient: a direction that also respects
             pairs nearly as close, which a line search along it appreciates. */
         double tieTolerance{-1.0};
+        /** \brief Probes for near-ties within one obstacle (0, the default: none). A free state's ascent direction
+            g is tried with a step that moves the robot by about probeStep; if the clearance there rises by less than
+            half the first-order prediction, the closest pair found there joins the tied ones (its gradient, taken at
+            the probe) and the minimum-norm element is formed again; up to this many probes. The result is then an
+            estimate of the Goldstein epsilon-subgradient (epsilon = probeStep), as gradient sampling methods use. */
+        unsigned probes{0};
+        /** \brief Length of a probe's step; 0 (the default): 5% of the clearance. */
+        double probeStep{0.0};
     };
 
     /** \brief What clearanceGradient() found besides the gradient. */
@@ -27,6 +35,8 @@ namespace meshgap
         bool hasDirection{false};
         /** \brief Pairs combined: 1 where the clearance is smooth (one closest pair), more at a tie. */
         unsigned activePairs{0};
+        /** \brief Of those, pairs found by probes (ClearanceGradientOptions::probes). */
+        unsigned probedPairs{0};
     };
 
     /** \brief Coordinates of the gradient and of the steps applyTangentStep() takes: 6 for SE(3) (translation
@@ -65,8 +75,9 @@ namespace meshgap
          every subset's affine minimum. Its ascent step v = M^-1 g* (ascentStep(): translation g*_t, rotation
          g*_w / L^2) raises every tied pair's distance at rate >= ||g*||^2, and g* = 0 exactly when no step does
          (a local maximum of the clearance, e.g. a robot centred between two equal walls). Two closest pairs on
-         the same obstacle (a single BVH answer) are not detected: there the canonical pair the exact query
-         returns gives the gradient.
+         the same obstacle (a single BVH answer) are not detected by that test: there the canonical pair the exact
+         query returns gives the gradient, unless probes are asked for (ClearanceGradientOptions::probes): steps
+         along the ascent direction that meet another pair add it to the hull.
        Returns the signed clearance (as clearance()); \e gradient is resized to tangentDimension(). Thread-safe.
        Needs a checker in CERTIFIED mode (FAST mode's node pairs are not the closest points): throws otherwise.
     */
