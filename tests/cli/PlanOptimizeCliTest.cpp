@@ -35,6 +35,7 @@ TEST(PlanOptimizeCli, BadOptionsGiveOneErrorAndExitOne)
         {"--optimize clearance --optimize-time -1", "positive"},
         {"--optimize clearance --optimize-time nan", "positive"},
         {"--optimize clearance --mode fast", "--mode certified"},
+        {"--sampler bogus", "narrow_passage"},
     };
     for (const auto &[args, mention] : cases)
     {
