@@ -127,7 +127,8 @@ namespace
     {
         const OmplProblem problem = setupProblem(readProblemConfig(cfg.string()), ClearanceChecker::Mode::CERTIFIED);
         const Checked checked = checkGradients(*problem.checker, samples, 7, cfg.filename().string());
-        std::printf("%s: %d free, %d colliding, %d non-smooth\n", cfg.filename().string().c_str(), checked.free, checked.colliding, checked.nonSmooth);
+        std::printf("%s: %d free, %d colliding, %d non-smooth\n", cfg.filename().string().c_str(), checked.free,
+                    checked.colliding, checked.nonSmooth);
         EXPECT_GE(checked.free, samples / 2) << cfg;
         EXPECT_GE(checked.colliding, minColliding) << cfg;
         EXPECT_LE(checked.nonSmooth, checked.free + checked.colliding) << cfg << ": mostly non-smooth samples";
@@ -324,4 +325,43 @@ TEST(ClearanceGradient, RefusesFastModeAndOtherSpaces)
     std::vector<double> g;
     EXPECT_THROW(clearanceGradient(*fast, s.get(), g), Exception);
     EXPECT_THROW(tangentDimension(ob::RealVectorStateSpace(3)), Exception);
+}
+
+TEST(ClearanceGradient, ProbesFindATieWithinOneObstacle)
+{
+    // The two equal walls (faces at x = -1 and x = 1) as ONE obstacle: the per-obstacle tie test cannot see the
+    // second pair, the exact query returns one of the two; a probe along its ascent direction meets the other wall.
+    auto space = std::make_shared<ob::SE3StateSpace>();
+    ob::RealVectorBounds bounds(3);
+    bounds.setLow(-4);
+    bounds.setHigh(4);
+    space->setBounds(bounds);
+    const Mesh walls = test::merged(test::transformed(test::box(0.5, 2.0, 2.0, 1), test::translation(-1.5, 0, 0)),
+                                    test::transformed(test::box(0.5, 2.0, 2.0, 1), test::translation(1.5, 0, 0)));
+    auto si = std::make_shared<ob::SpaceInformation>(space);
+    auto checker = std::make_shared<ClearanceChecker>(
+        si, std::make_shared<Scene>(test::unrefinedBody(octahedron(0.5)),
+                                    std::vector<BodyConstPtr>{test::unrefinedBody(walls)}));
+    si->setStateValidityChecker(checker);
+    si->setup();
+    ob::ScopedState<ob::SE3StateSpace> s(space);
+    s->setXYZ(0.01, 0, 0);  // 0.49 from the right wall, 0.51 from the left: no exact tie
+    s->rotation().setIdentity();
+    std::vector<double> g;
+    ClearanceGradientInfo info;
+    ClearanceGradientOptions options;
+    EXPECT_NEAR(clearanceGradient(*checker, s.get(), g, options, &info), 0.49, 1e-12);
+    EXPECT_EQ(info.activePairs, 1u);
+    EXPECT_NEAR(g[0], -1.0, 1e-12);  // away from the right wall, into the left one's reach
+    options.probes = 3;
+    options.probeStep = 0.1;
+    clearanceGradient(*checker, s.get(), g, options, &info);
+    EXPECT_EQ(info.activePairs, 2u);
+    EXPECT_EQ(info.probedPairs, 1u);
+    EXPECT_NEAR(g[0], 0.0, 1e-9);  // the minimum-norm element of (-1, 0, 0) and (1, 0, 0)
+    // A probe step too short to bring the left wall nearer than the right one: no pair found.
+    options.probeStep = 0.005;
+    clearanceGradient(*checker, s.get(), g, options, &info);
+    EXPECT_EQ(info.activePairs, 1u);
+    EXPECT_NEAR(g[0], -1.0, 1e-12);
 }
