@@ -386,7 +386,8 @@ namespace
         const std::vector<std::string> samplers =
             samplerList.empty() ? std::vector<std::string>{""} : splitList(samplerList);
         for (const std::string &s : samplers)
-            validStateSamplerAllocator(s, "--samplers");  // throws for an unknown name, listing the valid ones
+            if (!samplerList.empty())
+                validStateSamplerAllocator(s, "--samplers");  // throws for an unknown name, listing the valid ones
         if (samplers.empty() || std::set<std::string>(samplers.begin(), samplers.end()).size() != samplers.size())
             throw Exception("--samplers", "'" + samplerList + "' names no sampler, or one twice");
         std::vector<std::pair<std::string, std::string>> setups;  // (checker, sampler)
