@@ -83,6 +83,12 @@ namespace meshgap
         // or at the sample cap (the bound is still certified, only looser).
         for (unsigned samples = 0; !open.empty() && samples < kMaxSamplesPerMotion; ++samples)
         {
+            // Out of time while optimising: give up on this motion (a refuted bound rejects the change).
+            if (ptc_ != nullptr && samples % 16 == 15 && (*ptc_)())
+            {
+                r.refuted = true;
+                break;
+            }
             const Interval iv = open.top();
             // Tight enough, and (when a floor is given) the floor proven: every interval bounded at or above it.
             if (iv.bound >= std::max(r.best - std::max(tolerance, relative * r.best), refuteBelow))
@@ -181,6 +187,11 @@ namespace meshgap
         const ob::StateSpace &space = *si_->getStateSpace();
         const double L = checker_->scene().robot().radiusAboutOrigin();
         const og::PathGeometric input(path);
+        struct ClearPtc  // ptc_ is set only while the optimisation loop runs (never while measuring)
+        {
+            const ob::PlannerTerminationCondition *&ptc;
+            ~ClearPtc() { ptc = nullptr; }
+        } clearPtc{ptc_};
         Work w(path.getStates());
         w.c.resize(n0);
         for (std::size_t i = 0; i < n0; ++i)
@@ -345,7 +356,12 @@ namespace meshgap
             return true;
         };
 
+        ptc_ = &ptc;
+        // The path's minimum can never exceed its ends' clearance: once the bound is there, nothing is left to gain.
+        const double ceiling = (1.0 - relative) * std::min(w.c.front(), w.c.back()) - tolerance;
+        auto done = [&] { return ptc() || currentMin() >= target_ || currentMin() >= ceiling; };
         // First give the path room to bend: split long motions (sweep above 1/32 of the whole) at their middle.
+        if (!done())
         {
             double total = 0.0;
             for (std::size_t i = 0; i + 1 < w.states.size(); ++i)
@@ -357,9 +373,7 @@ namespace meshgap
         }
 
         std::vector<std::size_t> order;
-        // The path's minimum can never exceed its ends' clearance: once the bound is there, only time is left to spend.
-        const double ceiling = (1.0 - relative) * std::min(w.c.front(), w.c.back()) - tolerance;
-        while (!ptc() && stats_.rounds < maxRounds_ && currentMin() < target_ && currentMin() < ceiling)
+        while (!done() && stats_.rounds < maxRounds_)
         {
             ++stats_.rounds;
             bool changed = false;
@@ -409,6 +423,7 @@ namespace meshgap
             if (!changed)
                 break;
         }
+        ptc_ = nullptr;
         si_->freeState(candidate);
         stats_.lowerBoundAfter = currentMin();
 

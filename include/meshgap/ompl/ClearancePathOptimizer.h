@@ -133,6 +133,9 @@ namespace meshgap
         ompl::base::ParamSet params_;
         std::function<void(const ompl::base::State *, const ompl::base::State *)> onMotion_;
         Stats stats_;
+        /** \brief The termination condition while optimize() changes the path (motionBound() gives up when it
+            fires), else null. */
+        const ompl::base::PlannerTerminationCondition *ptc_{nullptr};
 
         double timeLimit_{5.0};
         double target_{std::numeric_limits<double>::infinity()};
