@@ -30,19 +30,20 @@ namespace meshgap
             return g;
         }
 
-        /** \brief The minimum-norm point of the convex hull of \e h[0..k) (Euclidean, dimension \e dim), exactly:
+        /** \brief The minimum-norm point of the convex hull of \e h[0..k) (Euclidean; an SE(2) gradient has zeros
+            past its 3 coordinates, which change no norm), exactly:
             the best feasible affine minimum over every subset (k <= kMaxPairs, so at most 255 small systems). */
-        Vector6 minNormPoint(const Vector6 *h, unsigned k, unsigned dim)
+        Vector6 minNormPoint(const Vector6 *h, unsigned k)
         {
             using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxPairs + 1, kMaxPairs + 1>;
             using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxPairs + 1, 1>;
             Vector6 best = h[0];
-            double bestNorm = h[0].head(dim).squaredNorm();
+            double bestNorm = h[0].squaredNorm();
             for (unsigned i = 1; i < k; ++i)
-                if (h[i].head(dim).squaredNorm() < bestNorm)
+                if (h[i].squaredNorm() < bestNorm)
                 {
                     best = h[i];
-                    bestNorm = h[i].head(dim).squaredNorm();
+                    bestNorm = h[i].squaredNorm();
                 }
             for (unsigned mask = 1; mask < (1u << k); ++mask)
             {
@@ -58,7 +59,7 @@ namespace meshgap
                 for (unsigned i = 0; i < m; ++i)
                 {
                     for (unsigned j = 0; j < m; ++j)
-                        A(i, j) = h[idx[i]].head(dim).dot(h[idx[j]].head(dim));
+                        A(i, j) = h[idx[i]].dot(h[idx[j]]);
                     A(i, m) = 1.0;
                     A(m, i) = 1.0;
                     b(i) = 0.0;
@@ -75,10 +76,10 @@ namespace meshgap
                     feasible = feasible && x(i) >= -1e-12;
                     point += x(i) * h[idx[i]];
                 }
-                if (feasible && point.head(dim).squaredNorm() < bestNorm)
+                if (feasible && point.squaredNorm() < bestNorm)
                 {
                     best = point;
-                    bestNorm = point.head(dim).squaredNorm();
+                    bestNorm = point.squaredNorm();
                 }
             }
             return best;
@@ -204,7 +205,7 @@ namespace meshgap
             Vector6 h[kMaxPairs];
             for (unsigned i = 0; i < k; ++i)
                 h[i] = g[i].cwiseProduct(scale);
-            return Vector6(minNormPoint(h, k, dim).cwiseQuotient(scale));
+            return Vector6(minNormPoint(h, k).cwiseQuotient(scale));
         };
         Vector6 result = combine();
 
@@ -219,7 +220,7 @@ namespace meshgap
             for (unsigned probe = 0; probe < options.probes && k < kMaxPairs; ++probe)
             {
                 const Vector6 scaled = result.cwiseProduct(scale);
-                const double norm = scaled.head(dim).norm();  // ||g||
+                const double norm = scaled.norm();  // ||g||
                 if (!(norm > 1e-9))
                     break;
                 // The step v = alpha M^-1 g with alpha = h / ||g||: it moves no robot point much further than h.
