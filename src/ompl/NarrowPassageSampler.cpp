@@ -29,27 +29,39 @@ namespace meshgap
         si_->freeState(work_);
     }
 
-    bool NarrowPassageSampler::accept(ompl::base::State *state)
+    bool NarrowPassageSampler::accept(ompl::base::State *state, bool local)
     {
         if (!checker_)
             return si_->isValid(state);
-        const SceneResult r = checker_->query(state);
-        double clearance = r.distance;
-        if (r.inCollision)
+        const double narrow = narrowClearance_ > 0.0 ? narrowClearance_ : checker_->scene().robot().radiusAboutOrigin();
+        double clearance;
+        if (checker_->isValid(state))  // exact collision test first: a few microseconds, no distance
         {
+            // A tree planner's local sample, or one of the free states kept anyway: free is enough.
+            if (local || rng_.uniform01() < freeProbability_)
+                return true;
+            // Otherwise kept only in a thin free space: near an obstacle (a bounded query, cheap far from all)...
+            clearance = checker_->clearanceBelow(state, narrow);
+            if (!(clearance < narrow))
+                return false;
+        }
+        else
+        {
+            if (!si_->satisfiesBounds(state))
+                return false;
             // Out along the penetration direction (validStateAway() returns only a valid state).
+            const SceneResult r = checker_->query(state);
             if (!checker_->validStateAway(state, r, work_))
                 return false;
             si_->copyState(state, work_);
-            clearance = checker_->clearance(state);
+            if (local)
+                return true;  // pushed out of the obstacle, and kept near where it was asked for
+            clearance = checker_->clearanceBelow(state, narrow);
+            if (!(clearance < narrow))
+                return rng_.uniform01() < freeProbability_;
         }
-        else if (!si_->satisfiesBounds(state))
-            return false;
-        const double narrow = narrowClearance_ > 0.0 ? narrowClearance_ : checker_->scene().robot().radiusAboutOrigin();
-        if (clearance < narrow)
-            clearance = centre(state, clearance);  // to the middle of the free space around it
-        // Still close to obstacles in the middle: a narrow passage, kept; elsewhere kept only now and then.
-        return clearance < narrow || rng_.uniform01() < freeProbability_;
+        // ... and still near one in the middle of the free space around it: a narrow passage.
+        return centre(state, clearance) < narrow;
     }
 
     double NarrowPassageSampler::centre(ompl::base::State *state, double clearance)
@@ -96,7 +108,7 @@ namespace meshgap
         for (unsigned attempt = 0; attempt < attempts_; ++attempt)
         {
             sampler_->sampleUniform(state);
-            if (accept(state))
+            if (accept(state, false))
                 return true;
         }
         return false;
@@ -107,7 +119,7 @@ namespace meshgap
         for (unsigned attempt = 0; attempt < attempts_; ++attempt)
         {
             sampler_->sampleUniformNear(state, near, distance);
-            if (accept(state))
+            if (accept(state, true))
                 return true;
         }
         return false;

@@ -22,11 +22,14 @@ namespace meshgap
        other state is kept with probability free_probability (default 0.2), else drawn again, so open space is not
        over-sampled. Colliding samples are common exactly where the free space is thin, so the states it returns
        crowd into passages and sit in their middle: OMPL's obstacle-based sampler and its maximize-clearance
-       sampler combined, with the push and the centring exact. Gives up (returns false) after OMPL's attempts count.
-       Needs the space's validity checker to be a meshgap ClearanceChecker in CERTIFIED mode (looked up at
-       construction): with another checker it samples uniformly and rejects invalid states, with a warning. Planners
-       that use valid-state samplers (PRM, PRM*, LazyPRM*, EST, BiEST, SBL, STRIDE, ...) use it; the RRT family samples
-       the space directly and ignores it.
+       sampler combined, with the push and the centring exact. sampleNear() (the local samples of tree planners
+       such as EST and BiEST) only pushes a colliding sample out: a free one is kept as it is. Cost: an exact
+       collision test per sample; a bounded clearance query (ClearanceChecker::clearanceBelow()) only for a free
+       state not kept at random, and a full query only for a colliding one. Gives up (returns false)
+       after OMPL's attempts count. Needs the space's validity checker to be a meshgap ClearanceChecker in CERTIFIED
+       mode (looked up at construction): with another checker it samples uniformly and rejects invalid states, with a
+       warning. Planners that use valid-state samplers (PRM, PRM*, LazyPRM*, EST, BiEST, SBL, STRIDE, ...) use it; the
+       RRT family samples the space directly and ignores it.
     */
     class NarrowPassageSampler : public ompl::base::ValidStateSampler
     {
@@ -45,8 +48,9 @@ namespace meshgap
         unsigned getMedialSteps() const { return medialSteps_; }
 
     private:
-        /** \brief Turn a drawn state into a returned one (see the class description); false to draw again. */
-        bool accept(ompl::base::State *state);
+        /** \brief Turn a drawn state into a returned one (see the class description); false to draw again. A
+            \e local sample (sampleNear()) that is free is kept as it is, and one in collision is only pushed out. */
+        bool accept(ompl::base::State *state, bool local);
         /** \brief Gradient ascent of the clearance from the free \e state (of clearance \e clearance), at most
             medialSteps_ accepted steps; returns the clearance reached. */
         double centre(ompl::base::State *state, double clearance);
