@@ -3,6 +3,7 @@
 // optimum in a corridor, it is repeatable with a seed, and it refuses an invalid input path with a clear error.
 
 #include <gtest/gtest.h>
+#include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
@@ -13,7 +14,9 @@
 
 #include "TestMeshes.h"
 #include "meshgap/Exception.h"
+#include "meshgap/ompl/ClearanceOptimizingPlanner.h"
 #include "meshgap/ompl/ClearancePathOptimizer.h"
+#include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/ProblemSetup.h"
 
 using namespace meshgap;
@@ -265,5 +268,45 @@ TEST(ClearancePathOptimizer, NeverLessClearOnSlottedWall)
         optimizer.optimize(path);
         EXPECT_GE(optimizer.minClearance(path), before * (1.0 - 1e-12)) << "seed " << seed;
         EXPECT_EQ(bad, 0) << "seed " << seed;
+    }
+}
+
+TEST(ClearancePathOptimizer, RrtConnectPlusOptIsOnePlanner)
+{
+    // allocPlanner("rrtconnect+opt"): RRTConnect, then the optimiser in the same solve(); its path is the
+    // optimised one (certified motions, at least as clear as RRTConnect's), and with a FAST checker it is left alone.
+    const ScenePtr scene = slotScene();
+    for (const ClearanceChecker::Mode mode : {ClearanceChecker::Mode::CERTIFIED, ClearanceChecker::Mode::FAST})
+    {
+        Problem p = makeProblem(scene);
+        const ob::SpaceInformationPtr si = p.setup->getSpaceInformation();
+        if (mode == ClearanceChecker::Mode::FAST)
+        {
+            p.checker = std::make_shared<ClearanceChecker>(si, scene, mode);
+            p.setup->setStateValidityChecker(p.checker);
+            si->setMotionValidator(std::make_shared<ob::DiscreteMotionValidator>(si));
+        }
+        ob::ScopedState<ob::SE3StateSpace> start(si->getStateSpace()), goal(si->getStateSpace());
+        start->setXYZ(-3, -0.5, 0.3);
+        start->rotation().setIdentity();
+        goal->setXYZ(3, 0.5, -0.3);
+        goal->rotation().setIdentity();
+        p.setup->setStartAndGoalStates(start, goal);
+        const ob::PlannerPtr planner = allocPlanner("rrtconnect+opt", si);
+        ASSERT_TRUE(planner->params().setParam("optimize_time", "1"));
+        p.setup->setPlanner(planner);
+        ASSERT_EQ(p.setup->solve(20.0), ob::PlannerStatus::EXACT_SOLUTION);
+        const auto &stats = std::static_pointer_cast<ClearanceOptimizingPlanner>(planner)->lastStats();
+        const og::PathGeometric &path = p.setup->getSolutionPath();
+        if (mode == ClearanceChecker::Mode::FAST)
+        {
+            EXPECT_EQ(stats.rounds, 0u) << "not optimised without a certified checker";
+            continue;
+        }
+        EXPECT_GE(stats.minClearanceAfter, stats.minClearanceBefore);
+        EXPECT_EQ(stats.statesAfter, path.getStateCount());
+        EXPECT_NEAR(stats.lengthAfter, path.length(), 1e-9 * path.length());
+        for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i)
+            EXPECT_EQ(denseCollisions(*si, *scene, path.getState(i), path.getState(i + 1), 100), 0);
     }
 }
