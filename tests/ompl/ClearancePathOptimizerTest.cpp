@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <filesystem>
+#include <tuple>
 
 #include "TestMeshes.h"
 #include "meshgap/Exception.h"
@@ -309,4 +311,47 @@ TEST(ClearancePathOptimizer, RrtConnectPlusOptIsOnePlanner)
         for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i)
             EXPECT_EQ(denseCollisions(*si, *scene, path.getState(i), path.getState(i + 1), 100), 0);
     }
+}
+
+TEST(ClearancePathOptimizer, ReachesTheMiddleOfACorridorInSe2)
+{
+    // The corridor of ReachesTheMiddleOfACorridor, in the plane: SE(2) states (x, y, yaw), the robot at z = 0.
+    Mesh octahedron;
+    octahedron.vertices = {{0.5, 0, 0}, {-0.5, 0, 0}, {0, 0.5, 0}, {0, -0.5, 0}, {0, 0, 0.5}, {0, 0, -0.5}};
+    octahedron.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    const Mesh walls = test::merged(test::transformed(test::box(4.0, 0.5, 2.0, 2), test::translation(0, 1.5, 0)),
+                                    test::transformed(test::box(4.0, 0.5, 2.0, 2), test::translation(0, -1.5, 0)));
+    auto space = std::make_shared<ob::SE2StateSpace>();
+    ob::RealVectorBounds bounds(2);
+    bounds.setLow(-4);
+    bounds.setHigh(4);
+    space->setBounds(bounds);
+    auto si = std::make_shared<ob::SpaceInformation>(space);
+    auto checker = std::make_shared<ClearanceChecker>(si, Scene::fromMeshes(octahedron, walls));
+    si->setStateValidityChecker(checker);
+    si->setMotionValidator(std::make_shared<ClearanceMotionValidator>(si, checker));
+    si->setup();
+    og::PathGeometric path(si);
+    ob::ScopedState<ob::SE2StateSpace> s(space);
+    for (const auto &[x, y, yaw] :
+         {std::tuple<double, double, double>{-3, 0, 0}, {-1, 0.35, 0.3}, {0, 0.4, -0.4}, {1, 0.35, 0.2}, {3, 0, 0}})
+    {
+        s->setXY(x, y);
+        s->setYaw(yaw);
+        path.append(s.get());
+    }
+    ClearancePathOptimizer optimizer(si, checker);
+    optimizer.setShortcut(false);
+    optimizer.setMaxRounds(200);
+    optimizer.setTimeLimit(60.0);
+    int bad = 0;
+    optimizer.setAcceptedMotionCallback([&](const ob::State *a, const ob::State *b)
+                                        { bad += denseCollisions(*si, checker->scene(), a, b, 100) > 0; });
+    const double before = optimizer.minClearance(path);
+    EXPECT_LT(before, 0.2);
+    EXPECT_TRUE(optimizer.optimize(path));
+    const double after = optimizer.minClearance(path);
+    EXPECT_GE(after, 0.49);
+    EXPECT_LE(after, 0.5 + 1e-9);  // the ends' clearance
+    EXPECT_EQ(bad, 0);
 }
