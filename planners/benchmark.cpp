@@ -4,13 +4,14 @@
 //
 //   meshgap_benchmark --cfg problem.cfg [--planners rrtconnect,rrtstar] [--checkers meshgap-certified,fcl]
 //                     [--runs N] [--time S] [--memory MB] [--seed N] [--objective NAME] [--out-dir DIR]
-//                     [--shard i/n] [--no-simplify]
+//                     [--shard i/n] [--no-simplify] [--samplers uniform,narrow_passage]
 //
 // Every planner runs once per checker, named "<planner>[<checker>]" (e.g. RRTConnect[fcl]), all in one experiment
 // named after the problem: the statistics script and Planner Arena show the checkers side by side. Each
 // (planner, checker) slice is its own .log file, rewritten (write, then rename) after every run, so an interrupted
 // benchmark keeps every finished run; --shard i/n runs every n-th cell of the grid, and all the .log files of all
-// the shards load into one database (ompl_benchmark_statistics *.log -d results.db).
+// the shards load into one database (ompl_benchmark_statistics *.log -d results.db). --samplers makes the
+// valid-state sampler a dimension too: each checker runs once per sampler, as "<planner>[<checker>,<sampler>]".
 
 #include <boost/algorithm/string.hpp>
 #include <boost/program_options.hpp>
@@ -27,6 +28,7 @@
 #include <set>
 
 #include "CliMain.h"
+#include "meshgap/ompl/SamplerFactory.h"
 #include "FclChecker.h"
 #include "meshgap/Exception.h"
 #include "meshgap/mesh/MeshLoader.h"
@@ -336,7 +338,7 @@ namespace
 
     int run(int argc, char **argv)
     {
-        std::string cfg, plannerList, checkerList, objective, shardText = "1/1";
+        std::string cfg, plannerList, checkerList, samplerList, objective, shardText = "1/1";
         std::vector<std::string> params;
         std::uint32_t seed = 0;
         Settings settings;
@@ -348,6 +350,10 @@ namespace
             "rrtstar.use_k_nearest=0; repeatable")(
             "checkers", po::value(&checkerList),
             ("checkers, comma-separated (default: all of " + joined(checkerNames()) + ")").c_str())(
+            "samplers", po::value(&samplerList),
+            ("valid-state samplers, comma-separated, a dimension of the experiment like the checkers (default: the "
+             "cfg's sampler, else OMPL's; only planners that use one, e.g. PRM, EST, notice): " +
+             joined(validStateSamplerNames())).c_str())(
             "runs", po::value<unsigned>(), "runs per planner and checker (default: the cfg's run_count, else 10)")(
             "time", po::value<double>(), "seconds per run (default: the cfg's time_limit, else 10)")(
             "memory", po::value<double>(), "MB per run (default: the cfg's mem_limit, else 4096)")(
@@ -376,6 +382,18 @@ namespace
                 throw Exception("--checkers", "unknown checker '" + c + "'; valid names: " + joined(available));
         if (checkers.empty() || std::set<std::string>(checkers.begin(), checkers.end()).size() != checkers.size())
             throw Exception("--checkers", "'" + checkerList + "' names no checker, or one twice");
+        // The grid's second axis: every checker with every sampler ("": the problem's own).
+        const std::vector<std::string> samplers =
+            samplerList.empty() ? std::vector<std::string>{""} : splitList(samplerList);
+        for (const std::string &s : samplers)
+            if (!samplerList.empty())
+                validStateSamplerAllocator(s, "--samplers");  // throws for an unknown name, listing the valid ones
+        if (samplers.empty() || std::set<std::string>(samplers.begin(), samplers.end()).size() != samplers.size())
+            throw Exception("--samplers", "'" + samplerList + "' names no sampler, or one twice");
+        std::vector<std::pair<std::string, std::string>> setups;  // (checker, sampler)
+        for (const std::string &c : checkers)
+            for (const std::string &s : samplers)
+                setups.emplace_back(c, s);
 
         const ProblemConfig config = readProblemConfig(cfg);
         applyConfig(config, settings);
@@ -445,7 +463,7 @@ namespace
         fs::create_directories(settings.outDir);
 
         // The grid: cell k = (planner p, checker c, run r), k = (p * C + c) * R + r; this shard runs k % n == i - 1.
-        const std::size_t C = checkers.size(), R = settings.runs, cells = planners.size() * C * R;
+        const std::size_t C = setups.size(), R = settings.runs, cells = planners.size() * C * R;
         std::size_t mine = 0;
         for (std::size_t k = shard - 1; k < cells; k += shards)
             ++mine;
@@ -469,10 +487,12 @@ namespace
                         runs.push_back(r);
                 if (runs.empty())
                     continue;
-                const std::string &checker = checkers[c];
+                const auto &[checker, sampler] = setups[c];
                 problem.install(checker);
+                if (!sampler.empty())
+                    setValidStateSampler(*si, sampler, "--samplers");
                 const ob::PlannerPtr inner = allocate(planners[p]);
-                const std::string name = inner->getName() + "[" + checker + "]";
+                const std::string name = inner->getName() + "[" + checker + (sampler.empty() ? "" : "," + sampler) + "]";
                 CheckerStats before, after;
                 bool solvedSeen = false;
                 auto measured = std::make_shared<MeasuredPlanner>(inner, name, [&]() {
@@ -514,7 +534,7 @@ namespace
                 request.simplify = settings.simplify;
                 ompl::tools::Benchmark::CompleteExperiment slice;
                 const fs::path log = settings.outDir / (fileSafe(config.name) + "." + fileSafe(inner->getName()) +
-                                                        "." + checker +
+                                                        "." + checker + (sampler.empty() ? "" : "." + sampler) +
                                                         (shards > 1 ? ".shard" + std::to_string(shard) + "of" +
                                                                           std::to_string(shards) : "") + ".log");
                 for (std::size_t r : runs)
@@ -534,6 +554,8 @@ namespace
                     {
                         slice = e;
                         slice.planners[0].common["checker"] = checker;
+                        if (!sampler.empty())
+                            slice.planners[0].common["sampler"] = sampler;
                     }
                     else
                     {

@@ -4,7 +4,7 @@
 //   meshgap_plan --cfg problem.cfg [--planner rrtconnect] [--time 10] [--objective NAME [--weight W]]
 //                [--mode certified|fast] [--motion discrete|clearance] [--seed N] [--out solution.path]
 //                [--clearance-csv clearance.csv] [--summary summary.txt] [--export-glb scene.glb [--export-states N]]
-//                [--report plan.html]
+//                [--report plan.html] [--optimize clearance [--optimize-time S]] [--sampler NAME]
 //
 // While it plans, one progress line a second goes to stderr (elapsed time, validity checks, the planner's best cost
 // when it reports one). Then it prints a summary (solved, exact or approximate, planning time, path length, cost,
@@ -13,7 +13,8 @@
 // read, the exact clearance along the dense path as CSV, and the scene (world, the robot at N states along the path,
 // the closest-point segment at each) as a glTF 2.0 binary file for any 3D viewer. Exit status: 0 exact solution,
 // 2 approximate or none, 1 bad input (including a start or goal in collision: the message says which, the obstacle
-// and the distance).
+// and the distance). --optimize clearance runs the ClearancePathOptimizer on the planner's path before any of this
+// (the summary gives its minimum clearance and length before and after; everything else is of the optimised path).
 
 #include <boost/program_options.hpp>
 #include <chrono>
@@ -31,6 +32,7 @@
 #include <thread>
 
 #include "CliMain.h"
+#include "OptimizeOption.h"
 #include "meshgap/Exception.h"
 #include "meshgap/mesh/SceneExport.h"
 #include "meshgap/ompl/ClearanceMotionValidator.h"
@@ -39,6 +41,7 @@
 #include "meshgap/ompl/ProblemSetup.h"
 #include "support/DenseClearance.h"
 #include "support/PlanReport.h"
+#include "meshgap/ompl/SamplerFactory.h"
 
 namespace po = boost::program_options;
 namespace ob = ompl::base;
@@ -142,8 +145,8 @@ namespace
     int run(int argc, char **argv)
     {
         std::string cfg, planner = "rrtconnect", objective, mode = "certified", motion = "discrete", out, csv, summaryFile,
-                    glb, report;
-        double time = 10.0, weight = 0.0;
+                    glb, report, optimize, sampler;
+        double time = 10.0, weight = 0.0, optimizeTime = 5.0;
         std::vector<std::string> params;
         unsigned dense = 4, exportStates = 8;
         std::uint32_t seed = 1;
@@ -175,6 +178,13 @@ namespace
             "report", po::value(&report),
             "write a self-contained HTML report (3D scene with the robot along the dense path, clearance plot, "
             "summary) here")(
+            "optimize", po::value(&optimize),
+            "after planning, optimise the path: clearance (raise its minimum clearance up the exact gradient, every "
+            "motion certified; needs --mode certified)")(
+            "optimize-time", po::value(&optimizeTime), "time limit of --optimize in seconds (default 5)")(
+            "sampler", po::value(&sampler),
+            ("valid-state sampler of planners that use one (PRM, EST, ...; default: the cfg's sampler, else "
+             "uniform): " + joined(validStateSamplerNames())).c_str())(
             "quiet,q", "print warnings and errors only (no OMPL messages, no progress)");
         po::variables_map vm;
         po::store(po::parse_command_line(argc, argv, options), vm);
@@ -201,6 +211,7 @@ namespace
             throw Exception("--dense", "must be at least 1");
         if (exportStates < 1)
             throw Exception("--export-states", "must be at least 1");
+        cli::checkOptimizeOptions(optimize, vm.count("optimize-time") > 0, optimizeTime, mode);
         if (vm.count("weight") && !(weight > 0.0 && std::isfinite(weight)))
             throw Exception("--weight", "must be positive and finite");
         ompl::RNG::setSeed(seed);
@@ -216,6 +227,8 @@ namespace
                                                                          ClearanceChecker::Mode::FAST,
                                            objective, BodyOptions(), objectiveOptions);
         const ob::SpaceInformationPtr si = problem.setup->getSpaceInformation();
+        if (!sampler.empty())
+            setValidStateSampler(*si, sampler, "--sampler");
         std::shared_ptr<ClearanceMotionValidator> cmv;
         if (motion == "clearance")
             si->setMotionValidator(cmv = std::make_shared<ClearanceMotionValidator>(si, problem.checker));
@@ -257,6 +270,8 @@ namespace
         line("solved", !havePath ? "no" : exact ? "yes (exact)" : "approximate");
         line("exact solution", exact ? "yes" : "no");
         line("planning time", std::to_string(problem.setup->getLastPlanComputationTime()) + " s");
+        if (havePath && !optimize.empty())
+            summary << cli::optimizeSolution(*problem.setup, problem.checker, optimizeTime, seed);
         std::unique_ptr<DenseClearance> d;
         if (havePath)
         {

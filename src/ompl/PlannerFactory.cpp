@@ -23,6 +23,7 @@
 #include <ompl/geometric/planners/stride/STRIDE.h>
 
 #include "meshgap/Exception.h"
+#include "meshgap/ompl/ClearanceOptimizingPlanner.h"
 
 namespace meshgap
 {
@@ -50,6 +51,12 @@ namespace meshgap
                 {"rrtconnect", make<og::RRTConnect>()}, {"rrtstar", make<og::RRTstar>()},
                 {"sbl", make<og::SBL>()},          {"stride", make<og::STRIDE>()},
                 {"trrt", make<og::TRRT>()},
+                // RRTConnect, then the clearance path optimiser for the time left (ClearanceOptimizingPlanner).
+                {"rrtconnect+opt",
+                 [](const ompl::base::SpaceInformationPtr &si) -> ompl::base::PlannerPtr {
+                     return std::make_shared<ClearanceOptimizingPlanner>(std::make_shared<og::RRTConnect>(si),
+                                                                         "RRTConnect+opt");
+                 }},
             };
             return planners;
         }

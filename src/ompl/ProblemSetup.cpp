@@ -5,6 +5,7 @@
 #include <ompl/base/spaces/SE3StateSpace.h>
 
 #include "meshgap/Exception.h"
+#include "meshgap/ompl/SamplerFactory.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/RobotMesh.h"
 
@@ -107,6 +108,8 @@ namespace meshgap
         }
         if (config.objectiveThreshold)
             problem.setup->getOptimizationObjective()->setCostThreshold(ob::Cost(*config.objectiveThreshold));
+        if (!config.sampler.empty())
+            setValidStateSampler(*si, config.sampler, config.file + ": [problem] sampler");  // as OMPL.app reads it
         return problem;
     }
 }  // namespace meshgap

@@ -95,6 +95,8 @@ namespace meshgap
         /** \brief Unique per checker, never reused (a later checker may reuse this one's address, never its id). */
         std::uint64_t id() const { return id_; }
         const Scene &scene() const { return *scene_; }
+        /** \brief The space information this checker was made for (OMPL 1.5's checker has no getter). */
+        const ompl::base::SpaceInformation &spaceInformation() const { return *si_; }
         CheckerStats stats() const;
 
         /** \brief The full answer for one state (the same query clearance() makes). */

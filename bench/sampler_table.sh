@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Issue 14's sampler table: one planner that uses a valid-state sampler (default PRM) with every sampler side by
+# side (meshgap_benchmark --samplers, a dimension of the experiment), meshgap-certified checker, summarised by
+# clearance_summary.py solve: runs, exact solutions, FCL-free paths, median and largest time per sampler.
+#
+#   bench/sampler_table.sh [BUILD_DIR] [OUT_DIR]
+#
+# Settings (environment): PROBLEMS (default "slotted_wall"; maps/ or ../shared/data/omplapp names), RUNS (3), TIME
+# (10 s a run), SEED (1), PLANNER (prm), SAMPLERS (all six).
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+build="${1:-$here/../build}"
+out="${2:-sampler-results}"
+data="${MESHGAP_SHARED_DATA_DIR:-$here/../../shared/data}/omplapp"
+samplers="${SAMPLERS:-uniform,gaussian,obstacle_based,bridge_test,max_clearance,narrow_passage}"
+benchmark="$build/planners/meshgap_benchmark"
+[ -x "$benchmark" ] || { echo "error: $benchmark: not built" >&2; exit 1; }
+started=$SECONDS
+for problem in ${PROBLEMS:-slotted_wall}; do
+    if [ -f "$here/../maps/$problem/$problem.cfg" ]; then cfg="$here/../maps/$problem/$problem.cfg"; else cfg="$data/$problem.cfg"; fi
+    mkdir -p "$out"
+    rm -f "$out/$problem".*.log
+    nice "$benchmark" --cfg "$cfg" --planners "${PLANNER:-prm}" --checkers meshgap-certified --samplers "$samplers" \
+        --runs "${RUNS:-3}" --time "${TIME:-10}" --seed "${SEED:-1}" --out-dir "$out"
+done
+echo "wall time: $((SECONDS - started)) s" >&2
+/usr/bin/python3 "$here/clearance_summary.py" solve "$out"/*.log

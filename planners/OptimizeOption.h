@@ -1,0 +1,84 @@
+#ifndef MESHGAP_PLANNERS_OPTIMIZE_OPTION_H
+#define MESHGAP_PLANNERS_OPTIMIZE_OPTION_H
+
+// meshgap_plan's --optimize: the path optimiser run on the planner's solution, and its summary lines.
+
+#include <ompl/geometric/SimpleSetup.h>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+
+#include "meshgap/Exception.h"
+#include "meshgap/ompl/ClearancePathOptimizer.h"
+
+namespace meshgap::cli
+{
+    /** \brief The optimisers --optimize accepts. */
+    inline const char *optimizerNames()
+    {
+        return "clearance";
+    }
+
+    /** \brief Checks --optimize NAME and --optimize-time against each other and the clearance mode; throws
+        meshgap::Exception naming the option. */
+    inline void checkOptimizeOptions(const std::string &optimize, bool timeGiven, double seconds,
+                                     const std::string &mode)
+    {
+        if (!optimize.empty() && optimize != "clearance")
+            throw Exception("--optimize", "unknown optimiser '" + optimize + "'; valid: " + optimizerNames());
+        if (timeGiven && optimize.empty())
+            throw Exception("--optimize-time", "applies to --optimize only");
+        if (!(seconds > 0.0) || !std::isfinite(seconds))
+            throw Exception("--optimize-time", "must be positive and finite");
+        if (!optimize.empty() && mode != "certified")
+            throw Exception("--optimize", "clearance needs --mode certified (it follows the exact clearance gradient)");
+    }
+
+    /** \brief Optimise the setup's solution path in place for at most \e seconds; returns the summary lines
+        ("optimizer ..."), each key padded as meshgap_plan pads its summary. A path the certified validator refuses
+        is left as it is, and the line says why (and a warning goes to stderr). */
+    inline std::string optimizeSolution(ompl::geometric::SimpleSetup &setup, const ClearanceCheckerPtr &checker,
+                                        double seconds, unsigned long seed)
+    {
+        std::ostringstream out;
+        out.precision(6);
+        auto line = [&out](const char *key, const std::string &value)
+        {
+            char padded[24];
+            std::snprintf(padded, sizeof padded, "%-16s", key);
+            out << padded << value << "\n";
+        };
+        ClearancePathOptimizer optimizer(setup.getSpaceInformation(), checker);
+        optimizer.setTimeLimit(seconds);
+        optimizer.setSeed(seed);
+        try
+        {
+            optimizer.optimize(setup.getSolutionPath());
+        }
+        catch (const Exception &e)
+        {
+            std::fprintf(stderr, "warning: --optimize: %s; the path is not optimised\n", e.what());
+            line("optimizer", std::string("not run: ") + e.what());
+            return out.str();
+        }
+        const ClearancePathOptimizer::Stats &s = optimizer.lastStats();
+        std::ostringstream v;
+        v.precision(6);
+        v << "clearance, " << s.seconds << " s, " << s.rounds << " rounds (" << s.moves << " moves, " << s.inserted
+          << " states inserted, " << s.removed << " removed)" << (s.restored ? "; input kept (no gain)" : "");
+        line("optimizer", v.str());
+        v.str("");
+        v << s.minClearanceBefore << " -> " << s.minClearanceAfter << " (the optimiser's measure: branch and bound "
+          << "along each motion)";
+        line("opt clearance", v.str());
+        v.str("");
+        v << s.lengthBefore << " -> " << s.lengthAfter << " (" << s.statesBefore << " -> " << s.statesAfter
+          << " states)";
+        line("opt length", v.str());
+        return out.str();
+    }
+}  // namespace meshgap::cli
+
+#endif

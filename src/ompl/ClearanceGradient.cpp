@@ -1,0 +1,274 @@
+#include "meshgap/ompl/ClearanceGradient.h"
+
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "meshgap/Exception.h"
+#include "meshgap/distance/ExactDistance.h"
+
+namespace meshgap
+{
+    namespace
+    {
+        constexpr unsigned kMaxPairs = 8;
+        using Vector6 = Eigen::Matrix<double, 6, 1>;
+
+        /** \brief One pair's gradient in tangent coordinates (SE(3): 6, SE(2): the first 3 used): the derivative of
+            the signed distance, \e p the robot's witness point, \e n the unit direction that increases it. */
+        Vector6 pairGradient(bool planar, const Eigen::Vector3d &origin, const Eigen::Vector3d &p,
+                             const Eigen::Vector3d &n)
+        {
+            const Eigen::Vector3d w = (p - origin).cross(n);
+            Vector6 g = Vector6::Zero();
+            if (planar)
+                g << n.x(), n.y(), w.z(), 0.0, 0.0, 0.0;
+            else
+                g << n, w;
+            return g;
+        }
+
+        /** \brief The minimum-norm point of the convex hull of \e h[0..k) (Euclidean; an SE(2) gradient has zeros
+            past its 3 coordinates, which change no norm), exactly:
+            the best feasible affine minimum over every subset (k <= kMaxPairs, so at most 255 small systems). */
+        Vector6 minNormPoint(const Vector6 *h, unsigned k)
+        {
+            using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxPairs + 1, kMaxPairs + 1>;
+            using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxPairs + 1, 1>;
+            Vector6 best = h[0];
+            double bestNorm = h[0].squaredNorm();
+            for (unsigned i = 1; i < k; ++i)
+                if (h[i].squaredNorm() < bestNorm)
+                {
+                    best = h[i];
+                    bestNorm = h[i].squaredNorm();
+                }
+            for (unsigned mask = 1; mask < (1u << k); ++mask)
+            {
+                unsigned idx[kMaxPairs], m = 0;
+                for (unsigned i = 0; i < k; ++i)
+                    if (mask & (1u << i))
+                        idx[m++] = i;
+                if (m < 2)
+                    continue;
+                // KKT system of min |sum l_i h_i|^2 subject to sum l_i = 1.
+                Small A(m + 1, m + 1);
+                SmallVector b(m + 1);
+                for (unsigned i = 0; i < m; ++i)
+                {
+                    for (unsigned j = 0; j < m; ++j)
+                        A(i, j) = h[idx[i]].dot(h[idx[j]]);
+                    A(i, m) = 1.0;
+                    A(m, i) = 1.0;
+                    b(i) = 0.0;
+                }
+                A(m, m) = 0.0;
+                b(m) = 1.0;
+                const SmallVector x = A.fullPivLu().solve(b);
+                if (!x.allFinite() || !(A * x).isApprox(b, 1e-9))
+                    continue;  // degenerate subset (affinely dependent points): a smaller subset covers it
+                bool feasible = true;
+                Vector6 point = Vector6::Zero();
+                for (unsigned i = 0; i < m; ++i)
+                {
+                    feasible = feasible && x(i) >= -1e-12;
+                    point += x(i) * h[idx[i]];
+                }
+                if (feasible && point.squaredNorm() < bestNorm)
+                {
+                    best = point;
+                    bestNorm = point.squaredNorm();
+                }
+            }
+            return best;
+        }
+    }  // namespace
+
+    unsigned tangentDimension(const ompl::base::StateSpace &space)
+    {
+        if (space.getType() == ompl::base::STATE_SPACE_SE3)
+            return 6;
+        if (space.getType() == ompl::base::STATE_SPACE_SE2)
+            return 3;
+        throw Exception("ClearanceGradient", "state space '" + space.getName() + "' is neither SE(3) nor SE(2)");
+    }
+
+    void applyTangentStep(const ompl::base::StateSpace &space, const ompl::base::State *state, const double *step,
+                          ompl::base::State *out)
+    {
+        if (space.getType() == ompl::base::STATE_SPACE_SE2)
+        {
+            const auto *s = state->as<ompl::base::SE2StateSpace::StateType>();
+            const double x = s->getX() + step[0], y = s->getY() + step[1];
+            const double yaw = std::remainder(s->getYaw() + step[2], 2.0 * M_PI);
+            auto *o = out->as<ompl::base::SE2StateSpace::StateType>();
+            o->setXY(x, y);
+            o->setYaw(yaw);
+            return;
+        }
+        Eigen::Isometry3d X = poseFromState(space, state);
+        const Eigen::Vector3d w(step[3], step[4], step[5]);
+        const double angle = w.norm();
+        if (angle > 0.0)
+            X.linear() = Eigen::AngleAxisd(angle, w / angle).toRotationMatrix() * X.linear();
+        X.translation() += Eigen::Vector3d(step[0], step[1], step[2]);
+        stateFromPose(space, X, out);
+    }
+
+    double clearanceGradient(const ClearanceChecker &checker, const ompl::base::State *state,
+                             std::vector<double> &gradient, const ClearanceGradientOptions &options,
+                             ClearanceGradientInfo *info)
+    {
+        if (checker.mode() != ClearanceChecker::Mode::CERTIFIED)
+            throw Exception("ClearanceGradient", "needs a checker in CERTIFIED mode (exact witness points)");
+        const ompl::base::StateSpace &space = *checker.spaceInformation().getStateSpace();
+        const unsigned dim = tangentDimension(space);
+        const bool planar = dim == 3;
+        gradient.assign(dim, 0.0);
+        ClearanceGradientInfo local;
+        ClearanceGradientInfo &out = info != nullptr ? *info : local;
+        out = ClearanceGradientInfo();
+
+        const SceneResult r = checker.query(state);
+        out.inCollision = r.inCollision;
+        const Scene &scene = checker.scene();
+        if (!std::isfinite(r.distance) || r.obstacle >= scene.obstacles().size())
+            return r.distance;
+        if (r.inCollision && r.penetration != Penetration::DeepestNode)
+            return r.distance;  // no depth: the signed distance is kContactDistance, locally constant
+
+        const Eigen::Isometry3d X = poseFromState(space, state);
+        const Eigen::Vector3d origin = X.translation();
+        const double radius = scene.robot().radiusAboutOrigin();
+        const double tiny = 1e-14 * (1.0 + radius + origin.norm());
+
+        Vector6 g[kMaxPairs];
+        double distances[kMaxPairs];
+        unsigned k = 0;
+        const Eigen::Vector3d d0 =
+            r.inCollision ? Eigen::Vector3d(r.onObstacle - r.onRobot) : Eigen::Vector3d(r.onRobot - r.onObstacle);
+        if (d0.norm() <= tiny)
+            return r.distance;  // coincident witnesses: no direction
+        g[k] = pairGradient(planar, origin, r.onRobot, d0.normalized());
+        distances[k++] = r.distance;
+
+        if (!r.inCollision)
+        {
+            const double tolerance = options.tieTolerance >= 0.0 ? options.tieTolerance : 1e-9 * (1.0 + radius);
+            const double limit = r.distance + tolerance;
+            for (std::size_t o = 0; o < scene.obstacles().size(); ++o)
+            {
+                if (o == r.obstacle)
+                    continue;
+                DistanceResult pair;
+                DistanceRequest bounded;
+                bounded.upperBound = std::nextafter(limit, HUGE_VAL);
+                // Obstacles are in the world frame: X_AB is the robot's pose, and the witnesses are world points.
+                refineExact(*scene.obstacles()[o], scene.robot(), X, pair, bounded);
+                if (pair.inCollision || !(pair.distance <= limit))
+                    continue;
+                const Eigen::Vector3d d = pair.onB - pair.onA;
+                if (d.norm() <= tiny)
+                    continue;
+                const Vector6 gi = pairGradient(planar, origin, pair.onB, d.normalized());
+                if (k < kMaxPairs)
+                {
+                    g[k] = gi;
+                    distances[k++] = pair.distance;
+                }
+                else
+                {
+                    // Full: replace the farthest pair if this one is closer.
+                    const unsigned worst =
+                        static_cast<unsigned>(std::max_element(distances + 1, distances + k) - distances);
+                    if (pair.distance < distances[worst])
+                    {
+                        g[worst] = gi;
+                        distances[worst] = pair.distance;
+                    }
+                }
+            }
+        }
+        out.hasDirection = true;
+
+        // Minimum norm in the metric |g_t|^2 + |g_w|^2 / L^2: scale the rotation part by 1 / L, solve, scale back.
+        const double L = radius > 0.0 ? radius : 1.0;
+        Vector6 scale = Vector6::Ones();
+        if (planar)
+            scale(2) = 1.0 / L;
+        else
+            scale.tail<3>().setConstant(1.0 / L);
+        auto combine = [&]
+        {
+            if (k == 1)
+                return g[0];
+            Vector6 h[kMaxPairs];
+            for (unsigned i = 0; i < k; ++i)
+                h[i] = g[i].cwiseProduct(scale);
+            return Vector6(minNormPoint(h, k).cwiseQuotient(scale));
+        };
+        Vector6 result = combine();
+
+        // Probes for ties the per-obstacle test cannot see (two closest pairs on one obstacle): a step of length
+        // probeStep along the ascent direction should raise the clearance by about probeStep * ||g||; if it raises
+        // it by less than half that, the pair met there is a nearly active one: its gradient joins the bundle.
+        if (!r.inCollision && options.probes > 0)
+        {
+            const double h = options.probeStep > 0.0 ? options.probeStep : 0.05 * r.distance;
+            SceneWarmStart warm;
+            SceneRequest request;
+            for (unsigned probe = 0; probe < options.probes && k < kMaxPairs; ++probe)
+            {
+                const Vector6 scaled = result.cwiseProduct(scale);
+                const double norm = scaled.norm();  // ||g||
+                if (!(norm > 1e-9))
+                    break;
+                // The step v = alpha M^-1 g with alpha = h / ||g||: it moves no robot point much further than h.
+                const double alpha = h / norm;
+                Eigen::Isometry3d Y = X;
+                if (planar)
+                {
+                    Y.translation() += alpha * Eigen::Vector3d(result(0), result(1), 0.0);
+                    Y.linear() =
+                        Eigen::AngleAxisd(alpha * result(2) / (L * L), Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                        X.linear();
+                }
+                else
+                {
+                    Y.translation() += alpha * result.head<3>();
+                    const Eigen::Vector3d w = alpha * result.tail<3>() / (L * L);
+                    if (w.norm() > 0.0)
+                        Y.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix() * X.linear();
+                }
+                SceneResult q;
+                scene.distance(Y, request, warm, q);
+                if (q.inCollision || !std::isfinite(q.distance))
+                    break;
+                if (q.distance >= r.distance + 0.5 * alpha * norm * norm)
+                    break;  // the direction raises the clearance as predicted: no hidden pair in the way
+                const Eigen::Vector3d d = q.onRobot - q.onObstacle;
+                if (d.norm() <= tiny)
+                    break;
+                g[k] = pairGradient(planar, Y.translation(), q.onRobot, d.normalized());
+                distances[k++] = q.distance;
+                ++out.probedPairs;
+                result = combine();
+            }
+        }
+        out.activePairs = k;
+        for (unsigned i = 0; i < dim; ++i)
+            gradient[i] = result(i);
+        return r.distance;
+    }
+
+    void ascentStep(const std::vector<double> &gradient, double lengthScale, double alpha, std::vector<double> &step)
+    {
+        const double L2 = lengthScale > 0.0 ? lengthScale * lengthScale : 1.0;
+        step.resize(gradient.size());
+        const std::size_t translations = gradient.size() == 3 ? 2 : 3;
+        for (std::size_t i = 0; i < gradient.size(); ++i)
+            step[i] = alpha * (i < translations ? gradient[i] : gradient[i] / L2);
+    }
+}  // namespace meshgap
