@@ -13,7 +13,7 @@
 //   - "random": --random poses uniform in the cfg's volume with a uniform rotation (fixed seed).
 // Per state, interleaved so machine load hits every column alike: FCL distance, FCL collision, meshgap cold
 // certified (Scene::distance without a warm start), warm certified (one warm start carried from state
-// to state), fast (SceneRequest::exact = false, its own carried warm start), collision-only (Scene::inCollision),
+// to state), fast (SceneRequest::exact = false with --fast-solver, its own carried warm start), collision-only (Scene::inCollision),
 // and enumeration (the exact node-level minimum over every obstacle, on every --enum-every'th state). --skip
 // leaves columns (cold, warm, fast, collision, enumeration) or sets (path, random) out; the two FCL columns are
 // the reference and always run. Median and 90th percentile in microseconds, the ratio of the medians to FCL's
@@ -323,7 +323,8 @@ int main(int argc, char **argv)
 #else
     try
     {
-        std::string data = std::string(MESHGAP_SHARED_DATA_DIR) + "/omplapp", maps, csvFile, problemList, skipList;
+        std::string data = std::string(MESHGAP_SHARED_DATA_DIR) + "/omplapp", maps, csvFile, problemList, skipList,
+                    fastSolver = "comb-GA-wl";
         maps = std::string(MESHGAP_SOURCE_DIR) + "/maps";
         std::size_t states = 1000, random = 1000, enumEvery = 10;
         std::uint32_t seed = 1;
@@ -338,7 +339,9 @@ int main(int argc, char **argv)
             "enumeration, path, random")("states", po::value(&states), "interpolated states per path")(
             "random", po::value(&random), "random poses per problem")("enum-every", po::value(&enumEvery),
                                                                       "run enumeration on every N-th state (0: never)")(
-            "seed", po::value(&seed), "seed of the random poses")("csv", po::value(&csvFile), "also write CSV here");
+            "seed", po::value(&seed), "seed of the random poses")("csv", po::value(&csvFile), "also write CSV here")(
+            "fast-solver", po::value(&fastSolver),
+            "the fast column's node-level solver (default comb-GA-wl; warm-fast follows the path warm-started)");
         po::variables_map vm;
         po::store(po::parse_command_line(argc, argv, cli), vm);
         po::notify(vm);
@@ -461,6 +464,7 @@ int main(int argc, char **argv)
                 SceneWarmStart warm, fastWarm;
                 SceneRequest certified, fast;
                 fast.exact = false;
+                fast.solver = fastSolver;
                 for (std::size_t i = 0; i < poses.size(); ++i)
                 {
                     const Eigen::Isometry3d &X = poses[i];

@@ -130,24 +130,30 @@ namespace meshgap
         };
 
         /** \brief Box \e b (placed by X) seen from box \e a: the rotation C from b's box axes to a's, |C| padded
-            (so parallel axes never make a bound too large), and the centre offset T along a's axes. */
+            (so parallel axes never make a bound too large), and the centre offset T along a's axes. Two aligned
+            boxes use X's own (nothing computed, nothing copied). */
         struct BoxPair
         {
-            Eigen::Matrix3d C, absC;
-            Eigen::Vector3d T;
+            Eigen::Matrix3d ownC, ownAbsC;
+            Eigen::Vector3d ownT;
+            const Eigen::Matrix3d *C, *absC;
+            const Eigen::Vector3d *T;
             BoxPair(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X,
                     const Eigen::Vector3d &offset)
             {
                 if (a.aligned && b.aligned)
                 {
-                    C = X.R;
-                    absC = X.absR;
-                    T = offset;
+                    C = &X.R;
+                    absC = &X.absR;
+                    T = &offset;
                     return;
                 }
-                C = a.axes.transpose() * (X.R * b.axes);
-                absC = C.cwiseAbs().array() + 1e-12;
-                T = a.aligned ? offset : Eigen::Vector3d(a.axes.transpose() * offset);
+                ownC = a.axes.transpose() * (X.R * b.axes);
+                ownAbsC = ownC.cwiseAbs().array() + 1e-12;
+                ownT = a.aligned ? offset : Eigen::Vector3d(a.axes.transpose() * offset);
+                C = &ownC;
+                absC = &ownAbsC;
+                T = &ownT;
             }
         };
 
@@ -163,12 +169,12 @@ namespace meshgap
             if (bound > enough)
                 return bound;
             const BoxPair P(a, b, X, offset);
-            const Eigen::Vector3d rb = P.absC * b.half;  // B's box projected on A's axes
-            bound = std::max(bound, (P.T.cwiseAbs() - a.half - rb).maxCoeff());
+            const Eigen::Vector3d rb = *P.absC * b.half;  // B's box projected on A's axes
+            bound = std::max(bound, (P.T->cwiseAbs() - a.half - rb).maxCoeff());
             if (bound > enough)
                 return bound;
-            const Eigen::Vector3d s = P.C.transpose() * P.T;          // T on B's axes
-            const Eigen::Vector3d ra = P.absC.transpose() * a.half;  // A's box projected on B's axes
+            const Eigen::Vector3d s = P.C->transpose() * *P.T;          // T on B's axes
+            const Eigen::Vector3d ra = P.absC->transpose() * a.half;  // A's box projected on B's axes
             bound = std::max(bound, (s.cwiseAbs() - ra - b.half).maxCoeff());
             return bound;
         }
@@ -180,10 +186,11 @@ namespace meshgap
             if (offset.norm() > a.radius + b.radius)
                 return true;
             const BoxPair P(a, b, X, offset);
-            const Eigen::Vector3d &T = P.T;
-            if (((T.cwiseAbs() - a.half - P.absC * b.half).array() > 0.0).any())
+            const Eigen::Vector3d &T = *P.T;
+            const Eigen::Matrix3d &C = *P.C, &absC = *P.absC;
+            if (((T.cwiseAbs() - a.half - absC * b.half).array() > 0.0).any())
                 return true;
-            if ((((P.C.transpose() * T).cwiseAbs() - P.absC.transpose() * a.half - b.half).array() > 0.0).any())
+            if ((((C.transpose() * T).cwiseAbs() - absC.transpose() * a.half - b.half).array() > 0.0).any())
                 return true;
             const Eigen::Vector3d &ea = a.half, &eb = b.half;
             for (int i = 0; i < 3; ++i)
@@ -192,9 +199,9 @@ namespace meshgap
                 for (int j = 0; j < 3; ++j)
                 {
                     const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-                    const double ra = ea[i1] * P.absC(i2, j) + ea[i2] * P.absC(i1, j);
-                    const double rb = eb[j1] * P.absC(i, j2) + eb[j2] * P.absC(i, j1);
-                    if (std::abs(T[i2] * P.C(i1, j) - T[i1] * P.C(i2, j)) > ra + rb)
+                    const double ra = ea[i1] * absC(i2, j) + ea[i2] * absC(i1, j);
+                    const double rb = eb[j1] * absC(i, j2) + eb[j2] * absC(i, j1);
+                    if (std::abs(T[i2] * C(i1, j) - T[i1] * C(i2, j)) > ra + rb)
                         return true;
                 }
             }
@@ -208,21 +215,23 @@ namespace meshgap
             double gap{0.0};
             Eigen::Vector3d axis{Eigen::Vector3d::Zero()};
 
-            void consider(const Eigen::Vector3d &n, const Eigen::Vector3d *p, const Eigen::Vector3d *q)
+            /** \brief Along \e n of length \e length (gaps divided by it; the axis normalised only if kept). */
+            void consider(const Eigen::Vector3d &n, const Eigen::Vector3d *p, const Eigen::Vector3d *q,
+                          double length = 1.0)
             {
                 const double p0 = n.dot(p[0]), p1 = n.dot(p[1]), p2 = n.dot(p[2]);
                 const double q0 = n.dot(q[0]), q1 = n.dot(q[1]), q2 = n.dot(q[2]);
-                const double up = std::min({q0, q1, q2}) - std::max({p0, p1, p2});    // q beyond p along n
-                const double down = std::min({p0, p1, p2}) - std::max({q0, q1, q2});  // p beyond q
+                const double up = (std::min({q0, q1, q2}) - std::max({p0, p1, p2})) / length;    // q beyond p
+                const double down = (std::min({p0, p1, p2}) - std::max({q0, q1, q2})) / length;  // p beyond q
                 if (up > gap)
                 {
                     gap = up;
-                    axis = n;
+                    axis = n / length;
                 }
                 if (down > gap)
                 {
                     gap = down;
-                    axis = -n;
+                    axis = -n / length;
                 }
             }
         };
@@ -413,7 +422,7 @@ namespace meshgap
                                                                                               pb[m % 3]);
                             const double length = n.norm();
                             if (length > 0.0)  // else parallel edges: no axis
-                                s.consider(n / length, pa, pb);
+                                s.consider(n, pa, pb, length);
                         }
                         if (s.gap > limit)
                         {
@@ -533,13 +542,27 @@ namespace meshgap
         }
 
         const std::uint32_t stamp = ++front->stamp;
+        // Not a nearby pose (B moved further than the distance sought since the last query, as between a planner's
+        // unrelated samples): no certificate carries over, and none is worth writing; a traversal from the roots.
+        const double step = front->started ? motionBound(b, front->poses[(stamp - 1) % BvhFront::POSES], X_AB)
+                                           : 0.0;
+        front->started = true;
+        if (step > upperBound)
+        {
+            ++front->incoherent;
+            front->valid = false;
+            front->poses[stamp % BvhFront::POSES] = X_AB;
+            DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, nullptr, 0.0, stamp);
+            traversal.run({0u, 0u}, traversal.bound({0u, 0u}));
+            return;
+        }
         if (front->valid)
         {
             // Every entry's bound falls by at most B's displacement since it was computed: lower it by the motion
             // summed since then (key - motion), padded against the roundoff of that sum.
             const BvhFront::Entry *const begin = front->entries.data();
             const std::size_t count = front->entries.size();
-            const double motion = front->motion + motionBound(b, front->poses[(stamp - 1) % BvhFront::POSES], X_AB);
+            const double motion = front->motion + step;
             const double pad = 1e-12 * motion;
             std::vector<BvhFront::Entry> &next = front->next;
             next.clear();

@@ -87,7 +87,9 @@ namespace meshgap
         (a sliding motion leaves that gap unchanged), then in full; any other pair by its box bound, descended where
         it could beat the best, its sub-front replacing it. The answer is the cold traversal's: same prune rule, same tie rule. The front is
         rebuilt from the roots when it has grown past FRONT_GROWTH times the size of a fresh one, or when a
-        traversal had to re-test more entries than a fresh front holds twice over (a motion too large to pay).
+        traversal had to re-test more entries than half a fresh front (a motion too large to pay); and a query whose
+        pose lies further from the last one than the distance it seeks (B's displacement above the upper bound, as
+        between a planner's unrelated samples) runs from the roots and writes no front at all.
         Belongs to one caller; not thread-safe. */
     struct BvhFront
     {
@@ -112,10 +114,12 @@ namespace meshgap
         std::uint32_t stamp{0};      ///< the last traversal's number
         std::size_t freshSize{0};    ///< size of the front the last traversal from the roots wrote
         bool valid{false};           ///< entries cover the whole pair tree (false: start from the roots)
+        bool started{false};         ///< a traversal has run (poses holds its pose)
         std::size_t reused{0};       ///< statistics: entries kept without a test, over the front's lifetime
         std::size_t retested{0};     ///< entries re-tested in full
         std::size_t axisKept{0};     ///< entries kept by their separating axis
-        std::size_t rebuilds{0};     ///< traversals from the roots
+        std::size_t rebuilds{0};     ///< traversals from the roots that wrote a front
+        std::size_t incoherent{0};   ///< traversals from the roots for a pose too far from the last one
 
         /** \brief Heap bytes held (both buffers' capacity). */
         std::size_t memoryBytes() const { return (entries.capacity() + next.capacity()) * sizeof(Entry); }
