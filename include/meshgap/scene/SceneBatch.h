@@ -11,7 +11,7 @@ namespace meshgap
     /** \brief Consecutive poses that share one warm start in distanceBatch(): each block of this many poses starts
         cold and carries its warm start from pose to pose. Fixed, so the blocks (and so every answer) are the same
         whatever the number of threads. */
-    constexpr std::size_t SCENE_BATCH_BLOCK = 256;
+    constexpr std::size_t SCENE_BATCH_BLOCK = 512;
 
     /** \brief Scene::distance() at every pose of \e poses, in order, into \e results (resized to poses.size()).
 
