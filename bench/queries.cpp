@@ -42,6 +42,7 @@
 #include <set>
 #include <sstream>
 
+#include "PathInterpolation.h"
 #include "FclOracle.h"
 #include "meshgap/Exception.h"
 #include "meshgap/distance/Enumeration.h"
@@ -56,36 +57,6 @@ namespace fs = std::filesystem;
 
 namespace
 {
-    std::vector<Eigen::Isometry3d> interpolate(const std::vector<Eigen::Isometry3d> &path, std::size_t count)
-    {
-        if (path.size() < 2)
-            return path;
-        // Arc length with rotation weighted by the path's extent, so states spread along translation and turns.
-        std::vector<double> s{0.0};
-        for (std::size_t i = 1; i < path.size(); ++i)
-        {
-            const double dt = (path[i].translation() - path[i - 1].translation()).norm();
-            const double dr =
-                Eigen::Quaterniond(path[i].linear()).angularDistance(Eigen::Quaterniond(path[i - 1].linear()));
-            s.push_back(s.back() + dt + dr + 1e-12);
-        }
-        std::vector<Eigen::Isometry3d> out;
-        std::size_t seg = 0;
-        for (std::size_t k = 0; k < count; ++k)
-        {
-            const double at = s.back() * double(k) / double(count - 1);
-            while (seg + 2 < path.size() && s[seg + 1] < at)
-                ++seg;
-            const double t = std::clamp((at - s[seg]) / (s[seg + 1] - s[seg]), 0.0, 1.0);
-            const Eigen::Quaterniond q0(path[seg].linear()), q1(path[seg + 1].linear());
-            Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-            X.linear() = q0.slerp(t, q1).toRotationMatrix();
-            X.translation() = (1 - t) * path[seg].translation() + t * path[seg + 1].translation();
-            out.push_back(X);
-        }
-        return out;
-    }
-
     std::vector<Eigen::Isometry3d> randomPoses(const Eigen::AlignedBox3d &volume, std::size_t count, std::uint32_t seed)
     {
         std::mt19937_64 rng(seed);
@@ -455,7 +426,7 @@ int main(int argc, char **argv)
                 if (!(onPath ? runPath : runRandom))
                     continue;
                 const std::vector<Eigen::Isometry3d> poses =
-                    onPath ? interpolate(problem.path, states) : randomPoses(volume, random, seed);
+                    onPath ? bench::interpolatePath(problem.path, states) : randomPoses(volume, random, seed);
                 if (poses.empty())
                     continue;
                 std::vector<double> t[NUM_COLUMNS];

@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "PathInterpolation.h"
 #include "meshgap/distance/CombGA.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/SolverFactory.h"
@@ -64,35 +65,6 @@ namespace
             return std::nan("");
         std::sort(v.begin(), v.end());
         return v[v.size() / 2];
-    }
-
-    std::vector<Eigen::Isometry3d> interpolate(const std::vector<Eigen::Isometry3d> &path, std::size_t count)
-    {
-        std::vector<Eigen::Isometry3d> out;
-        if (path.size() < 2 || count < 2)
-            return path;
-        std::vector<double> s{0.0};
-        for (std::size_t i = 1; i < path.size(); ++i)
-        {
-            const double dt = (path[i].translation() - path[i - 1].translation()).norm();
-            const double dr =
-                Eigen::Quaterniond(path[i].linear()).angularDistance(Eigen::Quaterniond(path[i - 1].linear()));
-            s.push_back(s.back() + dt + dr + 1e-12);
-        }
-        std::size_t seg = 0;
-        for (std::size_t k = 0; k < count; ++k)
-        {
-            const double at = s.back() * double(k) / double(count - 1);
-            while (seg + 2 < path.size() && s[seg + 1] < at)
-                ++seg;
-            const double t = std::clamp((at - s[seg]) / (s[seg + 1] - s[seg]), 0.0, 1.0);
-            const Eigen::Quaterniond q0(path[seg].linear()), q1(path[seg + 1].linear());
-            Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-            X.linear() = q0.slerp(t, q1).toRotationMatrix();
-            X.translation() = (1 - t) * path[seg].translation() + t * path[seg + 1].translation();
-            out.push_back(X);
-        }
-        return out;
     }
 
     struct Case
@@ -244,7 +216,7 @@ int main(int argc, char **argv)
                 if (cfg.goal)
                     path.push_back(*cfg.goal);
             }
-            const auto poses = interpolate(path, static_cast<std::size_t>(posesPerProblem));
+            const auto poses = bench::interpolatePath(path, static_cast<std::size_t>(posesPerProblem));
             for (std::size_t k = 0; k < poses.size(); ++k)
                 p.cases.push_back({name, "pose " + std::to_string(k + 1) + "/" + std::to_string(poses.size()), poses[k]});
             problems.push_back(std::move(p));

@@ -25,6 +25,7 @@
 #include <iostream>
 #include <numeric>
 
+#include "PathInterpolation.h"
 #include "FclOracle.h"
 #include "meshgap/distance/WarmFast.h"
 #include "meshgap/mesh/MeshLoader.h"
@@ -38,35 +39,6 @@ namespace fs = std::filesystem;
 
 namespace
 {
-    std::vector<Eigen::Isometry3d> interpolate(const std::vector<Eigen::Isometry3d> &path, std::size_t count)
-    {
-        if (path.size() < 2 || count < 2)
-            return path;
-        std::vector<double> s{0.0};
-        for (std::size_t i = 1; i < path.size(); ++i)
-        {
-            const double dt = (path[i].translation() - path[i - 1].translation()).norm();
-            const double dr =
-                Eigen::Quaterniond(path[i].linear()).angularDistance(Eigen::Quaterniond(path[i - 1].linear()));
-            s.push_back(s.back() + dt + dr + 1e-12);
-        }
-        std::vector<Eigen::Isometry3d> out;
-        std::size_t seg = 0;
-        for (std::size_t k = 0; k < count; ++k)
-        {
-            const double at = s.back() * double(k) / double(count - 1);
-            while (seg + 2 < path.size() && s[seg + 1] < at)
-                ++seg;
-            const double t = std::clamp((at - s[seg]) / (s[seg + 1] - s[seg]), 0.0, 1.0);
-            const Eigen::Quaterniond q0(path[seg].linear()), q1(path[seg + 1].linear());
-            Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-            X.linear() = q0.slerp(t, q1).toRotationMatrix();
-            X.translation() = (1 - t) * path[seg].translation() + t * path[seg + 1].translation();
-            out.push_back(X);
-        }
-        return out;
-    }
-
     template <typename F>
     double timed(F &&f)
     {
@@ -227,7 +199,7 @@ int main(int argc, char **argv)
         for (const BodyConstPtr &o : scene->obstacles())
             spheres.push_back(boundingSphere(*o));
         const Sphere robotSphere = boundingSphere(scene->robot());
-        const std::vector<Eigen::Isometry3d> poses = interpolate(problem.path, states);
+        const std::vector<Eigen::Isometry3d> poses = bench::interpolatePath(problem.path, states);
 
         std::vector<WarmFastState> fastStates(n);
         std::vector<std::pair<double, std::size_t>> order(n);
