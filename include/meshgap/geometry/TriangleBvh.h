@@ -123,7 +123,12 @@ namespace meshgap
 
         /** \brief Heap bytes held (both buffers' capacity). */
         std::size_t memoryBytes() const { return (entries.capacity() + next.capacity()) * sizeof(Entry); }
-        void clear() { valid = false; }
+        /** \brief Forget the history (the next traversal starts as a first one would), keeping the memory. */
+        void clear()
+        {
+            valid = false;
+            started = false;
+        }
     };
 
     /** \brief Upper bound on how far any point within \e radius of \e center (B's frame) moves between B's poses
