@@ -192,8 +192,9 @@ namespace
     }
 
     /** \brief Two separate walls (two obstacles): one with its face at x = -1, one with its face at y = -1, and
-        space for an octahedron of radius 0.5 at the origin, 0.5 from each: a tie. */
-    std::shared_ptr<ClearanceChecker> cornerChecker(const ob::StateSpacePtr &space)
+        space for an octahedron of radius 0.5 at the origin, 0.5 from each: a tie. Returns the space information
+        with the checker: the checker only points to it, so the caller keeps it alive. */
+    std::pair<ob::SpaceInformationPtr, std::shared_ptr<ClearanceChecker>> cornerChecker(const ob::StateSpacePtr &space)
     {
         const Mesh wallX =
             test::transformed(test::box(0.5, 1.45, 2.0, 1), test::translation(-1.5, 0.55, 0));  // y from -0.9
@@ -204,7 +205,7 @@ namespace
             std::make_shared<ClearanceChecker>(si, Scene::fromMeshes(octahedron(0.5), test::merged(wallX, wallY)));
         si->setStateValidityChecker(checker);
         si->setup();
-        return checker;
+        return {si, checker};
     }
 }  // namespace
 
@@ -215,7 +216,7 @@ TEST(ClearanceGradient, TieGivesTheMinimumNormSubgradient)
     bounds.setLow(-4);
     bounds.setHigh(4);
     space->setBounds(bounds);
-    auto checker = cornerChecker(space);
+    const auto [si, checker] = cornerChecker(space);
     ASSERT_EQ(checker->scene().obstacles().size(), 2u);
     ob::ScopedState<ob::SE3StateSpace> s(space), t(space);
     s->setXYZ(0, 0, 0);
@@ -280,7 +281,7 @@ TEST(ClearanceGradient, TieInSe2AndBetweenEqualWalls)
     bounds.setLow(-4);
     bounds.setHigh(4);
     space->setBounds(bounds);
-    auto checker = cornerChecker(space);
+    const auto [si, checker] = cornerChecker(space);
     ob::ScopedState<ob::SE2StateSpace> s(space);
     s->setXY(0, 0);
     s->setYaw(0);
@@ -296,11 +297,11 @@ TEST(ClearanceGradient, TieInSe2AndBetweenEqualWalls)
     // Between two equal walls (faces at x = -1 and x = 1): the two gradients cancel, g* = 0: no step raises both.
     const Mesh left = test::transformed(test::box(0.5, 2.0, 2.0, 1), test::translation(-1.5, 0, 0));
     const Mesh right = test::transformed(test::box(0.5, 2.0, 2.0, 1), test::translation(1.5, 0, 0));
-    auto si = std::make_shared<ob::SpaceInformation>(space);
+    auto si2 = std::make_shared<ob::SpaceInformation>(space);
     auto between =
-        std::make_shared<ClearanceChecker>(si, Scene::fromMeshes(octahedron(0.5), test::merged(left, right)));
-    si->setStateValidityChecker(between);
-    si->setup();
+        std::make_shared<ClearanceChecker>(si2, Scene::fromMeshes(octahedron(0.5), test::merged(left, right)));
+    si2->setStateValidityChecker(between);
+    si2->setup();
     EXPECT_NEAR(clearanceGradient(*between, s.get(), g, ClearanceGradientOptions(), &info), 0.5, 1e-12);
     EXPECT_EQ(info.activePairs, 2u);
     for (double x : g)
