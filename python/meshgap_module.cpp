@@ -445,7 +445,8 @@ PYBIND11_MODULE(meshgap, m)
              "Returns a dict of arrays: distance (N,) (signed: negative in collision), on_robot and on_obstacle "
              "(N, 3) witness points (world frame), obstacle (N,), in_collision (N,), certified (N,). exact: the "
              "certified surface distance (else the paper's node distance; collision still exact). warm: carry a warm "
-             "start along each block of 512 consecutive poses. threads: split the blocks over this many threads "
+             "start from pose to pose (exact: each thread across its blocks of 256 poses, the answers being the cold "
+             "ones bit for bit; fast: afresh at each block). threads: split the blocks over this many threads "
              "(identical answers). The GIL is released while it runs.")
         .def("in_collision", &inCollisionPoses, py::arg("poses"), py::kw_only(), py::arg("threads") = 1,
              "Exact collision test at every pose; a bool array (N,).")

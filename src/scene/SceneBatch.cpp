@@ -12,8 +12,8 @@ namespace meshgap
 {
     namespace
     {
-        /** \brief Run \e work(block) for every block in [0, blocks) on at most \e threads threads (the calling thread
-            one of them), each taking the next block not yet taken, so the threads finish together however the cost
+        /** \brief Run \e work(block, run) for every block in [0, blocks) on at most \e threads threads (the calling
+            thread one of them; \e run numbers the thread, from 0), each taking the next block not yet taken, so the threads finish together however the cost
             varies along the batch; rethrow the first exception once all have stopped. */
         template <typename Work>
         void forEachBlock(std::size_t blocks, unsigned threads, Work work)
@@ -27,7 +27,7 @@ namespace meshgap
                 try
                 {
                     for (std::size_t b = next++; b < blocks; b = next++)
-                        work(b);
+                        work(b, k);
                 }
                 catch (...)
                 {
@@ -53,8 +53,15 @@ namespace meshgap
     {
         results.assign(poses.size(), SceneResult());
         const std::size_t n = poses.size(), blocks = (n + SCENE_BATCH_BLOCK - 1) / SCENE_BATCH_BLOCK;
-        forEachBlock(blocks, threads, [&](std::size_t b) {
-            SceneWarmStart start;
+        // A complete exact answer does not depend on the warm start (canonical ties: bit for bit the cold one), so a
+        // thread carries its warm start from block to block; any other answer (fast mode, an early stop) starts
+        // each block afresh, so that it depends on the block alone, never on which thread took which block.
+        const bool carry = request.exact && request.stopBelow < 0.0;
+        std::vector<SceneWarmStart> starts(std::max(1u, threads));
+        forEachBlock(blocks, threads, [&](std::size_t b, std::size_t run) {
+            SceneWarmStart &start = starts[run];
+            if (!carry)
+                start.reset();
             for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
             {
                 if (warm)
@@ -70,7 +77,7 @@ namespace meshgap
     {
         results.assign(poses.size(), 0);
         const std::size_t n = poses.size(), blocks = (n + SCENE_BATCH_BLOCK - 1) / SCENE_BATCH_BLOCK;
-        forEachBlock(blocks, threads, [&](std::size_t b) {
+        forEachBlock(blocks, threads, [&](std::size_t b, std::size_t) {
             for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
                 results[i] = scene.inCollision(poses[i]) ? 1 : 0;
         });

@@ -8,15 +8,16 @@
 
 namespace meshgap
 {
-    /** \brief Consecutive poses that share one warm start in distanceBatch(): each block of this many poses starts
-        cold and carries its warm start from pose to pose. Fixed, so the blocks (and so every answer) are the same
-        whatever the number of threads. */
-    constexpr std::size_t SCENE_BATCH_BLOCK = 512;
+    /** \brief The unit of work that threads share in distanceBatch() and inCollisionBatch(). Fixed, so the blocks
+        (and so every answer) are the same whatever the number of threads. */
+    constexpr std::size_t SCENE_BATCH_BLOCK = 256;
 
     /** \brief Scene::distance() at every pose of \e poses, in order, into \e results (resized to poses.size()).
 
-        With \e warm, one SceneWarmStart is carried along each block of SCENE_BATCH_BLOCK consecutive poses (a path's
-        states are nearby, so the warm start pays); without it, every query starts cold. Up to \e threads threads
+        With \e warm, a SceneWarmStart is carried from pose to pose (a path's states are nearby, so it pays): for
+        complete exact answers (request.exact, no stopBelow), which are bit for bit the cold ones, each thread
+        carries its own across the blocks it takes; otherwise one starts afresh at each block of SCENE_BATCH_BLOCK
+        consecutive poses. Without \e warm every query starts cold. Up to \e threads threads
         (at least 1; the caller's thread is one) each take the next block not yet taken until none is left, so they
         finish together however the cost varies along the batch. The blocks do not depend on \e threads, so the
         answers are identical for any number of threads. An exception thrown by a query is rethrown here once every
