@@ -410,9 +410,14 @@ namespace meshgap
                         const Triangle &fa = ma.triangles[ta];
                         const Eigen::Vector3d pa[3] = {ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]]};
                         // Cheap exact bounds first: separation along either triangle's normal, then along the
-                        // nine edge-cross axes. The slack keeps rounding from pruning a pair at exactly the best
-                        // distance's value.
-                        const double limit = enough();
+                        // nine edge-cross axes. A pair that ranks before the best one (the canonical tie rule) wins
+                        // a tie, so it is pruned only above the best distance plus the slack (rounding never prunes
+                        // a pair at exactly the best distance's value); a pair that ranks after it must be strictly
+                        // closer, by more than the slack, so a gap at the best distance minus the slack already
+                        // rules it out: the triangles that share a vertex or an edge closest to the other body,
+                        // which all tie, then cost no exact test.
+                        const bool ranksAfter = ta > bestA_ || (ta == bestA_ && tb >= bestB_);
+                        const double limit = ranksAfter ? result_.distance - slack_ : enough();
                         Separation s;
                         s.consider(a_.normals()[ta], pa, pb);
                         s.consider(normalB, pa, pb);
@@ -576,11 +581,16 @@ namespace meshgap
             };
             std::array<SlotMotion, BvhFront::POSES> slots;
             DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, &next, motion, stamp);
-            for (std::size_t i = 0; i < count && !traversal.stopped(); ++i)
+            // An entry is still proven beyond the best when key - motion - pad > enough(): the scan below skips
+            // those in a tight loop against that threshold, worked out again whenever the best changes.
+            double threshold = traversal.enough() + motion + pad;
+            for (std::size_t i = 0; i < count; threshold = traversal.enough() + motion + pad, ++i)
             {
+                while (i < count && begin[i].key > threshold)
+                    ++i;
+                if (i == count || traversal.stopped())
+                    break;
                 const BvhFront::Entry &e = begin[i];
-                if (e.key - motion - pad > traversal.enough())
-                    continue;  // still proven beyond the best
                 // Its own node's displacement since its bound was computed, if that pose is still known: the
                 // motion's difference worked out once per pose (nodeMotionBound() term by term).
                 const std::uint32_t age = stamp - e.stamp;
