@@ -14,8 +14,9 @@
 // Per state, interleaved so machine load hits every column alike: FCL distance, FCL collision, meshgap cold
 // certified (Scene::distance without a warm start), warm certified (one warm start carried from state
 // to state), fast (SceneRequest::exact = false with --fast-solver, its own carried warm start), collision-only (Scene::inCollision),
+// collision-only warm (Scene::inCollision with its own warm start carried from state to state: collision fronts),
 // and enumeration (the exact node-level minimum over every obstacle, on every --enum-every'th state). --skip
-// leaves columns (cold, warm, fast, collision, enumeration) or sets (path, random) out; the two FCL columns are
+// leaves columns (cold, warm, fast, collision, collision-warm, enumeration) or sets (path, random) out; the two FCL columns are
 // the reference and always run. Median and 90th percentile in microseconds, the ratio of the medians to FCL's
 // (distance columns to FCL distance, collision-only to FCL collision), and disagreements counted: collision
 // verdicts of every column against FCL's collision; certified distances against FCL's distance, where both say
@@ -269,10 +270,11 @@ namespace
                 std::abs(a.distance - b.distance) <= 1e-12 * std::max(std::abs(a.distance), std::abs(b.distance)));
     }
 
-    const char *const COLUMNS[] = {"FCL distance", "FCL collision",  "cold certified", "warm certified",
-                                   "fast",         "collision-only", "enumeration"};
+    const char *const COLUMNS[] = {"FCL distance", "FCL collision",       "cold certified",
+                                   "warm certified", "fast",              "collision-only",
+                                   "collision-only, warm", "enumeration"};
     /** \brief --skip names of the columns, in COLUMNS' order (the FCL columns are the reference: never skipped). */
-    const char *const SKIP_NAMES[] = {"", "", "cold", "warm", "fast", "collision", "enumeration"};
+    const char *const SKIP_NAMES[] = {"", "", "cold", "warm", "fast", "collision", "collision-warm", "enumeration"};
     enum Column
     {
         FCL_D,
@@ -281,6 +283,7 @@ namespace
         WARM,
         FAST,
         COLL,
+        WCOLL,
         ENUM,
         NUM_COLUMNS
     };
@@ -339,7 +342,7 @@ int main(int argc, char **argv)
                 }
             if (!known)
                 throw Exception("--skip", "unknown column or set '" + name +
-                                              "' (valid: cold, warm, fast, collision, enumeration, path, random; "
+                                              "' (valid: cold, warm, fast, collision, collision-warm, enumeration, path, random; "
                                               "the FCL columns are the reference and always run)");
         }
         if (enumEvery == 0)
@@ -432,7 +435,7 @@ int main(int argc, char **argv)
                 std::vector<double> t[NUM_COLUMNS];
                 std::size_t verdicts[NUM_COLUMNS] = {}, distances[NUM_COLUMNS] = {}, colliding = 0, fastBelowExact = 0,
                             warmCold = 0;
-                SceneWarmStart warm, fastWarm;
+                SceneWarmStart warm, fastWarm, collisionWarm;
                 SceneRequest certified, fast;
                 fast.exact = false;
                 fast.solver = fastSolver;
@@ -440,7 +443,7 @@ int main(int argc, char **argv)
                 {
                     const Eigen::Isometry3d &X = poses[i];
                     double dF = 0;
-                    bool cF = false, cM = false;
+                    bool cF = false, cM = false, cW = false;
                     SceneResult cold, hot, quick;
                     t[FCL_D].push_back(timed([&] { dF = test::fclDistance(fw, fr, X); }));
                     t[FCL_C].push_back(timed([&] { cF = test::fclCollide(fw, fr, X); }));
@@ -453,6 +456,8 @@ int main(int argc, char **argv)
                         t[FAST].push_back(timed([&] { scene->distance(X, fast, fastWarm, quick); }));
                     if (active[COLL])
                         t[COLL].push_back(timed([&] { cM = scene->inCollision(X); }));
+                    if (active[WCOLL])
+                        t[WCOLL].push_back(timed([&] { cW = scene->inCollision(X, collisionWarm); }));
                     colliding += cF;
                     verdicts[FCL_D] += (dF <= 0) != cF;
                     if (active[COLD])
@@ -477,6 +482,8 @@ int main(int argc, char **argv)
                     }
                     if (active[COLL])
                         verdicts[COLL] += cM != cF;
+                    if (active[WCOLL])
+                        verdicts[WCOLL] += cW != cF;
                     if (active[ENUM] && i % enumEvery == 0)
                     {
                         double best = std::numeric_limits<double>::infinity();
@@ -503,7 +510,7 @@ int main(int argc, char **argv)
                     char buf[96];
                     if (s[c].n == 0)
                         return std::string("-");
-                    const double ref = c == COLL ? s[FCL_C].median : s[FCL_D].median;
+                    const double ref = c == COLL || c == WCOLL ? s[FCL_C].median : s[FCL_D].median;
                     if (c == FCL_D || c == FCL_C)
                         std::snprintf(buf, sizeof buf, "%.1f / %.1f", s[c].median, s[c].p90);
                     else
@@ -515,7 +522,8 @@ int main(int argc, char **argv)
                     return out;
                 };
                 std::string dis = "verdicts " +
-                                  std::to_string(verdicts[COLD] + verdicts[WARM] + verdicts[FAST] + verdicts[COLL]) +
+                                  std::to_string(verdicts[COLD] + verdicts[WARM] + verdicts[FAST] + verdicts[COLL] +
+                                                 verdicts[WCOLL]) +
                                   ", distances " + std::to_string(distances[COLD] + distances[WARM]);
                 if (active[COLD] && active[WARM])
                     dis += ", warm≠cold " + std::to_string(warmCold);
@@ -539,7 +547,8 @@ int main(int argc, char **argv)
                     {
                         if (!active[c])
                             continue;
-                        const double ref = c == COLL || c == FCL_C ? s[FCL_C].median : s[FCL_D].median;
+                        const double ref =
+                            c == COLL || c == WCOLL || c == FCL_C ? s[FCL_C].median : s[FCL_D].median;
                         *csv << problem.name << "," << set << "," << poses.size() << "," << colliding << ","
                              << world.triangles.size() << "," << robot.triangles.size() << ","
                              << scene->obstacles().size() << "," << COLUMNS[c] << "," << s[c].n << "," << s[c].median

@@ -133,9 +133,11 @@ namespace meshgap
         }
     }  // namespace
 
-    bool inCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)
+    bool inCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, ExactWarmStart *warm)
     {
-        return bvhCollide(a.bvh(), b.bvh(), X_AB) || oneInsideTheOther(a, b, X_AB);
+        const bool touching = warm ? bvhCollide(a.bvh(), b.bvh(), X_AB, warm->collision)
+                                   : bvhCollide(a.bvh(), b.bvh(), X_AB);
+        return touching || oneInsideTheOther(a, b, X_AB);
     }
 
     void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,

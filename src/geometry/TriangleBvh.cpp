@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <optional>
 
 #include "meshgap/geometry/TriangleDistance.h"
 
@@ -613,8 +614,15 @@ namespace meshgap
                     const TriangleBvh::Node &nb = b.nodes()[e.b];
                     const double displacement =
                         ((m.dR * nb.center + m.dt).norm() + nb.radius * m.turn) * (1.0 + 1e-12) + m.pad;
-                    if (e.key - front->motions[slot] - displacement - pad > traversal.enough())
+                    // Its bound now, kept re-based on this pose (so the next queries' scan keeps it without any
+                    // work); the extra pad covers the roundoff of taking the motion out and back in.
+                    const double now = e.key - front->motions[slot] - displacement - pad - 1e-15 * std::abs(e.key);
+                    if (now > traversal.enough())
+                    {
+                        front->entries[i].key = now + motion;
+                        front->entries[i].stamp = stamp;
                         continue;
+                    }
                 }
                 // A pair of leaves: its gap along the axis that separated it last time.
                 const double gap = traversal.axisBound(e);
@@ -708,6 +716,270 @@ namespace meshgap
         }
         return false;
     }
+    namespace
+    {
+        /** \brief B's motion from an earlier pose \e P to \e X (both B in A's frame), to bound how far the points of a
+            node of B moved: nodeMotionBound() with the rotation's part worked out once. */
+        struct StepMotion
+        {
+            Eigen::Matrix3d dR;
+            Eigen::Vector3d dt;
+            double turn{0.0}, pad{0.0};
+            StepMotion(const Eigen::Isometry3d &P, const Eigen::Isometry3d &X, const TriangleBvh::Node &rootB)
+              : dR(X.linear() - P.linear()), dt(X.translation() - P.translation())
+            {
+                const double t = std::sqrt(std::max(0.0, 3.0 - P.linear().cwiseProduct(X.linear()).sum()));
+                turn = t + 1e-7 * (t > 0.0);
+                pad = 1e-12 * (rootB.center.norm() + rootB.radius + P.translation().norm() + X.translation().norm());
+            }
+            double displacement(const TriangleBvh::Node &n) const
+            {
+                return ((dR * n.center + dt).norm() + n.radius * turn) * (1.0 + 1e-12) + pad;
+            }
+        };
+
+        /** \brief One collision test below a pair of nodes, depth first: box pairs proven apart by more than
+            \e margin + twice the motion of B's node by \e lookahead (the last step), and triangle pairs apart by more
+            than \e margin, go to \e record with their gap (key = gap + motion), so that most of the front stays
+            proven after a similar step; a pair
+            apart by less, or by an edge axis only, is kept with gap 0 (re-tested at the next pose). Pairs of
+            triangles that might touch are decided by trianglesIntersect(). */
+        class CollisionTraversal
+        {
+        public:
+            CollisionTraversal(const TriangleBvh &a, const TriangleBvh &b, const RelativePose &X, double margin,
+                               const StepMotion *lookahead, std::vector<BvhFront::Entry> *record, double motion,
+                               std::uint32_t stamp)
+              : a_(a), b_(b), X_(X), margin_(margin), lookahead_(lookahead), record_(record), motion_(motion),
+                stamp_(stamp),
+                stack_(threadStack<PairEntry, 6>())
+            {
+            }
+
+            /** \brief True at the first intersecting pair of triangles below \e start (hitA / hitB name it). */
+            bool run(const PairEntry &start)
+            {
+                stack_.clear();
+                stack_.push_back(start);
+                while (!stack_.empty())
+                {
+                    const PairEntry e = stack_.back();
+                    stack_.pop_back();
+                    const TriangleBvh::Node &na = a_.nodes()[e.a], &nb = b_.nodes()[e.b];
+                    if (na.isLeaf() && nb.isLeaf())
+                    {
+                        if (leaves(e, na, nb))
+                            return true;
+                        continue;
+                    }
+                    const double bound = lowerBound(na, nb, X_);
+                    // Kept when apart by the margin plus twice the last step's motion of B's node, so that it stays
+                    // proven at the next pose or two; without a lookahead, as soon as separated.
+                    const double apart = lookahead_ ? margin_ + 2.0 * lookahead_->displacement(nb) : margin_;
+                    if (bound > apart)
+                    {
+                        keep(e, bound);
+                        continue;
+                    }
+                    if (!lookahead_ && separated(na, nb, X_))
+                    {
+                        keep(e, 0.0);
+                        continue;
+                    }
+                    if (splitA(na, nb))
+                    {
+                        stack_.push_back({na.first, e.b});
+                        stack_.push_back({na.first + 1, e.b});
+                    }
+                    else
+                    {
+                        stack_.push_back({e.a, nb.first});
+                        stack_.push_back({e.a, nb.first + 1});
+                    }
+                }
+                return false;
+            }
+
+            std::uint32_t hitA{0}, hitB{0};
+
+        private:
+            void keep(const PairEntry &e, double gap)
+            {
+                if (record_)
+                    record_->push_back({e.a, e.b, stamp_, {0.0f, 0.0f, 0.0f}, gap + motion_});
+            }
+
+            /** \brief Every triangle pair of two leaves: the least separating-axis gap goes to the front when all are
+                apart by more than the margin; true at an intersecting pair. */
+            bool leaves(const PairEntry &e, const TriangleBvh::Node &na, const TriangleBvh::Node &nb)
+            {
+                const Mesh &ma = a_.mesh(), &mb = b_.mesh();
+                double least = std::numeric_limits<double>::infinity();
+                Eigen::Vector3d pb[3];
+                for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
+                {
+                    const std::uint32_t tb = b_.order()[j];
+                    for (int k = 0; k < 3; ++k)
+                        pb[k] = X_.R * mb.vertices[mb.triangles[tb][k]] + X_.t;
+                    const Eigen::Vector3d normalB = X_.R * b_.normals()[tb];
+                    for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
+                    {
+                        const std::uint32_t ta = a_.order()[i];
+                        const Triangle &fa = ma.triangles[ta];
+                        const Eigen::Vector3d pa[3] = {ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]]};
+                        Separation s;
+                        s.consider(a_.normals()[ta], pa, pb);
+                        s.consider(normalB, pa, pb);
+                        for (int m = 0; m < 9 && !(s.gap > margin_); ++m)
+                        {
+                            const Eigen::Vector3d n = (pa[(m / 3 + 1) % 3] - pa[m / 3]).cross(pb[(m % 3 + 1) % 3] -
+                                                                                              pb[m % 3]);
+                            const double length = n.norm();
+                            if (length > 0.0)
+                                s.consider(n, pa, pb, length);
+                        }
+                        if (!(s.gap > margin_))
+                        {
+                            if (trianglesIntersect(pa[0], pa[1], pa[2], pb[0], pb[1], pb[2]))
+                            {
+                                hitA = ta;
+                                hitB = tb;
+                                return true;
+                            }
+                            least = 0.0;  // apart, but not by the margin: decided again at the next pose
+                        }
+                        least = std::min(least, s.gap > margin_ ? s.gap : 0.0);
+                    }
+                }
+                keep(e, least);
+                return false;
+            }
+
+            const TriangleBvh &a_, &b_;
+            const RelativePose &X_;
+            const double margin_;
+            const StepMotion *lookahead_;
+            std::vector<BvhFront::Entry> *record_;
+            const double motion_;
+            const std::uint32_t stamp_;
+            std::vector<PairEntry> &stack_;
+        };
+
+    }  // namespace
+
+    bool bvhCollide(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, BvhFront &front,
+                    std::uint32_t *hitA, std::uint32_t *hitB)
+    {
+        if (a.nodes().empty() || b.nodes().empty())
+        {
+            front.valid = false;
+            return false;
+        }
+        const RelativePose X(X_AB);
+        const TriangleBvh::Node &rootA = a.nodes()[0], &rootB = b.nodes()[0];
+        // Ten times trianglesIntersect()'s contact tolerance at the largest coordinate scale of any pair: a pair
+        // kept apart by more than this is apart for trianglesIntersect() too.
+        const double margin = 10.0 * kTriangleContactTolerance *
+                              (rootA.center.norm() + rootA.radius + rootB.center.norm() + rootB.radius + X.t.norm());
+        const std::uint32_t stamp = ++front.stamp;
+        const double step = front.started ? motionBound(b, front.poses[(stamp - 1) % BvhFront::POSES], X_AB)
+                                          : std::numeric_limits<double>::infinity();
+        front.started = true;
+        front.poses[stamp % BvhFront::POSES] = X_AB;
+        auto report = [&](const CollisionTraversal &t)
+        {
+            front.valid = false;
+            if (hitA)
+                *hitA = t.hitA;
+            if (hitB)
+                *hitB = t.hitB;
+            return true;
+        };
+        // The last step's motion, node by node: the lookahead of the pairs written now.
+        const bool small = step <= 0.1 * rootB.radius;
+        std::optional<StepMotion> last;
+        if (small)
+            last.emplace(front.poses[(stamp - 1) % BvhFront::POSES], X_AB, rootB);
+        if (front.valid && small)
+        {
+            const double motion = front.motion + step;
+            const double pad = 1e-12 * motion;
+            std::vector<BvhFront::Entry> &next = front.next;
+            next.clear();
+            CollisionTraversal traversal(a, b, X, margin, &*last, &next, motion, stamp);
+            std::array<std::optional<StepMotion>, BvhFront::POSES> slots;
+            const std::size_t count = front.entries.size();
+            std::size_t retested = 0;
+            for (std::size_t i = 0; i < count; ++i)
+            {
+                // Still apart by the margin after every motion since its gap was found (key - motion > margin).
+                while (i < count && front.entries[i].key > margin + motion + pad)
+                    ++i;
+                if (i == count)
+                    break;
+                BvhFront::Entry &e = front.entries[i];
+                // Its own node's displacement since then, if that pose is still known; kept re-based on this pose.
+                const std::uint32_t age = stamp - e.stamp;
+                if (age < BvhFront::POSES && age > 0)
+                {
+                    const std::uint32_t slot = e.stamp % BvhFront::POSES;
+                    if (!slots[slot])
+                        slots[slot].emplace(front.poses[slot], X_AB, rootB);
+                    const double now = e.key - front.motions[slot] - slots[slot]->displacement(b.nodes()[e.b]) -
+                                       pad - 1e-15 * std::abs(e.key);
+                    if (now > margin)
+                    {
+                        e.key = now + motion;
+                        e.stamp = stamp;
+                        continue;
+                    }
+                }
+                ++retested;
+                const PairEntry pair{e.a, e.b};
+                if (traversal.run(pair))
+                    return report(traversal);
+                front.entries[i] = next.back();  // its sub-front replaces it (at least one entry)
+                next.pop_back();
+            }
+            front.reused += count - retested;
+            front.retested += retested;
+            front.entries.insert(front.entries.end(), next.begin(), next.end());
+            front.motion = motion;
+            front.motions[stamp % BvhFront::POSES] = motion;
+            front.valid = front.entries.size() <= BvhFront::FRONT_GROWTH * front.freshSize + 16 &&
+                          retested <= front.freshSize / 2 + 16;
+            ++front.uses;
+            if (!front.valid && front.uses <= 2)
+                front.wait = front.backoff = std::min(2 * front.backoff + 1, 64u);  // it did not pay: wait
+            else if (front.uses > 2)
+                front.backoff = 0;
+            return false;
+        }
+        // From the roots. A fresh front is written after a small step (a run of nearby poses, as along a path or a
+        // motion: at most a tenth of B's size) unless fronts did not pay lately; between unrelated poses (a
+        // planner's samples) none is.
+        front.valid = false;
+        const bool write = small && front.wait == 0;
+        if (small && front.wait > 0)
+            --front.wait;
+        if (!write)
+        {
+            ++front.incoherent;
+            return bvhCollide(a, b, X_AB, hitA, hitB);
+        }
+        front.uses = 0;
+        ++front.rebuilds;
+        front.entries.clear();
+        CollisionTraversal traversal(a, b, X, margin, &*last, &front.entries, 0.0, stamp);
+        if (traversal.run({0u, 0u}))
+            return report(traversal);
+        front.motion = 0.0;
+        front.motions[stamp % BvhFront::POSES] = 0.0;
+        front.freshSize = front.entries.size();
+        front.valid = true;
+        return false;
+    }
+
     void bvhPointDistance(const TriangleBvh &tree, const Eigen::Vector3d &p, double upperBound, double stopBelow,
                           BvhPointResult &result)
     {

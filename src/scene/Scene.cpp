@@ -284,15 +284,27 @@ namespace meshgap
         return std::make_shared<Scene>(std::move(robotBody), std::move(obstacles));
     }
 
-    std::size_t Scene::firstCollision(const Eigen::Isometry3d &X_WR) const
+    std::size_t Scene::firstCollision(const Eigen::Isometry3d &X_WR, SceneWarmStart *warm) const
     {
         // Touching or intersecting bodies, or one inside the other, have overlapping boxes.
         ThreadScratch<std::vector<Entry>> hits;
         impl_->intersecting(impl_->robotBox(*robot_, X_WR), hits.get());
         for (const Entry &e : hits.get())
-            if (meshgap::inCollision(*obstacles_[e.second], *robot_, X_WR))
+            if (meshgap::inCollision(*obstacles_[e.second], *robot_, X_WR, warm ? &warm->pairs[e.second] : nullptr))
                 return e.second;
         return obstacles_.size();
+    }
+
+    void Scene::bind(SceneWarmStart &warm) const
+    {
+        if (warm.scene == id_ && warm.pairs.size() == obstacles_.size())
+            return;
+        // First query with this warm start, or one made with another scene: nothing carries over.
+        warm.valid = false;
+        warm.pairs.clear();
+        warm.pairs.resize(obstacles_.size());
+        warm.fast.clear();
+        warm.scene = id_;
     }
 
     std::size_t Scene::deepestCollision(const Eigen::Isometry3d &X_WR, std::size_t known, DistanceResult &best,
@@ -328,6 +340,12 @@ namespace meshgap
     bool Scene::inCollision(const Eigen::Isometry3d &X_WR) const
     {
         return firstCollision(X_WR) < obstacles_.size();
+    }
+
+    bool Scene::inCollision(const Eigen::Isometry3d &X_WR, SceneWarmStart &warm) const
+    {
+        bind(warm);
+        return firstCollision(X_WR, &warm) < obstacles_.size();
     }
 
     void Scene::distance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
@@ -375,15 +393,8 @@ namespace meshgap
     void Scene::exactDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart *warm,
                               SceneResult &result) const
     {
-        if (warm && (warm->scene != id_ || warm->pairs.size() != obstacles_.size()))
-        {
-            // First exact query with this warm start, or one made with another scene: nothing carries over.
-            warm->valid = false;
-            warm->pairs.clear();
-            warm->pairs.resize(obstacles_.size());
-            warm->fast.clear();
-            warm->scene = id_;
-        }
+        if (warm)
+            bind(*warm);
         const bool warmValid = warm && warm->valid && warm->obstacle < obstacles_.size();
         const bool mayStop = request.stopBelow >= 0.0;
         DistanceResult best;

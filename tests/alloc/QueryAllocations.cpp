@@ -218,6 +218,36 @@ namespace meshgap
             EXPECT_GT(collisions, 0u);
         }
 
+        TEST_F(QueryAllocations, InCollisionVerdictCarriedFromPoseToPose)
+        {
+            // The collision fronts grow on the first pass; the second allocates nothing. Small steps (a front is
+            // written only along a run of nearby poses), grazing the boxes of the row: in collision at some of them.
+            std::vector<Eigen::Isometry3d> poses;
+            for (int k = 0; k < 300; ++k)
+            {
+                Eigen::Isometry3d X = test::translation(-0.5 + 0.02 * k, 0.4, 0.0);
+                X.linear() = Eigen::AngleAxisd(0.01 * k, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+                poses.push_back(X);
+            }
+            SceneWarmStart warm;
+            std::size_t counted = 0, collisions = 0;
+            for (int pass = 0; pass < 2; ++pass)
+                for (const Eigen::Isometry3d &X : poses)
+                {
+                    const std::size_t before = allocationCount;
+                    const bool hit = dense_->inCollision(X, warm);
+                    counted += pass == 1 ? allocationCount - before : 0;
+                    collisions += pass == 1 && hit;
+                    ASSERT_EQ(hit, dense_->inCollision(X));
+                }
+            EXPECT_EQ(counted, 0u);
+            EXPECT_GT(collisions, 0u);
+            std::size_t kept = 0;
+            for (const ExactWarmStart &pair : warm.pairs)
+                kept += pair.collision.reused;
+            EXPECT_GT(kept, 0u);  // fronts were written and used
+        }
+
         TEST_F(QueryAllocations, Fast)
         {
             check(*dense_, fast(), false, false);

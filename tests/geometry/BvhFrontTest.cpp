@@ -135,6 +135,67 @@ TEST(BvhFront, EveryEntryStaysALowerBoundAndTheFrontACutAlongAMotion)
     EXPECT_GT(front.reused, front.retested / 10);
 }
 
+TEST(BvhFront, ACollisionFrontGivesTheStatelessVerdictAndEveryEntryStaysApart)
+{
+    // bvhCollide() with a front along the winding motion (small steps through A, jumps): the stateless verdict at
+    // every pose, a reported pair that really intersects, and every entry of a valid front apart by its bound (key -
+    // motion, above the margin) at that pose, checked over all of its triangle pairs.
+    const Mesh ma = bumpy(1.0, 4), mb = bumpy(0.5, 3);
+    const TriangleBvh a(ma), b(mb);
+    const std::size_t nb = mb.triangles.size();
+    BvhFront front;
+    std::size_t checked = 0, hits = 0, entries = 0;
+    Eigen::Vector3d onA, onB, pb[3];
+    for (const Eigen::Isometry3d &X : winding(11, 600))
+    {
+        std::uint32_t ta = 0, tb = 0;
+        const bool warm = bvhCollide(a, b, X, front, &ta, &tb);
+        ASSERT_EQ(warm, bvhCollide(a, b, X));
+        if (warm)
+        {
+            ++hits;
+            const Triangle &f = ma.triangles[ta], &g = mb.triangles[tb];
+            ASSERT_TRUE(trianglesIntersect(ma.vertices[f[0]], ma.vertices[f[1]], ma.vertices[f[2]],
+                                           X * mb.vertices[g[0]], X * mb.vertices[g[1]], X * mb.vertices[g[2]]));
+            ASSERT_FALSE(front.valid);
+            continue;
+        }
+        if (!front.valid)
+            continue;
+        std::vector<std::uint8_t> covered(ma.triangles.size() * nb, 0);
+        for (const BvhFront::Entry &e : front.entries)
+        {
+            const double bound = e.key - front.motion;
+            const auto [a0, a1] = leafRange(a, e.a);
+            const auto [b0, b1] = leafRange(b, e.b);
+            for (std::uint32_t j = b0; j < b1; ++j)
+            {
+                const Triangle &g = mb.triangles[b.order()[j]];
+                for (int k = 0; k < 3; ++k)
+                    pb[k] = X * mb.vertices[g[k]];
+                for (std::uint32_t i = a0; i < a1; ++i)
+                {
+                    const Triangle &f = ma.triangles[a.order()[i]];
+                    ++covered[a.order()[i] * nb + b.order()[j]];
+                    const double d = triangleDistance(ma.vertices[f[0]], ma.vertices[f[1]], ma.vertices[f[2]], pb[0],
+                                                      pb[1], pb[2], onA, onB);
+                    ASSERT_GT(d, 0.0);
+                    ASSERT_LE(bound, d + 1e-12) << "entry (" << e.a << ", " << e.b << ")";
+                }
+            }
+        }
+        for (std::uint8_t c : covered)
+            ASSERT_EQ(c, 1);  // a cut: every triangle pair under exactly one entry
+        entries += front.entries.size();
+        ++checked;
+    }
+    EXPECT_GT(hits, 20u);      // the motion passes through A
+    EXPECT_GT(checked, 50u);   // and fronts were kept and used between the contacts and the jumps
+    EXPECT_GT(front.reused, front.retested);
+    EXPECT_GT(front.incoherent, 5u);  // the jumps do not write a front
+    EXPECT_GT(entries, checked);
+}
+
 TEST(BvhFront, MotionBoundCoversEveryPointsDisplacement)
 {
     // motionBound(): no point of B's root sphere moves further, checked on random poses and points.

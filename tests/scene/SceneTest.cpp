@@ -231,7 +231,7 @@ TEST(Scene, WarmStartNeverChangesTheAnswerAlongAMotion)
         const auto segment = straightLine(from, to, 600);
         poses.insert(poses.end(), segment.begin(), segment.end());
     }
-    SceneWarmStart warm;
+    SceneWarmStart warm, collisionWarm;
     std::size_t warmQueries = 0, hits = 0, collisions = 0, identical = 0, pairsWarm = 0, pairsCold = 0;
     double worstDifference = 0.0;  // relative
     for (std::size_t i = 0; i < poses.size(); ++i)
@@ -242,6 +242,9 @@ TEST(Scene, WarmStartNeverChangesTheAnswerAlongAMotion)
         SceneWarmStart cold;
         scene->distance(poses[i], SceneRequest(), cold, c);
         ASSERT_EQ(w.inCollision, c.inCollision) << "pose " << i;
+        // The collision test alone, carried from pose to pose (its own warm start), and stateless.
+        ASSERT_EQ(scene->inCollision(poses[i], collisionWarm), c.inCollision) << "pose " << i;
+        ASSERT_EQ(scene->inCollision(poses[i]), c.inCollision) << "pose " << i;
         // The same answer bit for bit: ties between triangle pairs are broken canonically (bvhDistance()), so the
         // seed cannot change which pair is reported. Witness points too, when separated.
         EXPECT_EQ(w.distance, c.distance) << "pose " << i;
@@ -277,6 +280,13 @@ TEST(Scene, WarmStartNeverChangesTheAnswerAlongAMotion)
     EXPECT_GT(collisions, 10u);
     EXPECT_LT(collisions, poses.size() / 2);
     EXPECT_GT(hitRate, 0.9);  // small steps: the closest obstacle rarely changes
+    std::size_t kept = 0, retested = 0;
+    for (const ExactWarmStart &pair : collisionWarm.pairs)
+    {
+        kept += pair.collision.reused;
+        retested += pair.collision.retested;
+    }
+    EXPECT_GT(kept, retested);  // the collision fronts were used
 }
 
 TEST(Scene, InCollisionTheDeepestObstacleWinsWhateverTheWarmStartOrOrder)

@@ -16,9 +16,10 @@ namespace meshgap
     {
         bool valid{false};  ///< triangleA / triangleB hold the last closest pair
         std::uint32_t triangleA{0}, triangleB{0};
-        BvhFront front;
+        BvhFront front;      ///< of the last distance traversal
+        BvhFront collision;  ///< of the last collision test (inCollision() with a warm start)
         /** \brief Bytes held, this object included. */
-        std::size_t memoryBytes() const { return sizeof(*this) + front.memoryBytes(); }
+        std::size_t memoryBytes() const { return sizeof(*this) + front.memoryBytes() + collision.memoryBytes(); }
     };
 
     /** \brief The exact stage after a node-level search (the paper's future work, Section V): turn \e result's node
@@ -65,8 +66,10 @@ namespace meshgap
                      const DistanceRequest &request = DistanceRequest(), ExactWarmStart *warm = nullptr);
 
     /** \brief Exact collision test alone: a touching or intersecting surface triangle pair (bvhCollide()), or one
-        closed body wholly inside the other. Cheaper than refineExact(); the same verdict. */
-    bool inCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB);
+        closed body wholly inside the other. Cheaper than refineExact(); the same verdict. With \e warm, the
+        surface test carries its front from the caller's last test (warm->collision, bvhCollide() with a front):
+        the same verdict at a fraction of the cost along a run of nearby poses. */
+    bool inCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, ExactWarmStart *warm = nullptr);
 
     /** \brief True when \e p (in the body's frame) is inside the closed body \e body (generalised winding number
         over its surface triangles > 1/2, summed over all of them: O(n); insideClosedBody() in PenetrationDepth.h

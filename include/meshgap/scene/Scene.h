@@ -56,6 +56,7 @@ namespace meshgap
             {
                 p.valid = false;
                 p.front.clear();
+                p.collision.clear();
             }
         }
 
@@ -113,6 +114,10 @@ namespace meshgap
 
         /** \brief Exact collision test of the robot at \e X_WR against every obstacle; stops at the first hit. */
         bool inCollision(const Eigen::Isometry3d &X_WR) const;
+        /** \brief The same verdict, each obstacle's surface test carried from the caller's last one (the collision
+            front of \e warm's pair for that obstacle): along a run of nearby poses most of it is proven without a
+            test. Thread-safe given a warm start per caller; allocates nothing once warmed up. */
+        bool inCollision(const Eigen::Isometry3d &X_WR, SceneWarmStart &warm) const;
 
         /** \brief Minimum distance from the robot at \e X_WR to the obstacles. Obstacles are visited in order of a
             lower bound on their distance (ties in R-tree order), the warm start's obstacle first, and skipped once that
@@ -159,7 +164,10 @@ namespace meshgap
         struct Impl;
 
         /** \brief The first obstacle (in R-tree order) the robot at \e X_WR collides with, or obstacles_.size(). */
-        std::size_t firstCollision(const Eigen::Isometry3d &X_WR) const;
+        std::size_t firstCollision(const Eigen::Isometry3d &X_WR, SceneWarmStart *warm = nullptr) const;
+        /** \brief Bind \e warm to this scene (one pair warm start per obstacle), starting it afresh if it was made
+            with another scene. */
+        void bind(SceneWarmStart &warm) const;
         /** \brief The most negative signed distance (deepest penetration, setPenetration()) over every obstacle the
             robot at \e X_WR collides with, into \e best (ties: the smallest index); returns that obstacle, or
             obstacles_.size() if none collides. \e known is an obstacle already known to collide (no test made
