@@ -77,9 +77,12 @@ namespace meshgap
     {
         results.assign(poses.size(), 0);
         const std::size_t n = poses.size(), blocks = (n + SCENE_BATCH_BLOCK - 1) / SCENE_BATCH_BLOCK;
-        forEachBlock(blocks, threads, [&](std::size_t b, std::size_t) {
+        // The verdict does not depend on the warm start: each thread carries its own (collision fronts) across
+        // the blocks it takes, which pays along a trajectory and costs next to nothing between unrelated poses.
+        std::vector<SceneWarmStart> starts(std::max(1u, threads));
+        forEachBlock(blocks, threads, [&](std::size_t b, std::size_t run) {
             for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
-                results[i] = scene.inCollision(poses[i]) ? 1 : 0;
+                results[i] = scene.inCollision(poses[i], starts[run]) ? 1 : 0;
         });
     }
 }  // namespace meshgap

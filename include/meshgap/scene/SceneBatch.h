@@ -26,7 +26,8 @@ namespace meshgap
                        bool warm, unsigned threads, std::vector<SceneResult> &results);
 
     /** \brief Scene::inCollision() at every pose of \e poses into \e results (resized; 1 = collides), its blocks
-        shared among up to \e threads (at least 1) threads as distanceBatch() does. */
+        shared among up to \e threads (at least 1) threads as distanceBatch() does; each thread carries a warm start
+        (collision fronts: the same verdicts, cheaper along a trajectory). */
     void inCollisionBatch(const Scene &scene, const std::vector<Eigen::Isometry3d> &poses, unsigned threads,
                           std::vector<char> &results);
 }  // namespace meshgap
