@@ -164,8 +164,13 @@ namespace meshgap
         {
             BvhDistanceResult traversal;
             const bool seeded = std::isfinite(best.d);
+            // A seed that is the starting bound, apart, is not tested again: its distance and direction are known.
+            const bool known = seeded && best.d <= upperBound && best.d > 0.0;
+            const Eigen::Vector3d seedAxis = known ? Eigen::Vector3d((best.onB - best.onA) / (best.onB - best.onA).norm())
+                                                   : Eigen::Vector3d::Zero();
             bvhDistance(a.bvh(), b.bvh(), X_AB, std::min(best.d, upperBound), mayStop ? stopBelow : 0.0, traversal,
-                        seeded ? best.ta : UINT32_MAX, seeded ? best.tb : UINT32_MAX, warm ? &warm->front : nullptr);
+                        seeded ? best.ta : UINT32_MAX, seeded ? best.tb : UINT32_MAX, warm ? &warm->front : nullptr,
+                        known ? &seedAxis : nullptr);
             result.triangleTests += traversal.triangleTests;
             if (traversal.found)
                 best = {traversal.distance, traversal.triangleA, traversal.triangleB, traversal.onA, traversal.onB};

@@ -301,9 +301,13 @@ namespace meshgap
                               std::vector<BvhFront::Entry> *record, double motion, std::uint32_t stamp)
               : a_(a), b_(b), X_(X), slack_(slack), stopBelow_(stopBelow), result_(result), bestA_(bestA),
                 bestB_(bestB), record_(record), motion_(motion), stamp_(stamp), stack_(threadStack<PairEntry, 1>()),
-                bounds_(threadStack<double, 2>())
+                bounds_(threadStack<double, 2>()), seedA_(bestA), seedB_(bestB), seedDistance_(result.distance)
             {
             }
+
+            /** \brief The seed pair's distance is the starting bound, computed by the caller exactly as leaves()
+                would, and \e axis (unit, from A's point towards B's) its witness direction: it is not tested again. */
+            void knowSeed(const Eigen::Vector3d *axis) { seedAxis_ = axis; }
 
             /** \brief Prune threshold: a pair whose bound is above it cannot beat or tie the best so far. */
             double enough() const { return result_.distance + slack_; }
@@ -337,22 +341,32 @@ namespace meshgap
                                         bound + motion_});
             }
 
-            /** \brief A pair of leaves with a separating axis from an earlier pose: its gap along that axis now (a
-                lower bound on the distance of its triangles), or -infinity when it has none. */
-            double axisBound(const BvhFront::Entry &e) const
+            /** \brief The prune threshold of the triangle pair (ta, tb): above the best distance plus the slack if
+                it ranks before the best pair (it would win a tie), minus the slack if after (it must be closer). */
+            double limit(std::uint32_t ta, std::uint32_t tb) const
+            {
+                const bool ranksAfter = ta > bestA_ || (ta == bestA_ && tb >= bestB_);
+                return ranksAfter ? result_.distance - slack_ : enough();
+            }
+
+            /** \brief A pair of leaves with a separating axis from an earlier pose: whether its gap along that axis
+                now (a lower bound on the distance of its triangles, into \e gap) proves it cannot beat the best. */
+            bool axisProves(const BvhFront::Entry &e, double &gap) const
             {
                 const Eigen::Vector3d axis(e.axis[0], e.axis[1], e.axis[2]);
                 const double length = axis.norm();
                 if (!(length > 0.0))
-                    return -std::numeric_limits<double>::infinity();
+                    return false;
                 const Mesh &ma = a_.mesh(), &mb = b_.mesh();
                 const TriangleBvh::Node &na = a_.nodes()[e.a], &nb = b_.nodes()[e.b];
-                const Triangle &fa = ma.triangles[a_.order()[na.first]], &fb = mb.triangles[b_.order()[nb.first]];
+                const std::uint32_t ta = a_.order()[na.first], tb = b_.order()[nb.first];
+                const Triangle &fa = ma.triangles[ta], &fb = mb.triangles[tb];
                 const Eigen::Vector3d pa[3] = {ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]]};
                 Eigen::Vector3d pb[3];
                 for (int k = 0; k < 3; ++k)
                     pb[k] = X_.R * mb.vertices[fb[k]] + X_.t;
-                return gapAlong(axis / length, pa, pb);
+                gap = gapAlong(axis / length, pa, pb);
+                return gap > limit(ta, tb);
             }
 
             /** \brief Search below pair \e start (lower bound \e startBound) to its end, or until the early stop. */
@@ -408,6 +422,17 @@ namespace meshgap
                     for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
                     {
                         const std::uint32_t ta = a_.order()[i];
+                        if (seedAxis_ && ta == seedA_ && tb == seedB_)
+                        {
+                            // The caller's seed: its exact distance is known (and is the best unless a closer
+                            // pair was found, which then ranks it out).
+                            if (seedDistance_ < least)
+                            {
+                                least = seedDistance_;
+                                axis = *seedAxis_;
+                            }
+                            continue;
+                        }
                         const Triangle &fa = ma.triangles[ta];
                         const Eigen::Vector3d pa[3] = {ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]]};
                         // Cheap exact bounds first: separation along either triangle's normal, then along the
@@ -417,8 +442,7 @@ namespace meshgap
                         // closer, by more than the slack, so a gap at the best distance minus the slack already
                         // rules it out: the triangles that share a vertex or an edge closest to the other body,
                         // which all tie, then cost no exact test.
-                        const bool ranksAfter = ta > bestA_ || (ta == bestA_ && tb >= bestB_);
-                        const double limit = ranksAfter ? result_.distance - slack_ : enough();
+                        const double limit = this->limit(ta, tb);
                         Separation s;
                         s.consider(a_.normals()[ta], pa, pb);
                         s.consider(normalB, pa, pb);
@@ -519,13 +543,16 @@ namespace meshgap
             const std::uint32_t stamp_;
             std::vector<PairEntry> &stack_;
             std::vector<double> &bounds_;
+            const std::uint32_t seedA_, seedB_;
+            const double seedDistance_;
+            const Eigen::Vector3d *seedAxis_{nullptr};
             bool stopped_{false};
         };
     }  // namespace
 
     void bvhDistance(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, double upperBound,
                      double stopBelow, BvhDistanceResult &result, std::uint32_t seedA, std::uint32_t seedB,
-                     BvhFront *front)
+                     BvhFront *front, const Eigen::Vector3d *seedAxis)
     {
         result = BvhDistanceResult();
         result.distance = upperBound;
@@ -543,6 +570,7 @@ namespace meshgap
         if (!front)
         {
             DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, nullptr, 0.0, 0);
+            traversal.knowSeed(seedAxis);
             traversal.run({0u, 0u}, traversal.bound({0u, 0u}));
             return;
         }
@@ -559,6 +587,7 @@ namespace meshgap
             front->valid = false;
             front->poses[stamp % BvhFront::POSES] = X_AB;
             DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, nullptr, 0.0, stamp);
+            traversal.knowSeed(seedAxis);
             traversal.run({0u, 0u}, traversal.bound({0u, 0u}));
             return;
         }
@@ -582,6 +611,7 @@ namespace meshgap
             };
             std::array<SlotMotion, BvhFront::POSES> slots;
             DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, &next, motion, stamp);
+            traversal.knowSeed(seedAxis);
             // An entry is still proven beyond the best when key - motion - pad > enough(): the scan below skips
             // those in a tight loop against that threshold, worked out again whenever the best changes.
             double threshold = traversal.enough() + motion + pad;
@@ -625,8 +655,8 @@ namespace meshgap
                     }
                 }
                 // A pair of leaves: its gap along the axis that separated it last time.
-                const double gap = traversal.axisBound(e);
-                if (gap > traversal.enough())
+                double gap;
+                if (traversal.axisProves(e, gap))
                 {
                     front->entries[i].key = gap + motion;
                     front->entries[i].stamp = stamp;
@@ -655,6 +685,7 @@ namespace meshgap
         ++front->rebuilds;
         front->entries.clear();
         DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, &front->entries, 0.0, stamp);
+        traversal.knowSeed(seedAxis);
         traversal.run({0u, 0u}, traversal.bound({0u, 0u}));
         front->motion = 0.0;
         front->poses[stamp % BvhFront::POSES] = X_AB;

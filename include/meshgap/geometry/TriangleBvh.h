@@ -160,10 +160,15 @@ namespace meshgap
         answer bit for bit.
 
         With \e front, the traversal starts from that certificate of an earlier query between the same trees (if it
-        is valid) instead of the roots, and leaves its own front there (BvhFront); the answer is the same. */
+        is valid) instead of the roots, and leaves its own front there (BvhFront); the answer is the same.
+
+        With \e seedAxis, the seed pair's distance is exactly \e upperBound (computed by triangleDistance() with B's
+        corners placed as R v + t, as here) and \e seedAxis its witness direction (unit, from A's point towards
+        B's): the traversal does not test that pair again. */
     void bvhDistance(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, double upperBound,
                      double stopBelow, BvhDistanceResult &result, std::uint32_t seedA = UINT32_MAX,
-                     std::uint32_t seedB = UINT32_MAX, BvhFront *front = nullptr);
+                     std::uint32_t seedB = UINT32_MAX, BvhFront *front = nullptr,
+                     const Eigen::Vector3d *seedAxis = nullptr);
 
     /** \brief True when some triangle of \e a intersects (or touches) some triangle of \e b placed by \e X_AB;
         stops at the first such pair, which is reported through \e hitA / \e hitB when given. */
