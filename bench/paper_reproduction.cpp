@@ -29,8 +29,9 @@
 #include <string>
 #include <vector>
 
+#include "meshgap/Text.h"
 #include "meshgap/distance/SolverFactory.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
 #ifdef MESHGAP_HAVE_FCL
@@ -76,17 +77,6 @@ namespace
         double medianMs{0.0}, meanMs{0.0};
         std::size_t distinctMinima{0};  ///< multistart hill climb only: distinct node pairs it ended at
     };
-
-    std::vector<std::string> splitList(const std::string &text)
-    {
-        std::vector<std::string> out;
-        std::stringstream ss(text);
-        std::string item;
-        while (std::getline(ss, item, ','))
-            if (!item.empty())
-                out.push_back(item);
-        return out;
-    }
 
     double elapsed(Clock::time_point since)
     {

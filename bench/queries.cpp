@@ -45,6 +45,7 @@
 #include "PathInterpolation.h"
 #include "FclOracle.h"
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/distance/Enumeration.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
@@ -237,25 +238,6 @@ namespace
         return p;
     }
 
-    std::vector<std::string> splitList(const std::string &text)
-    {
-        std::vector<std::string> out;
-        std::istringstream in(text);
-        std::string item;
-        while (std::getline(in, item, ','))
-            if (!item.empty())
-                out.push_back(item);
-        return out;
-    }
-
-    std::string joined(const std::vector<std::string> &names)
-    {
-        std::string out;
-        for (const std::string &n : names)
-            out += (out.empty() ? "" : ", ") + n;
-        return out;
-    }
-
     bool sameDistance(double a, double b)
     {
         return std::abs(a - b) <= 1e-6 * std::abs(b) + 1e-9;
@@ -371,7 +353,7 @@ int main(int argc, char **argv)
                     if (!maps.empty())
                         where += std::string(where.empty() ? "" : " or") + " a .cfg and a .poses under '" + maps + "'";
                     throw Exception("--problems", "no problem '" + name + "' with" + where + " (valid: " +
-                                                      (names.empty() ? std::string("none found") : joined(names)) +
+                                                      (names.empty() ? std::string("none found") : joinNames(names)) +
                                                       ")");
                 }
                 chosen.push_back(sources[std::size_t(it - names.begin())]);

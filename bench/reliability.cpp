@@ -32,10 +32,11 @@
 #include <vector>
 
 #include "PathInterpolation.h"
+#include "meshgap/Text.h"
 #include "meshgap/distance/CombGA.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/SolverFactory.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
 #include "meshgap/scene/ProblemConfig.h"
@@ -47,17 +48,6 @@ namespace fs = std::filesystem;
 namespace
 {
     using Clock = std::chrono::steady_clock;
-
-    std::vector<std::string> splitList(const std::string &text)
-    {
-        std::vector<std::string> out;
-        std::stringstream ss(text);
-        std::string item;
-        while (std::getline(ss, item, ','))
-            if (!item.empty())
-                out.push_back(item);
-        return out;
-    }
 
     double median(std::vector<double> v)
     {

@@ -30,7 +30,9 @@
 #include "CliMain.h"
 #include "meshgap/ompl/SamplerFactory.h"
 #include "FclChecker.h"
+#include "meshgap/AtomicFile.h"
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/ompl/ClearanceMotionValidator.h"
 #include "meshgap/ompl/PlannerFactory.h"
@@ -60,21 +62,6 @@ namespace
         char buffer[32];
         std::snprintf(buffer, sizeof buffer, "%.9g", value);
         return buffer;
-    }
-
-    std::string joined(const std::vector<std::string> &items)
-    {
-        return boost::algorithm::join(items, ", ");
-    }
-
-    std::vector<std::string> splitList(const std::string &list)
-    {
-        std::vector<std::string> items;
-        boost::algorithm::split(items, list, boost::is_any_of(","));
-        for (std::string &item : items)
-            boost::algorithm::trim(item);
-        items.erase(std::remove(items.begin(), items.end(), ""), items.end());
-        return items;
     }
 
     /** \brief One [planner] entry: a factory name, an optional display name, and parameters (ParamSet keys). */
@@ -120,7 +107,8 @@ namespace
         std::smatch m;
         if (std::regex_match(text, m, std::regex("([0-9]{1,6})/([0-9]{1,6})")))
         {
-            const unsigned i = std::stoul(m[1]), n = std::stoul(m[2]);
+            const auto i = static_cast<unsigned>(std::strtoul(m.str(1).c_str(), nullptr, 10)),
+                       n = static_cast<unsigned>(std::strtoul(m.str(2).c_str(), nullptr, 10));
             if (i >= 1 && i <= n)
                 return {i, n};
         }
@@ -283,8 +271,8 @@ namespace
         std::function<void()> solved_;
     };
 
-    /** \brief OMPL's own .log writer for an experiment assembled run by run; written to DIR/x.log.part, then
-        renamed, so a .log on disk is always whole. */
+    /** \brief OMPL's own .log writer for an experiment assembled run by run; written under a temporary name, then
+        renamed (writeStreamAtomically()), so a .log on disk is always whole. */
     class LogWriter : public ompl::tools::Benchmark
     {
     public:
@@ -293,13 +281,12 @@ namespace
         void write(const CompleteExperiment &experiment, const fs::path &path)
         {
             exp_ = experiment;
-            const fs::path part = path.string() + ".part";
-            {
-                std::ofstream out(part);
-                if (!out || !saveResultsToStream(out) || !out.flush())
-                    throw Exception(part.string(), "cannot write the benchmark log");
-            }
-            fs::rename(part, path);
+            writeStreamAtomically(path.string(),
+                                  [&](std::ostream &out)
+                                  {
+                                      if (!saveResultsToStream(out))
+                                          throw Exception(path.string(), "cannot write the benchmark log");
+                                  });
         }
     };
 
@@ -316,23 +303,22 @@ namespace
     {
         for (const auto &[key, value] : config.benchmark)
         {
-            try
+            const std::string where = config.file + ": [benchmark] " + key;
+            unsigned long runs = 0;
+            if (key == "time_limit")
+                settings.time = parseFiniteNumber(value, where);
+            else if (key == "mem_limit")
+                settings.memory = parseFiniteNumber(value, where);
+            else if (key == "run_count")
             {
-                if (key == "time_limit")
-                    settings.time = std::stod(value);
-                else if (key == "mem_limit")
-                    settings.memory = std::stod(value);
-                else if (key == "run_count")
-                    settings.runs = static_cast<unsigned>(std::stoul(value));
-                else if (key == "output")
-                    settings.outDir = value;
-                else
-                    OMPL_WARN("%s: [benchmark] %s is not supported; ignored", config.file.c_str(), key.c_str());
+                if (!parseUnsigned(value, runs) || runs > std::numeric_limits<unsigned>::max())
+                    throw Exception(where, "'" + value + "' is not a whole number of runs");
+                settings.runs = static_cast<unsigned>(runs);
             }
-            catch (const std::logic_error &)
-            {
-                throw Exception(config.file, "[benchmark] " + key + " = '" + value + "' is not a number");
-            }
+            else if (key == "output")
+                settings.outDir = value;
+            else
+                OMPL_WARN("%s: [benchmark] %s is not supported; ignored", config.file.c_str(), key.c_str());
         }
     }
 
@@ -349,11 +335,11 @@ namespace
             "PLANNER.NAME=VALUE: a parameter of every planner of that kind, after the cfg's, e.g. "
             "rrtstar.use_k_nearest=0; repeatable")(
             "checkers", po::value(&checkerList),
-            ("checkers, comma-separated (default: all of " + joined(checkerNames()) + ")").c_str())(
+            ("checkers, comma-separated (default: all of " + joinNames(checkerNames()) + ")").c_str())(
             "samplers", po::value(&samplerList),
             ("valid-state samplers, comma-separated, a dimension of the experiment like the checkers (default: the "
              "cfg's sampler, else OMPL's; only planners that use one, e.g. PRM, EST, notice): " +
-             joined(validStateSamplerNames())).c_str())(
+             joinNames(validStateSamplerNames())).c_str())(
             "runs", po::value<unsigned>(), "runs per planner and checker (default: the cfg's run_count, else 10)")(
             "time", po::value<double>(), "seconds per run (default: the cfg's time_limit, else 10)")(
             "memory", po::value<double>(), "MB per run (default: the cfg's mem_limit, else 4096)")(
@@ -364,14 +350,8 @@ namespace
             "no-simplify", "record the planner's path as it is (default: simplified, as OMPL's Benchmark does)")(
             "verbose,v", "OMPL's informational messages too");
         po::variables_map vm;
-        po::store(po::parse_command_line(argc, argv, options), vm);
-        po::notify(vm);
-        if (vm.count("help"))
-        {
-            std::cout << options << "\n";
+        if (!cli::parseCommandLine(argc, argv, options, vm))
             return 0;
-        }
-        ompl::msg::setLogLevel(vm.count("verbose") ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
         if (cfg.empty())
             throw Exception("command line", "--cfg FILE is required; see --help");
         const auto [shard, shards] = parseShard(shardText);
@@ -379,7 +359,7 @@ namespace
         const std::vector<std::string> checkers = checkerList.empty() ? available : splitList(checkerList);
         for (const std::string &c : checkers)
             if (std::find(available.begin(), available.end(), c) == available.end())
-                throw Exception("--checkers", "unknown checker '" + c + "'; valid names: " + joined(available));
+                throw Exception("--checkers", "unknown checker '" + c + "'; valid names: " + joinNames(available));
         if (checkers.empty() || std::set<std::string>(checkers.begin(), checkers.end()).size() != checkers.size())
             throw Exception("--checkers", "'" + checkerList + "' names no checker, or one twice");
         // The grid's second axis: every checker with every sampler ("": the problem's own).
@@ -420,7 +400,7 @@ namespace
         const std::vector<std::string> known = plannerNames();
         for (const PlannerSpec &p : planners)
             if (std::find(known.begin(), known.end(), p.type) == known.end())
-                throw Exception("planner", "unknown planner '" + p.type + "'; valid names: " + joined(known) +
+                throw Exception("planner", "unknown planner '" + p.type + "'; valid names: " + joinNames(known) +
                                                (plannerList.empty() ? " (choose with --planners)" : ""));
         for (const std::string &param : params)
         {

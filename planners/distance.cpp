@@ -25,10 +25,11 @@
 
 #include "CliMain.h"
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/PenetrationDepth.h"
 #include "meshgap/distance/SolverFactory.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
 #include "meshgap/scene/ProblemConfig.h"
@@ -44,16 +45,9 @@ namespace
     {
         if (text == "auto")
             return -1.0;
-        try
-        {
-            std::size_t used = 0;
-            const double h = std::stod(text, &used);
-            if (used == text.size() && h >= 0.0 && std::isfinite(h))
-                return h;
-        }
-        catch (const std::exception &)
-        {
-        }
+        double h = 0.0;
+        if (parseNumber(text, h) && h >= 0.0 && std::isfinite(h))
+            return h;
         throw Exception("--" + option, "'" + text + "' is not a grid size (a number >= 0, 0 = no refinement, or auto)");
     }
 
@@ -237,15 +231,8 @@ namespace
         po::positional_options_description positional;
         positional.add("mesh", 2);
         po::variables_map vm;
-        po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
-        po::notify(vm);
-        if (vm.count("help"))
-        {
-            std::cout << visible << "\n";
+        if (!cli::parseCommandLine(argc, argv, all, vm, &positional, &visible))
             return 0;
-        }
-        if (vm.count("quiet"))
-            ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
 
         // With --cfg and no --algorithm: the checker's answer (the scene), not a node-level solver.
         const bool scene = !cfg.empty() && vm.count("algorithm") == 0;

@@ -13,7 +13,7 @@
 //                    triangles) screwed through a helical channel of the same pitch (A) with 0.3 of play on every
 //                    side; its .poses are the whole screw motion, a collision-free path close to A all the way
 //
-// Each body is built from planar-faced polyhedra (meshgap/mesh/Shapes.h) gridded at the paper's grid sizes. Each
+// Each body is built from planar-faced polyhedra (planners/support/Shapes.h) gridded at the paper's grid sizes. Each
 // pose is designed by hand and then slid along one direction until the exact (triangle-triangle) distance between
 // the meshes equals the paper's "exact" minimum distance for that example (Tables III, V, VI). Each scene's .cfg is
 // also a planning problem that forces a clearance trade-off (its straight line from start to goal runs into A; see
@@ -37,14 +37,15 @@
 #include <vector>
 
 #include "CliMain.h"
+#include "meshgap/AtomicFile.h"
 #include "meshgap/Exception.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/geometry/TriangleBvh.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 #include "meshgap/mesh/Mesh.h"
 #include "meshgap/mesh/MeshLoader.h"
-#include "meshgap/mesh/MeshWriter.h"
-#include "meshgap/mesh/Shapes.h"
+#include "support/MeshWriter.h"
+#include "support/Shapes.h"
 
 namespace po = boost::program_options;
 
@@ -718,14 +719,7 @@ namespace
 
     void writeText(const std::filesystem::path &path, const std::string &text)
     {
-        const std::filesystem::path temporary = path.string() + ".tmp";
-        std::FILE *file = std::fopen(temporary.c_str(), "w");
-        if (file == nullptr)
-            throw meshgap::Exception(path.string(), "cannot open for writing");
-        const bool ok = std::fputs(text.c_str(), file) >= 0;
-        if (std::fclose(file) != 0 || !ok)
-            throw meshgap::Exception(path.string(), "write failed");
-        std::filesystem::rename(temporary, path);
+        meshgap::writeStreamAtomically(path.string(), [&](std::ostream &out) { out << text; });
     }
 
     std::size_t closedEdgeFaults(const Mesh &m)
@@ -929,13 +923,8 @@ int main(int argc, char **argv)
             "largest edge of the battery and fixture meshes in cm (default 5 sqrt 2, Table II's grid; a larger value "
             "gives coarse meshes for adaptive node sizing to refine)");
         po::variables_map vm;
-        po::store(po::parse_command_line(ac, av, options), vm);
-        if (vm.count("help"))
-        {
-            std::cout << options << '\n';
+        if (!meshgap::cli::parseCommandLine(ac, av, options, vm))
             return 0;
-        }
-        po::notify(vm);
         std::string names;
         bool found = false;
         for (const auto &scene : scenes)

@@ -34,7 +34,8 @@
 #include "CliMain.h"
 #include "OptimizeOption.h"
 #include "meshgap/Exception.h"
-#include "meshgap/mesh/SceneExport.h"
+#include "meshgap/Text.h"
+#include "support/SceneExport.h"
 #include "meshgap/ompl/ClearanceMotionValidator.h"
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/PlannerFactory.h"
@@ -49,14 +50,6 @@ using namespace meshgap;
 
 namespace
 {
-    std::string joined(const std::vector<std::string> &names)
-    {
-        std::string s;
-        for (const std::string &n : names)
-            s += (s.empty() ? "" : ", ") + n;
-        return s;
-    }
-
     /** \brief One stderr line a second while the planner runs: elapsed time, validity checks, and the planner's
         iterations and best cost when it reports them (OMPL's planner progress properties, read from this thread
         as ompl::tools::Benchmark does). */
@@ -152,7 +145,7 @@ namespace
         std::uint32_t seed = 1;
         po::options_description options("meshgap_plan --cfg FILE [options]\n\nOptions");
         options.add_options()("help,h", "print this help")("cfg", po::value(&cfg), "OMPL.app problem file (.cfg)")(
-            "planner", po::value(&planner), ("planner: " + joined(plannerNames())).c_str())(
+            "planner", po::value(&planner), ("planner: " + joinNames(plannerNames())).c_str())(
             "param", po::value(&params),
             "NAME=VALUE: one of the planner's OMPL parameters, e.g. range=5 or, for rrtstar, use_k_nearest=0; "
             "repeatable")(
@@ -184,19 +177,12 @@ namespace
             "optimize-time", po::value(&optimizeTime), "time limit of --optimize in seconds (default 5)")(
             "sampler", po::value(&sampler),
             ("valid-state sampler of planners that use one (PRM, EST, ...; default: the cfg's sampler, else "
-             "uniform): " + joined(validStateSamplerNames())).c_str())(
+             "uniform): " + joinNames(validStateSamplerNames())).c_str())(
             "quiet,q", "print warnings and errors only (no OMPL messages, no progress)");
         po::variables_map vm;
-        po::store(po::parse_command_line(argc, argv, options), vm);
-        po::notify(vm);
-        if (vm.count("help"))
-        {
-            std::cout << options << "\n";
+        if (!cli::parseCommandLine(argc, argv, options, vm))
             return 0;
-        }
         const bool quiet = vm.count("quiet") > 0;
-        if (quiet)
-            ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
         if (cfg.empty())
             throw Exception("command line", "--cfg FILE is required; see --help");
         if (mode != "certified" && mode != "fast")

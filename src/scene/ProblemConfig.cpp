@@ -12,6 +12,7 @@
 #include <set>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/scene/Pose.h"
 
 namespace meshgap
@@ -29,16 +30,9 @@ namespace meshgap
 
         double number(const std::string &value, const std::string &where, const std::string &key)
         {
-            try
-            {
-                std::size_t used = 0;
-                const double x = std::stod(value, &used);
-                if (used == value.size() && std::isfinite(x))
-                    return x;
-            }
-            catch (const std::exception &)
-            {
-            }
+            double x = 0.0;
+            if (parseNumber(value, x) && std::isfinite(x))
+                return x;
             throw Exception(where, key + " = '" + value + "' is not a finite number");
         }
     }  // namespace

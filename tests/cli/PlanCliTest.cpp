@@ -12,7 +12,7 @@
 #include "CliRun.h"
 #include "FclOracle.h"
 #include "TestMeshes.h"
-#include "meshgap/mesh/MeshWriter.h"
+#include "support/MeshWriter.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
 #include "meshgap/scene/ProblemConfig.h"

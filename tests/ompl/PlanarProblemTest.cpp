@@ -13,7 +13,7 @@
 #include "FclOracle.h"
 #include "TestMeshes.h"
 #include "meshgap/mesh/MeshLoader.h"
-#include "meshgap/mesh/MeshWriter.h"
+#include "support/MeshWriter.h"
 #include "meshgap/ompl/ClearanceMotionValidator.h"
 #include "meshgap/ompl/ProblemSetup.h"
 

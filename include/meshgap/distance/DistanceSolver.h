@@ -6,7 +6,7 @@
 
 #include "meshgap/ClassForward.h"
 #include "meshgap/distance/DistanceQuery.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 
 namespace meshgap
 {

@@ -1,4 +1,4 @@
-#include "meshgap/mesh/Shapes.h"
+#include "support/Shapes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -1040,45 +1040,5 @@ namespace meshgap
         for (std::size_t i = 0; i < polygon.size(); ++i)
             area += cross2(polygon[i], polygon[(i + 1) % polygon.size()]);
         return 0.5 * area;
-    }
-
-    double signedVolume(const Mesh &mesh)
-    {
-        double v = 0.0;
-        for (const Triangle &t : mesh.triangles)
-            v += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
-        return v / 6.0;
-    }
-
-    Mesh mergeMeshes(const std::vector<Mesh> &parts, const std::string &name)
-    {
-        Mesh m;
-        m.source = name;
-        for (const Mesh &part : parts)
-        {
-            const auto offset = static_cast<std::uint32_t>(m.vertices.size());
-            m.vertices.insert(m.vertices.end(), part.vertices.begin(), part.vertices.end());
-            for (Triangle t : part.triangles)
-            {
-                for (std::uint32_t &i : t)
-                    i += offset;
-                m.triangles.push_back(t);
-            }
-        }
-        return m;
-    }
-
-    void transformMesh(Mesh &mesh, const Eigen::Isometry3d &X)
-    {
-        for (Eigen::Vector3d &p : mesh.vertices)
-            p = X * p;
-    }
-
-    Eigen::Vector3d vertexMean(const Mesh &mesh)
-    {
-        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-        for (const Eigen::Vector3d &p : mesh.vertices)
-            sum += p;
-        return mesh.vertices.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(mesh.vertices.size()));
     }
 }  // namespace meshgap
