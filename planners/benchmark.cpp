@@ -2,15 +2,16 @@
 // experiment grid (planners x checkers x runs), written in OMPL's .log format for ompl_benchmark_statistics and
 // Planner Arena.
 //
-//   meshgap_benchmark --cfg problem.cfg [--planners rrtconnect,rrtstar] [--checkers meshgap-certified,fcl]
-//                     [--runs N] [--time S] [--memory MB] [--seed N] [--objective NAME] [--out-dir DIR]
-//                     [--shard i/n] [--no-simplify] [--samplers uniform,narrow_passage]
+//   meshgap_benchmark --cfg problem.cfg [--planner rrtconnect,rrtstar] [--checker certified,fcl]
+//                     [--param PLANNER.NAME=VALUE] [--runs N] [--time S] [--memory MB] [--seed N] [--objective NAME]
+//                     [--out DIR] [--shard i/n] [--no-simplify] [--sampler uniform,narrow_passage]
 //
-// Every planner runs once per checker, named "<planner>[<checker>]" (e.g. RRTConnect[fcl]), all in one experiment
+// Every planner runs once per checker, named "<planner>[<checker label>]" (e.g. RRTConnect[fcl],
+// RRTConnect[meshgap-certified]), all in one experiment
 // named after the problem: the statistics script and Planner Arena show the checkers side by side. Each
 // (planner, checker) slice is its own .log file, rewritten (write, then rename) after every run, so an interrupted
 // benchmark keeps every finished run; --shard i/n runs every n-th cell of the grid, and all the .log files of all
-// the shards load into one database (ompl_benchmark_statistics *.log -d results.db). --samplers makes the
+// the shards load into one database (ompl_benchmark_statistics *.log -d results.db). --sampler makes the
 // valid-state sampler a dimension too: each checker runs once per sampler, as "<planner>[<checker>,<sampler>]".
 
 #include <boost/algorithm/string.hpp>
@@ -46,14 +47,21 @@ using namespace meshgap;
 
 namespace
 {
-    /** \brief The checkers this build can run, in grid order. */
+    /** \brief The checkers this build can run, in grid order, as --checker spells them (as meshgap_plan does). */
     std::vector<std::string> checkerNames()
     {
-        std::vector<std::string> names = {"meshgap-certified", "meshgap-fast", "meshgap-certified-cmv"};
+        std::vector<std::string> names = {"certified", "fast", "certified-cmv"};
 #ifdef MESHGAP_HAVE_FCL
         names.push_back("fcl");
 #endif
         return names;
+    }
+
+    /** \brief A checker's label in the .log (planner names, file names, the "checker" property): the library's name
+        too, meshgap-certified beside fcl, as before the flags were unified. */
+    std::string checkerLabel(const std::string &name)
+    {
+        return name == "fcl" ? name : "meshgap-" + name;
     }
 
     /** \brief A real for a .log: 9 significant digits (std::to_string's fixed 6 decimals lose small times). */
@@ -148,12 +156,12 @@ namespace
         {
             ob::StateValidityCheckerPtr checker;
             ob::MotionValidatorPtr validator;
-            if (name == "meshgap-certified")
+            if (name == "certified")
                 checker = problem_.checker;
-            else if (name == "meshgap-fast")
+            else if (name == "fast")
                 checker = fast_ ? fast_ : (fast_ = std::make_shared<ClearanceChecker>(si_, problem_.scene,
                                                                                       ClearanceChecker::Mode::FAST));
-            else if (name == "meshgap-certified-cmv")
+            else if (name == "certified-cmv")
             {
                 if (!cmvChecker_)
                 {
@@ -168,7 +176,7 @@ namespace
                 checker = fcl_;
 #endif
             else
-                throw Exception("--checkers", "unknown checker '" + name + "'");
+                throw Exception("--checker", "unknown checker '" + name + "'");
             active_ = name;
             si_->setStateValidityChecker(checker);
             si_->setMotionValidator(validator ? validator : std::make_shared<ob::DiscreteMotionValidator>(si_));
@@ -330,13 +338,13 @@ namespace
         Settings settings;
         po::options_description options("meshgap_benchmark --cfg FILE [options]\n\nOptions");
         options.add_options()("help,h", "print this help")("cfg", po::value(&cfg), "OMPL.app problem file (.cfg)")(
-            "planners", po::value(&plannerList), "planners, comma-separated (default: the cfg's [planner] section)")(
+            "planner", po::value(&plannerList), "planners, comma-separated (default: the cfg's [planner] section)")(
             "param", po::value(&params),
             "PLANNER.NAME=VALUE: a parameter of every planner of that kind, after the cfg's, e.g. "
             "rrtstar.use_k_nearest=0; repeatable")(
-            "checkers", po::value(&checkerList),
+            "checker", po::value(&checkerList),
             ("checkers, comma-separated (default: all of " + joinNames(checkerNames()) + ")").c_str())(
-            "samplers", po::value(&samplerList),
+            "sampler", po::value(&samplerList),
             ("valid-state samplers, comma-separated, a dimension of the experiment like the checkers (default: the "
              "cfg's sampler, else OMPL's; only planners that use one, e.g. PRM, EST, notice): " +
              joinNames(validStateSamplerNames())).c_str())(
@@ -345,12 +353,18 @@ namespace
             "memory", po::value<double>(), "MB per run (default: the cfg's mem_limit, else 4096)")(
             "seed", po::value(&seed), "OMPL's random seed; shard i uses seed + i - 1 (default: random)")(
             "objective", po::value(&objective), "optimization objective (default: the cfg's, else length)")(
-            "out-dir", po::value<std::string>(), "where the .log files go (default: the cfg's output, else .)")(
+            "out", po::value<std::string>(), "folder of the .log files (default: the cfg's output, else .)")(
             "shard", po::value(&shardText), "run the i-th of n slices of the grid (default 1/1)")(
             "no-simplify", "record the planner's path as it is (default: simplified, as OMPL's Benchmark does)")(
             "verbose,v", "OMPL's informational messages too");
+        po::options_description all;
+        all.add(options);
+        cli::addRenamedOptions(all, {{"planners", "--planner"},
+                                     {"checkers", "--checker (certified, fast, certified-cmv, fcl)"},
+                                     {"samplers", "--sampler"},
+                                     {"out-dir", "--out"}});
         po::variables_map vm;
-        if (!cli::parseCommandLine(argc, argv, options, vm))
+        if (!cli::parseCommandLine(argc, argv, all, vm, nullptr, &options))
             return 0;
         if (cfg.empty())
             throw Exception("command line", "--cfg FILE is required; see --help");
@@ -358,18 +372,22 @@ namespace
         const std::vector<std::string> available = checkerNames();
         const std::vector<std::string> checkers = checkerList.empty() ? available : splitList(checkerList);
         for (const std::string &c : checkers)
+        {
+            if (c.rfind("meshgap-", 0) == 0)
+                throw Exception("--checker", "'" + c + "' is now spelled '" + c.substr(8) + "' (as meshgap_plan does)");
             if (std::find(available.begin(), available.end(), c) == available.end())
-                throw Exception("--checkers", "unknown checker '" + c + "'; valid names: " + joinNames(available));
+                throw Exception("--checker", "unknown checker '" + c + "'; valid names: " + joinNames(available));
+        }
         if (checkers.empty() || std::set<std::string>(checkers.begin(), checkers.end()).size() != checkers.size())
-            throw Exception("--checkers", "'" + checkerList + "' names no checker, or one twice");
+            throw Exception("--checker", "'" + checkerList + "' names no checker, or one twice");
         // The grid's second axis: every checker with every sampler ("": the problem's own).
         const std::vector<std::string> samplers =
             samplerList.empty() ? std::vector<std::string>{""} : splitList(samplerList);
         for (const std::string &s : samplers)
             if (!samplerList.empty())
-                validStateSamplerAllocator(s, "--samplers");  // throws for an unknown name, listing the valid ones
+                validStateSamplerAllocator(s, "--sampler");  // throws for an unknown name, listing the valid ones
         if (samplers.empty() || std::set<std::string>(samplers.begin(), samplers.end()).size() != samplers.size())
-            throw Exception("--samplers", "'" + samplerList + "' names no sampler, or one twice");
+            throw Exception("--sampler", "'" + samplerList + "' names no sampler, or one twice");
         std::vector<std::pair<std::string, std::string>> setups;  // (checker, sampler)
         for (const std::string &c : checkers)
             for (const std::string &s : samplers)
@@ -383,8 +401,8 @@ namespace
             settings.time = vm["time"].as<double>();
         if (vm.count("memory"))
             settings.memory = vm["memory"].as<double>();
-        if (vm.count("out-dir"))
-            settings.outDir = vm["out-dir"].as<std::string>();
+        if (vm.count("out"))
+            settings.outDir = vm["out"].as<std::string>();
         settings.simplify = !vm.count("no-simplify");
         if (settings.runs == 0 || !(settings.time > 0.0) || !(settings.memory > 0.0))
             throw Exception("command line", "runs, time and memory must be positive");
@@ -396,27 +414,25 @@ namespace
         else
             planners = plannersFromConfig(config);
         if (planners.empty())
-            throw Exception(cfg, "no planners: the cfg has no [planner] section; give --planners");
+            throw Exception(cfg, "no planners: the cfg has no [planner] section; give --planner");
         const std::vector<std::string> known = plannerNames();
         for (const PlannerSpec &p : planners)
             if (std::find(known.begin(), known.end(), p.type) == known.end())
                 throw Exception("planner", "unknown planner '" + p.type + "'; valid names: " + joinNames(known) +
-                                               (plannerList.empty() ? " (choose with --planners)" : ""));
-        for (const std::string &param : params)
+                                               (plannerList.empty() ? " (choose with --planner)" : ""));
+        for (const std::string &text : params)
         {
-            const std::size_t dot = param.find('.'), eq = param.find('=');
-            if (dot == std::string::npos || eq == std::string::npos || dot == 0 || eq < dot + 2)
-                throw Exception("--param", "'" + param + "' is not PLANNER.NAME=VALUE");
-            const std::string type = boost::algorithm::to_lower_copy(param.substr(0, dot));
+            const cli::OwnedParam param = cli::parseOwnedParam(text, "PLANNER", "rrtconnect.range=5");
+            const std::string type = boost::algorithm::to_lower_copy(param.owner);
             bool used = false;
             for (PlannerSpec &p : planners)
                 if (p.type == type)
                 {
-                    p.params.push_back({param.substr(dot + 1, eq - dot - 1), param.substr(eq + 1), "--param " + param});
+                    p.params.push_back({param.name, param.value, "--param " + text});
                     used = true;
                 }
             if (!used)
-                throw Exception("--param", "'" + param + "': no planner " + type + " in this benchmark");
+                throw Exception("--param", "'" + text + "': no planner " + type + " in this benchmark");
         }
         if (seed != 0)
             ompl::RNG::setSeed(seed + shard - 1);
@@ -470,9 +486,10 @@ namespace
                 const auto &[checker, sampler] = setups[c];
                 problem.install(checker);
                 if (!sampler.empty())
-                    setValidStateSampler(*si, sampler, "--samplers");
+                    setValidStateSampler(*si, sampler, "--sampler");
                 const ob::PlannerPtr inner = allocate(planners[p]);
-                const std::string name = inner->getName() + "[" + checker + (sampler.empty() ? "" : "," + sampler) + "]";
+                const std::string label = checkerLabel(checker);
+                const std::string name = inner->getName() + "[" + label + (sampler.empty() ? "" : "," + sampler) + "]";
                 CheckerStats before, after;
                 bool solvedSeen = false;
                 auto measured = std::make_shared<MeasuredPlanner>(inner, name, [&]() {
@@ -514,7 +531,7 @@ namespace
                 request.simplify = settings.simplify;
                 ompl::tools::Benchmark::CompleteExperiment slice;
                 const fs::path log = settings.outDir / (fileSafe(config.name) + "." + fileSafe(inner->getName()) +
-                                                        "." + checker + (sampler.empty() ? "" : "." + sampler) +
+                                                        "." + label + (sampler.empty() ? "" : "." + sampler) +
                                                         (shards > 1 ? ".shard" + std::to_string(shard) + "of" +
                                                                           std::to_string(shards) : "") + ".log");
                 for (std::size_t r : runs)
@@ -533,7 +550,7 @@ namespace
                     if (slice.planners.empty())
                     {
                         slice = e;
-                        slice.planners[0].common["checker"] = checker;
+                        slice.planners[0].common["checker"] = label;
                         if (!sampler.empty())
                             slice.planners[0].common["sampler"] = sampler;
                     }

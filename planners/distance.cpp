@@ -213,7 +213,7 @@ namespace
             ("poses", po::value(&posesFile), "file of poses, one per line (OMPL.app .path format); prints CSV")
             ("algorithm,a", po::value(&algorithm), "solver name (unknown names list the valid ones)")
             ("seed", po::value(&seed), "random seed (same seed, same answer)")
-            ("set", po::value(&settings), "solver parameter NAME=VALUE (repeatable)")
+            ("param", po::value(&settings), "ALGORITHM.NAME=VALUE: a parameter of the --algorithm, e.g. comb-GA-wl.population=200 (repeatable)")
             ("grid", po::value(&grid), "grid size h for both bodies: a length, 0 (no refinement) or auto (1/25 of body size)")
             ("grid-a", po::value(&gridA), "grid size for body A only")
             ("grid-b", po::value(&gridB), "grid size for body B only")
@@ -228,6 +228,7 @@ namespace
         hidden.add_options()("mesh", po::value(&meshes));
         po::options_description all;
         all.add(visible).add(hidden);
+        cli::addRenamedOptions(all, {{"set", "--param ALGORITHM.NAME=VALUE"}});
         po::positional_options_description positional;
         positional.add("mesh", 2);
         po::variables_map vm;
@@ -239,16 +240,16 @@ namespace
         if (vm.count("cold") && !scene)
             throw Exception("--cold", "applies to the scene's answer only (--cfg without --algorithm)");
         if (scene && !settings.empty())
-            throw Exception("--set", "solver parameters need --algorithm (with --cfg alone the answer is the scene's)");
+            throw Exception("--param", "solver parameters need --algorithm (with --cfg alone the answer is the scene's)");
         // Fail on a bad algorithm or parameter before any expensive loading.
         DistanceSolverPtr solver = allocSolver(algorithm);
         for (const std::string &s : settings)
         {
-            const auto eq = s.find('=');
-            if (eq == std::string::npos)
-                throw Exception("--set", "'" + s + "' is not NAME=VALUE");
-            if (!solver->params().hasParam(s.substr(0, eq)) || !solver->params().setParam(s.substr(0, eq), s.substr(eq + 1)))
-                throw Exception("--set", "'" + s + "' is not a valid parameter of " + algorithm);
+            const cli::OwnedParam param = cli::parseOwnedParam(s, "ALGORITHM", algorithm + ".NAME=VALUE");
+            if (param.owner != algorithm)
+                throw Exception("--param", "'" + s + "': the algorithm is " + algorithm + ", not " + param.owner);
+            if (!solver->params().hasParam(param.name) || !solver->params().setParam(param.name, param.value))
+                throw Exception("--param", "'" + s + "' is not a valid parameter of " + algorithm);
         }
         if (sizing != "uniform" && sizing != "adaptive")
             throw Exception("--sizing", "'" + sizing + "' is not a node sizing (uniform or adaptive)");

@@ -2,7 +2,7 @@
 // checker.
 //
 //   meshgap_plan --cfg problem.cfg [--planner rrtconnect] [--time 10] [--objective NAME [--weight W]]
-//                [--mode certified|fast] [--motion discrete|clearance] [--seed N] [--out solution.path]
+//                [--checker certified|fast] [--motion discrete|clearance] [--seed N] [--out solution.path]
 //                [--clearance-csv clearance.csv] [--summary summary.txt] [--export-glb scene.glb [--export-states N]]
 //                [--report plan.html] [--optimize clearance [--optimize-time S]] [--sampler NAME]
 //
@@ -16,6 +16,7 @@
 // and the distance). --optimize clearance runs the ClearancePathOptimizer on the planner's path before any of this
 // (the summary gives its minimum clearance and length before and after; everything else is of the optimised path).
 
+#include <boost/algorithm/string/case_conv.hpp>
 #include <boost/program_options.hpp>
 #include <chrono>
 #include <cmath>
@@ -137,7 +138,7 @@ namespace
 
     int run(int argc, char **argv)
     {
-        std::string cfg, planner = "rrtconnect", objective, mode = "certified", motion = "discrete", out, csv, summaryFile,
+        std::string cfg, planner = "rrtconnect", objective, checker = "certified", motion = "discrete", out, csv, summaryFile,
                     glb, report, optimize, sampler;
         double time = 10.0, weight = 0.0, optimizeTime = 5.0;
         std::vector<std::string> params;
@@ -147,15 +148,15 @@ namespace
         options.add_options()("help,h", "print this help")("cfg", po::value(&cfg), "OMPL.app problem file (.cfg)")(
             "planner", po::value(&planner), ("planner: " + joinNames(plannerNames())).c_str())(
             "param", po::value(&params),
-            "NAME=VALUE: one of the planner's OMPL parameters, e.g. range=5 or, for rrtstar, use_k_nearest=0; "
-            "repeatable")(
+            "PLANNER.NAME=VALUE: one of the planner's OMPL parameters, e.g. rrtconnect.range=5 or "
+            "rrtstar.use_k_nearest=0; repeatable")(
             "time", po::value(&time), "time limit in seconds (default 10)")(
             "objective", po::value(&objective),
             "length, clearance (integral of 1/clearance), max_min_clearance, or weighted (length + W * clearance); "
             "default: the cfg's objective, else length")(
             "weight", po::value(&weight),
             "W of --objective weighted, a length (default: a tenth of the robot's radius)")(
-            "mode", po::value(&mode), "clearance: certified (exact) or fast (the paper's node distance)")(
+            "checker", po::value(&checker), "clearance checker: certified (exact) or fast (the paper's node distance)")(
             "motion", po::value(&motion),
             "motion validator: discrete (OMPL's, sampled) or clearance (conservative advancement, certified)")(
             "seed", po::value(&seed), "OMPL's random seed (default 1)")(
@@ -173,31 +174,34 @@ namespace
             "summary) here")(
             "optimize", po::value(&optimize),
             "after planning, optimise the path: clearance (raise its minimum clearance up the exact gradient, every "
-            "motion certified; needs --mode certified)")(
+            "motion certified; needs --checker certified)")(
             "optimize-time", po::value(&optimizeTime), "time limit of --optimize in seconds (default 5)")(
             "sampler", po::value(&sampler),
             ("valid-state sampler of planners that use one (PRM, EST, ...; default: the cfg's sampler, else "
              "uniform): " + joinNames(validStateSamplerNames())).c_str())(
             "quiet,q", "print warnings and errors only (no OMPL messages, no progress)");
+        po::options_description all;
+        all.add(options);
+        cli::addRenamedOptions(all, {{"mode", "--checker certified|fast"}});
         po::variables_map vm;
-        if (!cli::parseCommandLine(argc, argv, options, vm))
+        if (!cli::parseCommandLine(argc, argv, all, vm, nullptr, &options))
             return 0;
         const bool quiet = vm.count("quiet") > 0;
         if (cfg.empty())
             throw Exception("command line", "--cfg FILE is required; see --help");
-        if (mode != "certified" && mode != "fast")
-            throw Exception("--mode", "'" + mode + "' is not certified or fast");
+        if (checker != "certified" && checker != "fast")
+            throw Exception("--checker", "'" + checker + "' is not certified or fast");
         if (motion != "discrete" && motion != "clearance")
             throw Exception("--motion", "'" + motion + "' is not discrete or clearance");
-        if (motion == "clearance" && mode != "certified")
-            throw Exception("--motion", "clearance needs --mode certified (it steps by exact clearance)");
+        if (motion == "clearance" && checker != "certified")
+            throw Exception("--motion", "clearance needs --checker certified (it steps by exact clearance)");
         if (!(time > 0.0))
             throw Exception("--time", "must be positive");
         if (dense < 1)
             throw Exception("--dense", "must be at least 1");
         if (exportStates < 1)
             throw Exception("--export-states", "must be at least 1");
-        cli::checkOptimizeOptions(optimize, vm.count("optimize-time") > 0, optimizeTime, mode);
+        cli::checkOptimizeOptions(optimize, vm.count("optimize-time") > 0, optimizeTime, checker);
         if (vm.count("weight") && !(weight > 0.0 && std::isfinite(weight)))
             throw Exception("--weight", "must be positive and finite");
         ompl::RNG::setSeed(seed);
@@ -209,7 +213,7 @@ namespace
                                             (chosen.empty() ? std::string("length") : chosen) + ")");
         ObjectiveOptions objectiveOptions;
         objectiveOptions.weight = weight;
-        OmplProblem problem = setupProblem(config, mode == "certified" ? ClearanceChecker::Mode::CERTIFIED :
+        OmplProblem problem = setupProblem(config, checker == "certified" ? ClearanceChecker::Mode::CERTIFIED :
                                                                          ClearanceChecker::Mode::FAST,
                                            objective, BodyOptions(), objectiveOptions);
         const ob::SpaceInformationPtr si = problem.setup->getSpaceInformation();
@@ -219,18 +223,18 @@ namespace
         if (motion == "clearance")
             si->setMotionValidator(cmv = std::make_shared<ClearanceMotionValidator>(si, problem.checker));
         const ob::PlannerPtr plannerPtr = allocPlanner(planner, si);
-        for (const std::string &param : params)
+        for (const std::string &text : params)
         {
-            const std::size_t eq = param.find('=');
-            if (eq == std::string::npos || eq == 0)
-                throw Exception("--param", "'" + param + "' is not NAME=VALUE");
-            setPlannerParam(*plannerPtr, param.substr(0, eq), param.substr(eq + 1), "--param");
+            const cli::OwnedParam param = cli::parseOwnedParam(text, "PLANNER", planner + ".range=5");
+            if (boost::algorithm::to_lower_copy(param.owner) != boost::algorithm::to_lower_copy(planner))
+                throw Exception("--param", "'" + text + "': the planner is " + planner + ", not " + param.owner);
+            setPlannerParam(*plannerPtr, param.name, param.value, "--param");
         }
         problem.setup->setPlanner(plannerPtr);
         problem.setup->setup();
         OMPL_INFORM("%s: %s, %zu obstacles, planner %s, objective %s, clearance %s, motion %s", config.name.c_str(),
                     config.planar ? "SE(2)" : "SE(3)", problem.scene->obstacles().size(), planner.c_str(),
-                    problem.objective.c_str(), mode.c_str(), motion.c_str());
+                    problem.objective.c_str(), checker.c_str(), motion.c_str());
         ob::PlannerStatus status;
         {
             Progress progress(problem.setup->getPlanner(), *problem.checker, !quiet);
@@ -251,7 +255,7 @@ namespace
         line("problem", config.name + (config.planar ? " (SE(2))" : " (SE(3))"));
         line("planner", planner);
         line("objective", problem.objective);
-        line("clearance mode", mode + ", motion " + motion);
+        line("clearance mode", checker + ", motion " + motion);
         line("status", status.asString());
         line("solved", !havePath ? "no" : exact ? "yes (exact)" : "approximate");
         line("exact solution", exact ? "yes" : "no");
