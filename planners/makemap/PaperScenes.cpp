@@ -216,7 +216,6 @@ namespace meshgap
             return meshgap::revolutionPolyhedron(profile, 36).mesh(meshgap::uniformSizing(bowlGrid), "bowl");
         }
 
-
         Scene batteryFixture()
         {
             Scene s;
