@@ -42,6 +42,7 @@
 #include <set>
 #include <sstream>
 
+#include "CliMain.h"
 #include "PathInterpolation.h"
 #include "FclOracle.h"
 #include "meshgap/Exception.h"
@@ -296,13 +297,8 @@ int main(int argc, char **argv)
             "fast-solver", po::value(&fastSolver),
             "the fast column's node-level solver (default comb-GA-wl; warm-fast follows the path warm-started)");
         po::variables_map vm;
-        po::store(po::parse_command_line(argc, argv, cli), vm);
-        po::notify(vm);
-        if (vm.count("help"))
-        {
-            std::cout << cli << "\n";
+        if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
             return 0;
-        }
         ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
 
         bool active[NUM_COLUMNS];

@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "CliMain.h"
 #include "PathInterpolation.h"
 #include "meshgap/Text.h"
 #include "meshgap/distance/CombGA.h"
@@ -105,18 +106,13 @@ int main(int argc, char **argv)
     po::variables_map vm;
     try
     {
-        po::store(po::parse_command_line(argc, argv, cli), vm);
-        po::notify(vm);
+        if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
+            return 0;
     }
     catch (const std::exception &e)
     {
         std::fprintf(stderr, "%s\n", e.what());
         return 1;
-    }
-    if (vm.count("help"))
-    {
-        std::cout << cli << "\n";
-        return 0;
     }
     if (sizing != "none" && sizing != "uniform" && sizing != "adaptive")
     {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "support/MeshWriter.h"
 #include "meshgap/scene/Scene.h"
+#include "support/MeshWriter.h"
 
 namespace meshgap
 {

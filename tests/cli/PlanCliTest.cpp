@@ -12,11 +12,11 @@
 #include "CliRun.h"
 #include "FclOracle.h"
 #include "TestMeshes.h"
-#include "support/MeshWriter.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/RobotMesh.h"
+#include "support/MeshWriter.h"
 
 using namespace meshgap;
 namespace fs = std::filesystem;

@@ -21,9 +21,9 @@
 #include "meshgap/Exception.h"
 #include "meshgap/mesh/Mesh.h"
 #include "meshgap/mesh/MeshLoader.h"
-#include "support/MeshWriter.h"
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/RobotMesh.h"
+#include "support/MeshWriter.h"
 #include "support/Shapes.h"
 
 namespace
