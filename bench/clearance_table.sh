@@ -2,7 +2,7 @@
 # Issue 5's two planning tables, from meshgap_benchmark runs (OMPL .log files) summarised by clearance_summary.py:
 #
 #   solve:     RRTConnect on every OMPL.app problem in ../shared/data/omplapp and every map in maps/, RUNS runs each
-#              within the cfg's own time_limit, SOLVE_CHECKERS (default meshgap-certified): runs, exact solutions,
+#              within the cfg's own time_limit, SOLVE_CHECKERS (default certified): runs, exact solutions,
 #              whether FCL finds every state of each (simplified, densely interpolated) path collision-free, times.
 #   clearance: on each map, RRT* with max_min_clearance and RRTConnect, TIME s, RUNS seeds, meshgap-certified-cmv
 #              (RRTConnect also with meshgap-certified and its path simplified): median path min clearance by FCL
@@ -32,7 +32,7 @@ seed="${SEED:-1}"
 jobs="${JOBS:-1}"
 map_names="${MAPS:-battery_fixture hand_bowl handshake slotted_wall}"
 problems="${PROBLEMS:-Abstract bugtrap cubicles cubicles_opt Easy Twistycool}"
-solve_checkers="${SOLVE_CHECKERS:-meshgap-certified}"
+solve_checkers="${SOLVE_CHECKERS:-certified}"
 rrtstar_params=()
 for p in ${RRTSTAR_PARAMS:-}; do rrtstar_params+=(--param "rrtstar.$p"); done
 benchmark="$build/planners/meshgap_benchmark"
@@ -48,11 +48,11 @@ bench() {
     shift
     mkdir -p "$dir"
     if [ "$jobs" = 1 ]; then
-        nice "$benchmark" "$@" --seed "$seed" --out-dir "$dir"
+        nice "$benchmark" "$@" --seed "$seed" --out "$dir"
     else
-        nice "$benchmark" "$@" --seed "$seed" --out-dir "$dir" --shard 1/2 &
+        nice "$benchmark" "$@" --seed "$seed" --out "$dir" --shard 1/2 &
         local first=$!
-        nice "$benchmark" "$@" --seed "$seed" --out-dir "$dir" --shard 2/2
+        nice "$benchmark" "$@" --seed "$seed" --out "$dir" --shard 2/2
         wait "$first"
     fi
 }
@@ -67,7 +67,7 @@ if [ "$part" = all ] || [ "$part" = solve ]; then
         cfg="$(cfg_of "$problem")"
         [ -f "$cfg" ] || { echo "error: $cfg: not found (set MESHGAP_SHARED_DATA_DIR)" >&2; exit 1; }
         rm -f "$out/solve/$problem".*.log
-        bench "$out/solve" --cfg "$cfg" --planners rrtconnect --checkers "$solve_checkers" --runs "$runs" \
+        bench "$out/solve" --cfg "$cfg" --planner rrtconnect --checker "$solve_checkers" --runs "$runs" \
             ${SOLVE_TIME:+--time "$SOLVE_TIME"}
     done
 fi
@@ -77,12 +77,12 @@ if [ "$part" = all ] || [ "$part" = clearance ]; then
         rm -f "$out"/clearance/*/"$map".*.log
         # The planners' own paths (meshgap_plan does not simplify either); RRTConnect once more, simplified as
         # OMPL's Benchmark does by default, which pulls the path tight against the obstacles.
-        bench "$out/clearance/max_min_clearance.raw" --cfg "$cfg" --planners rrtstar --objective max_min_clearance \
-            --checkers meshgap-certified-cmv --runs "$runs" --time "$time" --no-simplify "${rrtstar_params[@]}"
-        bench "$out/clearance/length.raw" --cfg "$cfg" --planners rrtconnect --objective length \
-            --checkers meshgap-certified-cmv,meshgap-certified --runs "$runs" --time "$time" --no-simplify
-        bench "$out/clearance/length.simplified" --cfg "$cfg" --planners rrtconnect --objective length \
-            --checkers meshgap-certified --runs "$runs" --time "$time"
+        bench "$out/clearance/max_min_clearance.raw" --cfg "$cfg" --planner rrtstar --objective max_min_clearance \
+            --checker certified-cmv --runs "$runs" --time "$time" --no-simplify "${rrtstar_params[@]}"
+        bench "$out/clearance/length.raw" --cfg "$cfg" --planner rrtconnect --objective length \
+            --checker certified-cmv,certified --runs "$runs" --time "$time" --no-simplify
+        bench "$out/clearance/length.simplified" --cfg "$cfg" --planner rrtconnect --objective length \
+            --checker certified --runs "$runs" --time "$time"
     done
 fi
 echo "wall time: $((SECONDS - started)) s (PART=$part RUNS=$runs TIME=$time SEED=$seed JOBS=$jobs" \

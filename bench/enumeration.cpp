@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <ompl/util/Console.h>
 
+#include "CliMain.h"
 #include "meshgap/distance/Enumeration.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/ProblemConfig.h"
@@ -22,7 +23,7 @@
 using namespace meshgap;
 namespace fs = std::filesystem;
 
-int main(int argc, char **argv)
+static int run(int argc, char **argv)
 {
     std::string data = std::string(MESHGAP_SHARED_DATA_DIR) + "/omplapp";
     int repeats = 15;
@@ -31,8 +32,8 @@ int main(int argc, char **argv)
     cli.add_options()("data", po::value(&data), "folder with OMPL.app .cfg files")(
         "repeats", po::value(&repeats), "timed runs per problem (median reported)");
     po::variables_map vm;
-    po::store(po::parse_command_line(argc, argv, cli), vm);
-    po::notify(vm);
+    if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
+        return 0;
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
     if (!fs::exists(data))
     {
@@ -76,4 +77,9 @@ int main(int argc, char **argv)
         }
     }
     return 0;
+}
+
+int main(int argc, char **argv)
+{
+    return meshgap::cli::runMain(argc, argv, run);
 }

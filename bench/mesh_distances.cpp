@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "CliMain.h"
 #include "TestMeshes.h"
 #include "meshgap/Exception.h"
 #include "meshgap/mesh/MeshDistances.h"
@@ -64,13 +65,8 @@ namespace
         add("single-run-above", po::value(&singleRunAbove), "meshes with more nodes are built once (8000)");
         add("queries", po::value(&queries), "on-demand queries per mesh and kind (20000)");
         po::variables_map vm;
-        po::store(po::parse_command_line(argc, argv, desc), vm);
-        po::notify(vm);
-        if (vm.count("help"))
-        {
-            std::cout << desc << "\n";
+        if (!meshgap::cli::parseCommandLine(argc, argv, desc, vm))
             return 0;
-        }
 
         std::cout << "## Dense all-pairs table (D double + P uint32)\n\n"
                   << "| mesh | nodes | edges | build runs | build time (s, median) | table bytes | table MiB | "
@@ -152,13 +148,5 @@ namespace
 
 int main(int argc, char **argv)
 {
-    try
-    {
-        return run(argc, argv);
-    }
-    catch (const std::exception &e)
-    {
-        std::cerr << "meshgap_bench_mesh_distances: " << e.what() << "\n";
-        return 1;
-    }
+    return meshgap::cli::runMain(argc, argv, run);
 }

@@ -32,28 +32,28 @@ bench() {
     local dir="$1" problem="$2" time="$3" n="$4"
     shift 4
     mkdir -p "$dir"
-    nice "$benchmark" --cfg "$(cfg_of "$problem")" --checkers meshgap-certified-cmv --runs "$n" --time "$time" \
-        --seed "$seed" --no-simplify --out-dir "$dir" "$@"
+    nice "$benchmark" --cfg "$(cfg_of "$problem")" --checker certified-cmv --runs "$n" --time "$time" \
+        --seed "$seed" --no-simplify --out "$dir" "$@"
 }
 
 started=$SECONDS
 for map in $maps; do
-    bench "$out/length.raw" "$map" "${TIME_MAPS:-10}" "$runs" --planners rrtconnect+opt
+    bench "$out/length.raw" "$map" "${TIME_MAPS:-10}" "$runs" --planner rrtconnect+opt
 done
 for problem in $problems; do
-    bench "$out/length.raw" "$problem" "${TIME_PROBLEMS:-5}" "$runs" --planners rrtconnect+opt
+    bench "$out/length.raw" "$problem" "${TIME_PROBLEMS:-5}" "$runs" --planner rrtconnect+opt
     if [ "$baselines" = 1 ]; then
-        bench "$out/length.raw" "$problem" "${TIME_PROBLEMS:-5}" "$runs" --planners rrtconnect
-        bench "$out/max_min_clearance.raw" "$problem" "${TIME_PROBLEMS:-5}" "$runs" --planners rrtstar \
+        bench "$out/length.raw" "$problem" "${TIME_PROBLEMS:-5}" "$runs" --planner rrtconnect
+        bench "$out/max_min_clearance.raw" "$problem" "${TIME_PROBLEMS:-5}" "$runs" --planner rrtstar \
             --objective max_min_clearance
     fi
 done
 if [ "$twisty" != 0 ]; then
-    bench "$out/length.raw" Twistycool "${TIME_TWISTY:-60}" "$twisty" --planners rrtconnect+opt
+    bench "$out/length.raw" Twistycool "${TIME_TWISTY:-60}" "$twisty" --planner rrtconnect+opt
     if [ "$baselines" = 1 ]; then
         mkdir -p "$out/length.simplified"
-        nice "$benchmark" --cfg "$(cfg_of Twistycool)" --checkers meshgap-certified-cmv --runs "$twisty" \
-            --time "${TIME_TWISTY:-60}" --seed "$seed" --out-dir "$out/length.simplified" --planners rrtconnect
+        nice "$benchmark" --cfg "$(cfg_of Twistycool)" --checker certified-cmv --runs "$twisty" \
+            --time "${TIME_TWISTY:-60}" --seed "$seed" --out "$out/length.simplified" --planner rrtconnect
     fi
 fi
 echo "wall time: $((SECONDS - started)) s (RUNS=$runs SEED=$seed)" >&2

@@ -29,8 +29,10 @@
 #include <string>
 #include <vector>
 
+#include "CliMain.h"
+#include "meshgap/Text.h"
 #include "meshgap/distance/SolverFactory.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
 #ifdef MESHGAP_HAVE_FCL
@@ -76,17 +78,6 @@ namespace
         double medianMs{0.0}, meanMs{0.0};
         std::size_t distinctMinima{0};  ///< multistart hill climb only: distinct node pairs it ended at
     };
-
-    std::vector<std::string> splitList(const std::string &text)
-    {
-        std::vector<std::string> out;
-        std::stringstream ss(text);
-        std::string item;
-        while (std::getline(ss, item, ','))
-            if (!item.empty())
-                out.push_back(item);
-        return out;
-    }
 
     double elapsed(Clock::time_point since)
     {
@@ -280,18 +271,13 @@ int main(int argc, char **argv)
     po::variables_map vm;
     try
     {
-        po::store(po::parse_command_line(argc, argv, cli), vm);
-        po::notify(vm);
+        if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
+            return 0;
     }
     catch (const std::exception &e)
     {
         std::fprintf(stderr, "%s\n", e.what());
         return 1;
-    }
-    if (vm.count("help"))
-    {
-        std::cout << cli << std::endl;
-        return 0;
     }
     if (runsCount < 1 || climbs < 0)
     {

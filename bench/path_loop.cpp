@@ -12,6 +12,7 @@
 #include <iostream>
 #include <ompl/util/Console.h>
 
+#include "CliMain.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
 #include "meshgap/scene/ProblemConfig.h"
@@ -21,7 +22,7 @@
 using namespace meshgap;
 namespace po = boost::program_options;
 
-int main(int argc, char **argv)
+static int run(int argc, char **argv)
 {
     std::string cfg, posesFile;
     unsigned repeat = 5;
@@ -30,8 +31,8 @@ int main(int argc, char **argv)
     options.add_options()("cfg", po::value(&cfg))("poses", po::value(&posesFile))("repeat", po::value(&repeat))(
         "exact", po::value(&exact));
     po::variables_map vm;
-    po::store(po::parse_command_line(argc, argv, options), vm);
-    po::notify(vm);
+    if (!meshgap::cli::parseCommandLine(argc, argv, options, vm))
+        return 0;
     ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
     try
     {
@@ -71,4 +72,9 @@ int main(int argc, char **argv)
         return 1;
     }
     return 0;
+}
+
+int main(int argc, char **argv)
+{
+    return meshgap::cli::runMain(argc, argv, run);
 }

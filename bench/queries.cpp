@@ -43,9 +43,11 @@
 #include <set>
 #include <sstream>
 
+#include "CliMain.h"
 #include "PathInterpolation.h"
 #include "FclOracle.h"
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/distance/Enumeration.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
@@ -238,25 +240,6 @@ namespace
         return p;
     }
 
-    std::vector<std::string> splitList(const std::string &text)
-    {
-        std::vector<std::string> out;
-        std::istringstream in(text);
-        std::string item;
-        while (std::getline(in, item, ','))
-            if (!item.empty())
-                out.push_back(item);
-        return out;
-    }
-
-    std::string joined(const std::vector<std::string> &names)
-    {
-        std::string out;
-        for (const std::string &n : names)
-            out += (out.empty() ? "" : ", ") + n;
-        return out;
-    }
-
     bool sameDistance(double a, double b)
     {
         return std::abs(a - b) <= 1e-6 * std::abs(b) + 1e-9;
@@ -317,13 +300,8 @@ int main(int argc, char **argv)
             "fast-solver", po::value(&fastSolver),
             "the fast column's node-level solver (default comb-GA-wl; warm-fast follows the path warm-started)");
         po::variables_map vm;
-        po::store(po::parse_command_line(argc, argv, cli), vm);
-        po::notify(vm);
-        if (vm.count("help"))
-        {
-            std::cout << cli << "\n";
+        if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
             return 0;
-        }
         ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
 
         bool active[NUM_COLUMNS];
@@ -374,7 +352,7 @@ int main(int argc, char **argv)
                     if (!maps.empty())
                         where += std::string(where.empty() ? "" : " or") + " a .cfg and a .poses under '" + maps + "'";
                     throw Exception("--problems", "no problem '" + name + "' with" + where + " (valid: " +
-                                                      (names.empty() ? std::string("none found") : joined(names)) +
+                                                      (names.empty() ? std::string("none found") : joinNames(names)) +
                                                       ")");
                 }
                 chosen.push_back(sources[std::size_t(it - names.begin())]);

@@ -31,11 +31,13 @@
 #include <string>
 #include <vector>
 
+#include "CliMain.h"
 #include "PathInterpolation.h"
+#include "meshgap/Text.h"
 #include "meshgap/distance/CombGA.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/SolverFactory.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
 #include "meshgap/scene/ProblemConfig.h"
@@ -47,17 +49,6 @@ namespace fs = std::filesystem;
 namespace
 {
     using Clock = std::chrono::steady_clock;
-
-    std::vector<std::string> splitList(const std::string &text)
-    {
-        std::vector<std::string> out;
-        std::stringstream ss(text);
-        std::string item;
-        while (std::getline(ss, item, ','))
-            if (!item.empty())
-                out.push_back(item);
-        return out;
-    }
 
     double median(std::vector<double> v)
     {
@@ -115,18 +106,13 @@ int main(int argc, char **argv)
     po::variables_map vm;
     try
     {
-        po::store(po::parse_command_line(argc, argv, cli), vm);
-        po::notify(vm);
+        if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
+            return 0;
     }
     catch (const std::exception &e)
     {
         std::fprintf(stderr, "%s\n", e.what());
         return 1;
-    }
-    if (vm.count("help"))
-    {
-        std::cout << cli << "\n";
-        return 0;
     }
     if (sizing != "none" && sizing != "uniform" && sizing != "adaptive")
     {

@@ -20,7 +20,7 @@ mkdir -p "$out"
 for problem in ${PROBLEMS:-cubicles Easy}; do
     cfg="$data/$problem.cfg"
     [ -f "$cfg" ] || { echo "error: $cfg: not found (set MESHGAP_SHARED_DATA_DIR)" >&2; exit 1; }
-    nice "$build/planners/meshgap_benchmark" --cfg "$cfg" --planners "$planners" --runs "$runs" --time "$time" \
-        --seed "$seed" --out-dir "$out"
+    nice "$build/planners/meshgap_benchmark" --cfg "$cfg" --planner "$planners" --runs "$runs" --time "$time" \
+        --seed "$seed" --out "$out"
 done
 python3 "$here/planning_summary.py" "$out"/*.log

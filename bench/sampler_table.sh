@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Issue 14's sampler table: one planner that uses a valid-state sampler (default PRM) with every sampler side by
-# side (meshgap_benchmark --samplers, a dimension of the experiment), meshgap-certified checker, summarised by
+# side (meshgap_benchmark --sampler, a dimension of the experiment), meshgap-certified checker, summarised by
 # clearance_summary.py solve: runs, exact solutions, FCL-free paths, median and largest time per sampler.
 #
 #   bench/sampler_table.sh [BUILD_DIR] [OUT_DIR]
@@ -20,8 +20,8 @@ for problem in ${PROBLEMS:-slotted_wall}; do
     if [ -f "$here/../maps/$problem/$problem.cfg" ]; then cfg="$here/../maps/$problem/$problem.cfg"; else cfg="$data/$problem.cfg"; fi
     mkdir -p "$out"
     rm -f "$out/$problem".*.log
-    nice "$benchmark" --cfg "$cfg" --planners "${PLANNER:-prm}" --checkers meshgap-certified --samplers "$samplers" \
-        --runs "${RUNS:-3}" --time "${TIME:-10}" --seed "${SEED:-1}" --out-dir "$out"
+    nice "$benchmark" --cfg "$cfg" --planner "${PLANNER:-prm}" --checker certified --sampler "$samplers" \
+        --runs "${RUNS:-3}" --time "${TIME:-10}" --seed "${SEED:-1}" --out "$out"
 done
 echo "wall time: $((SECONDS - started)) s" >&2
 /usr/bin/python3 "$here/clearance_summary.py" solve "$out"/*.log

@@ -47,9 +47,10 @@
 #include <new>
 #include <optional>
 
+#include "CliMain.h"
 #include "FclOracle.h"
 #include "meshgap/distance/WarmFast.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 #include "meshgap/mesh/MeshDistances.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/mesh/Refine.h"
@@ -224,7 +225,7 @@ namespace
     }
 }  // namespace
 
-int main(int argc, char **argv)
+static int run(int argc, char **argv)
 {
 #ifndef MESHGAP_HAVE_FCL
     std::fprintf(stderr, "built without FCL\n");
@@ -245,13 +246,8 @@ int main(int argc, char **argv)
                                                                                              "also write CSV here")(
         "trace-alloc", "list the allocating call chains of each query kind (needs addr2line)");
     po::variables_map vm;
-    po::store(po::parse_command_line(argc, argv, cli), vm);
-    po::notify(vm);
-    if (vm.count("help"))
-    {
-        std::cout << cli << "\n";
+    if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
         return 0;
-    }
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
     const bool trace = vm.count("trace-alloc") > 0;
     if (trace)
@@ -491,4 +487,9 @@ int main(int argc, char **argv)
         std::printf("%s\n", row.c_str());
     return 0;
 #endif
+}
+
+int main(int argc, char **argv)
+{
+    return meshgap::cli::runMain(argc, argv, run);
 }

@@ -17,6 +17,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "CliMain.h"
 #include "TestMeshes.h"
 #include "meshgap/ompl/ClearanceChecker.h"
 
@@ -46,7 +47,7 @@ namespace
     }
 }  // namespace
 
-int main(int argc, char **argv)
+static int run(int argc, char **argv)
 {
     namespace po = boost::program_options;
     std::size_t queries = 1000000, fastEvery = 100;
@@ -58,13 +59,8 @@ int main(int argc, char **argv)
         "fast-every", po::value(&fastEvery), "one query in this many is a fast (comb-GA-wl) clearance; 0: none")(
         "max-growth-kib", po::value(&maxGrowth), "exit 1 if the resident set grows more after the first tenth");
     po::variables_map vm;
-    po::store(po::parse_command_line(argc, argv, options), vm);
-    po::notify(vm);
-    if (vm.count("help"))
-    {
-        std::cout << options << "\n";
+    if (!meshgap::cli::parseCommandLine(argc, argv, options, vm))
         return 0;
-    }
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
     ompl::RNG::setSeed(7);  // before any sampler exists
 
@@ -132,4 +128,9 @@ int main(int argc, char **argv)
     for (ob::State *st : pool)
         si->freeState(st);
     return growth > maxGrowth ? 1 : 0;
+}
+
+int main(int argc, char **argv)
+{
+    return meshgap::cli::runMain(argc, argv, run);
 }

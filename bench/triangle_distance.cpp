@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "CliMain.h"
 #include "meshgap/geometry/TriangleDistance.h"
 #ifdef MESHGAP_HAVE_FCL
 #include <fcl/narrowphase/detail/primitive_shape_algorithm/triangle_distance.h>
@@ -100,7 +101,7 @@ namespace
     }
 }  // namespace
 
-int main(int argc, char **argv)
+static int run(int argc, char **argv)
 {
     std::size_t n = 20000;
     int repeats = 15;
@@ -110,8 +111,8 @@ int main(int argc, char **argv)
     cli.add_options()("pairs", po::value(&n), "random triangle pairs per set")(
         "repeats", po::value(&repeats), "timed passes (median reported)")("seed", po::value(&seed), "random seed");
     po::variables_map vm;
-    po::store(po::parse_command_line(argc, argv, cli), vm);
-    po::notify(vm);
+    if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
+        return 0;
     repeats = std::max(repeats, 1);
 
     double sink = 0.0;
@@ -189,4 +190,9 @@ int main(int argc, char **argv)
     }
     std::fprintf(stderr, "(checksum %g)\n", sink);
     return 0;
+}
+
+int main(int argc, char **argv)
+{
+    return meshgap::cli::runMain(argc, argv, run);
 }

@@ -25,6 +25,7 @@
 #include <iostream>
 #include <numeric>
 
+#include "CliMain.h"
 #include "PathInterpolation.h"
 #include "FclOracle.h"
 #include "meshgap/distance/WarmFast.h"
@@ -96,18 +97,13 @@ int main(int argc, char **argv)
     po::variables_map vm;
     try
     {
-        po::store(po::parse_command_line(argc, argv, cli), vm);
-        po::notify(vm);
+        if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
+            return 0;
     }
     catch (const std::exception &e)
     {
         std::fprintf(stderr, "%s\n", e.what());
         return 1;
-    }
-    if (vm.count("help"))
-    {
-        std::cout << cli << "\n";
-        return 0;
     }
     if (sizing != "uniform" && sizing != "adaptive")
     {

@@ -31,7 +31,7 @@
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/SolverFactory.h"
 #include "meshgap/geometry/TriangleDistance.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 #include "meshgap/mesh/Mesh.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"

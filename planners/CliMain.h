@@ -1,18 +1,28 @@
 #ifndef MESHGAP_PLANNERS_CLI_MAIN_H
 #define MESHGAP_PLANNERS_CLI_MAIN_H
 
-// What every meshgap executable shares: OMPL's log goes to stderr (stdout carries results: text, CSV or JSON), and
-// any error ends in one line "error: <file>: <problem>" and exit status 1, never a crash.
+// What every meshgap executable shares: OMPL's log goes to stderr (stdout carries results: text, CSV or JSON), one
+// command-line preamble (parse, --help, log level), and any error ends in one line "error: <file>: <problem>" and exit
+// status 1, never a crash.
 
+#include <boost/program_options.hpp>
 #include <cstdio>
 #include <exception>
+#include <iostream>
 #include <ompl/util/Console.h>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include "meshgap/Exception.h"
 
 namespace meshgap
 {
     namespace cli
     {
+        /** \brief How the description of a renamed (refused) flag begins; what follows says what to write. */
+        constexpr const char *RENAMED = "renamed: use ";
+
         class StderrOutputHandler : public ompl::msg::OutputHandler
         {
         public:
@@ -22,6 +32,71 @@ namespace meshgap
                 std::fprintf(stderr, "%s%s\n", prefix[level < 6 ? level : 1], text.c_str());
             }
         };
+
+        /** \brief Declare \e renamed's old flags (each with the text to write instead) in \e options, hidden from
+            --help: parseCommandLine() refuses each with one error naming the new spelling. */
+        inline void addRenamedOptions(boost::program_options::options_description &options,
+                                      const std::vector<std::pair<std::string, std::string>> &renamed)
+        {
+            namespace po = boost::program_options;
+            for (const auto &[old, now] : renamed)
+                options.add_options()(old.c_str(), po::value<std::vector<std::string>>()->composing(),
+                                      (RENAMED + now).c_str());
+        }
+
+        /** \brief One --param of the flag language, OWNER.NAME=VALUE: OWNER is the planner (or algorithm) the
+            parameter belongs to, NAME one of its parameters. */
+        struct OwnedParam
+        {
+            std::string owner, name, value;
+        };
+
+        /** \brief Split \e text as OWNER.NAME=VALUE; throws meshgap::Exception("--param", ...) naming the form and
+            \e example otherwise. */
+        inline OwnedParam parseOwnedParam(const std::string &text, const std::string &owner,
+                                          const std::string &example)
+        {
+            const std::size_t dot = text.find('.'), eq = text.find('=');
+            if (dot == std::string::npos || eq == std::string::npos || dot == 0 || eq < dot + 2)
+                throw Exception("--param", "'" + text + "' is not " + owner + ".NAME=VALUE (e.g. --param " + example +
+                                               ")");
+            return {text.substr(0, dot), text.substr(dot + 1, eq - dot - 1), text.substr(eq + 1)};
+        }
+
+        /** \brief The one command-line preamble: parse \e argv against \e options (and \e positional, if given);
+            on --help print \e visible (default: \e options) to stdout and return false, before any required option
+            is checked; otherwise run the notifiers and set OMPL's log level: LOG_WARN with --quiet, and where the
+            options declare --verbose, LOG_INFO with it and LOG_WARN without. A flag declared by addRenamedOptions()
+            throws meshgap::Exception naming the new spelling. */
+        inline bool parseCommandLine(int argc, char **argv, const boost::program_options::options_description &options,
+                                     boost::program_options::variables_map &vm,
+                                     const boost::program_options::positional_options_description *positional = nullptr,
+                                     const boost::program_options::options_description *visible = nullptr)
+        {
+            namespace po = boost::program_options;
+            po::command_line_parser parser(argc, argv);
+            parser.options(options);
+            if (positional != nullptr)
+                parser.positional(*positional);
+            po::store(parser.run(), vm);
+            if (vm.count("help"))
+            {
+                std::cout << (visible != nullptr ? *visible : options) << "\n";
+                return false;
+            }
+            for (const auto &entry : vm)
+            {
+                const po::option_description *option = options.find_nothrow(entry.first, false);
+                if (option != nullptr && option->description().rfind(RENAMED, 0) == 0)
+                    throw Exception("--" + entry.first, option->description());
+            }
+            po::notify(vm);
+            if (options.find_nothrow("verbose", false) != nullptr)
+                ompl::msg::setLogLevel(vm.count("verbose") ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
+            if (vm.count("quiet"))
+                ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+            return true;
+        }
 
         template <typename Run>
         int runMain(int argc, char **argv, Run run)

@@ -33,7 +33,7 @@ namespace meshgap::cli
         if (!(seconds > 0.0) || !std::isfinite(seconds))
             throw Exception("--optimize-time", "must be positive and finite");
         if (!optimize.empty() && mode != "certified")
-            throw Exception("--optimize", "clearance needs --mode certified (it follows the exact clearance gradient)");
+            throw Exception("--optimize", "clearance needs --checker certified (it follows the exact clearance gradient)");
     }
 
     /** \brief Optimise the setup's solution path in place for at most \e seconds; returns the summary lines

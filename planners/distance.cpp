@@ -25,10 +25,11 @@
 
 #include "CliMain.h"
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/PenetrationDepth.h"
 #include "meshgap/distance/SolverFactory.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
 #include "meshgap/scene/ProblemConfig.h"
@@ -44,16 +45,9 @@ namespace
     {
         if (text == "auto")
             return -1.0;
-        try
-        {
-            std::size_t used = 0;
-            const double h = std::stod(text, &used);
-            if (used == text.size() && h >= 0.0 && std::isfinite(h))
-                return h;
-        }
-        catch (const std::exception &)
-        {
-        }
+        double h = 0.0;
+        if (parseNumber(text, h) && h >= 0.0 && std::isfinite(h))
+            return h;
         throw Exception("--" + option, "'" + text + "' is not a grid size (a number >= 0, 0 = no refinement, or auto)");
     }
 
@@ -205,113 +199,153 @@ namespace
         return 0;
     }
 
-    int run(int argc, char **argv)
+    /** \brief The command line. */
+    struct Options
     {
-        std::string cfg, poseText, posesFile, algorithm = "enumeration", grid = "auto", gridA, gridB, cacheDir;
-        std::string sizing = "uniform";
+        std::string cfg, poseText, posesFile, algorithm = "enumeration", grid = "auto", gridA, gridB, cacheDir,
+                                              sizing = "uniform";
         std::vector<std::string> meshes, settings;
         std::uint64_t seed = 1;
         double budgetMiB = 512;
+        bool algorithmGiven = false, cold = false, json = false, exact = false;
+
+        /** \brief With --cfg and no --algorithm: the checker's answer (the scene), not a node-level solver. */
+        bool scene() const { return !cfg.empty() && !algorithmGiven; }
+        bool many() const { return !posesFile.empty(); }
+    };
+
+    /** \brief Parse the command line; false after --help. */
+    bool parseOptions(int argc, char **argv, Options &o)
+    {
         po::options_description visible("meshgap_distance [options] [A B]\n\nOptions");
         visible.add_options()("help,h", "print this help")
-            ("cfg", po::value(&cfg), "OMPL.app problem file: A = its world, B = its robot (pose = robot state)")
-            ("pose", po::value(&poseText), "pose of B in A's frame: \"x y z qx qy qz qw\" (default: identity, or the cfg's start)")
-            ("poses", po::value(&posesFile), "file of poses, one per line (OMPL.app .path format); prints CSV")
-            ("algorithm,a", po::value(&algorithm), "solver name (unknown names list the valid ones)")
-            ("seed", po::value(&seed), "random seed (same seed, same answer)")
-            ("set", po::value(&settings), "solver parameter NAME=VALUE (repeatable)")
-            ("grid", po::value(&grid), "grid size h for both bodies: a length, 0 (no refinement) or auto (1/25 of body size)")
-            ("grid-a", po::value(&gridA), "grid size for body A only")
-            ("grid-b", po::value(&gridB), "grid size for body B only")
-            ("sizing", po::value(&sizing), "node sizing of both bodies: uniform (the --grid sizes) or adaptive (finer at thin parts, holes and creases, coarser on thick parts; --grid is then ignored)")
-            ("cache", po::value(&cacheDir), "folder for cached mesh-distance tables")
-            ("memory-budget", po::value(&budgetMiB), "largest all-pairs mesh-distance table, MiB (default 512)")
+            ("cfg", po::value(&o.cfg), "OMPL.app problem file: A = its world, B = its robot (pose = robot state)")
+            ("pose", po::value(&o.poseText), "pose of B in A's frame: \"x y z qx qy qz qw\" (default: identity, or the cfg's start)")
+            ("poses", po::value(&o.posesFile), "file of poses, one per line (OMPL.app .path format); prints CSV")
+            ("algorithm,a", po::value(&o.algorithm), "solver name (unknown names list the valid ones)")
+            ("seed", po::value(&o.seed), "random seed (same seed, same answer)")
+            ("param", po::value(&o.settings), "ALGORITHM.NAME=VALUE: a parameter of the --algorithm, e.g. comb-GA-wl.population=200 (repeatable)")
+            ("grid", po::value(&o.grid), "grid size h for both bodies: a length, 0 (no refinement) or auto (1/25 of body size)")
+            ("grid-a", po::value(&o.gridA), "grid size for body A only")
+            ("grid-b", po::value(&o.gridB), "grid size for body B only")
+            ("sizing", po::value(&o.sizing), "node sizing of both bodies: uniform (the --grid sizes) or adaptive (finer at thin parts, holes and creases, coarser on thick parts; --grid is then ignored)")
+            ("cache", po::value(&o.cacheDir), "folder for cached mesh-distance tables")
+            ("memory-budget", po::value(&o.budgetMiB), "largest all-pairs mesh-distance table, MiB (default 512)")
             ("exact", "refine the answer to the exact, certified surface distance (triangles + BVH)")
             ("cold", "with --cfg and no --algorithm: a cold query at every pose, no warm start (default: one carried along)")
             ("json", "print JSON instead of text or CSV")
             ("quiet,q", "print warnings and errors only");
         po::options_description hidden;
-        hidden.add_options()("mesh", po::value(&meshes));
+        hidden.add_options()("mesh", po::value(&o.meshes));
         po::options_description all;
         all.add(visible).add(hidden);
+        cli::addRenamedOptions(all, {{"set", "--param ALGORITHM.NAME=VALUE"}});
         po::positional_options_description positional;
         positional.add("mesh", 2);
         po::variables_map vm;
-        po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
-        po::notify(vm);
-        if (vm.count("help"))
-        {
-            std::cout << visible << "\n";
-            return 0;
-        }
-        if (vm.count("quiet"))
-            ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+        if (!cli::parseCommandLine(argc, argv, all, vm, &positional, &visible))
+            return false;
+        o.algorithmGiven = vm.count("algorithm") > 0;
+        o.cold = vm.count("cold") > 0;
+        o.json = vm.count("json") > 0;
+        o.exact = vm.count("exact") > 0;
+        return true;
+    }
 
-        // With --cfg and no --algorithm: the checker's answer (the scene), not a node-level solver.
-        const bool scene = !cfg.empty() && vm.count("algorithm") == 0;
-        if (vm.count("cold") && !scene)
+    /** \brief The named solver with its --param values; fails on a bad name or parameter before any loading. */
+    DistanceSolverPtr solverOf(const Options &o)
+    {
+        if (o.cold && !o.scene())
             throw Exception("--cold", "applies to the scene's answer only (--cfg without --algorithm)");
-        if (scene && !settings.empty())
-            throw Exception("--set", "solver parameters need --algorithm (with --cfg alone the answer is the scene's)");
-        // Fail on a bad algorithm or parameter before any expensive loading.
-        DistanceSolverPtr solver = allocSolver(algorithm);
-        for (const std::string &s : settings)
+        if (o.scene() && !o.settings.empty())
+            throw Exception("--param", "solver parameters need --algorithm (with --cfg alone the answer is the scene's)");
+        DistanceSolverPtr solver = allocSolver(o.algorithm);
+        for (const std::string &s : o.settings)
         {
-            const auto eq = s.find('=');
-            if (eq == std::string::npos)
-                throw Exception("--set", "'" + s + "' is not NAME=VALUE");
-            if (!solver->params().hasParam(s.substr(0, eq)) || !solver->params().setParam(s.substr(0, eq), s.substr(eq + 1)))
-                throw Exception("--set", "'" + s + "' is not a valid parameter of " + algorithm);
+            const cli::OwnedParam param = cli::parseOwnedParam(s, "ALGORITHM", o.algorithm + ".NAME=VALUE");
+            if (param.owner != o.algorithm)
+                throw Exception("--param", "'" + s + "': the algorithm is " + o.algorithm + ", not " + param.owner);
+            if (!solver->params().hasParam(param.name) || !solver->params().setParam(param.name, param.value))
+                throw Exception("--param", "'" + s + "' is not a valid parameter of " + o.algorithm);
         }
-        if (sizing != "uniform" && sizing != "adaptive")
-            throw Exception("--sizing", "'" + sizing + "' is not a node sizing (uniform or adaptive)");
-        const double hA = gridValue(gridA.empty() ? grid : gridA, gridA.empty() ? "grid" : "grid-a");
-        const double hB = gridValue(gridB.empty() ? grid : gridB, gridB.empty() ? "grid" : "grid-b");
-        MeshDistancesOptions distances;
-        distances.memoryBudgetBytes = static_cast<std::size_t>(budgetMiB * 1024 * 1024);
-        distances.cacheDir = cacheDir;
+        if (o.sizing != "uniform" && o.sizing != "adaptive")
+            throw Exception("--sizing", "'" + o.sizing + "' is not a node sizing (uniform or adaptive)");
+        return solver;
+    }
 
-        Mesh meshA, meshB;
+    /** \brief The two meshes (A: the world or the first file, B: the robot or the second) and the poses of B. */
+    struct Input
+    {
+        Mesh a, b;
         LoadReport reportA, reportB;
+        std::vector<Eigen::Isometry3d> poses;
+    };
+
+    Input loadInput(const Options &o)
+    {
+        Input in;
         Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-        if (!cfg.empty())
+        if (!o.cfg.empty())
         {
-            if (!meshes.empty())
+            if (!o.meshes.empty())
                 throw Exception("command line", "give either --cfg or two mesh files, not both");
-            const ProblemConfig problem = readProblemConfig(cfg);
-            meshA = loadMesh(problem.world, &reportA);
-            meshB = loadRobotMesh(problem.robot, problem.planar, &reportB);  // OMPL.app's centring, 2D or 3D
+            const ProblemConfig problem = readProblemConfig(o.cfg);
+            in.a = loadMesh(problem.world, &in.reportA);
+            in.b = loadRobotMesh(problem.robot, problem.planar, &in.reportB);  // OMPL.app's centring, 2D or 3D
             pose = problem.start;
         }
         else
         {
-            if (meshes.size() != 2)
+            if (o.meshes.size() != 2)
                 throw Exception("command line", "need two mesh files (A B) or --cfg FILE; see --help");
-            meshA = loadMesh(meshes[0], &reportA);
-            meshB = loadMesh(meshes[1], &reportB);
+            in.a = loadMesh(o.meshes[0], &in.reportA);
+            in.b = loadMesh(o.meshes[1], &in.reportB);
         }
-        if (!poseText.empty())
-            pose = parsePose(poseText, "--pose");
-        std::vector<Eigen::Isometry3d> poses{pose};
-        if (!posesFile.empty())
-            poses = readPoses(posesFile);
+        if (!o.poseText.empty())
+            pose = parsePose(o.poseText, "--pose");
+        in.poses = {pose};
+        if (!o.posesFile.empty())
+            in.poses = readPoses(o.posesFile);
+        return in;
+    }
 
-        if (scene)
-        {
-            BodyOptions options;  // exact answers use each surface as given, whatever the grid
-            options.gridSize = hA;
-            options.distances = distances;
-            return answerWithScene(meshB, meshA, options, poses, !posesFile.empty(), vm.count("json") > 0,
-                                   vm.count("cold") > 0);
-        }
-        const BodyPtr a = makeBody(meshA, reportA, hA, sizing == "adaptive", distances, "A");
-        const BodyPtr b = makeBody(meshB, reportB, hB, sizing == "adaptive", distances, "B");
+    /** \brief One solver answer as text (one pose, no --json). */
+    void printResult(const DistanceResult &result, const Options &o)
+    {
+        std::printf("algorithm      %s%s\ndistance       %.10g (%s)\n", o.algorithm.c_str(),
+                    o.exact && o.algorithm != "exact" ? " + exact" : "", result.distance,
+                    result.inCollision ? penetrationText(result.penetration)
+                    : result.certified ? "exact, certified"
+                                       : "node to node: an upper bound");
+        if (result.certified && std::isfinite(result.nodeDistance))
+            std::printf("node distance  %.10g\n", result.nodeDistance);
+        std::printf("in collision   %s\nnode pair      A %u, B %u\nwitness on A   %s\nwitness on B   %s\n"
+                    "evaluations    %zu\ntime           %.3f ms\n",
+                    result.inCollision ? "yes" : "no", result.nodes.a, result.nodes.b, vec(result.onA, " ").c_str(),
+                    vec(result.onB, " ").c_str(), result.evaluations, result.seconds * 1e3);
+    }
 
+    /** \brief One solver answer as a CSV row or a JSON array entry (--poses). */
+    void printRow(const DistanceResult &result, const Options &o, std::size_t i, std::size_t count)
+    {
+        if (o.json)
+            std::cout << "  " << json(result, o.algorithm) << (i + 1 < count ? ",\n" : "\n");
+        else
+            std::printf("%zu,%.17g,%zu,%.3f,%u,%u,%s,%s,%d,%d,%.17g\n", i, result.distance, result.evaluations,
+                        result.seconds * 1e6, result.nodes.a, result.nodes.b, vec(result.onA, ",").c_str(),
+                        vec(result.onB, ",").c_str(), result.inCollision ? 1 : 0, result.certified ? 1 : 0,
+                        std::isfinite(result.nodeDistance) ? result.nodeDistance : result.distance);
+    }
+
+    /** \brief The named solver's answer on the two whole bodies at each pose; with --exact refined to the exact,
+        certified distance; collision always decided exactly. */
+    int answerWithSolver(const Body &a, const Body &b, const DistanceSolver &solver,
+                         const std::vector<Eigen::Isometry3d> &poses, const Options &o)
+    {
         DistanceRequest request;
-        request.seed = seed;
-        const bool many = !posesFile.empty(), asJson = vm.count("json") > 0, exact = vm.count("exact") > 0;
-        if (many)
-            std::cout << (asJson ? "[\n" : "index,distance,evaluations,time_us,node_a,node_b,"
+        request.seed = o.seed;
+        if (o.many())
+            std::cout << (o.json ? "[\n" : "index,distance,evaluations,time_us,node_a,node_b,"
                                            "witness_a_x,witness_a_y,witness_a_z,witness_b_x,witness_b_y,witness_b_z,"
                                            "in_collision,certified,node_distance\n");
         std::vector<double> micros;
@@ -320,45 +354,26 @@ namespace
         {
             DistanceResult result;
             const auto queryStart = std::chrono::steady_clock::now();
-            solver->solve(*a, *b, poses[i], request, result);
-            if (exact && !result.certified)
-                refineExact(*a, *b, poses[i], result);
-            else if (!result.certified && inCollision(*a, *b, poses[i]))  // collision is always decided exactly
+            solver.solve(a, b, poses[i], request, result);
+            if (o.exact && !result.certified)
+                refineExact(a, b, poses[i], result);
+            else if (!result.certified && inCollision(a, b, poses[i]))  // collision is always decided exactly
             {
                 // ... and then the distance is signed, as in exact mode: minus the penetration depth estimate.
                 result.nodeDistance = result.distance;
-                setPenetration(*a, *b, poses[i], result);
+                setPenetration(a, b, poses[i], result);
             }
             result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - queryStart).count();
             micros.push_back(result.seconds * 1e6);
-            if (!many)
+            if (!o.many())
             {
-                if (asJson)
-                    std::cout << json(result, algorithm) << "\n";
+                if (o.json)
+                    std::cout << json(result, o.algorithm) << "\n";
                 else
-                {
-                    std::printf("algorithm      %s%s\ndistance       %.10g (%s)\n", algorithm.c_str(),
-                                exact && algorithm != "exact" ? " + exact" : "", result.distance,
-                                result.inCollision ? penetrationText(result.penetration)
-                                : result.certified ? "exact, certified"
-                                                   : "node to node: an upper bound");
-                    if (result.certified && std::isfinite(result.nodeDistance))
-                        std::printf("node distance  %.10g\n", result.nodeDistance);
-                    std::printf("in collision   %s\nnode pair      A %u, B %u\nwitness on A   %s\nwitness on B   %s\n"
-                                "evaluations    %zu\ntime           %.3f ms\n",
-                                result.inCollision ? "yes" : "no", result.nodes.a, result.nodes.b,
-                                vec(result.onA, " ").c_str(), vec(result.onB, " ").c_str(), result.evaluations,
-                                result.seconds * 1e3);
-                }
+                    printResult(result, o);
                 continue;
             }
-            if (asJson)
-                std::cout << "  " << json(result, algorithm) << (i + 1 < poses.size() ? ",\n" : "\n");
-            else
-                std::printf("%zu,%.17g,%zu,%.3f,%u,%u,%s,%s,%d,%d,%.17g\n", i, result.distance, result.evaluations,
-                            result.seconds * 1e6, result.nodes.a, result.nodes.b, vec(result.onA, ",").c_str(),
-                            vec(result.onB, ",").c_str(), result.inCollision ? 1 : 0, result.certified ? 1 : 0,
-                            std::isfinite(result.nodeDistance) ? result.nodeDistance : result.distance);
+            printRow(result, o, i, poses.size());
             const auto now = std::chrono::steady_clock::now();
             if (now - lastReport > std::chrono::seconds(2))
             {
@@ -366,11 +381,35 @@ namespace
                 lastReport = now;
             }
         }
-        if (many && asJson)
+        if (o.many() && o.json)
             std::cout << "]\n";
-        if (many)
-            printTimes(micros, algorithm + (exact && algorithm != "exact" ? " + exact" : ""));
+        if (o.many())
+            printTimes(micros, o.algorithm + (o.exact && o.algorithm != "exact" ? " + exact" : ""));
         return 0;
+    }
+
+    int run(int argc, char **argv)
+    {
+        Options o;
+        if (!parseOptions(argc, argv, o))
+            return 0;
+        const DistanceSolverPtr solver = solverOf(o);
+        const double hA = gridValue(o.gridA.empty() ? o.grid : o.gridA, o.gridA.empty() ? "grid" : "grid-a");
+        const double hB = gridValue(o.gridB.empty() ? o.grid : o.gridB, o.gridB.empty() ? "grid" : "grid-b");
+        MeshDistancesOptions distances;
+        distances.memoryBudgetBytes = static_cast<std::size_t>(o.budgetMiB * 1024 * 1024);
+        distances.cacheDir = o.cacheDir;
+        const Input in = loadInput(o);
+        if (o.scene())
+        {
+            BodyOptions options;  // exact answers use each surface as given, whatever the grid
+            options.gridSize = hA;
+            options.distances = distances;
+            return answerWithScene(in.b, in.a, options, in.poses, o.many(), o.json, o.cold);
+        }
+        const BodyPtr a = makeBody(in.a, in.reportA, hA, o.sizing == "adaptive", distances, "A");
+        const BodyPtr b = makeBody(in.b, in.reportB, hB, o.sizing == "adaptive", distances, "B");
+        return answerWithSolver(*a, *b, *solver, in.poses, o);
     }
 }  // namespace
 

@@ -2,7 +2,7 @@
 // checker.
 //
 //   meshgap_plan --cfg problem.cfg [--planner rrtconnect] [--time 10] [--objective NAME [--weight W]]
-//                [--mode certified|fast] [--motion discrete|clearance] [--seed N] [--out solution.path]
+//                [--checker certified|fast] [--motion discrete|clearance] [--seed N] [--out solution.path]
 //                [--clearance-csv clearance.csv] [--summary summary.txt] [--export-glb scene.glb [--export-states N]]
 //                [--report plan.html] [--optimize clearance [--optimize-time S]] [--sampler NAME]
 //
@@ -14,355 +14,320 @@
 // the closest-point segment at each) as a glTF 2.0 binary file for any 3D viewer. Exit status: 0 exact solution,
 // 2 approximate or none, 1 bad input (including a start or goal in collision: the message says which, the obstacle
 // and the distance). --optimize clearance runs the ClearancePathOptimizer on the planner's path before any of this
-// (the summary gives its minimum clearance and length before and after; everything else is of the optimised path).
+//
+// The parts: plan/Progress.h (the progress line), plan/PlanOutputs.h (the files it writes), OptimizeOption.h.
 
+#include <boost/algorithm/string/case_conv.hpp>
 #include <boost/program_options.hpp>
-#include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
-#include <mutex>
+#include <memory>
 #include <ompl/base/PlannerData.h>
-#include <ompl/base/spaces/SE2StateSpace.h>
-#include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/RandomNumbers.h>
 #include <sstream>
-#include <thread>
 
 #include "CliMain.h"
 #include "OptimizeOption.h"
 #include "meshgap/Exception.h"
-#include "meshgap/mesh/SceneExport.h"
+#include "meshgap/Text.h"
 #include "meshgap/ompl/ClearanceMotionValidator.h"
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/ProblemSetup.h"
-#include "support/DenseClearance.h"
-#include "support/PlanReport.h"
 #include "meshgap/ompl/SamplerFactory.h"
+#include "plan/PlanOutputs.h"
+#include "plan/Progress.h"
+#include "support/DenseClearance.h"
+#include "support/MeshWriter.h"
+#include "support/PlanReport.h"
+#include "support/SceneExport.h"
 
 namespace po = boost::program_options;
 namespace ob = ompl::base;
 using namespace meshgap;
+using namespace meshgap::cli;
 
 namespace
 {
-    std::string joined(const std::vector<std::string> &names)
+    /** \brief The command line. */
+    struct Options
     {
-        std::string s;
-        for (const std::string &n : names)
-            s += (s.empty() ? "" : ", ") + n;
-        return s;
-    }
-
-    /** \brief One stderr line a second while the planner runs: elapsed time, validity checks, and the planner's
-        iterations and best cost when it reports them (OMPL's planner progress properties, read from this thread
-        as ompl::tools::Benchmark does). */
-    class Progress
-    {
-    public:
-        Progress(const ob::PlannerPtr &planner, const ClearanceChecker &checker, bool enabled)
-        {
-            if (!enabled)
-                return;
-            thread_ = std::thread([this, planner, &checker] {
-                const auto start = std::chrono::steady_clock::now();
-                const auto properties = planner->getPlannerProgressProperties();
-                std::unique_lock<std::mutex> lock(mutex_);
-                while (!cv_.wait_for(lock, std::chrono::seconds(1), [this] { return done_; }))
-                {
-                    const double elapsed =
-                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-                    std::string line = "planning: " + std::to_string(static_cast<int>(elapsed + 0.5)) + " s, " +
-                                       std::to_string(checker.stats().validityCalls) + " validity checks";
-                    for (const char *name : {"iterations INTEGER", "best cost REAL"})
-                    {
-                        const auto it = properties.find(name);
-                        if (it == properties.end())
-                            continue;
-                        const std::string value = it->second();
-                        const std::string label = std::string(name).substr(0, std::string(name).rfind(' '));
-                        if (!value.empty() && value != "nan" && value != "inf" && value != "-inf")
-                            line += ", " + label + " " + value;
-                    }
-                    std::fprintf(stderr, "%s\n", line.c_str());
-                }
-            });
-        }
-        ~Progress()
-        {
-            if (!thread_.joinable())
-                return;
-            {
-                std::lock_guard<std::mutex> lock(mutex_);
-                done_ = true;
-            }
-            cv_.notify_all();
-            thread_.join();
-        }
-
-    private:
-        std::mutex mutex_;
-        std::condition_variable cv_;
-        bool done_{false};
-        std::thread thread_;
-    };
-
-    void writeClearanceCsv(const DenseClearance &d, const std::string &file)
-    {
-        std::ofstream out(file);
-        if (!out)
-            throw Exception(file, "cannot open for writing");
-        const ob::StateSpace &space = *d.path.getSpaceInformation()->getStateSpace();
-        const bool planar = space.getType() == ob::STATE_SPACE_SE2;
-        out << "index,arc_length,fraction," << (planar ? "x,y,theta" : "x,y,z,qx,qy,qz,qw") << ",clearance,in_collision\n";
-        out.precision(17);
-        const double total = d.arcLength.empty() ? 0.0 : d.arcLength.back();
-        for (std::size_t i = 0; i < d.path.getStateCount(); ++i)
-        {
-            out << i << "," << d.arcLength[i] << "," << (total > 0.0 ? d.arcLength[i] / total : 0.0);
-            const ob::State *s = d.path.getState(i);
-            if (planar)
-            {
-                const auto *se2 = s->as<ob::SE2StateSpace::StateType>();
-                out << "," << se2->getX() << "," << se2->getY() << "," << se2->getYaw();
-            }
-            else
-            {
-                const auto *se3 = s->as<ob::SE3StateSpace::StateType>();
-                const auto &q = se3->rotation();
-                out << "," << se3->getX() << "," << se3->getY() << "," << se3->getZ() << "," << q.x << "," << q.y
-                    << "," << q.z << "," << q.w;
-            }
-            out << "," << d.clearance[i] << "," << int(d.inCollision[i]) << "\n";
-        }
-        if (!out)
-            throw Exception(file, "write failed");
-    }
-
-    int run(int argc, char **argv)
-    {
-        std::string cfg, planner = "rrtconnect", objective, mode = "certified", motion = "discrete", out, csv, summaryFile,
-                    glb, report, optimize, sampler;
+        std::string cfg, planner = "rrtconnect", objective, checker = "certified", motion = "discrete", out, csv,
+                         summaryFile, glb, report, optimize, sampler;
         double time = 10.0, weight = 0.0, optimizeTime = 5.0;
         std::vector<std::string> params;
         unsigned dense = 4, exportStates = 8;
         std::uint32_t seed = 1;
-        po::options_description options("meshgap_plan --cfg FILE [options]\n\nOptions");
-        options.add_options()("help,h", "print this help")("cfg", po::value(&cfg), "OMPL.app problem file (.cfg)")(
-            "planner", po::value(&planner), ("planner: " + joined(plannerNames())).c_str())(
-            "param", po::value(&params),
-            "NAME=VALUE: one of the planner's OMPL parameters, e.g. range=5 or, for rrtstar, use_k_nearest=0; "
-            "repeatable")(
-            "time", po::value(&time), "time limit in seconds (default 10)")(
-            "objective", po::value(&objective),
+        bool quiet = false, weightGiven = false, optimizeTimeGiven = false;
+    };
+
+    /** \brief Declare every option of meshgap_plan, bound to \e o. */
+    void declareOptions(po::options_description &options, Options &o)
+    {
+        options.add_options()("help,h", "print this help")("cfg", po::value(&o.cfg), "OMPL.app problem file (.cfg)")(
+            "planner", po::value(&o.planner), ("planner: " + joinNames(plannerNames())).c_str())(
+            "param", po::value(&o.params),
+            "PLANNER.NAME=VALUE: one of the planner's OMPL parameters, e.g. rrtconnect.range=5 or "
+            "rrtstar.use_k_nearest=0; repeatable")(
+            "time", po::value(&o.time), "time limit in seconds (default 10)")(
+            "objective", po::value(&o.objective),
             "length, clearance (integral of 1/clearance), max_min_clearance, or weighted (length + W * clearance); "
             "default: the cfg's objective, else length")(
-            "weight", po::value(&weight),
+            "weight", po::value(&o.weight),
             "W of --objective weighted, a length (default: a tenth of the robot's radius)")(
-            "mode", po::value(&mode), "clearance: certified (exact) or fast (the paper's node distance)")(
-            "motion", po::value(&motion),
+            "checker", po::value(&o.checker),
+            "clearance checker: certified (exact) or fast (the paper's node distance)")(
+            "motion", po::value(&o.motion),
             "motion validator: discrete (OMPL's, sampled) or clearance (conservative advancement, certified)")(
-            "seed", po::value(&seed), "OMPL's random seed (default 1)")(
-            "out", po::value(&out), "write the path here (.path)")(
-            "clearance-csv", po::value(&csv),
+            "seed", po::value(&o.seed), "OMPL's random seed (default 1)")(
+            "out", po::value(&o.out), "write the path here (.path)")(
+            "clearance-csv", po::value(&o.csv),
             "write the exact clearance along the densely interpolated path here (CSV)")(
-            "dense", po::value(&dense), "states per OMPL validity-check segment of the dense path (default 4)")(
-            "summary", po::value(&summaryFile), "also write the summary here")(
-            "export-glb", po::value(&glb),
+            "dense", po::value(&o.dense), "states per OMPL validity-check segment of the dense path (default 4)")(
+            "summary", po::value(&o.summaryFile), "also write the summary here")(
+            "export-glb", po::value(&o.glb),
             "write the scene as glTF 2.0 binary (.glb): the world, the robot at --export-states states evenly spaced "
             "along the dense path (start and goal without a path) and the exact closest-point segment at each")(
-            "export-states", po::value(&exportStates), "robot states in the --export-glb file (default 8)")(
-            "report", po::value(&report),
+            "export-states", po::value(&o.exportStates), "robot states in the --export-glb file (default 8)")(
+            "report", po::value(&o.report),
             "write a self-contained HTML report (3D scene with the robot along the dense path, clearance plot, "
             "summary) here")(
-            "optimize", po::value(&optimize),
+            "optimize", po::value(&o.optimize),
             "after planning, optimise the path: clearance (raise its minimum clearance up the exact gradient, every "
-            "motion certified; needs --mode certified)")(
-            "optimize-time", po::value(&optimizeTime), "time limit of --optimize in seconds (default 5)")(
-            "sampler", po::value(&sampler),
+            "motion certified; needs --checker certified)")(
+            "optimize-time", po::value(&o.optimizeTime), "time limit of --optimize in seconds (default 5)")(
+            "sampler", po::value(&o.sampler),
             ("valid-state sampler of planners that use one (PRM, EST, ...; default: the cfg's sampler, else "
-             "uniform): " + joined(validStateSamplerNames())).c_str())(
+             "uniform): " + joinNames(validStateSamplerNames())).c_str())(
             "quiet,q", "print warnings and errors only (no OMPL messages, no progress)");
-        po::variables_map vm;
-        po::store(po::parse_command_line(argc, argv, options), vm);
-        po::notify(vm);
-        if (vm.count("help"))
-        {
-            std::cout << options << "\n";
-            return 0;
-        }
-        const bool quiet = vm.count("quiet") > 0;
-        if (quiet)
-            ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-        if (cfg.empty())
-            throw Exception("command line", "--cfg FILE is required; see --help");
-        if (mode != "certified" && mode != "fast")
-            throw Exception("--mode", "'" + mode + "' is not certified or fast");
-        if (motion != "discrete" && motion != "clearance")
-            throw Exception("--motion", "'" + motion + "' is not discrete or clearance");
-        if (motion == "clearance" && mode != "certified")
-            throw Exception("--motion", "clearance needs --mode certified (it steps by exact clearance)");
-        if (!(time > 0.0))
-            throw Exception("--time", "must be positive");
-        if (dense < 1)
-            throw Exception("--dense", "must be at least 1");
-        if (exportStates < 1)
-            throw Exception("--export-states", "must be at least 1");
-        cli::checkOptimizeOptions(optimize, vm.count("optimize-time") > 0, optimizeTime, mode);
-        if (vm.count("weight") && !(weight > 0.0 && std::isfinite(weight)))
-            throw Exception("--weight", "must be positive and finite");
-        ompl::RNG::setSeed(seed);
+    }
 
-        const ProblemConfig config = readProblemConfig(cfg);
-        const std::string chosen = !objective.empty() ? objective : config.objective;
-        if (vm.count("weight") && chosen != "weighted")
+    /** \brief Every check that needs no file, so bad options fail before any loading. */
+    void checkOptions(const Options &o)
+    {
+        if (o.cfg.empty())
+            throw Exception("command line", "--cfg FILE is required; see --help");
+        if (o.checker != "certified" && o.checker != "fast")
+            throw Exception("--checker", "'" + o.checker + "' is not certified or fast");
+        if (o.motion != "discrete" && o.motion != "clearance")
+            throw Exception("--motion", "'" + o.motion + "' is not discrete or clearance");
+        if (o.motion == "clearance" && o.checker != "certified")
+            throw Exception("--motion", "clearance needs --checker certified (it steps by exact clearance)");
+        if (!(o.time > 0.0))
+            throw Exception("--time", "must be positive");
+        if (o.dense < 1)
+            throw Exception("--dense", "must be at least 1");
+        if (o.exportStates < 1)
+            throw Exception("--export-states", "must be at least 1");
+        checkOptimizeOptions(o.optimize, o.optimizeTimeGiven, o.optimizeTime, o.checker);
+        if (o.weightGiven && !(o.weight > 0.0 && std::isfinite(o.weight)))
+            throw Exception("--weight", "must be positive and finite");
+    }
+
+    /** \brief Parse and check the command line; false after --help. */
+    bool parseOptions(int argc, char **argv, Options &o)
+    {
+        po::options_description options("meshgap_plan --cfg FILE [options]\n\nOptions");
+        declareOptions(options, o);
+        po::options_description all;
+        all.add(options);
+        addRenamedOptions(all, {{"mode", "--checker certified|fast"}});
+        po::variables_map vm;
+        if (!parseCommandLine(argc, argv, all, vm, nullptr, &options))
+            return false;
+        o.quiet = vm.count("quiet") > 0;
+        o.weightGiven = vm.count("weight") > 0;
+        o.optimizeTimeGiven = vm.count("optimize-time") > 0;
+        checkOptions(o);
+        return true;
+    }
+
+    /** \brief The problem set up to plan: checker, sampler, motion validator and the planner with its parameters. */
+    struct Planning
+    {
+        ProblemConfig config;
+        OmplProblem problem;
+        std::shared_ptr<ClearanceMotionValidator> cmv;
+    };
+
+    Planning setUp(const Options &o)
+    {
+        Planning p;
+        p.config = readProblemConfig(o.cfg);
+        const std::string chosen = !o.objective.empty() ? o.objective : p.config.objective;
+        if (o.weightGiven && chosen != "weighted")
             throw Exception("--weight", "applies to --objective weighted only (the objective is " +
                                             (chosen.empty() ? std::string("length") : chosen) + ")");
         ObjectiveOptions objectiveOptions;
-        objectiveOptions.weight = weight;
-        OmplProblem problem = setupProblem(config, mode == "certified" ? ClearanceChecker::Mode::CERTIFIED :
-                                                                         ClearanceChecker::Mode::FAST,
-                                           objective, BodyOptions(), objectiveOptions);
-        const ob::SpaceInformationPtr si = problem.setup->getSpaceInformation();
-        if (!sampler.empty())
-            setValidStateSampler(*si, sampler, "--sampler");
-        std::shared_ptr<ClearanceMotionValidator> cmv;
-        if (motion == "clearance")
-            si->setMotionValidator(cmv = std::make_shared<ClearanceMotionValidator>(si, problem.checker));
-        const ob::PlannerPtr plannerPtr = allocPlanner(planner, si);
-        for (const std::string &param : params)
+        objectiveOptions.weight = o.weight;
+        p.problem = setupProblem(p.config,
+                                 o.checker == "certified" ? ClearanceChecker::Mode::CERTIFIED :
+                                                            ClearanceChecker::Mode::FAST,
+                                 o.objective, BodyOptions(), objectiveOptions);
+        const ob::SpaceInformationPtr si = p.problem.setup->getSpaceInformation();
+        if (!o.sampler.empty())
+            setValidStateSampler(*si, o.sampler, "--sampler");
+        if (o.motion == "clearance")
+            si->setMotionValidator(p.cmv = std::make_shared<ClearanceMotionValidator>(si, p.problem.checker));
+        const ob::PlannerPtr planner = allocPlanner(o.planner, si);
+        for (const std::string &text : o.params)
         {
-            const std::size_t eq = param.find('=');
-            if (eq == std::string::npos || eq == 0)
-                throw Exception("--param", "'" + param + "' is not NAME=VALUE");
-            setPlannerParam(*plannerPtr, param.substr(0, eq), param.substr(eq + 1), "--param");
+            const OwnedParam param = parseOwnedParam(text, "PLANNER", o.planner + ".range=5");
+            if (boost::algorithm::to_lower_copy(param.owner) != boost::algorithm::to_lower_copy(o.planner))
+                throw Exception("--param", "'" + text + "': the planner is " + o.planner + ", not " + param.owner);
+            setPlannerParam(*planner, param.name, param.value, "--param");
         }
-        problem.setup->setPlanner(plannerPtr);
-        problem.setup->setup();
-        OMPL_INFORM("%s: %s, %zu obstacles, planner %s, objective %s, clearance %s, motion %s", config.name.c_str(),
-                    config.planar ? "SE(2)" : "SE(3)", problem.scene->obstacles().size(), planner.c_str(),
-                    problem.objective.c_str(), mode.c_str(), motion.c_str());
-        ob::PlannerStatus status;
-        {
-            Progress progress(problem.setup->getPlanner(), *problem.checker, !quiet);
-            status = problem.setup->solve(time);
-        }
-        const CheckerStats stats = problem.checker->stats();
-        const bool exact = status == ob::PlannerStatus::EXACT_SOLUTION;
-        const bool havePath = problem.setup->haveSolutionPath() &&
-                              (exact || status == ob::PlannerStatus::APPROXIMATE_SOLUTION);
+        p.problem.setup->setPlanner(planner);
+        p.problem.setup->setup();
+        return p;
+    }
 
-        std::ostringstream summary;
-        summary.precision(6);
-        auto line = [&summary](const char *key, const auto &value) {
+    /** \brief The summary, one "key  value" line at a time, keys padded as OptimizeOption.h pads its own. */
+    class Summary
+    {
+    public:
+        Summary() { text_.precision(6); }
+
+        template <typename T>
+        void line(const char *key, const T &value)
+        {
             char padded[24];
             std::snprintf(padded, sizeof padded, "%-16s", key);
-            summary << padded << value << "\n";
-        };
-        line("problem", config.name + (config.planar ? " (SE(2))" : " (SE(3))"));
-        line("planner", planner);
-        line("objective", problem.objective);
-        line("clearance mode", mode + ", motion " + motion);
-        line("status", status.asString());
-        line("solved", !havePath ? "no" : exact ? "yes (exact)" : "approximate");
-        line("exact solution", exact ? "yes" : "no");
-        line("planning time", std::to_string(problem.setup->getLastPlanComputationTime()) + " s");
-        if (havePath && !optimize.empty())
-            summary << cli::optimizeSolution(*problem.setup, problem.checker, optimizeTime, seed);
+            text_ << padded << value << "\n";
+        }
+        std::ostringstream &stream() { return text_; }
+        std::string str() const { return text_.str(); }
+
+    private:
+        std::ostringstream text_;
+    };
+
+    /** \brief The summary lines of the path and its dense clearance. */
+    void summarizePath(const Planning &p, const DenseClearance &d, Summary &summary)
+    {
+        ompl::geometric::PathGeometric &path = p.problem.setup->getSolutionPath();
+        summary.line("states", std::to_string(path.getStateCount()) + " (dense: " +
+                                   std::to_string(d.path.getStateCount()) + ")");
+        summary.line("length", path.length());
+        summary.line("cost", std::to_string(path.cost(p.problem.setup->getOptimizationObjective()).value()) + " (" +
+                                 p.problem.objective + ")");
+        std::ostringstream mc;
+        mc.precision(6);
+        mc << d.minClearance << " (exact, over the dense path; at arc length " << d.arcLength[d.argmin] << " of "
+           << d.arcLength.back() << ")";
+        summary.line("min clearance", mc.str());
+        summary.line("dense path free", d.collisions == 0 ? std::string("yes") :
+                                                            "NO: " + std::to_string(d.collisions) + " states collide");
+    }
+
+    /** \brief The summary lines of the search: its graph, the checker's counters, the objective's and the motion
+        validator's. */
+    void summarizeSearch(const Planning &p, Summary &summary)
+    {
+        const CheckerStats stats = p.problem.checker->stats();
+        {
+            ob::PlannerData data(p.problem.setup->getSpaceInformation());
+            p.problem.setup->getPlannerData(data);
+            summary.line("graph states", data.numVertices());
+        }
+        summary.line("validity calls", stats.validityCalls);
+        summary.line("clearance calls", stats.clearanceCalls);
+        if (const auto *maxMin =
+                dynamic_cast<const MaxMinClearanceObjective *>(p.problem.setup->getOptimizationObjective().get()))
+            summary.line("cost queries", std::to_string(maxMin->queriedStates()) + " states queried for " +
+                                             std::to_string(maxMin->gridStates()) + " motion grid states");
+        if (p.cmv)
+            summary.line("motion checks",
+                         std::to_string(p.cmv->getValidMotionCount() + p.cmv->getInvalidMotionCount()) + " (" +
+                             std::to_string(p.cmv->getValidMotionCount()) + " free), " +
+                             std::to_string(p.cmv->queries()) + " clearance queries");
+        summary.line("query time", std::to_string(stats.seconds * 1e3) + " ms");
+    }
+
+    /** \brief The scene (.glb) and the HTML report: the robot along the dense path, or at the start and the goal
+        without one. */
+    void writeScenes(const Options &o, const Planning &p, const DenseClearance *d, const std::string &summary)
+    {
+        if (!o.glb.empty())
+        {
+            std::vector<Eigen::Isometry3d> poses;
+            if (d != nullptr)
+                poses = posesAlong(*d, o.exportStates);
+            else
+            {
+                poses.push_back(p.config.start);
+                if (p.config.goal)
+                    poses.push_back(*p.config.goal);
+            }
+            writeGlb(sceneExportParts(*p.problem.scene, poses), o.glb);
+            std::printf("scene written   %s (%zu robot states)\n", o.glb.c_str(), poses.size());
+        }
+        if (!o.report.empty())
+        {
+            const auto rows = summaryRows(summary);
+            writePlanReport(*p.problem.scene, d != nullptr ? reportFromDense(*d, rows) : reportWithoutPath(p.config, rows),
+                            o.report);
+            std::printf("report written  %s\n", o.report.c_str());
+        }
+    }
+
+    int run(int argc, char **argv)
+    {
+        Options o;
+        if (!parseOptions(argc, argv, o))
+            return 0;
+        ompl::RNG::setSeed(o.seed);
+        Planning p = setUp(o);
+        OMPL_INFORM("%s: %s, %zu obstacles, planner %s, objective %s, clearance %s, motion %s", p.config.name.c_str(),
+                    p.config.planar ? "SE(2)" : "SE(3)", p.problem.scene->obstacles().size(), o.planner.c_str(),
+                    p.problem.objective.c_str(), o.checker.c_str(), o.motion.c_str());
+        ob::PlannerStatus status;
+        {
+            Progress progress(p.problem.setup->getPlanner(), *p.problem.checker, !o.quiet);
+            status = p.problem.setup->solve(o.time);
+        }
+        const bool exact = status == ob::PlannerStatus::EXACT_SOLUTION;
+        const bool havePath = p.problem.setup->haveSolutionPath() &&
+                              (exact || status == ob::PlannerStatus::APPROXIMATE_SOLUTION);
+
+        Summary summary;
+        summary.line("problem", p.config.name + (p.config.planar ? " (SE(2))" : " (SE(3))"));
+        summary.line("planner", o.planner);
+        summary.line("objective", p.problem.objective);
+        summary.line("clearance mode", o.checker + ", motion " + o.motion);
+        summary.line("status", status.asString());
+        summary.line("solved", !havePath ? "no" : exact ? "yes (exact)" : "approximate");
+        summary.line("exact solution", exact ? "yes" : "no");
+        summary.line("planning time", std::to_string(p.problem.setup->getLastPlanComputationTime()) + " s");
+        if (havePath && !o.optimize.empty())
+            summary.stream() << optimizeSolution(*p.problem.setup, p.problem.checker, o.optimizeTime, o.seed);
         std::unique_ptr<DenseClearance> d;
         if (havePath)
         {
-            ompl::geometric::PathGeometric &path = problem.setup->getSolutionPath();
-            d = std::make_unique<DenseClearance>(denseClearance(path, *problem.scene, dense));
-            line("states", std::to_string(path.getStateCount()) + " (dense: " +
-                               std::to_string(d->path.getStateCount()) + ")");
-            line("length", path.length());
-            line("cost", std::to_string(path.cost(problem.setup->getOptimizationObjective()).value()) + " (" +
-                             problem.objective + ")");
-            std::ostringstream mc;
-            mc.precision(6);
-            mc << d->minClearance << " (exact, over the dense path; at arc length " << d->arcLength[d->argmin]
-               << " of " << d->arcLength.back() << ")";
-            line("min clearance", mc.str());
-            line("dense path free", d->collisions == 0 ? std::string("yes") :
-                                                         "NO: " + std::to_string(d->collisions) + " states collide");
+            d = std::make_unique<DenseClearance>(denseClearance(p.problem.setup->getSolutionPath(), *p.problem.scene,
+                                                                o.dense));
+            summarizePath(p, *d, summary);
         }
-        {
-            ob::PlannerData data(problem.setup->getSpaceInformation());
-            problem.setup->getPlannerData(data);
-            line("graph states", data.numVertices());
-        }
-        line("validity calls", stats.validityCalls);
-        line("clearance calls", stats.clearanceCalls);
-        if (const auto *maxMin =
-                dynamic_cast<const MaxMinClearanceObjective *>(problem.setup->getOptimizationObjective().get()))
-            line("cost queries", std::to_string(maxMin->queriedStates()) + " states queried for " +
-                                  std::to_string(maxMin->gridStates()) + " motion grid states");
-        if (cmv)
-            line("motion checks", std::to_string(cmv->getValidMotionCount() + cmv->getInvalidMotionCount()) + " (" +
-                                      std::to_string(cmv->getValidMotionCount()) + " free), " +
-                                      std::to_string(cmv->queries()) + " clearance queries");
-        line("query time", std::to_string(stats.seconds * 1e3) + " ms");
+        summarizeSearch(p, summary);
         std::cout << summary.str();
-        if (!summaryFile.empty())
-        {
-            std::ofstream file(summaryFile);
-            if (!(file << summary.str()))
-                throw Exception(summaryFile, "cannot write");
-        }
-        if (!glb.empty())
-        {
-            // States evenly spaced (by index) along the dense path, first and last included; without a path the
-            // start and the goal, so the scene can still be looked at.
-            std::vector<Eigen::Isometry3d> poses;
-            if (havePath)
-            {
-                const std::size_t n = d->path.getStateCount(), k = std::min<std::size_t>(exportStates, n);
-                for (std::size_t i = 0; i < k; ++i)
-                {
-                    const std::size_t at = k == 1 ? 0 : (i * (n - 1) + (k - 1) / 2) / (k - 1);
-                    poses.push_back(poseFromState(*si->getStateSpace(), d->path.getState(at)));
-                }
-            }
-            else
-            {
-                poses.push_back(config.start);
-                if (config.goal)
-                    poses.push_back(*config.goal);
-            }
-            writeGlb(sceneExportParts(*problem.scene, poses), glb);
-            std::printf("scene written   %s (%zu robot states)\n", glb.c_str(), poses.size());
-        }
-        if (!report.empty())
-        {
-            const auto rows = summaryRows(summary.str());
-            writePlanReport(*problem.scene, havePath ? reportFromDense(*d, rows) : reportWithoutPath(config, rows),
-                            report);
-            std::printf("report written  %s\n", report.c_str());
-        }
+        if (!o.summaryFile.empty())
+            writeTextFile(summary.str(), o.summaryFile);
+        writeScenes(o, p, d.get(), summary.str());
         if (!havePath)
         {
-            std::fprintf(stderr, "no path found within %g s\n", time);
+            std::fprintf(stderr, "no path found within %g s\n", o.time);
             return 2;
         }
-        if (!out.empty())
+        if (!o.out.empty())
         {
-            std::ofstream file(out);
-            if (!file)
-                throw Exception(out, "cannot open for writing");
-            file.precision(17);  // full precision: the states must round-trip exactly
-            problem.setup->getSolutionPath().printAsMatrix(file);
-            if (!file)
-                throw Exception(out, "write failed");
-            std::printf("path written    %s\n", out.c_str());
+            writePathFile(p.problem.setup->getSolutionPath(), o.out);
+            std::printf("path written    %s\n", o.out.c_str());
         }
-        if (!csv.empty())
+        if (!o.csv.empty())
         {
-            writeClearanceCsv(*d, csv);
-            std::printf("clearance CSV   %s\n", csv.c_str());
+            writeClearanceCsv(*d, o.csv);
+            std::printf("clearance CSV   %s\n", o.csv.c_str());
         }
         return exact ? 0 : 2;
     }
@@ -370,5 +335,5 @@ namespace
 
 int main(int argc, char **argv)
 {
-    return cli::runMain(argc, argv, run);
+    return runMain(argc, argv, run);
 }

@@ -37,15 +37,8 @@ namespace
             "dense", po::value(&dense), "states per OMPL validity-check segment of the dense path (default 4)")(
             "quiet,q", "print warnings and errors only");
         po::variables_map vm;
-        po::store(po::parse_command_line(argc, argv, options), vm);
-        po::notify(vm);
-        if (vm.count("help"))
-        {
-            std::cout << options << "\n";
+        if (!cli::parseCommandLine(argc, argv, options, vm))
             return 0;
-        }
-        if (vm.count("quiet"))
-            ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
         if (cfg.empty() || pathFile.empty() || out.empty())
             throw Exception("command line", "--cfg FILE, --path FILE and --out FILE are required; see --help");
         if (dense < 1)

@@ -11,7 +11,7 @@
 #include <string>
 #include <utility>
 
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 #include "meshgap/mesh/Mesh.h"
 
 namespace meshgap

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/ompl/ClearanceChecker.h"
 #include "meshgap/scene/Pose.h"
 
@@ -39,20 +40,7 @@ namespace meshgap
                     std::vector<double> v;
                     std::string token;
                     while (fields >> token)
-                    {
-                        std::size_t used = 0;
-                        double x = 0.0;
-                        try
-                        {
-                            x = std::stod(token, &used);
-                        }
-                        catch (const std::exception &)
-                        {
-                        }
-                        if (used != token.size() || !std::isfinite(x))
-                            throw Exception(where, "'" + token + "' is not a finite number (expected x y theta)");
-                        v.push_back(x);
-                    }
+                        v.push_back(parseFiniteNumber(token, where, "x y theta"));
                     if (v.size() != 3)
                         throw Exception(where, "expected 3 numbers (x y theta) for this SE(2) problem, found " +
                                                    std::to_string(v.size()));

@@ -1,7 +1,5 @@
 #include "support/PlanReport.h"
 
-#include <atomic>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -9,12 +7,12 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
-#include <unistd.h>
 
+#include "meshgap/AtomicFile.h"
 #include "meshgap/Exception.h"
-#include "meshgap/mesh/MeshWriter.h"
-#include "meshgap/mesh/SceneExport.h"
 #include "meshgap/ompl/ClearanceChecker.h"
+#include "support/MeshWriter.h"
+#include "support/SceneExport.h"
 
 namespace meshgap
 {
@@ -93,8 +91,6 @@ namespace meshgap
             return buffer;
         }
 
-        std::atomic<unsigned long> nextGlb{0};  ///< distinct temporary names for reports written concurrently
-
         /** \brief The scene as glTF 2.0 binary: obstacles, then the robot in its own frame, named "robot". */
         std::string sceneGlb(const Scene &scene, const std::string &file)
         {
@@ -105,10 +101,7 @@ namespace meshgap
             parts.push_back({"robot", scene.robot().surface(), colors.robotColor});
             // In the system's temporary folder: the report's own folder is checked first, by its own temporary file.
             const std::string temporary =
-                (std::filesystem::temp_directory_path() /
-                 ("meshgap_report_" + std::to_string(static_cast<long>(::getpid())) + "_" +
-                  std::to_string(nextGlb++) + ".glb"))
-                    .string();
+                temporaryPath((std::filesystem::temp_directory_path() / "meshgap_report.glb").string());
             writeGlb(parts, temporary);
             std::ifstream in(temporary, std::ios::binary);
             std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -245,29 +238,17 @@ namespace meshgap
         else
             json << ", \"clearance\": null";
 
-        // The temporary file first, so an output folder that cannot be written fails before any work.
-        const std::string temporary = file + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-        std::ofstream out(temporary, std::ios::binary);
-        if (!out)
-            throw Exception(file, "cannot open " + temporary + " for writing");
-        try
-        {
-            json << ", \"glb\": \"" << sceneGlb(scene, file) << "\"}";
-            std::string html = REPORT_TEMPLATE;
-            replaceOnce(html, "/*MESHGAP_THREE_JS*/", REPORT_THREE_JS);
-            replaceOnce(html, "/*MESHGAP_DATA*/null", json.str());
-            out << html;
-            out.close();
-            if (!out)
-                throw Exception(file, "write failed");
-            if (std::rename(temporary.c_str(), file.c_str()) != 0)
-                throw Exception(file, "cannot rename " + temporary + " to it: " + std::strerror(errno));
-        }
-        catch (...)
-        {
-            out.close();
-            std::remove(temporary.c_str());
-            throw;
-        }
+        // The temporary file is opened first, so an output folder that cannot be written fails before any work.
+        writeStreamAtomically(
+            file,
+            [&](std::ostream &out)
+            {
+                json << ", \"glb\": \"" << sceneGlb(scene, file) << "\"}";
+                std::string html = REPORT_TEMPLATE;
+                replaceOnce(html, "/*MESHGAP_THREE_JS*/", REPORT_THREE_JS);
+                replaceOnce(html, "/*MESHGAP_DATA*/null", json.str());
+                out << html;
+            },
+            /*binary=*/true);
     }
 }  // namespace meshgap

@@ -98,12 +98,7 @@ namespace meshgap
         // Bad values throw std::invalid_argument, which ParamSet::setParam() turns into "false".
         params_.declareParam<int>(
             "population",
-            [this](int n)
-            {
-                if (n < 2)
-                    throw std::invalid_argument("population must be at least 2");
-                setPopulationSize(static_cast<unsigned int>(n));
-            },
+            [this](int n) { setChecked([&] { setPopulationSize(static_cast<unsigned int>(std::max(n, 0))); }); },
             [this] { return static_cast<int>(getPopulationSize()); });
         params_.declareParam<int>(
             "generations",
@@ -116,21 +111,11 @@ namespace meshgap
             [this] { return static_cast<int>(getGenerations()); });
         params_.declareParam<double>(
             "mutation_rate",
-            [this](double p)
-            {
-                if (!(p >= 0.0 && p <= 1.0))
-                    throw std::invalid_argument("mutation_rate must lie in [0, 1]");
-                setMutationRate(p);
-            },
+            [this](double p) { setChecked([&] { setMutationRate(p); }); },
             [this] { return getMutationRate(); });
         params_.declareParam<double>(
             "crossover_rate",
-            [this](double p)
-            {
-                if (!(p >= 0.0 && p <= 1.0))
-                    throw std::invalid_argument("crossover_rate must lie in [0, 1]");
-                setCrossoverRate(p);
-            },
+            [this](double p) { setChecked([&] { setCrossoverRate(p); }); },
             [this] { return getCrossoverRate(); });
         params_.declareParam<int>(
             "stall_generations",

@@ -19,21 +19,11 @@ namespace meshgap
         // Bad values throw std::invalid_argument, which ParamSet::setParam() turns into "false".
         params_.declareParam<double>(
             "boltzmann",
-            [this](double k)
-            {
-                if (!(k > 0.0 && std::isfinite(k)))
-                    throw std::invalid_argument("boltzmann must be positive and finite");
-                setBoltzmannConstant(k);
-            },
+            [this](double k) { setChecked([&] { setBoltzmannConstant(k); }); },
             [this] { return getBoltzmannConstant(); });
         params_.declareParam<double>(
             "initial_temperature",
-            [this](double t)
-            {
-                if (!(t >= 0.0 && std::isfinite(t)))
-                    throw std::invalid_argument("initial_temperature must be finite and not negative");
-                setInitialTemperature(t);
-            },
+            [this](double t) { setChecked([&] { setInitialTemperature(t); }); },
             [this] { return getInitialTemperature(); });
     }
 

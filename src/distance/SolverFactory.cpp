@@ -4,6 +4,7 @@
 #include <map>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/distance/CombGA.h"
 #include "meshgap/distance/CombSA.h"
 #include "meshgap/distance/Enumeration.h"
@@ -44,9 +45,6 @@ namespace meshgap
         const auto it = registry().find(name);
         if (it != registry().end())
             return it->second();
-        std::string valid;
-        for (const std::string &n : solverNames())
-            valid += (valid.empty() ? "" : ", ") + n;
-        throw Exception("algorithm", "unknown algorithm '" + name + "'; valid names: " + valid);
+        throw Exception("algorithm", "unknown algorithm '" + name + "'; valid names: " + joinNames(solverNames()));
     }
 }  // namespace meshgap

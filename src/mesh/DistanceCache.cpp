@@ -3,7 +3,6 @@
 #include <ompl/util/Console.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cinttypes>
 #include <cstdio>
@@ -13,8 +12,10 @@
 #include <limits>
 #include <system_error>
 
+#include "meshgap/AtomicFile.h"
+#include "meshgap/Exception.h"
+
 #if defined(__unix__) || defined(__APPLE__)
-#include <signal.h>
 #include <unistd.h>
 #define MESHGAP_HAVE_POSIX_IO 1
 #endif
@@ -134,71 +135,6 @@ namespace meshgap
                 size -= chunk;
             }
             return true;
-        }
-
-        /** \brief This machine's name, as it appears in temporary file names (dots replaced, so names parse). */
-        std::string hostName()
-        {
-            char name[256] = "host";
-#ifdef MESHGAP_HAVE_POSIX_IO
-            if (::gethostname(name, sizeof name - 1) != 0)
-                std::strcpy(name, "host");
-            name[sizeof name - 1] = '\0';
-#endif
-            std::string host(name);
-            std::replace(host.begin(), host.end(), '.', '_');
-            std::replace(host.begin(), host.end(), '/', '_');
-            return host.empty() ? std::string("host") : host;
-        }
-
-        /** \brief A name in the folder of \e path that no other writer (thread or process, on this or another
-            machine sharing the folder) uses at the same time: <path>.tmp.<host>.<pid>.<counter>. */
-        std::string temporaryPath(const std::string &path)
-        {
-            static std::atomic<unsigned long> counter{0};
-#ifdef MESHGAP_HAVE_POSIX_IO
-            const unsigned long pid = static_cast<unsigned long>(::getpid());
-#else
-            const unsigned long pid = 0;
-#endif
-            return path + ".tmp." + hostName() + "." + std::to_string(pid) + "." + std::to_string(counter++);
-        }
-
-        /** \brief Remove the temporary files that writers of \e path killed mid-write left behind (up to a whole
-            table each): those named <path>.tmp.<this host>.<pid>.<n> whose process no longer exists. A live
-            writer's file, and any file of another machine, is left alone. */
-        void removeStaleTemporaries(const std::string &path)
-        {
-#ifdef MESHGAP_HAVE_POSIX_IO
-            namespace fs = std::filesystem;
-            const fs::path target(path);
-            const std::string prefix = target.filename().string() + ".tmp." + hostName() + ".";
-            std::error_code ec;
-            fs::directory_iterator it(target.has_parent_path() ? target.parent_path() : fs::path("."), ec), end;
-            for (; !ec && it != end; it.increment(ec))
-            {
-                const std::string name = it->path().filename().string();
-                if (name.compare(0, prefix.size(), prefix) != 0)
-                    continue;
-                const std::string rest = name.substr(prefix.size());  // <pid>.<n>
-                const auto dot = rest.find('.');
-                if (dot == 0 || dot == std::string::npos ||
-                    rest.find_first_not_of("0123456789.") != std::string::npos)
-                    continue;
-                const long pid = std::strtol(rest.substr(0, dot).c_str(), nullptr, 10);
-                if (pid <= 0 || pid == static_cast<long>(::getpid()))
-                    continue;
-                if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
-                {
-                    std::error_code ignored;
-                    if (fs::remove(it->path(), ignored))
-                        OMPL_INFORM("meshgap: removed '%s', left by a writer that was killed",
-                                    it->path().string().c_str());
-                }
-            }
-#else
-            (void)path;
-#endif
         }
 
         void rejectCache(const std::string &path, const std::string &why)
@@ -379,34 +315,33 @@ namespace meshgap
         header.payloadBytes = payloadBytes(numNodes);
         header.payloadChecksum = payloadChecksum(numNodes, D, P);
 
-        const std::string tmp = temporaryPath(path);
-        auto fail = [&](const std::string &why)
+        try
         {
-            OMPL_WARN("meshgap: cannot write distance cache '%s' (%s); the table is not cached", path.c_str(),
-                      why.c_str());
-            std::error_code ignored;
-            std::filesystem::remove(tmp, ignored);
-            return false;
-        };
-
-        std::FILE *f = std::fopen(tmp.c_str(), "wb");
-        if (f == nullptr)
-            return fail(std::string("cannot create '") + tmp + "': " + std::strerror(errno));
-        const std::size_t entries = std::size_t(numNodes) * numNodes;
-        bool ok = writeAll(f, &header, sizeof header) && writeAll(f, D, entries * sizeof(double)) &&
-                  writeAll(f, P, entries * sizeof(std::uint32_t)) && std::fflush(f) == 0;
+            writeAtomically(path,
+                            [&](const std::string &tmp)
+                            {
+                                std::FILE *f = std::fopen(tmp.c_str(), "wb");
+                                if (f == nullptr)
+                                    throw Exception(path, "cannot create '" + tmp + "': " + std::strerror(errno));
+                                const std::size_t entries = std::size_t(numNodes) * numNodes;
+                                bool ok = writeAll(f, &header, sizeof header) &&
+                                          writeAll(f, D, entries * sizeof(double)) &&
+                                          writeAll(f, P, entries * sizeof(std::uint32_t)) && std::fflush(f) == 0;
 #ifdef MESHGAP_HAVE_POSIX_IO
-        ok = ok && ::fsync(::fileno(f)) == 0;
+                                ok = ok && ::fsync(::fileno(f)) == 0;
 #endif
-        const int savedErrno = errno;
-        if (std::fclose(f) != 0)
-            ok = false;
-        if (!ok)
-            return fail(std::string("writing '") + tmp + "' failed: " + std::strerror(savedErrno));
-
-        std::filesystem::rename(tmp, path, ec);
-        if (ec)
-            return fail("renaming '" + tmp + "' failed: " + ec.message());
+                                const int savedErrno = errno;
+                                if (std::fclose(f) != 0)
+                                    ok = false;
+                                if (!ok)
+                                    throw Exception(path, "writing '" + tmp + "' failed: " + std::strerror(savedErrno));
+                            });
+        }
+        catch (const std::exception &e)
+        {
+            OMPL_WARN("meshgap: cannot write distance cache (%s); the table is not cached", e.what());
+            return false;
+        }
         return true;
     }
 }  // namespace meshgap

@@ -144,27 +144,43 @@ namespace meshgap
         return report;
     }
 
-    std::size_t countComponents(const Mesh &mesh)
+    std::vector<std::uint32_t> labelComponents(const Mesh &mesh, std::uint32_t &count)
     {
-        std::vector<std::uint32_t> parent(mesh.vertices.size());
+        // Union-find over the vertices, joined along triangle edges.
+        const auto n = static_cast<std::uint32_t>(mesh.vertices.size());
+        std::vector<std::uint32_t> parent(n);
         std::iota(parent.begin(), parent.end(), 0u);
-        auto find = [&parent](std::uint32_t x) {
+        auto find = [&parent](std::uint32_t x)
+        {
             while (parent[x] != x)
                 x = parent[x] = parent[parent[x]];
             return x;
         };
-        std::size_t components = mesh.vertices.size();
         for (const Triangle &t : mesh.triangles)
             for (int k = 0; k < 2; ++k)
             {
                 const std::uint32_t a = find(t[k]), b = find(t[k + 1]);
                 if (a != b)
-                {
                     parent[a] = b;
-                    --components;
-                }
             }
-        return components;
+        // Renumbered in order of first vertex.
+        std::vector<std::uint32_t> label(n), labelOfRoot(n, UINT32_MAX);
+        count = 0;
+        for (std::uint32_t v = 0; v < n; ++v)
+        {
+            std::uint32_t &l = labelOfRoot[find(v)];
+            if (l == UINT32_MAX)
+                l = count++;
+            label[v] = l;
+        }
+        return label;
+    }
+
+    std::size_t countComponents(const Mesh &mesh)
+    {
+        std::uint32_t count = 0;
+        labelComponents(mesh, count);
+        return count;
     }
 
     double longestEdge(const Mesh &mesh)

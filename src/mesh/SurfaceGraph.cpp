@@ -1,8 +1,6 @@
 #include "meshgap/mesh/SurfaceGraph.h"
 
 #include <algorithm>
-#include <boost/graph/adjacency_list.hpp>
-#include <boost/graph/connected_components.hpp>
 #include <utility>
 
 namespace meshgap
@@ -36,22 +34,6 @@ namespace meshgap
             lengths_[k] = (mesh.vertices[half[k].first] - mesh.vertices[half[k].second]).norm();
         }
 
-        // Connected components with Boost.Graph, renumbered in order of first node.
-        boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS> g(n);
-        for (const auto &e : half)
-            if (e.first < e.second)
-                boost::add_edge(e.first, e.second, g);
-        std::vector<int> raw(n);
-        boost::connected_components(g, raw.data());
-        std::vector<std::uint32_t> renumber(n, UINT32_MAX);
-        component_.resize(n);
-        numComponents_ = 0;
-        for (std::uint32_t i = 0; i < n; ++i)
-        {
-            std::uint32_t &c = renumber[static_cast<std::size_t>(raw[i])];
-            if (c == UINT32_MAX)
-                c = numComponents_++;
-            component_[i] = c;
-        }
+        component_ = labelComponents(mesh, numComponents_);
     }
 }  // namespace meshgap

@@ -23,6 +23,7 @@
 #include <ompl/geometric/planners/stride/STRIDE.h>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/ompl/ClearanceOptimizingPlanner.h"
 
 namespace meshgap
@@ -60,14 +61,6 @@ namespace meshgap
             };
             return planners;
         }
-
-        std::string commaSeparated(const std::vector<std::string> &names)
-        {
-            std::string out;
-            for (const std::string &n : names)
-                out += (out.empty() ? "" : ", ") + n;
-            return out;
-        }
     }  // namespace
 
     std::vector<std::string> plannerNames()
@@ -83,7 +76,7 @@ namespace meshgap
         const auto it = registry().find(name);
         if (it != registry().end())
             return it->second(si);
-        throw Exception("planner", "unknown planner '" + name + "'; valid names: " + commaSeparated(plannerNames()));
+        throw Exception("planner", "unknown planner '" + name + "'; valid names: " + joinNames(plannerNames()));
     }
 
     void setPlannerParam(ompl::base::Planner &planner, const std::string &key, const std::string &value,
@@ -94,7 +87,7 @@ namespace meshgap
             std::vector<std::string> names;
             planner.params().getParamNames(names);
             throw Exception(where, "'" + key + "' is no parameter of " + planner.getName() + "; its parameters: " +
-                                       (names.empty() ? "none" : commaSeparated(names)));
+                                       (names.empty() ? "none" : joinNames(names)));
         }
         bool set = false;
         try

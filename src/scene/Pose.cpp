@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 
 namespace meshgap
 {
@@ -16,18 +17,10 @@ namespace meshgap
         std::string token;
         while (in >> token)
         {
-            try
-            {
-                std::size_t used = 0;
-                const double x = std::stod(token, &used);
-                if (used != token.size())
-                    throw std::invalid_argument(token);
-                v.push_back(x);
-            }
-            catch (const std::exception &)
-            {
+            double x = 0.0;
+            if (!parseNumber(token, x))
                 throw Exception(where, "'" + token + "' is not a number (expected x y z qx qy qz qw)");
-            }
+            v.push_back(x);
         }
         if (v.size() != 7)
             throw Exception(where, "expected 7 numbers (x y z qx qy qz qw), found " + std::to_string(v.size()));

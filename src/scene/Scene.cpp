@@ -21,6 +21,7 @@
 #include "meshgap/distance/PenetrationDepth.h"
 #include "meshgap/distance/SolverFactory.h"
 #include "meshgap/distance/WarmFast.h"
+#include "meshgap/mesh/MeshOperations.h"
 
 namespace bg = boost::geometry;
 namespace bgi = boost::geometry::index;
@@ -33,8 +34,6 @@ namespace meshgap
         using Box = bg::model::box<Point>;
         using Entry = std::pair<Box, std::size_t>;  ///< an obstacle's world-frame box and its index
         using RTree = bgi::rtree<Entry, bgi::rstar<16>>;
-
-        constexpr std::uint32_t NONE = std::numeric_limits<std::uint32_t>::max();
 
         std::atomic<std::uint64_t> nextSceneId{1};
 
@@ -52,62 +51,6 @@ namespace meshgap
             const Entry *entry;
         };
     }  // namespace
-
-    std::vector<Mesh> splitComponents(const Mesh &mesh)
-    {
-        const std::size_t n = mesh.vertices.size();
-        for (const Triangle &t : mesh.triangles)
-            for (std::uint32_t v : t)
-                if (v >= n)
-                    throw Exception(mesh.source, "triangle index " + std::to_string(v) + " out of range (" +
-                                                     std::to_string(n) + " vertices)");
-        // Union-find over the vertices, joined along triangle edges.
-        std::vector<std::uint32_t> parent(n);
-        std::iota(parent.begin(), parent.end(), 0u);
-        auto find = [&parent](std::uint32_t x)
-        {
-            while (parent[x] != x)
-                x = parent[x] = parent[parent[x]];
-            return x;
-        };
-        for (const Triangle &t : mesh.triangles)
-            for (int k = 0; k < 2; ++k)
-            {
-                const std::uint32_t a = find(t[k]), b = find(t[k + 1]);
-                if (a != b)
-                    parent[a] = b;
-            }
-
-        // Parts numbered in order of first triangle.
-        std::vector<std::uint32_t> partOfRoot(n, NONE), partOfTriangle(mesh.triangles.size());
-        std::uint32_t numParts = 0;
-        for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-        {
-            const std::uint32_t r = find(mesh.triangles[t][0]);
-            if (partOfRoot[r] == NONE)
-                partOfRoot[r] = numParts++;
-            partOfTriangle[t] = partOfRoot[r];
-        }
-        std::vector<Mesh> parts(numParts);
-        for (std::uint32_t p = 0; p < numParts; ++p)
-            parts[p].source = numParts == 1 ? mesh.source : mesh.source + "#" + std::to_string(p);
-        // Each part's vertices in their original order; vertices no triangle uses are dropped.
-        std::vector<std::uint32_t> local(n, NONE);
-        for (std::uint32_t v = 0; v < n; ++v)
-        {
-            const std::uint32_t p = partOfRoot[find(v)];
-            if (p == NONE)
-                continue;
-            local[v] = static_cast<std::uint32_t>(parts[p].vertices.size());
-            parts[p].vertices.push_back(mesh.vertices[v]);
-        }
-        for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-        {
-            const Triangle &f = mesh.triangles[t];
-            parts[partOfTriangle[t]].triangles.push_back({local[f[0]], local[f[1]], local[f[2]]});
-        }
-        return parts;
-    }
 
     struct Scene::Impl
     {

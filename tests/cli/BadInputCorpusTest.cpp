@@ -57,7 +57,7 @@ namespace
         if (isConfig(file))
             return {{"meshgap_distance", "--cfg " + f},
                     {"meshgap_plan", "--cfg " + f + " --time 1"},
-                    {"meshgap_benchmark", "--cfg " + f + " --planners rrtconnect --runs 1 --time 1 --out-dir " +
+                    {"meshgap_benchmark", "--cfg " + f + " --planner rrtconnect --runs 1 --time 1 --out " +
                                               (fs::temp_directory_path() / "meshgap_bad_corpus_logs").string()}};
         return {{"meshgap_distance", RES + "/cube.obj " + f}, {"meshgap_distance", f + " " + RES + "/cube.obj"}};
     }

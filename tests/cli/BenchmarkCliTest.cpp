@@ -131,8 +131,8 @@ namespace
             dir_ = fs::temp_directory_path() / ("meshgap_benchmark_logs_" + std::to_string(::getpid()));
             fs::remove_all(dir_);
             for (const char *shard : {"1/2", "2/2"})
-                shards_.push_back(benchmark("--cfg " + CFG + " --planners rrtconnect --checkers meshgap-certified,fcl"
-                                            " --runs 2 --time 10 --seed 7 --out-dir " + dir_.string() + " --shard " +
+                shards_.push_back(benchmark("--cfg " + CFG + " --planner rrtconnect --checker certified,fcl"
+                                            " --runs 2 --time 10 --seed 7 --out " + dir_.string() + " --shard " +
                                             shard));
             for (const auto &entry : fs::directory_iterator(dir_))
                 if (entry.path().extension() == ".log")
@@ -152,12 +152,12 @@ namespace
 
 TEST(BenchmarkCliErrors, BadInputGivesOneErrorAndExitOne)
 {
-    const std::string ok = "--cfg " + CFG + " --planners rrtconnect ";
+    const std::string ok = "--cfg " + CFG + " --planner rrtconnect ";
     const std::vector<std::pair<std::string, std::string>> cases = {
-        {"--cfg /nonexistent/p.cfg --planners rrtconnect", "/nonexistent/p.cfg"},
-        {"--cfg " + CFG + " --planners rrtconnect,nope", "'nope'"},
-        {"--cfg " + CFG, "--planners"},  // the map's cfg has no [planner] section
-        {ok + "--checkers meshgap-certified,nope", "'nope'"},
+        {"--cfg /nonexistent/p.cfg --planner rrtconnect", "/nonexistent/p.cfg"},
+        {"--cfg " + CFG + " --planner rrtconnect,nope", "'nope'"},
+        {"--cfg " + CFG, "--planner"},  // the map's cfg has no [planner] section
+        {ok + "--checker certified,nope", "'nope'"},
         {ok + "--shard 3/2", "--shard"},
         {ok + "--shard 0/2", "--shard"},
         {ok + "--shard half", "--shard"},
@@ -166,7 +166,14 @@ TEST(BenchmarkCliErrors, BadInputGivesOneErrorAndExitOne)
         {ok + "--param rrtconnect.reach=3", "'reach' is no parameter of RRTConnect"},
         {ok + "--param rrtconnect.range=far", "'far'"},
         {ok + "--param range=3", "PLANNER.NAME=VALUE"},
-        {"--planners rrtconnect", "--cfg"},
+        // The old spellings, refused with the new one named.
+        {"--cfg " + CFG + " --planners rrtconnect", "--planners: renamed: use --planner"},
+        {ok + "--checkers fcl", "--checkers: renamed: use --checker"},
+        {ok + "--samplers uniform", "--samplers: renamed: use --sampler"},
+        {ok + "--out-dir /tmp", "--out-dir: renamed: use --out"},
+        {ok + "--checker meshgap-certified", "'meshgap-certified' is now spelled 'certified'"},
+        {ok + "--checker meshgap-fast,fcl", "'meshgap-fast' is now spelled 'fast'"},
+        {"--planner rrtconnect", "--cfg"},
     };
     for (const auto &[args, mention] : cases)
     {
@@ -271,8 +278,8 @@ TEST(BenchmarkCliInterrupted, AKilledBenchmarkKeepsEveryFinishedRun)
     fs::create_directories(dir);
     const fs::path pidFile = dir / "pid";
     const std::string command = std::string(MESHGAP_BINARY_DIR) + "/planners/meshgap_benchmark --cfg " + CFG +
-                                " --planners rrtconnect --checkers meshgap-certified --runs 200 --time 1 --seed 3"
-                                " --out-dir " + dir.string() + " >/dev/null 2>&1 & echo $! > " + pidFile.string();
+                                " --planner rrtconnect --checker certified --runs 200 --time 1 --seed 3"
+                                " --out " + dir.string() + " >/dev/null 2>&1 & echo $! > " + pidFile.string();
     ASSERT_EQ(std::system(command.c_str()), 0);
     auto logs = [&] {
         std::vector<fs::path> found;

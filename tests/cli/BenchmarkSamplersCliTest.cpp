@@ -1,4 +1,4 @@
-// meshgap_benchmark --samplers: the valid-state sampler as a dimension of the experiment (one .log per checker and
+// meshgap_benchmark --sampler: the valid-state sampler as a dimension of the experiment (one .log per checker and
 // sampler, the sampler in its common properties), and unknown or repeated names refused with one error.
 
 #include <gtest/gtest.h>
@@ -28,14 +28,14 @@ TEST(BenchmarkSamplersCli, BadSamplersGiveOneErrorAndExitOne)
     for (const char *list : {"bogus", "uniform,uniform", "uniform,,bridge"})
     {
         const auto r = benchmark("--cfg " + CFG +
-                                 " --planners prm --checkers meshgap-certified --runs 1 --time 0.1 "
-                                 "--samplers " +
-                                 list + " --out-dir " + dir.string());
+                                 " --planner prm --checker certified --runs 1 --time 0.1 "
+                                 "--sampler " +
+                                 list + " --out " + dir.string());
         EXPECT_EQ(r.status, 1) << list << "\n" << r.err;
-        EXPECT_NE(r.err.find("--samplers"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("--sampler"), std::string::npos) << r.err;
         EXPECT_FALSE(fs::exists(dir) && !fs::is_empty(dir)) << "nothing written for " << list;
     }
-    const auto r = benchmark("--cfg " + CFG + " --samplers bogus");
+    const auto r = benchmark("--cfg " + CFG + " --sampler bogus");
     EXPECT_NE(r.err.find("narrow_passage"), std::string::npos) << "the valid names are listed: " << r.err;
     fs::remove_all(dir);
 }
@@ -44,8 +44,8 @@ TEST(BenchmarkSamplersCli, EachSamplerIsItsOwnSlice)
 {
     const fs::path dir = fs::temp_directory_path() / ("meshgap_bench_samplers_" + std::to_string(::getpid()));
     const auto r = benchmark("--cfg " + CFG +
-                             " --planners prm --checkers meshgap-certified --runs 1 --time 0.3 "
-                             "--seed 4 --samplers uniform,narrow_passage --out-dir " +
+                             " --planner prm --checker certified --runs 1 --time 0.3 "
+                             "--seed 4 --sampler uniform,narrow_passage --out " +
                              dir.string());
     ASSERT_EQ(r.status, 0) << r.err;
     for (const std::string sampler : {"uniform", "narrow_passage"})

@@ -12,11 +12,11 @@
 #include "CliRun.h"
 #include "FclOracle.h"
 #include "TestMeshes.h"
-#include "meshgap/mesh/MeshWriter.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/RobotMesh.h"
+#include "support/MeshWriter.h"
 
 using namespace meshgap;
 namespace fs = std::filesystem;
@@ -35,13 +35,19 @@ TEST(PlanCli, BadInputGivesOneErrorAndExitOne)
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"--cfg /nonexistent/p.cfg", "/nonexistent/p.cfg"},
         {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner nope", "rrtconnect"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --mode sloppy", "--mode"},
+        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --checker sloppy", "--checker"},
+        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --mode fast", "--mode: renamed: use --checker certified|fast"},
         {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --objective speed", "max_min_clearance"},
         {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --objective length --weight 3", "--weight"},
         {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --objective weighted --weight -1", "--weight"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param speed=3", "use_k_nearest"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param range=far", "'far'"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param range", "NAME=VALUE"},
+        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param rrtstar.speed=3", "use_k_nearest"},
+        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param rrtstar.range=far", "'far'"},
+        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param range", "PLANNER.NAME=VALUE"},
+        // The old form NAME=VALUE names the new one; a parameter of another planner is refused.
+        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param range=3",
+         "is not PLANNER.NAME=VALUE (e.g. --param rrtstar.range=5)"},
+        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param rrtconnect.range=3",
+         "the planner is rrtstar"},
         {"", "--cfg"},
     };
     for (const auto &[args, mention] : cases)
@@ -57,7 +63,7 @@ TEST(PlanCli, ParamReachesThePlanner)
 {
     // RRT* says which neighbourhood it uses as it starts: k nearest by default, a radius with use_k_nearest=0.
     const std::string args = "--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --time 0.2";
-    const PlanRun byDefault = plan(args), radius = plan(args + " --param use_k_nearest=0");
+    const PlanRun byDefault = plan(args), radius = plan(args + " --param rrtstar.use_k_nearest=0");
     // 0 (exact) or 2 (no exact solution in the time: a slow build, e.g. under a sanitizer), never 1 (bad input).
     for (const PlanRun *r : {&byDefault, &radius})
         ASSERT_TRUE(r->status == 0 || r->status == 2) << r->status << "\n" << r->err;

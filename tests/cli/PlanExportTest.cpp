@@ -10,6 +10,7 @@
 
 #include "CliRun.h"
 #include "meshgap/mesh/MeshLoader.h"
+#include "meshgap/mesh/MeshOperations.h"
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/RobotMesh.h"
 #include "meshgap/scene/Scene.h"

@@ -34,7 +34,7 @@ TEST(PlanOptimizeCli, BadOptionsGiveOneErrorAndExitOne)
         {"--optimize-time 2", "--optimize-time"},
         {"--optimize clearance --optimize-time -1", "positive"},
         {"--optimize clearance --optimize-time nan", "positive"},
-        {"--optimize clearance --mode fast", "--mode certified"},
+        {"--optimize clearance --checker fast", "--checker certified"},
         {"--sampler bogus", "narrow_passage"},
     };
     for (const auto &[args, mention] : cases)

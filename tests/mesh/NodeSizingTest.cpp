@@ -6,7 +6,7 @@
 
 #include "TestMeshes.h"
 #include "meshgap/Exception.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 #include "meshgap/mesh/NodeSizing.h"
 #include "meshgap/mesh/Refine.h"
 

@@ -10,8 +10,8 @@
 
 #include "TestMeshes.h"
 #include "meshgap/Exception.h"
-#include "meshgap/mesh/SceneExport.h"
-#include "meshgap/mesh/Shapes.h"
+#include "support/SceneExport.h"
+#include "support/Shapes.h"
 
 using namespace meshgap;
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-// Procedural shapes (meshgap/mesh/Shapes.h), the OBJ writer and the generated scenes in maps/. Every expected value
+// Procedural shapes (planners/support/Shapes.h), the OBJ writer and the generated scenes in maps/. Every expected value
 // comes from analytic geometry (box volume, shoelace area times height, volumes of revolution) or from the paper's
 // tables, never from the builders' own output.
 
@@ -21,10 +21,10 @@
 #include "meshgap/Exception.h"
 #include "meshgap/mesh/Mesh.h"
 #include "meshgap/mesh/MeshLoader.h"
-#include "meshgap/mesh/MeshWriter.h"
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/RobotMesh.h"
-#include "meshgap/mesh/Shapes.h"
+#include "support/MeshWriter.h"
+#include "support/Shapes.h"
 
 namespace
 {

@@ -13,9 +13,9 @@
 #include "FclOracle.h"
 #include "TestMeshes.h"
 #include "meshgap/mesh/MeshLoader.h"
-#include "meshgap/mesh/MeshWriter.h"
 #include "meshgap/ompl/ClearanceMotionValidator.h"
 #include "meshgap/ompl/ProblemSetup.h"
+#include "support/MeshWriter.h"
 
 using namespace meshgap;
 namespace fs = std::filesystem;

@@ -14,6 +14,7 @@
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/geometry/TriangleDistance.h"
 #include "meshgap/mesh/MeshLoader.h"
+#include "meshgap/mesh/MeshOperations.h"
 #include "meshgap/scene/Pose.h"
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/RobotMesh.h"

@@ -2,11 +2,13 @@
 #define MESHGAP_DISTANCE_DISTANCE_SOLVER_H
 
 #include <ompl/base/GenericParam.h>
+#include <stdexcept>
 #include <string>
 
 #include "meshgap/ClassForward.h"
+#include "meshgap/Exception.h"
 #include "meshgap/distance/DistanceQuery.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 
 namespace meshgap
 {
@@ -34,6 +36,22 @@ namespace meshgap
         /** \brief Throws meshgap::Exception (naming the solver) for a body without nodes or a start pair out of
             range. */
         void checkRequest(const Body &a, const Body &b, const DistanceRequest &request) const;
+
+        /** \brief Run \e set, a setter whose meshgap::Exception says a value is out of range, for a ParamSet setter:
+            the exception becomes the std::invalid_argument that ParamSet::setParam() reports as false. So each
+            parameter has one range check, the setter's. */
+        template <typename Set>
+        static void setChecked(Set &&set)
+        {
+            try
+            {
+                set();
+            }
+            catch (const Exception &e)
+            {
+                throw std::invalid_argument(e.what());
+            }
+        }
 
         std::string name_;
         ompl::base::ParamSet params_;

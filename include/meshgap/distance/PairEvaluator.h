@@ -4,7 +4,7 @@
 #include <Eigen/Geometry>
 
 #include "meshgap/distance/DistanceQuery.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 
 namespace meshgap
 {

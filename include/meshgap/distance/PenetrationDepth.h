@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "meshgap/distance/DistanceQuery.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 
 namespace meshgap
 {

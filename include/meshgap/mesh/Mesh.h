@@ -49,6 +49,12 @@ namespace meshgap
         components of their own). */
     std::size_t countComponents(const Mesh &mesh);
 
+    /** \brief The connected component of each vertex in the vertex-edge graph (joined along triangle edges),
+        numbered from 0 in order of each component's first vertex; a vertex no triangle uses is a component of its
+        own. The triangles' indices must be in range (Mesh::validate()). \e count receives the number of components.
+        The one component labeller: SurfaceGraph, countComponents() and splitComponents() use it. */
+    std::vector<std::uint32_t> labelComponents(const Mesh &mesh, std::uint32_t &count);
+
     /** \brief Length of the longest triangle edge. */
     double longestEdge(const Mesh &mesh);
 }  // namespace meshgap

@@ -10,15 +10,11 @@
 #include "meshgap/distance/DistanceQuery.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/WarmFast.h"
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 
 namespace meshgap
 {
     MESHGAP_CLASS_FORWARD(Scene);
-
-    /** \brief Split a mesh into its connected parts (by shared vertices), each a mesh of its own with only the
-        vertices it uses, in order of first triangle. A world file becomes one obstacle per part. */
-    std::vector<Mesh> splitComponents(const Mesh &mesh);
 
     /** \brief What one scene query should do: a DistanceRequest (its stopBelow and upperBound apply to the whole
         scene, its seed to the node-level search) and which answer. */

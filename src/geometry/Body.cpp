@@ -1,4 +1,4 @@
-#include "meshgap/mesh/Body.h"
+#include "meshgap/geometry/Body.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
-#ifndef MESHGAP_MESH_BODY_H
-#define MESHGAP_MESH_BODY_H
+#ifndef MESHGAP_GEOMETRY_BODY_H
+#define MESHGAP_GEOMETRY_BODY_H
 
 #include <Eigen/Core>
 #include <memory>

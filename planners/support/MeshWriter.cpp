@@ -1,4 +1,4 @@
-#include "meshgap/mesh/MeshWriter.h"
+#include "support/MeshWriter.h"
 
 #include <assimp/Exporter.hpp>
 #include <assimp/material.h>
@@ -9,43 +9,38 @@
 #include <cstring>
 #include <memory>
 
-#include <unistd.h>
-
+#include "meshgap/AtomicFile.h"
 #include "meshgap/Exception.h"
 
 namespace meshgap
 {
     void writeObj(const Mesh &mesh, const std::string &path)
     {
-        const std::string temporary = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-        auto fail = [&](const std::string &what) {
-            const std::string reason = errno != 0 ? std::string(": ") + std::strerror(errno) : std::string();
-            std::remove(temporary.c_str());
-            throw Exception(path, what + reason);
-        };
         for (const Triangle &t : mesh.triangles)
             for (std::uint32_t i : t)
                 if (i >= mesh.vertices.size())
                     throw Exception(path, "cannot write a triangle that uses vertex " + std::to_string(i) +
                                               " of " + std::to_string(mesh.vertices.size()));
-        errno = 0;
-        std::unique_ptr<std::FILE, int (*)(std::FILE *)> file(std::fopen(temporary.c_str(), "w"), &std::fclose);
-        if (!file)
-            throw Exception(path, std::string("cannot open for writing") +
-                                      (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string()));
-        bool ok = std::fprintf(file.get(), "# %s: %zu vertices, %zu triangles (written by meshgap)\n",
-                               mesh.source.empty() ? "mesh" : mesh.source.c_str(), mesh.vertices.size(),
-                               mesh.triangles.size()) > 0;
-        for (const Eigen::Vector3d &v : mesh.vertices)
-            ok = ok && std::fprintf(file.get(), "v %.17g %.17g %.17g\n", v.x(), v.y(), v.z()) > 0;
-        for (const Triangle &t : mesh.triangles)
-            ok = ok && std::fprintf(file.get(), "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1) > 0;
-        ok = ok && std::fflush(file.get()) == 0;
-        std::FILE *raw = file.release();
-        if (std::fclose(raw) != 0 || !ok)
-            fail("write failed");
-        if (std::rename(temporary.c_str(), path.c_str()) != 0)
-            fail("cannot rename " + temporary + " to it");
+        writeAtomically(path,
+                        [&](const std::string &temporary)
+                        {
+                            errno = 0;
+                            std::unique_ptr<std::FILE, int (*)(std::FILE *)> file(std::fopen(temporary.c_str(), "w"),
+                                                                                  &std::fclose);
+                            const auto reason = [] { return errno != 0 ? std::string(": ") + std::strerror(errno) : ""; };
+                            if (!file)
+                                throw Exception(path, "cannot open for writing" + reason());
+                            bool ok = std::fprintf(file.get(), "# %s: %zu vertices, %zu triangles (written by meshgap)\n",
+                                                   mesh.source.empty() ? "mesh" : mesh.source.c_str(),
+                                                   mesh.vertices.size(), mesh.triangles.size()) > 0;
+                            for (const Eigen::Vector3d &v : mesh.vertices)
+                                ok = ok && std::fprintf(file.get(), "v %.17g %.17g %.17g\n", v.x(), v.y(), v.z()) > 0;
+                            for (const Triangle &t : mesh.triangles)
+                                ok = ok && std::fprintf(file.get(), "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1) > 0;
+                            ok = ok && std::fflush(file.get()) == 0;
+                            if (std::fclose(file.release()) != 0 || !ok)
+                                throw Exception(path, "write failed" + reason());
+                        });
     }
 
     namespace
@@ -135,18 +130,12 @@ namespace meshgap
             scene.mRootNode->mChildren[i] = node;
             ++scene.mRootNode->mNumChildren;
         }
-        const std::string temporary = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-        Assimp::Exporter exporter;
-        if (exporter.Export(&scene, "glb2", temporary) != aiReturn_SUCCESS)
-        {
-            std::remove(temporary.c_str());
-            throw Exception(path, std::string("glTF export failed: ") + exporter.GetErrorString());
-        }
-        if (std::rename(temporary.c_str(), path.c_str()) != 0)
-        {
-            const std::string reason = std::strerror(errno);
-            std::remove(temporary.c_str());
-            throw Exception(path, "cannot rename " + temporary + " to it: " + reason);
-        }
+        writeAtomically(path,
+                        [&](const std::string &temporary)
+                        {
+                            Assimp::Exporter exporter;
+                            if (exporter.Export(&scene, "glb2", temporary) != aiReturn_SUCCESS)
+                                throw Exception(path, std::string("glTF export failed: ") + exporter.GetErrorString());
+                        });
     }
 }  // namespace meshgap

@@ -1,5 +1,5 @@
-#ifndef MESHGAP_MESH_SHAPES_H
-#define MESHGAP_MESH_SHAPES_H
+#ifndef MESHGAP_PLANNERS_SUPPORT_SHAPES_H
+#define MESHGAP_PLANNERS_SUPPORT_SHAPES_H
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "meshgap/mesh/Mesh.h"
+#include "meshgap/mesh/MeshOperations.h"
 
 namespace meshgap
 {
@@ -134,18 +135,6 @@ namespace meshgap
 
     /** \brief Signed area of a polygon (positive when counter-clockwise). */
     double polygonArea(const Polygon2d &polygon);
-
-    /** \brief Signed enclosed volume of a closed triangle mesh (positive when wound outward). */
-    double signedVolume(const Mesh &mesh);
-
-    /** \brief Several meshes as one (a body of several components); \e name becomes Mesh::source. */
-    Mesh mergeMeshes(const std::vector<Mesh> &parts, const std::string &name);
-
-    /** \brief Move every vertex by \e X. */
-    void transformMesh(Mesh &mesh, const Eigen::Isometry3d &X);
-
-    /** \brief Mean of the vertices (what OMPL.app takes as a robot mesh's centre). */
-    Eigen::Vector3d vertexMean(const Mesh &mesh);
 }  // namespace meshgap
 
 #endif

@@ -1,12 +1,12 @@
-#ifndef MESHGAP_MESH_SCENE_EXPORT_H
-#define MESHGAP_MESH_SCENE_EXPORT_H
+#ifndef MESHGAP_PLANNERS_SUPPORT_SCENE_EXPORT_H
+#define MESHGAP_PLANNERS_SUPPORT_SCENE_EXPORT_H
 
 #include <Eigen/Geometry>
 #include <string>
 #include <vector>
 
-#include "meshgap/mesh/MeshWriter.h"
 #include "meshgap/scene/Scene.h"
+#include "support/MeshWriter.h"
 
 namespace meshgap
 {

@@ -1,4 +1,4 @@
-#include "meshgap/mesh/Shapes.h"
+#include "support/Shapes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -692,54 +692,71 @@ namespace meshgap
                                            " has no face on its other side (the polyhedron is not closed)");
     }
 
-    Mesh Polyhedron::mesh(const SizingFunction &sizing, const std::string &name) const
+    namespace
     {
-        check();
-        Mesh m;
-        m.source = name;
-        m.vertices = corners_;
-        // Each polyhedron edge is subdivided once, from its lower-numbered corner, and shared by both faces.
-        std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> edgeNodes;
-        auto nodesAlong = [&](std::uint32_t a, std::uint32_t b) {
-            const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
-            auto it = edgeNodes.find({lo, hi});
-            if (it == edgeNodes.end())
-            {
-                std::vector<std::uint32_t> ids;
-                const Eigen::Vector3d p = corners_[lo], q = corners_[hi];
-                for (double t : subdivisionParameters(p, q, sizing))
-                {
-                    ids.push_back(static_cast<std::uint32_t>(m.vertices.size()));
-                    m.vertices.push_back(p + t * (q - p));
-                }
-                it = edgeNodes.emplace(std::make_pair(lo, hi), std::move(ids)).first;
-            }
-            std::vector<std::uint32_t> ids = it->second;
-            if (a != lo)
-                std::reverse(ids.begin(), ids.end());
-            return ids;
-        };
-        for (std::size_t f = 0; f < faces_.size(); ++f)
+        /** \brief The nodes subdividing each polyhedron edge, made once (from its lower-numbered corner) and shared
+            by both faces of the edge, so the mesh is watertight by construction. */
+        class EdgeNodes
         {
+        public:
+            EdgeNodes(const std::vector<Eigen::Vector3d> &corners, const SizingFunction &sizing)
+              : corners_(corners), sizing_(sizing)
+            {
+            }
+
+            /** \brief The inner nodes of edge a-b in order from a to b (added to \e m the first time). */
+            std::vector<std::uint32_t> along(std::uint32_t a, std::uint32_t b, Mesh &m)
+            {
+                const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
+                auto it = nodes_.find({lo, hi});
+                if (it == nodes_.end())
+                {
+                    std::vector<std::uint32_t> ids;
+                    const Eigen::Vector3d p = corners_[lo], q = corners_[hi];
+                    for (double t : subdivisionParameters(p, q, sizing_))
+                    {
+                        ids.push_back(static_cast<std::uint32_t>(m.vertices.size()));
+                        m.vertices.push_back(p + t * (q - p));
+                    }
+                    it = nodes_.emplace(std::make_pair(lo, hi), std::move(ids)).first;
+                }
+                std::vector<std::uint32_t> ids = it->second;
+                if (a != lo)
+                    std::reverse(ids.begin(), ids.end());
+                return ids;
+            }
+
+        private:
+            const std::vector<Eigen::Vector3d> &corners_;
+            const SizingFunction &sizing_;
+            std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> nodes_;
+        };
+
+        /** \brief Triangulate face \e f of \e p into \e m: its loops and their edge nodes in the face's plane, then
+            Delaunay flips, refinement to the sizing and smoothing; new inner nodes are added to \e m. */
+        void meshFace(const Polyhedron &p, std::size_t f, const SizingFunction &sizing, const std::string &name,
+                      EdgeNodes &edges, Mesh &m)
+        {
+            const std::vector<Eigen::Vector3d> &corners = p.corners();
             const std::string where = name + " face " + std::to_string(f);
-            const Face &face = faces_[f];
-            const Eigen::Vector3d n = faceNormal(f);
+            const Polyhedron::Face &face = p.faces()[f];
+            const Eigen::Vector3d n = p.faceNormal(f);
             Eigen::Vector3d uu, vv;
             std::tie(uu, vv) = planeAxes(n);
-            const Eigen::Vector3d origin = corners_[face.loops[0][0]];
+            const Eigen::Vector3d origin = corners[face.loops[0][0]];
             double size = 0.0;
-            for (const Loop &loop : face.loops)
+            for (const Polyhedron::Loop &loop : face.loops)
                 for (std::uint32_t c : loop)
-                    size = std::max(size, (corners_[c] - origin).norm());
-            for (const Loop &loop : face.loops)
+                    size = std::max(size, (corners[c] - origin).norm());
+            for (const Polyhedron::Loop &loop : face.loops)
                 for (std::uint32_t c : loop)
-                    if (std::abs((corners_[c] - origin).dot(n)) > 1e-9 * size)
+                    if (std::abs((corners[c] - origin).dot(n)) > 1e-9 * size)
                         throw Exception(where, "the face is not planar");
-            auto to2d = [&](const Eigen::Vector3d &p) {
-                return Eigen::Vector2d((p - origin).dot(uu), (p - origin).dot(vv));
+            auto to2d = [&](const Eigen::Vector3d &q) {
+                return Eigen::Vector2d((q - origin).dot(uu), (q - origin).dot(vv));
             };
             PlanarTriangulation tri(
-                [&](const Eigen::Vector2d &p) { return checkedSize(sizing, origin + p.x() * uu + p.y() * vv); },
+                [&](const Eigen::Vector2d &q) { return checkedSize(sizing, origin + q.x() * uu + q.y() * vv); },
                 size, where);
             std::unordered_map<std::uint32_t, int> local;
             std::vector<std::uint32_t> global;
@@ -760,19 +777,19 @@ namespace meshgap
                 for (std::uint32_t c : face.loops[l])
                 {
                     loops.back().push_back(localOf(c));
-                    polygon.push_back(to2d(corners_[c]));
+                    polygon.push_back(to2d(corners[c]));
                 }
                 const double area = polygonArea(polygon);
                 if (l == 0 ? area <= 0.0 : area >= 0.0)
                     throw Exception(where, "a hole loop is wound the same way as the outer loop");
             }
             tri.triangulatePolygon(loops);
-            for (const Loop &loop : face.loops)
+            for (const Polyhedron::Loop &loop : face.loops)
                 for (std::size_t i = 0; i < loop.size(); ++i)
                 {
                     const std::uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
                     std::vector<int> nodes;
-                    for (std::uint32_t id : nodesAlong(a, b))
+                    for (std::uint32_t id : edges.along(a, b, m))
                         nodes.push_back(localOf(id));
                     tri.insertOnBoundary(local.at(a), local.at(b), nodes);
                 }
@@ -781,14 +798,25 @@ namespace meshgap
             tri.smooth(4);
             tri.refine(true);
             tri.refine(false);  // plain bisection: guarantees the bound whatever the last flips did
-            for (std::size_t p = global.size(); p < tri.points().size(); ++p)
+            for (std::size_t q = global.size(); q < tri.points().size(); ++q)
             {
                 global.push_back(static_cast<std::uint32_t>(m.vertices.size()));
-                m.vertices.push_back(origin + tri.points()[p].x() * uu + tri.points()[p].y() * vv);
+                m.vertices.push_back(origin + tri.points()[q].x() * uu + tri.points()[q].y() * vv);
             }
             for (const auto &t : tri.triangles())
                 m.triangles.push_back({global[t[0]], global[t[1]], global[t[2]]});
         }
+    }  // namespace
+
+    Mesh Polyhedron::mesh(const SizingFunction &sizing, const std::string &name) const
+    {
+        check();
+        Mesh m;
+        m.source = name;
+        m.vertices = corners_;
+        EdgeNodes edges(corners_, sizing);
+        for (std::size_t f = 0; f < faces_.size(); ++f)
+            meshFace(*this, f, sizing, name, edges, m);
         return m;
     }
 
@@ -1040,45 +1068,5 @@ namespace meshgap
         for (std::size_t i = 0; i < polygon.size(); ++i)
             area += cross2(polygon[i], polygon[(i + 1) % polygon.size()]);
         return 0.5 * area;
-    }
-
-    double signedVolume(const Mesh &mesh)
-    {
-        double v = 0.0;
-        for (const Triangle &t : mesh.triangles)
-            v += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
-        return v / 6.0;
-    }
-
-    Mesh mergeMeshes(const std::vector<Mesh> &parts, const std::string &name)
-    {
-        Mesh m;
-        m.source = name;
-        for (const Mesh &part : parts)
-        {
-            const auto offset = static_cast<std::uint32_t>(m.vertices.size());
-            m.vertices.insert(m.vertices.end(), part.vertices.begin(), part.vertices.end());
-            for (Triangle t : part.triangles)
-            {
-                for (std::uint32_t &i : t)
-                    i += offset;
-                m.triangles.push_back(t);
-            }
-        }
-        return m;
-    }
-
-    void transformMesh(Mesh &mesh, const Eigen::Isometry3d &X)
-    {
-        for (Eigen::Vector3d &p : mesh.vertices)
-            p = X * p;
-    }
-
-    Eigen::Vector3d vertexMean(const Mesh &mesh)
-    {
-        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-        for (const Eigen::Vector3d &p : mesh.vertices)
-            sum += p;
-        return mesh.vertices.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(mesh.vertices.size()));
     }
 }  // namespace meshgap

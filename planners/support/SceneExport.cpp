@@ -1,4 +1,4 @@
-#include "meshgap/mesh/SceneExport.h"
+#include "support/SceneExport.h"
 
 #include <cmath>
 

@@ -1,0 +1,33 @@
+#ifndef MESHGAP_PLANNERS_PLAN_PLAN_OUTPUTS_H
+#define MESHGAP_PLANNERS_PLAN_PLAN_OUTPUTS_H
+
+// The files meshgap_plan writes besides its summary on stdout; each written whole or not at all (AtomicFile.h).
+
+#include <Eigen/Geometry>
+#include <ompl/geometric/PathGeometric.h>
+#include <string>
+#include <vector>
+
+#include "meshgap/scene/Scene.h"
+#include "support/DenseClearance.h"
+
+namespace meshgap
+{
+    namespace cli
+    {
+        /** \brief index,arc_length,fraction,x,y,z,qx,qy,qz,qw (x,y,theta in SE(2)),clearance,in_collision for every
+            state of the dense path. */
+        void writeClearanceCsv(const DenseClearance &d, const std::string &file);
+
+        /** \brief The path in OMPL's .path format, at full precision (the states round-trip exactly). */
+        void writePathFile(const ompl::geometric::PathGeometric &path, const std::string &file);
+
+        /** \brief \e text as it is. */
+        void writeTextFile(const std::string &text, const std::string &file);
+
+        /** \brief \e count poses evenly spaced (by index) along the dense path, the first and the last included. */
+        std::vector<Eigen::Isometry3d> posesAlong(const DenseClearance &d, unsigned count);
+    }  // namespace cli
+}  // namespace meshgap
+
+#endif

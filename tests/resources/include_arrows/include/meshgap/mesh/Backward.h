@@ -1,0 +1,1 @@
+#include "meshgap/geometry/TriangleBvh.h"  // against the flow
