@@ -249,6 +249,16 @@ namespace meshgap
             std::uint32_t a, b;
         };
 
+        /** \brief A pair of nodes still to open, with its lower bound. */
+        struct Open
+        {
+            double bound;
+            PairEntry pair;
+        };
+
+        /** \brief Heap order: the least bound on top. */
+        bool farther(const Open &x, const Open &y) { return x.bound > y.bound; }
+
         /** \brief A traversal stack of this thread, emptied, its capacity kept from earlier calls: once warm, a query
             allocates nothing for it. Each call site has its own \e Site, so no traversal ever shares a stack with
             another one running at the same time (none of them is re-entered). */
@@ -290,7 +300,8 @@ namespace meshgap
 
     namespace
     {
-        /** \brief One distance traversal: a depth-first search over node pairs, nearer child first, pruning pairs
+        /** \brief One distance traversal: a search over node pairs (best first until a first exact distance when
+            there is no bound yet, then depth first, nearer child first), pruning pairs
             whose lower bound exceeds the best distance (plus the tie slack); with \e record set, every pruned pair
             and every tested leaf pair goes there with its bound (key = bound + motion): the traversal's front. */
         class DistanceTraversal
@@ -300,8 +311,8 @@ namespace meshgap
                               double stopBelow, BvhDistanceResult &result, std::uint32_t bestA, std::uint32_t bestB,
                               std::vector<BvhFront::Entry> *record, double motion, std::uint32_t stamp)
               : a_(a), b_(b), X_(X), slack_(slack), stopBelow_(stopBelow), result_(result), bestA_(bestA),
-                bestB_(bestB), record_(record), motion_(motion), stamp_(stamp), stack_(threadStack<PairEntry, 1>()),
-                bounds_(threadStack<double, 2>()), seedA_(bestA), seedB_(bestB), seedDistance_(result.distance)
+                bestB_(bestB), record_(record), motion_(motion), stamp_(stamp), open_(threadStack<Open, 1>()),
+                seedA_(bestA), seedB_(bestB), seedDistance_(result.distance)
             {
             }
 
@@ -372,22 +383,24 @@ namespace meshgap
             /** \brief Search below pair \e start (lower bound \e startBound) to its end, or until the early stop. */
             void run(const PairEntry &start, double startBound)
             {
-                stack_.push_back(start);
-                bounds_.push_back(startBound);
-                while (!stack_.empty())
+                // Without a bound to prune with yet (no seed: a cold query), best first until the first pair of
+                // leaves is tested (the open pair of least bound next: that first exact distance then comes from
+                // near the minimum, wherever it is among many parts, and prunes well); depth first, nearer child
+                // first, from there on and whenever a bound is known (no heap to keep: cheaper per pair).
+                open_.push_back({startBound, start});
+                bestFirst_ = !(enough() < std::numeric_limits<double>::infinity());
+                while (!open_.empty())
                 {
-                    const PairEntry e = stack_.back();
-                    const double bound = bounds_.back();
-                    stack_.pop_back();
-                    bounds_.pop_back();
-                    if (stopped_)
+                    if (bestFirst_)
+                        std::pop_heap(open_.begin(), open_.end(), farther);
+                    const PairEntry e = open_.back().pair;
+                    const double bound = open_.back().bound;
+                    open_.pop_back();
+                    if (stopped_ || bound > enough())
                     {
-                        keep(e, bound);  // left unexplored by the early stop: still a lower bound
-                        continue;
-                    }
-                    if (bound > enough())
-                    {
-                        keep(e, bound);  // nothing in this pair can beat or tie the best so far
+                        // Left unexplored by the early stop, or nothing in this pair can beat or tie the best so
+                        // far: its bound stays a lower bound.
+                        keep(e, bound);
                         continue;
                     }
                     const TriangleBvh::Node &na = a_.nodes()[e.a], &nb = b_.nodes()[e.b];
@@ -396,6 +409,12 @@ namespace meshgap
                         Eigen::Vector3d axis;
                         const double least = leaves(na, nb, bound, axis);
                         keep(e, least, axis);
+                        if (bestFirst_)
+                        {
+                            // Depth first from here: the open pairs as a stack, the least bound on top.
+                            std::sort(open_.begin(), open_.end(), farther);
+                            bestFirst_ = false;
+                        }
                         continue;
                     }
                     descend(e, na, nb);
@@ -526,8 +545,9 @@ namespace meshgap
                 for (const auto &[c, cb] : {std::pair<PairEntry, double>{c1, b1}, {c2, b2}})
                     if (cb <= enough())
                     {
-                        stack_.push_back(c);
-                        bounds_.push_back(cb);
+                        open_.push_back({cb, c});
+                        if (bestFirst_)
+                            std::push_heap(open_.begin(), open_.end(), farther);
                     }
                     else
                         keep(c, cb);
@@ -541,8 +561,8 @@ namespace meshgap
             std::vector<BvhFront::Entry> *record_;
             const double motion_;
             const std::uint32_t stamp_;
-            std::vector<PairEntry> &stack_;
-            std::vector<double> &bounds_;
+            std::vector<Open> &open_;
+            bool bestFirst_{true};
             const std::uint32_t seedA_, seedB_;
             const double seedDistance_;
             const Eigen::Vector3d *seedAxis_{nullptr};
