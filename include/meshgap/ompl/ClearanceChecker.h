@@ -49,14 +49,17 @@ namespace meshgap
        depends on the thread's history (one state asked twice may get two answers, both at or above the exact
        one). Any other SolverFactory name (e.g. "comb-GA-wl", the paper's solver) runs from scratch per state,
        seeded from the state's coordinates: a pure function of the state, at several times the certified query's
-       cost. Which to use when (measured in bench/paper/README.md, issue 15): CERTIFIED wherever the clearance is a
-       guarantee (ClearanceMotionValidator, a clearance constraint, a proven path clearance); FAST with "warm-fast"
-       where the clearance only guides the search (costs, samplers) and only the collision verdict must be exact:
-       along paths it costs 0.18-0.28 of the warm certified query on the OMPL.app problems and 0.004-0.12 on the
-       paper's maps, its median error 0; FAST with "comb-GA-wl" only where a pure function of the state matters
-       more than time. clearance() is signed: it returns SceneResult::distance as
-       the scene computes it, which in collision is the penetration depth as a negative number (or 0 where the scene
-       computes no depth). clearance(state, validState, validStateAvailable) (specs: hasValidDirectionComputation)
+       cost. Which to use when (measured in bench/paper/README.md, issue 15): CERTIFIED by default and wherever the
+       clearance is a guarantee (ClearanceMotionValidator, a clearance constraint, a proven path clearance), and
+       wherever queries jump between unrelated states (RRT*'s costs: warm-fast's global searches made its mean query
+       12-40 times the certified one there) or the certified query is already a few microseconds (the OMPL.app
+       problems: warm-fast's median along paths 0.65-0.73 of it, its mean 1.7-28 times). FAST with "warm-fast"
+       along runs of nearby states near large contact areas, where the certified query costs tens to hundreds of
+       microseconds (the paper's maps: median 0.004-0.13, mean 0.17-0.5 of the certified query on battery_fixture,
+       hand_bowl, slotted_wall), and only the collision verdict must be exact. FAST with "comb-GA-wl" only where a
+       pure function of the state matters more than time. clearance() is signed: it returns SceneResult::distance
+       as the scene computes it, which in collision is the penetration depth as a negative number (or 0 where the
+       scene computes no depth). clearance(state, validState, validStateAvailable) (specs: hasValidDirectionComputation)
        also proposes a valid state away from the nearest obstacle (validStateAway()). Thread-safe: the scene is
        immutable, warm starts live per thread, counters are atomic.
     */
