@@ -12,7 +12,8 @@
 // mean times (global searches included). --problems picks problems and maps by name (e.g. for a profile).
 //
 //   build/bench/meshgap_bench_warm_fast [--states 1000] [--data ../shared/data/omplapp] [--maps maps]
-//       [--global-every 64] [--global-evaluations 40000] [--gap 0.5] [--budget-mib 512] [--sizing uniform|adaptive] [--problems a,b] [--csv FILE]
+//       [--global-every 64] [--global-evaluations 40000] [--gap 0.5] [--budget-mib 512] [--sizing uniform|adaptive]
+//       [--problems a,b] [--csv FILE]
 
 #include <ompl/util/Console.h>
 
@@ -96,7 +97,8 @@ int main(int argc, char **argv)
         "budget-mib", po::value(&budgetMiB), "dense mesh-distance budget per body (MiB)")(
         "sizing", po::value(&sizing), "node meshes: uniform or adaptive")(
         "no-patch", po::bool_switch(&noPatch), "warm-fast without surface_patch (node distances)")(
-        "problems", po::value(&problemsText), "only these problems and maps, comma separated (default: all)")("csv", po::value(&csvFile), "CSV output");
+        "problems", po::value(&problemsText), "only these problems and maps, comma separated (default: all)")(
+        "csv", po::value(&csvFile), "CSV output");
     po::variables_map vm;
     try
     {
@@ -293,7 +295,8 @@ int main(int argc, char **argv)
         if (csv)
             *csv << problem.name << "," << poses.size() << "," << free << "," << n << "," << mF << "," << mW << ","
                  << mFast << "," << maxFast << "," << mColl << "," << mFast / mW << "," << mColl / mW << "," << mFast / mF << "," << e50
-                 << "," << e90 << "," << emax << "," << below << "," << globals << "," << meanW << "," << meanFast << "\n";
+                 << "," << e90 << "," << emax << "," << below << "," << globals << "," << meanW << "," << meanFast
+                 << "\n";
     }
     return 0;
 }

@@ -605,8 +605,8 @@ TEST(CombSolvers, EvolutionBeatsItsInitialPopulationAndMultistartHillClimbing)
 // Our variants of comb-GA (issue 15), off by default: cluster seeding and restarts of a stalled population.
 
 // Seeding::Clusters with two members and no generations (-nl: no climb) answers a node pair of one of the two
-// cluster pairs of least signed sphere gap, found here by brute force over Body::clusters(); every variant is never below
-// enumeration, consistent with its own pair, repeatable with a seed; the default is the paper's draw.
+// cluster pairs of least signed sphere gap, found here by brute force over Body::clusters(); every variant is never
+// below enumeration, consistent with its own pair, repeatable with a seed; the defaults are the paper's.
 TEST(CombSolvers, VariantsSeedFromTheNearestClustersAndRestart)
 {
     const BumpyScene scene;
