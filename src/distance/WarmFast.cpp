@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 #include "meshgap/distance/HillClimb.h"
 #include "meshgap/distance/PairEvaluator.h"
@@ -47,6 +48,19 @@ namespace meshgap
             [this] { return static_cast<int>(getGlobalEvaluations()); });
         params_.declareParam<bool>(
             "surface_patch", [this](bool on) { setSurfacePatch(on); }, [this] { return getSurfacePatch(); });
+        params_.declareParam<std::string>(
+            "global_seeding",
+            [this](const std::string &s)
+            {
+                if (s == "random")
+                    setGlobalSeeding(CombGA::Seeding::Random);
+                else if (s == "clusters")
+                    setGlobalSeeding(CombGA::Seeding::Clusters);
+                else
+                    throw std::invalid_argument("global_seeding must be random or clusters");
+            },
+            [this]
+            { return std::string(getGlobalSeeding() == CombGA::Seeding::Clusters ? "clusters" : "random"); });
     }
 
     void WarmFast::setGapTolerance(double g)

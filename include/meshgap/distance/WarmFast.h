@@ -86,6 +86,10 @@ namespace meshgap
         /** \brief Cap on a global search's d^2 evaluations (parameter "global_evaluations", > 0). */
         void setGlobalEvaluations(unsigned int n);
         unsigned int getGlobalEvaluations() const { return globalEvaluations_; }
+        /** \brief How the dense global search (comb-GA-wl) draws its initial population (parameter
+            "global_seeding": "random", the paper's and the default, or "clusters", CombGA::Seeding). */
+        void setGlobalSeeding(CombGA::Seeding s) { ga_.setSeeding(s); }
+        CombGA::Seeding getGlobalSeeding() const { return ga_.getSeeding(); }
         /** \brief Report the exact distance of the triangles around the node pair (parameter "surface_patch"). */
         void setSurfacePatch(bool on) { surfacePatch_ = on; }
         bool getSurfacePatch() const { return surfacePatch_; }
