@@ -13,7 +13,7 @@
 //
 //   build/bench/meshgap_bench_warm_fast [--states 1000] [--data ../shared/data/omplapp] [--maps maps]
 //       [--global-every 64] [--global-evaluations 40000] [--gap 0.5] [--budget-mib 512] [--sizing uniform|adaptive]
-//       [--global-seeding random|clusters] [--problems a,b] [--csv FILE]
+//       [--global-search multistart|comb-GA-wl] [--global-seeding random|clusters] [--problems a,b] [--csv FILE]
 
 #include <ompl/util/Console.h>
 
@@ -83,7 +83,7 @@ namespace
 int main(int argc, char **argv)
 {
     std::string data = std::string(MESHGAP_SHARED_DATA_DIR) + "/omplapp", maps = "maps", csvFile, sizing = "uniform", problemsText,
-                globalSeeding = "random";
+                globalSeeding = "random", globalSearch = "multistart";
     std::size_t states = 1000;
     unsigned int globalEvery = WarmFast::DEFAULT_GLOBAL_EVERY, globalEvaluations = WarmFast::DEFAULT_GLOBAL_EVALUATIONS;
     double gap = WarmFast::DEFAULT_GAP_TOLERANCE, budgetMiB = 512;
@@ -94,7 +94,8 @@ int main(int argc, char **argv)
         "maps", po::value(&maps), "folder with meshgap's maps")("states", po::value(&states), "states per path")(
         "global-every", po::value(&globalEvery), "warm-fast global_every")(
         "global-evaluations", po::value(&globalEvaluations), "warm-fast global_evaluations")(
-        "global-seeding", po::value(&globalSeeding), "warm-fast global_seeding: random or clusters")("gap", po::value(&gap),
+        "global-seeding", po::value(&globalSeeding), "warm-fast global_seeding: random or clusters")(
+        "global-search", po::value(&globalSearch), "warm-fast global_search: multistart or comb-GA-wl")("gap", po::value(&gap),
                                                                            "warm-fast gap_tolerance")(
         "budget-mib", po::value(&budgetMiB), "dense mesh-distance budget per body (MiB)")(
         "sizing", po::value(&sizing), "node meshes: uniform or adaptive")(
@@ -134,10 +135,12 @@ int main(int argc, char **argv)
         solver.setGlobalEvaluations(globalEvaluations);
         if (!solver.params().setParam("global_seeding", globalSeeding))
             throw std::invalid_argument("'" + globalSeeding + "' is not random or clusters");
+        if (!solver.params().setParam("global_search", globalSearch))
+            throw std::invalid_argument("'" + globalSearch + "' is not multistart or comb-GA-wl");
     }
     catch (const std::exception &e)
     {
-        std::fprintf(stderr, "--global-evaluations / --global-seeding: %s\n", e.what());
+        std::fprintf(stderr, "--global-evaluations / --global-seeding / --global-search: %s\n", e.what());
         return 1;
     }
     solver.setGapTolerance(gap);
@@ -212,9 +215,10 @@ int main(int argc, char **argv)
                 "fast_to_certified,fast_collision_to_certified,fast_to_fcl,error_median,error_p90,error_max,"
                 "below_exact,global_searches,warm_certified_mean_us,warm_fast_mean_us\n";
     }
-    std::printf("warm-fast: global_every %u, global_evaluations %u (seeding %s), gap_tolerance %g; sizing %s; dense budget %g MiB. Median µs per query "
+    std::printf("warm-fast: global_every %u, global search %s of at most %u evaluations (seeding %s), gap_tolerance %g; sizing %s; dense budget %g MiB. Median µs per query "
                 "(ratio to the warm certified query).\n\n",
-                globalEvery, globalEvaluations, globalSeeding.c_str(), gap, sizing.c_str(), budgetMiB);
+                globalEvery, globalSearch.c_str(), globalEvaluations, globalSeeding.c_str(), gap, sizing.c_str(),
+                budgetMiB);
     std::printf("| problem | states (free) | obstacles | nodes robot | FCL distance | warm certified | warm-fast | warm-fast max | "
                 "warm-fast + exact collision | fast / FCL | error median / p90 / max | below exact | global "
                 "searches | mean µs certified / warm-fast |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");

@@ -9,7 +9,7 @@
 #      (reliability_<sizing>.md / .csv), and comb-GA-wl against its variants (seeding from the nearest node-cluster
 #      pairs, restarts of a stalled population; reliability_variants_<maps|omplapp>.md / .csv),
 #   4. warm-fast along the paths against the warm certified query (meshgap_bench_warm_fast: warm_fast.md / .csv; with
-#      its global search seeded from the clusters: warm_fast_clusters.md / .csv).
+#      comb-GA-wl as its global search: warm_fast_ga.md / .csv, and seeded from the clusters: warm_fast_clusters.*).
 #
 #   bench/paper/regenerate.sh [BUILD_DIR]
 #   RUNS=100 RELIABILITY_RUNS=100 ADAPTIVE_OMPL_RUNS=5 POSES=20 STATES=1000 \
@@ -68,7 +68,10 @@ for part in $parts; do
             "$build/bench/meshgap_bench_warm_fast" --maps maps --data "$data" --states "$states" --gap 1e300 \
                 > "$here/warm_fast_nogap.md"
             "$build/bench/meshgap_bench_warm_fast" --maps maps --data "$data" --states "$states" \
-                --global-seeding clusters --csv "$here/warm_fast_clusters.csv" > "$here/warm_fast_clusters.md" ;;
+                --global-search comb-GA-wl --csv "$here/warm_fast_ga.csv" > "$here/warm_fast_ga.md"
+            "$build/bench/meshgap_bench_warm_fast" --maps maps --data "$data" --states "$states" \
+                --global-search comb-GA-wl --global-seeding clusters --csv "$here/warm_fast_clusters.csv" \
+                > "$here/warm_fast_clusters.md" ;;
         *)
             echo "unknown part '$part' (valid: reproduction plots reliability warm)" >&2
             exit 1 ;;

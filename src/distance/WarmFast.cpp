@@ -49,6 +49,18 @@ namespace meshgap
         params_.declareParam<bool>(
             "surface_patch", [this](bool on) { setSurfacePatch(on); }, [this] { return getSurfacePatch(); });
         params_.declareParam<std::string>(
+            "global_search",
+            [this](const std::string &s)
+            {
+                if (s == "multistart")
+                    setGlobalGa(false);
+                else if (s == "comb-GA-wl")
+                    setGlobalGa(true);
+                else
+                    throw std::invalid_argument("global_search must be multistart or comb-GA-wl");
+            },
+            [this] { return std::string(getGlobalGa() ? "comb-GA-wl" : "multistart"); });
+        params_.declareParam<std::string>(
             "global_seeding",
             [this](const std::string &s)
             {
@@ -83,12 +95,13 @@ namespace meshgap
         DistanceRequest request;
         request.seed = seed;
         request.maxEvaluations = globalEvaluations_;
-        if (a.distances().isDense() && b.distances().isDense())
+        if (globalGa_ && a.distances().isDense() && b.distances().isDense())
         {
             ga_.solve(a, b, X_AB, request, result);
             return;
         }
-        // Beyond the dense budget: random-start climbs, no mesh distances needed, globalEvaluations_ d^2 in all.
+        // Random-start climbs (the default, and beyond the dense budget): no mesh distances needed,
+        // globalEvaluations_ d^2 in all.
         PairEvaluator evaluator(a, b, X_AB);
         std::mt19937_64 rng(seed);
         std::uniform_int_distribution<std::uint32_t> na(0, a.numNodes() - 1), nb(0, b.numNodes() - 1);

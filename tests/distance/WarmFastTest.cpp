@@ -146,8 +146,9 @@ TEST(WarmFast, StatelessFormAndFactory)
     EXPECT_GE(cold.distance, exactDistance(*a, *b, X) - 1e-12);
 }
 
-// The global search seeded from the nearest node-cluster pairs (global_seeding=clusters): still never below the exact
-// distance along the path, every global search a real node pair; the default is the paper's random draw.
+// comb-GA-wl as the global search, seeded from the nearest node-cluster pairs (global_search=comb-GA-wl,
+// global_seeding=clusters): still never below the exact distance along the path, never above its own node pair; the
+// defaults are the multistart and the paper's random draw.
 TEST(WarmFast, ClusterSeededGlobalSearchNeverBelowExact)
 {
     const BodyPtr a = test::unrefinedBody(bracket()), b = test::unrefinedBody(test::icosphere(0.5, 2));
@@ -156,6 +157,11 @@ TEST(WarmFast, ClusterSeededGlobalSearchNeverBelowExact)
     ASSERT_TRUE(solver.params().getParam("global_seeding", value));
     EXPECT_EQ(value, "random");
     EXPECT_FALSE(solver.params().setParam("global_seeding", "mixed"));
+    ASSERT_TRUE(solver.params().getParam("global_search", value));
+    EXPECT_EQ(value, "multistart");
+    EXPECT_FALSE(solver.params().setParam("global_search", "enumeration"));
+    ASSERT_TRUE(solver.params().setParam("global_search", "comb-GA-wl"));
+    EXPECT_TRUE(solver.getGlobalGa());
     ASSERT_TRUE(solver.params().setParam("global_seeding", "clusters"));
     EXPECT_EQ(solver.getGlobalSeeding(), CombGA::Seeding::Clusters);
     solver.setGlobalEvery(4);  // many global searches
