@@ -52,10 +52,10 @@ namespace meshgap
        cost. Which to use when (measured in bench/paper/README.md, issue 15): CERTIFIED by default and wherever the
        clearance is a guarantee (ClearanceMotionValidator, a clearance constraint, a proven path clearance), and
        wherever queries jump between unrelated states (RRT*'s costs: warm-fast's global searches made its mean query
-       12-40 times the certified one there) or the certified query is already a few microseconds (the OMPL.app
-       problems: warm-fast's median along paths 0.65-0.73 of it, its mean 1.7-28 times). FAST with "warm-fast"
+       7-20 times the certified one there) or the certified query is already a few microseconds (the OMPL.app
+       problems: warm-fast's median along paths 0.65-0.74 of it, its mean 3.3-11 times). FAST with "warm-fast"
        along runs of nearby states near large contact areas, where the certified query costs tens to hundreds of
-       microseconds (the paper's maps: median 0.004-0.13, mean 0.17-0.5 of the certified query on battery_fixture,
+       microseconds (the paper's maps: median 0.004-0.12, mean 0.16-0.43 of the certified query on battery_fixture,
        hand_bowl, slotted_wall), and only the collision verdict must be exact. FAST with "comb-GA-wl" only where a
        pure function of the state matters more than time. clearance() is signed: it returns SceneResult::distance
        as the scene computes it, which in collision is the penetration depth as a negative number (or 0 where the
