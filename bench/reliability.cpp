@@ -8,6 +8,7 @@
 //
 // The node meshes: --sizing none (the meshes as given: the maps' paper node counts; OMPL.app meshes unrefined),
 // uniform (BodyOptions' default grid, 1/25 of the body's size) or adaptive (adaptiveNodeSizes(), NodeSizing.h).
+// An algorithm NAME:PARAM=VALUE sets a parameter of the solver (e.g. comb-GA-wl:seeding=clusters, CombGA.h).
 // --population / --generations override comb-GA's Table I values, --scale-population sets N_pop from the node count
 // (see bench/paper/README.md, "Reliability").
 //
@@ -91,7 +92,8 @@ int main(int argc, char **argv)
         "runs", po::value(&runs), "seeds per scene-pose and algorithm")("seed", po::value(&seed), "first seed")(
         "poses", po::value(&posesPerProblem), "poses per OMPL.app problem")(
         "sizing", po::value(&sizing), "node meshes: none, uniform or adaptive")(
-        "algorithms", po::value(&algorithmsText), "solvers, comma separated")(
+        "algorithms", po::value(&algorithmsText),
+        "solvers, comma separated, each NAME[:PARAM=VALUE...] (e.g. comb-GA-wl:seeding=clusters)")(
         "scenes", po::value(&scenesText), "map scenes (empty: none)")(
         "problems", po::value(&problemsText), "OMPL.app problems (default: every .cfg; 'none': none)")(
         "population", po::value(&population), "comb-GA population (0: the default)")(
@@ -137,8 +139,23 @@ int main(int argc, char **argv)
     std::vector<DistanceSolverPtr> solvers;
     try
     {
-        for (const std::string &name : algorithms)
-            solvers.push_back(allocSolver(name));
+        for (const std::string &spec : algorithms)
+        {
+            // NAME[:PARAM=VALUE...], e.g. comb-GA-wl:seeding=clusters (the solver's ParamSet).
+            std::vector<std::string> parts;
+            std::stringstream ss(spec);
+            for (std::string part; std::getline(ss, part, ':');)
+                parts.push_back(part);
+            solvers.push_back(allocSolver(parts[0]));
+            for (std::size_t k = 1; k < parts.size(); ++k)
+            {
+                const std::size_t eq = parts[k].find('=');
+                if (eq == std::string::npos ||
+                    !solvers.back()->params().setParam(parts[k].substr(0, eq), parts[k].substr(eq + 1)))
+                    throw std::runtime_error("--algorithms: '" + parts[k] + "' is not a valid PARAM=VALUE of " +
+                                             parts[0]);
+            }
+        }
     }
     catch (const std::exception &e)
     {

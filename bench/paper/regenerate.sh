@@ -6,8 +6,10 @@
 #      to paper_tables.md),
 #   3. the reliability tables (meshgap_bench_reliability): comb-GA-wl and comb-SA-wl over RELIABILITY_RUNS seeds on
 #      every paper scene-pose and at POSES poses of every OMPL.app problem, uniform against adaptive node sizing
-#      (reliability_<sizing>.md / .csv),
-#   4. warm-fast along the paths against the warm certified query (meshgap_bench_warm_fast: warm_fast.md / .csv).
+#      (reliability_<sizing>.md / .csv), and comb-GA-wl against its variants (seeding from the nearest node-cluster
+#      pairs, restarts of a stalled population; reliability_variants_<maps|omplapp>.md / .csv),
+#   4. warm-fast along the paths against the warm certified query (meshgap_bench_warm_fast: warm_fast.md / .csv; with
+#      comb-GA-wl as its global search: warm_fast_ga.md / .csv, and seeded from the clusters: warm_fast_clusters.*).
 #
 #   bench/paper/regenerate.sh [BUILD_DIR]
 #   RUNS=100 RELIABILITY_RUNS=100 ADAPTIVE_OMPL_RUNS=5 POSES=20 STATES=1000 \
@@ -47,7 +49,15 @@ for part in $parts; do
                 > "$here/reliability_omplapp_uniform.md"
             "$build/bench/meshgap_bench_reliability" --data "$data" --scenes "" --runs "$adaptiveOmplRuns" \
                 --poses "$poses" --sizing adaptive --csv "$here/reliability_omplapp_adaptive.csv" \
-                > "$here/reliability_omplapp_adaptive.md" ;;
+                > "$here/reliability_omplapp_adaptive.md"
+            variants=comb-GA-wl,comb-GA-wl:seeding=clusters,comb-GA-wl:restart_stall=10
+            variants="$variants,comb-GA-wl:seeding=clusters:restart_stall=10"
+            "$build/bench/meshgap_bench_reliability" --maps maps --problems none --runs "$reliabilityRuns" \
+                --algorithms "$variants" --csv "$here/reliability_variants_maps.csv" \
+                > "$here/reliability_variants_maps.md"
+            "$build/bench/meshgap_bench_reliability" --data "$data" --scenes "" --runs "$reliabilityRuns" \
+                --poses "$poses" --sizing uniform --algorithms "$variants" \
+                --csv "$here/reliability_variants_omplapp.csv" > "$here/reliability_variants_omplapp.md" ;;
         warm)
             "$build/bench/meshgap_bench_warm_fast" --maps maps --data "$data" --states "$states" \
                 --csv "$here/warm_fast.csv" > "$here/warm_fast.md"
@@ -56,7 +66,12 @@ for part in $parts; do
             "$build/bench/meshgap_bench_warm_fast" --maps maps --data "$data" --states "$states" --no-patch \
                 > "$here/warm_fast_nopatch.md"
             "$build/bench/meshgap_bench_warm_fast" --maps maps --data "$data" --states "$states" --gap 1e300 \
-                > "$here/warm_fast_nogap.md" ;;
+                > "$here/warm_fast_nogap.md"
+            "$build/bench/meshgap_bench_warm_fast" --maps maps --data "$data" --states "$states" \
+                --global-search comb-GA-wl --csv "$here/warm_fast_ga.csv" > "$here/warm_fast_ga.md"
+            "$build/bench/meshgap_bench_warm_fast" --maps maps --data "$data" --states "$states" \
+                --global-search comb-GA-wl --global-seeding clusters --csv "$here/warm_fast_clusters.csv" \
+                > "$here/warm_fast_clusters.md" ;;
         *)
             echo "unknown part '$part' (valid: reproduction plots reliability warm)" >&2
             exit 1 ;;

@@ -88,6 +88,7 @@ namespace meshgap
             std::vector<double> fitness;
             std::vector<std::size_t> picks;
             std::vector<Offspring> offspring;
+            std::vector<std::pair<double, std::uint32_t>> clusterGaps;  ///< (signed sphere gap, i * |B's| + j)
             MoveScratch moves;
         };
     }  // namespace
@@ -126,6 +127,33 @@ namespace meshgap
                 setStallGenerations(static_cast<unsigned int>(g));
             },
             [this] { return static_cast<int>(getStallGenerations()); });
+        params_.declareParam<std::string>(
+            "seeding",
+            [this](const std::string &s)
+            {
+                if (s == "random")
+                    setSeeding(Seeding::Random);
+                else if (s == "clusters")
+                    setSeeding(Seeding::Clusters);
+                else if (s == "mixed")
+                    setSeeding(Seeding::Mixed);
+                else
+                    throw std::invalid_argument("seeding must be random, clusters or mixed");
+            },
+            [this]
+            {
+                const Seeding s = getSeeding();
+                return std::string(s == Seeding::Clusters ? "clusters" : s == Seeding::Mixed ? "mixed" : "random");
+            });
+        params_.declareParam<int>(
+            "restart_stall",
+            [this](int g)
+            {
+                if (g < 0)
+                    throw std::invalid_argument("restart_stall must not be negative");
+                setRestartStall(static_cast<unsigned int>(g));
+            },
+            [this] { return static_cast<int>(getRestartStall()); });
     }
 
     void CombGA::setPopulationSize(unsigned int n)
@@ -162,6 +190,8 @@ namespace meshgap
         const double mutationRate = mutationRate_, crossoverRate = crossoverRate_;
         const bool localSearch = localSearch_;
         const std::size_t stallGenerations = stallGenerations_;
+        const Seeding seeding = seeding_;
+        const std::size_t restartStall = restartStall_;
         const std::size_t cap = request.maxEvaluations;
 
         QueryRng rng(request.seed);
@@ -202,8 +232,43 @@ namespace meshgap
         // Initial population (III-D): at random, with the warm start as its first member when given.
         std::vector<Individual> &population = work.population;
         population.assign(populationSize, Individual());
+        std::size_t clusterMembers = 0;  // members drawn from cluster pairs: all (Clusters), every other (Mixed)
+        if (seeding != Seeding::Random)
+        {
+            // The nearest cluster pairs by signed sphere gap, nearest first, one member each (cycling if there are
+            // fewer cluster pairs than members), a random node of each cluster.
+            const auto &ca = a.clusters(), &cb = b.clusters();
+            const Eigen::Matrix3d R = X_AB.linear();
+            const Eigen::Vector3d t = X_AB.translation();
+            auto &gaps = work.clusterGaps;
+            gaps.clear();
+            for (std::uint32_t j = 0; j < cb.size(); ++j)
+            {
+                const Eigen::Vector3d c = R * cb[j].center + t;
+                for (std::uint32_t i = 0; i < ca.size(); ++i)
+                    gaps.emplace_back((ca[i].center - c).norm() - ca[i].radius - cb[j].radius,
+                                      i * static_cast<std::uint32_t>(cb.size()) + j);
+            }
+            clusterMembers = seeding == Seeding::Clusters ? populationSize : (populationSize + 1) / 2;
+            const std::size_t kept = std::min(gaps.size(), clusterMembers);
+            std::partial_sort(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(kept), gaps.end());
+            const auto &orderA = a.clusterOrder(), &orderB = b.clusterOrder();
+            for (std::size_t k = 0; k < clusterMembers; ++k)
+            {
+                const std::uint32_t key = gaps[k % kept].second;
+                const NodeCluster &A = ca[key / cb.size()], &B = cb[key % cb.size()];
+                const std::uint32_t ka = std::uniform_int_distribution<std::uint32_t>(A.begin, A.end - 1)(rng);
+                const std::uint32_t kb = std::uniform_int_distribution<std::uint32_t>(B.begin, B.end - 1)(rng);
+                // Mixed: cluster members at the even places, random ones at the odd.
+                population[seeding == Seeding::Clusters ? k : 2 * k].pair = NodePair{orderA[ka], orderB[kb]};
+            }
+        }
+        // Random members (the paper's draw, in its order: the warm start takes the first place without a draw).
         for (std::size_t i = 0; i < populationSize; ++i)
-            population[i].pair = (i == 0 && request.start) ? *request.start : NodePair{nodeA(rng), nodeB(rng)};
+            if (i == 0 && request.start)
+                population[0].pair = *request.start;
+            else if (seeding == Seeding::Random || (seeding == Seeding::Mixed && i % 2 == 1))
+                population[i].pair = NodePair{nodeA(rng), nodeB(rng)};
         bool stopped = false;
         for (std::size_t i = 0; i < populationSize && !stopped; ++i)
             stopped = !evaluate(population[i], 0);
@@ -214,7 +279,7 @@ namespace meshgap
         std::vector<Offspring> &offspring = work.offspring;
         offspring.clear();
         offspring.reserve(populationSize);
-        std::size_t generation = 0;
+        std::size_t generation = 0, lastRestart = 0;
         bool converged = false;
         while (!stopped && !converged && generation < maxGenerations)
         {
@@ -295,6 +360,27 @@ namespace meshgap
                     ->x = best;
             for (std::size_t i = 0; i < populationSize; ++i)
                 population[i] = offspring[i].x;
+
+            // Restart (optional, see setRestartStall()): no better pair for restartStall generations since the
+            // last improvement or restart: every member but the best is drawn again uniformly at random.
+            if (restartStall != 0 && generation - std::max(convergedAt, lastRestart) >= restartStall &&
+                generation < maxGenerations)
+            {
+                lastRestart = generation;
+                bool bestKept = false;  // one copy of the best stays (a collapsed population is all copies)
+                for (std::size_t i = 0; i < populationSize && !stopped; ++i)
+                {
+                    if (!bestKept && population[i].pair == best.pair)
+                    {
+                        bestKept = true;
+                        continue;
+                    }
+                    population[i].pair = NodePair{nodeA(rng), nodeB(rng)};
+                    stopped = !evaluate(population[i], generation);
+                }
+                if (stopped)
+                    break;
+            }
 
             // Convergence (optional, see setStallGenerations()): no better pair for stallGenerations generations.
             converged = stallGenerations != 0 && generation - convergedAt >= stallGenerations;

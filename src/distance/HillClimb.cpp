@@ -22,6 +22,8 @@ namespace meshgap
                 const std::uint32_t here = MoveA ? pair.a : pair.b;
                 std::uint32_t bestNode = here;
                 double best = d2;
+                // Moving A's node: B's node is carried into A's frame once per step, not once per neighbour.
+                const Eigen::Vector3d fixedB = MoveA ? evaluator.bInA(pair.b) : Eigen::Vector3d::Zero();
                 for (const std::uint32_t *n = graph.beginNeighbours(here); n != graph.endNeighbours(here); ++n)
                 {
                     if (evaluator.evaluations() >= cap)
@@ -29,7 +31,7 @@ namespace meshgap
                         stopped = true;
                         break;
                     }
-                    const double d = MoveA ? evaluator.d2(*n, pair.b) : evaluator.d2(pair.a, *n);
+                    const double d = MoveA ? evaluator.d2ToB(*n, fixedB) : evaluator.d2(pair.a, *n);
                     if (d < best)
                     {
                         best = d;

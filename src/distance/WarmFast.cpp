@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 #include "meshgap/distance/HillClimb.h"
 #include "meshgap/distance/PairEvaluator.h"
@@ -47,6 +48,31 @@ namespace meshgap
             [this] { return static_cast<int>(getGlobalEvaluations()); });
         params_.declareParam<bool>(
             "surface_patch", [this](bool on) { setSurfacePatch(on); }, [this] { return getSurfacePatch(); });
+        params_.declareParam<std::string>(
+            "global_search",
+            [this](const std::string &s)
+            {
+                if (s == "multistart")
+                    setGlobalGa(false);
+                else if (s == "comb-GA-wl")
+                    setGlobalGa(true);
+                else
+                    throw std::invalid_argument("global_search must be multistart or comb-GA-wl");
+            },
+            [this] { return std::string(getGlobalGa() ? "comb-GA-wl" : "multistart"); });
+        params_.declareParam<std::string>(
+            "global_seeding",
+            [this](const std::string &s)
+            {
+                if (s == "random")
+                    setGlobalSeeding(CombGA::Seeding::Random);
+                else if (s == "clusters")
+                    setGlobalSeeding(CombGA::Seeding::Clusters);
+                else
+                    throw std::invalid_argument("global_seeding must be random or clusters");
+            },
+            [this]
+            { return std::string(getGlobalSeeding() == CombGA::Seeding::Clusters ? "clusters" : "random"); });
     }
 
     void WarmFast::setGapTolerance(double g)
@@ -69,12 +95,13 @@ namespace meshgap
         DistanceRequest request;
         request.seed = seed;
         request.maxEvaluations = globalEvaluations_;
-        if (a.distances().isDense() && b.distances().isDense())
+        if (globalGa_ && a.distances().isDense() && b.distances().isDense())
         {
             ga_.solve(a, b, X_AB, request, result);
             return;
         }
-        // Beyond the dense budget: random-start climbs, no mesh distances needed, globalEvaluations_ d^2 in all.
+        // Random-start climbs (the default, and beyond the dense budget): no mesh distances needed,
+        // globalEvaluations_ d^2 in all.
         PairEvaluator evaluator(a, b, X_AB);
         std::mt19937_64 rng(seed);
         std::uniform_int_distribution<std::uint32_t> na(0, a.numNodes() - 1), nb(0, b.numNodes() - 1);
@@ -102,17 +129,35 @@ namespace meshgap
                          std::uint32_t warmB, bool fans, DistanceResult &result) const
     {
         const Mesh &sa = a.surface(), &sb = b.surface();
-        auto test = [&](std::uint32_t ta, std::uint32_t tb, double &best, std::uint32_t &bestA, std::uint32_t &bestB)
+        // A triangle's corners in A's frame with its centroid sphere; B's are carried by X_AB. Computed once per
+        // triangle where one side of the descent stays fixed (the profile: most candidate pairs end at a bound).
+        struct Corners
         {
-            const Triangle &fa = sa.triangles[ta], &fb = sb.triangles[tb];
-            const Eigen::Vector3d &a0 = sa.vertices[fa[0]], &a1 = sa.vertices[fa[1]], &a2 = sa.vertices[fa[2]];
-            const Eigen::Vector3d b0 = X_AB * sb.vertices[fb[0]], b1 = X_AB * sb.vertices[fb[1]],
-                                  b2 = X_AB * sb.vertices[fb[2]];
+            Eigen::Vector3d p0, p1, p2, c;
+            double r;
+        };
+        auto corners = [](const Eigen::Vector3d &p0, const Eigen::Vector3d &p1, const Eigen::Vector3d &p2)
+        {
+            Corners k{p0, p1, p2, (p0 + p1 + p2) / 3.0, 0.0};
+            k.r = std::sqrt(std::max({(p0 - k.c).squaredNorm(), (p1 - k.c).squaredNorm(), (p2 - k.c).squaredNorm()}));
+            return k;
+        };
+        auto cornersA = [&](std::uint32_t t)
+        {
+            const Triangle &f = sa.triangles[t];
+            return corners(sa.vertices[f[0]], sa.vertices[f[1]], sa.vertices[f[2]]);
+        };
+        auto cornersB = [&](std::uint32_t t)
+        {
+            const Triangle &f = sb.triangles[t];
+            return corners(X_AB * sb.vertices[f[0]], X_AB * sb.vertices[f[1]], X_AB * sb.vertices[f[2]]);
+        };
+        auto testCorners = [&](const Corners &ka, const Corners &kb, std::uint32_t ta, std::uint32_t tb, double &best,
+                               std::uint32_t &bestA, std::uint32_t &bestB)
+        {
+            const Eigen::Vector3d &a0 = ka.p0, &a1 = ka.p1, &a2 = ka.p2, &b0 = kb.p0, &b1 = kb.p1, &b2 = kb.p2;
             // Exact pruning: the gap between the triangles' centroid spheres is a lower bound on their distance.
-            const Eigen::Vector3d ca = (a0 + a1 + a2) / 3.0, cb = (b0 + b1 + b2) / 3.0;
-            const double ra = std::sqrt(std::max({(a0 - ca).squaredNorm(), (a1 - ca).squaredNorm(), (a2 - ca).squaredNorm()}));
-            const double rb = std::sqrt(std::max({(b0 - cb).squaredNorm(), (b1 - cb).squaredNorm(), (b2 - cb).squaredNorm()}));
-            if ((ca - cb).norm() - ra - rb >= best)
+            if ((ka.c - kb.c).norm() - ka.r - kb.r >= best)
                 return;
             // And the plane bound: when one triangle lies wholly on one side of the other's plane, its nearest
             // corner's distance to that plane is a lower bound too.
@@ -144,6 +189,8 @@ namespace meshgap
                 result.onB = onB;
             }
         };
+        auto test = [&](std::uint32_t ta, std::uint32_t tb, double &best, std::uint32_t &bestA, std::uint32_t &bestB)
+        { testCorners(cornersA(ta), cornersB(tb), ta, tb, best, bestA, bestB); };
         double best = result.distance;  // the node pair's own distance: the patch only improves on it
         std::uint32_t ta = UINT32_MAX, tb = UINT32_MAX;
         // Seeds: the last answer's triangle pair (a warm start), then, if \e fans, the triangles around the two nodes: every pair
@@ -176,10 +223,11 @@ namespace meshgap
         {
             improved = false;
             const std::uint32_t ca = ta, cb = tb;
+            const Corners fixedA = cornersA(ca), fixedB = cornersB(cb);
             for (const std::uint32_t *i = a.beginTriangleNeighbours(ca); i != a.endTriangleNeighbours(ca); ++i)
-                test(*i, cb, best, ta, tb);
+                testCorners(cornersA(*i), fixedB, *i, cb, best, ta, tb);
             for (const std::uint32_t *j = b.beginTriangleNeighbours(cb); j != b.endTriangleNeighbours(cb); ++j)
-                test(ca, *j, best, ta, tb);
+                testCorners(fixedA, cornersB(*j), ca, *j, best, ta, tb);
             improved = ta != ca || tb != cb;
         }
         if (ta != UINT32_MAX)

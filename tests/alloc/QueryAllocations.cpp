@@ -137,6 +137,14 @@ namespace meshgap
             return r;
         }
 
+        /** \brief Fast mode with warm-fast, the checker's default fast solver (a warm start per obstacle). */
+        SceneRequest warmFast(double stopBelow = -1.0)
+        {
+            SceneRequest r = fast(stopBelow);
+            r.solver = "warm-fast";
+            return r;
+        }
+
         class QueryAllocations : public ::testing::Test
         {
         protected:
@@ -259,6 +267,13 @@ namespace meshgap
         {
             check(*onDemand_, fast(), false, false);
             check(*onDemand_, fast(), true, false);
+        }
+
+        TEST_F(QueryAllocations, WarmFast)
+        {
+            check(*dense_, warmFast(), false, false);
+            check(*dense_, warmFast(), false, true);
+            check(*onDemand_, warmFast(), false, false);
         }
 
         TEST_F(QueryAllocations, CertifiedOnDemandDistances)

@@ -600,3 +600,78 @@ TEST(CombSolvers, EvolutionBeatsItsInitialPopulationAndMultistartHillClimbing)
     EXPECT_GE(hits, initialHits + 25);
     EXPECT_GE(hits, multistartHits + 10);
 }
+
+// ---------------------------------------------------------------------------------------------------------------
+// Our variants of comb-GA (issue 15), off by default: cluster seeding and restarts of a stalled population.
+
+// Seeding::Clusters with two members and no generations (-nl: no climb) answers a node pair of one of the two
+// cluster pairs of least signed sphere gap, found here by brute force over Body::clusters(); every variant is never
+// below enumeration, consistent with its own pair, repeatable with a seed; the defaults are the paper's.
+TEST(CombSolvers, VariantsSeedFromTheNearestClustersAndRestart)
+{
+    const BumpyScene scene;
+    const Body &a = *scene.a, &b = *scene.b;
+    for (std::uint32_t k = 1; k <= 4; ++k)
+    {
+        const Eigen::Isometry3d X = BumpyScene::pose(k);
+        std::vector<std::tuple<double, std::size_t, std::size_t>> gaps;
+        for (std::size_t i = 0; i < a.clusters().size(); ++i)
+            for (std::size_t j = 0; j < b.clusters().size(); ++j)
+            {
+                const NodeCluster &ca = a.clusters()[i], &cb = b.clusters()[j];
+                gaps.emplace_back((ca.center - X * cb.center).norm() - ca.radius - cb.radius, i, j);
+            }
+        std::sort(gaps.begin(), gaps.end());
+        CombGA two(false);
+        two.setSeeding(CombGA::Seeding::Clusters);
+        two.setPopulationSize(2);
+        two.setGenerations(0);
+        const DistanceResult r = solve(two, a, b, X, k);
+        auto clusterOf = [](const Body &body, std::uint32_t node)
+        {
+            const auto &order = body.clusterOrder();
+            const auto at = static_cast<std::uint32_t>(std::find(order.begin(), order.end(), node) - order.begin());
+            for (std::size_t c = 0; c < body.clusters().size(); ++c)
+                if (body.clusters()[c].begin <= at && at < body.clusters()[c].end)
+                    return c;
+            return body.clusters().size();
+        };
+        // The two members come from the two nearest cluster pairs; the answer is the better of them.
+        const auto got = std::make_tuple(clusterOf(a, r.nodes.a), clusterOf(b, r.nodes.b));
+        EXPECT_TRUE(got == std::make_tuple(std::get<1>(gaps[0]), std::get<2>(gaps[0])) ||
+                    got == std::make_tuple(std::get<1>(gaps[1]), std::get<2>(gaps[1])))
+            << "pose " << k;
+        EXPECT_EQ(r.evaluations, 2u);
+
+        const DistanceResult truth = enumerate(a, b, X);
+        for (const char *spec : {"seeding=clusters", "seeding=mixed", "restart_stall=3"})
+        {
+            const DistanceSolverPtr ga = allocSolver("comb-GA-wl");
+            const std::string text(spec);
+            ASSERT_TRUE(ga->params().setParam(text.substr(0, text.find('=')), text.substr(text.find('=') + 1)));
+            const DistanceResult v = solve(*ga, a, b, X, k), again = solve(*ga, a, b, X, k);
+            EXPECT_GE(v.distance, truth.distance) << spec;
+            EXPECT_NEAR(v.distance, (a.node(v.nodes.a) - X * b.node(v.nodes.b)).norm(), 1e-12) << spec;
+            EXPECT_EQ(v.distance, again.distance) << spec;
+            EXPECT_EQ(v.evaluations, again.evaluations) << spec;
+        }
+    }
+
+    // Restarts re-draw a stalled population: more evaluations than the paper's run on the same seed.
+    CombGA paper(true), restarting(true);
+    restarting.setRestartStall(2);
+    const Eigen::Isometry3d X = BumpyScene::pose(1);
+    EXPECT_GT(solve(restarting, a, b, X, 3).evaluations, solve(paper, a, b, X, 3).evaluations);
+
+    // Parameters by name: the defaults are the paper's, bad values refused.
+    CombGA ga(true);
+    std::string value;
+    ASSERT_TRUE(ga.params().getParam("seeding", value));
+    EXPECT_EQ(value, "random");
+    ASSERT_TRUE(ga.params().getParam("restart_stall", value));
+    EXPECT_EQ(value, "0");
+    EXPECT_FALSE(ga.params().setParam("seeding", "nearest"));
+    EXPECT_FALSE(ga.params().setParam("restart_stall", "-1"));
+    EXPECT_TRUE(ga.params().setParam("seeding", "mixed"));
+    EXPECT_EQ(ga.getSeeding(), CombGA::Seeding::Mixed);
+}

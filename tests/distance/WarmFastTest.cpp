@@ -145,3 +145,39 @@ TEST(WarmFast, StatelessFormAndFactory)
     EXPECT_GT(cold.iterations, 1u);  // cold: the global search ran
     EXPECT_GE(cold.distance, exactDistance(*a, *b, X) - 1e-12);
 }
+
+// comb-GA-wl as the global search, seeded from the nearest node-cluster pairs (global_search=comb-GA-wl,
+// global_seeding=clusters): still never below the exact distance along the path, never above its own node pair; the
+// defaults are the multistart and the paper's random draw.
+TEST(WarmFast, ClusterSeededGlobalSearchNeverBelowExact)
+{
+    const BodyPtr a = test::unrefinedBody(bracket()), b = test::unrefinedBody(test::icosphere(0.5, 2));
+    WarmFast solver;
+    std::string value;
+    ASSERT_TRUE(solver.params().getParam("global_seeding", value));
+    EXPECT_EQ(value, "random");
+    EXPECT_FALSE(solver.params().setParam("global_seeding", "mixed"));
+    ASSERT_TRUE(solver.params().getParam("global_search", value));
+    EXPECT_EQ(value, "multistart");
+    EXPECT_FALSE(solver.params().setParam("global_search", "enumeration"));
+    ASSERT_TRUE(solver.params().setParam("global_search", "comb-GA-wl"));
+    EXPECT_TRUE(solver.getGlobalGa());
+    ASSERT_TRUE(solver.params().setParam("global_seeding", "clusters"));
+    EXPECT_EQ(solver.getGlobalSeeding(), CombGA::Seeding::Clusters);
+    solver.setGlobalEvery(4);  // many global searches
+    WarmFastState state;
+    int compared = 0;
+    for (const Eigen::Isometry3d &X : path(40))
+    {
+        DistanceResult r;
+        solver.solveWarm(*a, *b, X, state, 3, r);
+        const double exact = exactDistance(*a, *b, X);
+        if (exact < 0.0)
+            continue;
+        ++compared;
+        EXPECT_GE(r.distance, exact - 1e-12 * (1.0 + exact));
+        EXPECT_LE(r.distance, (a->node(r.nodes.a) - X * b->node(r.nodes.b)).norm() + 1e-12);
+    }
+    EXPECT_GT(compared, 20);
+    EXPECT_GE(state.globalSearches, 10u);
+}

@@ -1,5 +1,6 @@
 // The OMPL checker: exact validity (never valid in collision), honest specs, certified clearance equal to the
-// brute-force minimum over obstacles, a fast mode that is a pure function of the state, and thread safety.
+// brute-force minimum over obstacles, fast mode with a named solver a pure function of the state, fast mode's default
+// (warm-fast, warm-started per thread) never below the exact clearance with the exact verdict, and thread safety.
 
 #include <gtest/gtest.h>
 
@@ -151,7 +152,7 @@ TEST(ClearanceChecker, OutOfBoundsIsInvalid)
 TEST(ClearanceChecker, FastModeIsAPureFunctionOfTheStateAndNeverBelowExact)
 {
     Fixture f;
-    ClearanceChecker fast(f.si, f.scene, ClearanceChecker::Mode::FAST), exact(f.si, f.scene);
+    ClearanceChecker fast(f.si, f.scene, ClearanceChecker::Mode::FAST, "comb-GA-wl"), exact(f.si, f.scene);
     const auto states = f.randomStates(60);
     std::vector<double> first;
     for (const auto &s : states)
@@ -173,13 +174,15 @@ TEST(ClearanceChecker, ThreadsGiveTheSingleThreadedAnswers)
     for (const ClearanceChecker::Mode mode : {ClearanceChecker::Mode::CERTIFIED, ClearanceChecker::Mode::FAST})
     {
         const bool fast = mode == ClearanceChecker::Mode::FAST;
-        ClearanceChecker checker(f.si, f.scene, mode);
+        // Fast mode with the paper's solver, which is a pure function of the state (warm-fast's answers depend on
+        // the thread's history: WarmFastAlongPathsInThreads below).
+        ClearanceChecker checker(f.si, f.scene, mode, "comb-GA-wl");
         // Fast clearance runs comb-GA-wl per obstacle pair: fewer states keep the test short.
         const std::size_t n = fast ? 23 : states.size();
         std::vector<double> expected(n);
         std::vector<char> expectedValid(n);
         {
-            ClearanceChecker reference(f.si, f.scene, mode);
+            ClearanceChecker reference(f.si, f.scene, mode, "comb-GA-wl");
             for (std::size_t i = 0; i < n; ++i)
             {
                 expected[i] = reference.clearance(states[i].get());
@@ -229,4 +232,105 @@ TEST(ClearanceChecker, ThreadsGiveTheSingleThreadedAnswers)
         EXPECT_GT(stats.clearanceCalls, 0u);
         EXPECT_GE(stats.validityCalls, n * THREADS * ROUNDS / 2);
     }
+}
+
+namespace
+{
+    // Runs of nearby states: OMPL's interpolation between consecutive random states, \e steps per segment.
+    std::vector<ob::ScopedState<ob::SE3StateSpace>> pathStates(const Fixture &f, int segments, int steps)
+    {
+        const auto ends = f.randomStates(segments + 1);
+        std::vector<ob::ScopedState<ob::SE3StateSpace>> states;
+        for (int k = 0; k < segments; ++k)
+            for (int i = 0; i < steps; ++i)
+            {
+                states.emplace_back(f.si->getStateSpace());
+                f.si->getStateSpace()->interpolate(ends[k].get(), ends[k + 1].get(), double(i) / steps,
+                                                   states.back().get());
+            }
+        return states;
+    }
+}  // namespace
+
+// Fast mode's default solver is warm-fast (the same answers as naming it), each answer at or above the certified
+// (exact) clearance and the distance between its own witness points, the verdict exact, and along runs of nearby
+// states most answers the exact clearance itself (the surface descent reaches the closest triangles).
+TEST(ClearanceChecker, FastModeDefaultsToWarmFastNeverBelowExact)
+{
+    Fixture f;
+    const auto states = pathStates(f, 6, 40);
+    ClearanceChecker fast(f.si, f.scene, ClearanceChecker::Mode::FAST),
+        named(f.si, f.scene, ClearanceChecker::Mode::FAST, "warm-fast"), exact(f.si, f.scene);
+    int free = 0, atExact = 0, colliding = 0;
+    for (const auto &s : states)
+    {
+        const SceneResult r = fast.query(s.get());
+        ASSERT_EQ(r.distance, named.clearance(s.get()));
+        const SceneResult e = exact.query(s.get());
+        ASSERT_EQ(fast.isValid(s.get()), exact.isValid(s.get()));
+        ASSERT_EQ(r.inCollision, e.inCollision);
+        EXPECT_FALSE(r.certified);
+        if (e.inCollision)
+        {
+            ++colliding;
+            EXPECT_LE(r.distance, 0.0);
+            continue;
+        }
+        ++free;
+        EXPECT_GE(r.distance, e.distance - 1e-12);
+        EXPECT_NEAR((r.onRobot - r.onObstacle).norm(), r.distance, 1e-9 * (1.0 + r.distance));
+        atExact += r.distance <= e.distance + 1e-9 * (1.0 + e.distance);
+    }
+    EXPECT_GT(free, 60);
+    EXPECT_GT(colliding, 0) << "no state collides: the verdicts went untested";
+    EXPECT_GE(2 * atExact, free) << atExact << " of " << free << " free states at the exact clearance";
+    std::cout << "warm-fast at the exact clearance at " << atExact << " of " << free << " free states\n";
+}
+
+// Threads each walking the runs with one warm-fast checker: every answer at or above the exact one, every verdict
+// exact (a thread's warm start is its own).
+TEST(ClearanceChecker, WarmFastAlongPathsInThreads)
+{
+    constexpr int THREADS = 4;
+    Fixture f;
+    const auto states = pathStates(f, 4, 30);
+    std::vector<double> exactDistance;
+    std::vector<char> exactValid;
+    {
+        ClearanceChecker exact(f.si, f.scene);
+        for (const auto &s : states)
+        {
+            exactDistance.push_back(exact.clearance(s.get()));
+            exactValid.push_back(exact.isValid(s.get()));
+        }
+    }
+    ClearanceChecker fast(f.si, f.scene, ClearanceChecker::Mode::FAST);
+    std::vector<std::vector<double>> got(THREADS, std::vector<double>(states.size()));
+    std::vector<std::vector<char>> gotValid(THREADS, std::vector<char>(states.size()));
+    std::vector<std::thread> threads;
+    for (int t = 0; t < THREADS; ++t)
+        threads.emplace_back([&, t] {
+            // Thread t walks the runs forwards (even t) or backwards (odd t).
+            for (std::size_t k = 0; k < states.size(); ++k)
+            {
+                const std::size_t i = t % 2 == 0 ? k : states.size() - 1 - k;
+                got[t][i] = fast.clearance(states[i].get());
+                gotValid[t][i] = fast.isValid(states[i].get());
+            }
+        });
+    for (std::thread &t : threads)
+        t.join();
+    for (int t = 0; t < THREADS; ++t)
+        for (std::size_t i = 0; i < states.size(); ++i)
+        {
+            EXPECT_EQ(gotValid[t][i], exactValid[i]) << "thread " << t << " state " << i;
+            if (exactValid[i])
+            {
+                EXPECT_GE(got[t][i], exactDistance[i] - 1e-12) << "thread " << t << " state " << i;
+            }
+            else
+            {
+                EXPECT_LE(got[t][i], 0.0) << "thread " << t << " state " << i;
+            }
+        }
 }

@@ -27,6 +27,16 @@ namespace meshgap
        5%. So by default only G_max stops the search; "stall_generations" (setStallGenerations()) trades robustness for
        cost.
 
+       Initial population ("seeding", setSeeding()): Seeding::Random, the paper's and the default, draws node pairs
+       uniformly from A x B. Seeding::Clusters (our variant, off by default) draws them from the region pairs nearest
+       each other: the bodies' node clusters (Body::clusters(), bounding spheres of at most 32 nodes, the leaves that
+       enumeration prunes with) are paired, the pairs ranked by their signed sphere gap (centre distance minus both
+       radii, as enumeration orders them), and member k of the population is a random node of each cluster of the
+       k-th nearest cluster pair; the search from there is the paper's. It costs the clusters' pair count in sphere
+       gaps (not node evaluations, and not counted as such). Seeding::Mixed draws half the population that way and
+       half at random. setRestartStall() re-draws a stalled population at random, keeping the best (a restart with
+       the remaining generations). Both measured in bench/paper/README.md (issue 15); both off by default.
+
        "comb-GA-wl" hill-climbs (hillClimb(), III-E) every new trial point before it enters the population, and the
        improved pair replaces it (Lamarckian evolution: the paper's memetic variant); "comb-GA-nl" does not.
 
@@ -54,6 +64,14 @@ namespace meshgap
         static constexpr double DEFAULT_MUTATION_RATE = 0.02;
         /** \brief Table I: probability of crossover (mesh mating) p_x, per pair of parents. */
         static constexpr double DEFAULT_CROSSOVER_RATE = 0.6;
+
+        /** \brief How the initial population is drawn (see the class description). */
+        enum class Seeding
+        {
+            Random,   ///< uniformly over A x B (the paper)
+            Clusters,  ///< one pair per nearest node-cluster pair, nearest first
+            Mixed      ///< half of them as Clusters (the even places), half as Random
+        };
 
         /** \brief "comb-GA-wl" when \e localSearch, "comb-GA-nl" otherwise. */
         explicit CombGA(bool localSearch);
@@ -86,8 +104,21 @@ namespace meshgap
         void setStallGenerations(unsigned int g) { stallGenerations_ = g; }
         unsigned int getStallGenerations() const { return stallGenerations_; }
 
+        /** \brief The initial population's draw (parameter "seeding": "random", the default, "clusters" or
+            "mixed"). */
+        void setSeeding(Seeding s) { seeding_ = s; }
+        Seeding getSeeding() const { return seeding_; }
+
+        /** \brief Restart a stalled population (parameter "restart_stall"): once the best pair has not improved for
+            \e g generations since the last improvement or restart, every member but the best is drawn again
+            uniformly at random (and climbed, for -wl); 0, the default, never restarts (the paper). */
+        void setRestartStall(unsigned int g) { restartStall_ = g; }
+        unsigned int getRestartStall() const { return restartStall_; }
+
     private:
         bool localSearch_;
+        Seeding seeding_{Seeding::Random};
+        unsigned int restartStall_{0};
         unsigned int population_{DEFAULT_POPULATION};
         unsigned int generations_{DEFAULT_GENERATIONS};
         double mutationRate_{DEFAULT_MUTATION_RATE};

@@ -24,6 +24,13 @@ namespace meshgap
             return (a_.node(i) - (R_ * b_.node(j) + t_)).squaredNorm();
         }
         double d2(const NodePair &p) { return d2(p.a, p.b); }
+        /** \brief d2(i, j) with node j of B already in A's frame (\e bInA, from bInA(j)): the same value bit for bit,
+            without carrying j again (a climb moving A's node against a fixed node of B). */
+        double d2ToB(std::uint32_t i, const Eigen::Vector3d &bInA)
+        {
+            ++evaluations_;
+            return (a_.node(i) - bInA).squaredNorm();
+        }
 
         /** \brief Node j of B expressed in A's frame. */
         Eigen::Vector3d bInA(std::uint32_t j) const { return R_ * b_.node(j) + t_; }

@@ -34,10 +34,13 @@ namespace meshgap
        climbed distance exceeds, by more than \e gap_tolerance relative, the lower bound that the last global
        search still gives: the node minimum can have dropped since then by at most the drift, how far any node of B
        has moved (each pose step moves a node at most |dt| + |dR| r_B, r_B = Body::radiusAboutOrigin()), so it is at
-       least (global distance - drift) if that search was right. The global search is comb-GA-wl (Table I) when
-       both bodies' mesh distances are dense tables; beyond the dense budget it is a bounded multistart of hill
+       least (global distance - drift) if that search was right. The global search is a bounded multistart of hill
        climbs (random starts, \e global_evaluations d^2 in all), which needs no mesh distances, so no query costs
-       seconds. comb-GA-wl is capped at \e global_evaluations too.
+       seconds; with \e global_search "comb-GA-wl" it is comb-GA-wl (Table I, capped at \e global_evaluations too)
+       when both bodies' mesh distances are dense tables. The multistart is the default since the profile of
+       issue 15: global searches were 98% of warm-fast's instructions along cubicles' path, a third of comb-GA-wl's
+       in its mesh operators (mating, paths), and the multistart's mean query was 0.27-0.77 of comb-GA-wl's on every
+       path of meshgap_bench_warm_fast, with the same median error (0).
 
        The answer is APPROXIMATE: a node pair's distance, or with \e surface_patch (the default) the exact distance
        of the best surface triangle pair found by a descent over corner-sharing neighbouring triangles, seeded with
@@ -49,9 +52,10 @@ namespace meshgap
        verdict tests collision exactly (inCollision() in ExactDistance.h). distance is set, nodes (the node pair),
        onA/onB (A's frame), evaluations, localSteps, iterations (1 + the global search's), triangleTests.
 
-       The first global search asks both bodies for their mesh distances (Body::distances(), built once per body on
-       first use: an all-pairs table can take a second or more for a few thousand nodes), so build them beforehand to
-       keep that out of the queries. After that, a climb and the patch allocate nothing.
+       Every global search asks both bodies whether their mesh distances are dense (Body::distances(), built once
+       per body on first use: an all-pairs table can take a second or more for a few thousand nodes), so build them
+       beforehand to keep that out of the queries. After that, a climb, the multistart and the patch allocate
+       nothing (comb-GA-wl may).
 
        Use solveWarm() with one WarmFastState per body pair along a path (a scene calls it per obstacle with the
        obstacle as A and the robot as B); solve() is the stateless form: a warm start from DistanceRequest::start
@@ -86,6 +90,15 @@ namespace meshgap
         /** \brief Cap on a global search's d^2 evaluations (parameter "global_evaluations", > 0). */
         void setGlobalEvaluations(unsigned int n);
         unsigned int getGlobalEvaluations() const { return globalEvaluations_; }
+        /** \brief The global search (parameter "global_search"): a bounded multistart of hill climbs (false, the
+            default: cheaper per evaluation, measured in bench/paper/README.md, issue 15) or, when both bodies' mesh
+            distances are dense tables, comb-GA-wl (true). */
+        void setGlobalGa(bool ga) { globalGa_ = ga; }
+        bool getGlobalGa() const { return globalGa_; }
+        /** \brief How the dense global search (comb-GA-wl) draws its initial population (parameter
+            "global_seeding": "random", the paper's and the default, or "clusters", CombGA::Seeding). */
+        void setGlobalSeeding(CombGA::Seeding s) { ga_.setSeeding(s); }
+        CombGA::Seeding getGlobalSeeding() const { return ga_.getSeeding(); }
         /** \brief Report the exact distance of the triangles around the node pair (parameter "surface_patch"). */
         void setSurfacePatch(bool on) { surfacePatch_ = on; }
         bool getSurfacePatch() const { return surfacePatch_; }
@@ -101,6 +114,7 @@ namespace meshgap
         double gapTolerance_{DEFAULT_GAP_TOLERANCE};
         unsigned int globalEvaluations_{DEFAULT_GLOBAL_EVALUATIONS};
         bool surfacePatch_{true};
+        bool globalGa_{false};
     };
 }  // namespace meshgap
 

@@ -39,16 +39,27 @@ namespace meshgap
        @anchor mgClearanceChecker
        @par Short description
        An OMPL state validity checker backed by a meshgap Scene. isValid() is exact (triangle intersection and
-       containment; a state in collision is never valid) and stops at the first colliding obstacle. clearance() is
-       the distance to the nearest obstacle: in CERTIFIED mode the exact surface distance, proven by a BVH traversal
-       (specs: EXACT), with a warm start per thread (the last answer of the same thread, paper III-D); in FAST mode
-       the paper's node-to-node distance from its fast solver (comb-GA-wl unless named; specs: APPROXIMATE; never
-       below the exact value), seeded from the state's own coordinates and not warm-started, so it is a pure
-       function of the state, as RRT*'s and PRM*'s repeated cost comparisons need; except "warm-fast", the
-       paper's warm start (III-D), which climbs from this thread's last answer and so depends on the thread's
-       history (still never below the exact value). clearance() is signed: it returns SceneResult::distance as
-       the scene computes it, which in collision is the penetration depth as a negative number (or 0 where the scene
-       computes no depth). clearance(state, validState, validStateAvailable) (specs: hasValidDirectionComputation)
+       containment; a state in collision is never valid) and stops at the first colliding obstacle, in both modes.
+       clearance() is the distance to the nearest obstacle. In CERTIFIED mode it is the exact surface distance,
+       proven by a BVH traversal (specs: EXACT), with a warm start per thread (the last answer of the same thread,
+       paper III-D). In FAST mode it is an upper bound from a node-level solver (specs: APPROXIMATE; never below the
+       exact value). FAST mode's default solver is "warm-fast" (WarmFast.h, the paper's warm start, III-D/E): per
+       obstacle it climbs from this thread's last node pair, searches globally only on a cold start, a jump or at a
+       fixed rate, and reports the exact distance of the nearest surface triangles it reached, so its answer
+       depends on the thread's history (one state asked twice may get two answers, both at or above the exact
+       one). Any other SolverFactory name (e.g. "comb-GA-wl", the paper's solver) runs from scratch per state,
+       seeded from the state's coordinates: a pure function of the state, at several times the certified query's
+       cost. Which to use when (measured in bench/paper/README.md, issue 15): CERTIFIED by default and wherever the
+       clearance is a guarantee (ClearanceMotionValidator, a clearance constraint, a proven path clearance), and
+       wherever queries jump between unrelated states (RRT*'s costs: warm-fast's global searches made its mean query
+       7-20 times the certified one there) or the certified query is already a few microseconds (the OMPL.app
+       problems: warm-fast's median along paths 0.65-0.74 of it, its mean 3.3-11 times). FAST with "warm-fast"
+       along runs of nearby states near large contact areas, where the certified query costs tens to hundreds of
+       microseconds (the paper's maps: median 0.004-0.12, mean 0.16-0.43 of the certified query on battery_fixture,
+       hand_bowl, slotted_wall), and only the collision verdict must be exact. FAST with "comb-GA-wl" only where a
+       pure function of the state matters more than time. clearance() is signed: it returns SceneResult::distance
+       as the scene computes it, which in collision is the penetration depth as a negative number (or 0 where the
+       scene computes no depth). clearance(state, validState, validStateAvailable) (specs: hasValidDirectionComputation)
        also proposes a valid state away from the nearest obstacle (validStateAway()). Thread-safe: the scene is
        immutable, warm starts live per thread, counters are atomic.
     */
@@ -62,9 +73,9 @@ namespace meshgap
         };
 
         /** \brief \e fastSolver: the node-level solver of FAST mode, by its SolverFactory name (an unknown name
-            throws, listing the valid ones). */
+            throws, listing the valid ones); "warm-fast", warm-started per thread, unless named. */
         ClearanceChecker(const ompl::base::SpaceInformationPtr &si, SceneConstPtr scene, Mode mode = Mode::CERTIFIED,
-                         std::string fastSolver = "comb-GA-wl");
+                         std::string fastSolver = "warm-fast");
 
         bool isValid(const ompl::base::State *state) const override;
         bool isValid(const ompl::base::State *state, double &dist) const override;
