@@ -249,15 +249,22 @@ namespace meshgap
             std::uint32_t a, b;
         };
 
-        /** \brief A pair of nodes still to open, with its lower bound. */
+        /** \brief A pair of nodes still to open, with its lower bound and its rank in a best-first search: the bound
+            when the boxes are apart; among pairs whose boxes overlap (bound <= 0, nothing to choose by), the smaller
+            pair first (-1 / the sum of the radii), so that the search goes down to leaves instead of across. */
         struct Open
         {
-            double bound;
+            double bound, rank;
             PairEntry pair;
         };
 
-        /** \brief Heap order: the least bound on top. */
-        bool farther(const Open &x, const Open &y) { return x.bound > y.bound; }
+        double rank(double bound, const TriangleBvh::Node &a, const TriangleBvh::Node &b)
+        {
+            return bound > 0.0 ? bound : -1.0 / (a.radius + b.radius + std::numeric_limits<double>::min());
+        }
+
+        /** \brief Heap order: the least rank on top. */
+        bool farther(const Open &x, const Open &y) { return x.rank > y.rank; }
 
         /** \brief A traversal stack of this thread, emptied, its capacity kept from earlier calls: once warm, a query
             allocates nothing for it. Each call site has its own \e Site, so no traversal ever shares a stack with
@@ -387,7 +394,7 @@ namespace meshgap
                 // leaves is tested (the open pair of least bound next: that first exact distance then comes from
                 // near the minimum, wherever it is among many parts, and prunes well); depth first, nearer child
                 // first, from there on and whenever a bound is known (no heap to keep: cheaper per pair).
-                open_.push_back({startBound, start});
+                open_.push_back({startBound, startBound, start});
                 bestFirst_ = !(enough() < std::numeric_limits<double>::infinity());
                 while (!open_.empty())
                 {
@@ -412,7 +419,8 @@ namespace meshgap
                         if (bestFirst_)
                         {
                             // Depth first from here: the open pairs as a stack, the least bound on top.
-                            std::sort(open_.begin(), open_.end(), farther);
+                            std::sort(open_.begin(), open_.end(),
+                                      [](const Open &x, const Open &y) { return x.bound > y.bound; });
                             bestFirst_ = false;
                         }
                         continue;
@@ -545,7 +553,7 @@ namespace meshgap
                 for (const auto &[c, cb] : {std::pair<PairEntry, double>{c1, b1}, {c2, b2}})
                     if (cb <= enough())
                     {
-                        open_.push_back({cb, c});
+                        open_.push_back({cb, rank(cb, a_.nodes()[c.a], b_.nodes()[c.b]), c});
                         if (bestFirst_)
                             std::push_heap(open_.begin(), open_.end(), farther);
                     }
