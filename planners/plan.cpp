@@ -77,7 +77,8 @@ namespace
             "weight", po::value(&o.weight),
             "W of --objective weighted, a length (default: a tenth of the robot's radius)")(
             "checker", po::value(&o.checker),
-            "clearance checker: certified (exact) or fast (the paper's node distance)")(
+            "clearance checker: certified (exact) or fast (an upper bound from the paper's solver, warm-started: "
+            "APPROXIMATE)")(
             "motion", po::value(&o.motion),
             "motion validator: discrete (OMPL's, sampled) or clearance (conservative advancement, certified)")(
             "seed", po::value(&o.seed), "OMPL's random seed (default 1)")(
