@@ -9,6 +9,64 @@
 
 namespace meshgap
 {
+    namespace
+    {
+        /** \brief The box of the triangles order[first, first + count) of \e mesh: the tighter of the axis-aligned
+            box and the box along the principal axes of their corners (kept only if clearly smaller, an aligned box
+            making cheaper tests), with the bounding sphere about its centre; padded against roundoff. */
+        TriangleBvh::Node fitNode(const Mesh &mesh, const std::vector<std::uint32_t> &order, std::uint32_t first,
+                                  std::uint32_t count)
+        {
+            Eigen::AlignedBox3d box;
+            Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+            for (std::uint32_t k = first; k < first + count; ++k)
+                for (std::uint32_t v : mesh.triangles[order[k]])
+                {
+                    box.extend(mesh.vertices[v]);
+                    mean += mesh.vertices[v];
+                }
+            mean /= 3.0 * count;
+            TriangleBvh::Node node;
+            node.center = box.center();
+            node.half = 0.5 * box.sizes();
+            // The principal box: along the eigenvectors of the corners' covariance. Kept if clearly smaller (an
+            // aligned box makes cheaper tests).
+            Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+            for (std::uint32_t k = first; k < first + count; ++k)
+                for (std::uint32_t v : mesh.triangles[order[k]])
+                {
+                    const Eigen::Vector3d d = mesh.vertices[v] - mean;
+                    covariance += d * d.transpose();
+                }
+            Eigen::Matrix3d axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors();
+            if (axes.determinant() < 0.0)
+                axes.col(2) = -axes.col(2);
+            Eigen::AlignedBox3d principal;
+            for (std::uint32_t k = first; k < first + count; ++k)
+                for (std::uint32_t v : mesh.triangles[order[k]])
+                    principal.extend(Eigen::Vector3d(axes.transpose() * mesh.vertices[v]));
+            const Eigen::Vector3d principalHalf = 0.5 * principal.sizes();
+            auto measure = [](const Eigen::Vector3d &h) { return h.prod() + 1e-3 * h.squaredNorm() * h.minCoeff(); };
+            if (axes.allFinite() && measure(principalHalf) < 0.8 * measure(node.half))
+            {
+                node.axes = axes;
+                node.aligned = false;
+                node.center = axes * principal.center();
+                node.half = principalHalf;
+            }
+            double r2 = 0.0;
+            for (std::uint32_t k = first; k < first + count; ++k)
+                for (std::uint32_t v : mesh.triangles[order[k]])
+                    r2 = std::max(r2, (mesh.vertices[v] - node.center).squaredNorm());
+            // Rounding slack: bounds must never cut into the geometry they bound (a rotated box's corners are
+            // projected with roundoff of a few 1e-16 of the coordinates).
+            const double slack = 1e-12 * (node.center.norm() + node.half.norm() + mean.norm());
+            node.radius = std::sqrt(r2) + slack;
+            node.half.array() += slack;
+            return node;
+        }
+    }  // namespace
+
     TriangleBvh::TriangleBvh(const Mesh &mesh) : mesh_(&mesh)
     {
         const auto n = static_cast<std::uint32_t>(mesh.triangles.size());
@@ -42,52 +100,7 @@ namespace meshgap
         {
             const Work w = stack.back();
             stack.pop_back();
-            Eigen::AlignedBox3d box;
-            Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-            for (std::uint32_t k = w.first; k < w.first + w.count; ++k)
-                for (std::uint32_t v : mesh.triangles[order_[k]])
-                {
-                    box.extend(mesh.vertices[v]);
-                    mean += mesh.vertices[v];
-                }
-            mean /= 3.0 * w.count;
-            Node node;
-            node.center = box.center();
-            node.half = 0.5 * box.sizes();
-            // The principal box: along the eigenvectors of the corners' covariance. Kept if clearly smaller (an
-            // aligned box makes cheaper tests).
-            Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-            for (std::uint32_t k = w.first; k < w.first + w.count; ++k)
-                for (std::uint32_t v : mesh.triangles[order_[k]])
-                {
-                    const Eigen::Vector3d d = mesh.vertices[v] - mean;
-                    covariance += d * d.transpose();
-                }
-            Eigen::Matrix3d axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors();
-            if (axes.determinant() < 0.0)
-                axes.col(2) = -axes.col(2);
-            Eigen::AlignedBox3d principal;
-            for (std::uint32_t k = w.first; k < w.first + w.count; ++k)
-                for (std::uint32_t v : mesh.triangles[order_[k]])
-                    principal.extend(Eigen::Vector3d(axes.transpose() * mesh.vertices[v]));
-            const Eigen::Vector3d principalHalf = 0.5 * principal.sizes();
-            auto measure = [](const Eigen::Vector3d &h) { return h.prod() + 1e-3 * h.squaredNorm() * h.minCoeff(); };
-            if (axes.allFinite() && measure(principalHalf) < 0.8 * measure(node.half))
-            {
-                node.axes = axes;
-                node.aligned = false;
-                node.center = axes * principal.center();
-                node.half = principalHalf;
-            }
-            double r2 = 0.0;
-            for (std::uint32_t k = w.first; k < w.first + w.count; ++k)
-                for (std::uint32_t v : mesh.triangles[order_[k]])
-                    r2 = std::max(r2, (mesh.vertices[v] - node.center).squaredNorm());
-            // Rounding slack: bounds must never cut into the geometry they bound (a rotated box's corners are
-            // projected with roundoff of a few 1e-16 of the coordinates).
-            const double slack = 1e-12 * (node.center.norm() + node.half.norm() + mean.norm());
-            node.radius = std::sqrt(r2) + slack;
-            node.half.array() += slack;
+            Node node = fitNode(mesh, order_, w.first, w.count);
             if (w.count <= LEAF_SIZE)
             {
                 node.first = w.first;
@@ -244,6 +257,25 @@ namespace meshgap
                    std::max({axis.dot(p[0]), axis.dot(p[1]), axis.dot(p[2])});
         }
 
+        /** \brief The separating-axis gap of triangles p and q (unit normals \e np and \e nq): along either normal,
+            then along the nine edge-cross axes until one proves more than \e enough (a lower bound on their
+            distance; 0 when no axis separates them, as when they intersect). */
+        Separation triangleSeparation(const Eigen::Vector3d &np, const Eigen::Vector3d &nq, const Eigen::Vector3d *p,
+                                      const Eigen::Vector3d *q, double enough)
+        {
+            Separation s;
+            s.consider(np, p, q);
+            s.consider(nq, p, q);
+            for (int m = 0; m < 9 && !(s.gap > enough); ++m)
+            {
+                const Eigen::Vector3d n = (p[(m / 3 + 1) % 3] - p[m / 3]).cross(q[(m % 3 + 1) % 3] - q[m % 3]);
+                const double length = n.norm();
+                if (length > 0.0)  // else parallel edges: no axis
+                    s.consider(n, p, q, length);
+            }
+            return s;
+        }
+
         struct PairEntry
         {
             std::uint32_t a, b;
@@ -307,6 +339,26 @@ namespace meshgap
 
     namespace
     {
+        /** \brief B's motion from an earlier pose \e P to \e X (both B in A's frame), to bound how far the points of a
+            node of B moved: nodeMotionBound() with the rotation's part worked out once. */
+        struct StepMotion
+        {
+            Eigen::Matrix3d dR;
+            Eigen::Vector3d dt;
+            double turn{0.0}, pad{0.0};
+            StepMotion(const Eigen::Isometry3d &P, const Eigen::Isometry3d &X, const TriangleBvh::Node &rootB)
+              : dR(X.linear() - P.linear()), dt(X.translation() - P.translation())
+            {
+                const double t = std::sqrt(std::max(0.0, 3.0 - P.linear().cwiseProduct(X.linear()).sum()));
+                turn = t + 1e-7 * (t > 0.0);
+                pad = 1e-12 * (rootB.center.norm() + rootB.radius + P.translation().norm() + X.translation().norm());
+            }
+            double displacement(const TriangleBvh::Node &n) const
+            {
+                return ((dR * n.center + dt).norm() + n.radius * turn) * (1.0 + 1e-12) + pad;
+            }
+        };
+
         /** \brief One distance traversal: a search over node pairs (best first until a first exact distance when
             there is no bound yet, then depth first, nearer child first), pruning pairs
             whose lower bound exceeds the best distance (plus the tie slack); with \e record set, every pruned pair
@@ -470,17 +522,7 @@ namespace meshgap
                         // rules it out: the triangles that share a vertex or an edge closest to the other body,
                         // which all tie, then cost no exact test.
                         const double limit = this->limit(ta, tb);
-                        Separation s;
-                        s.consider(a_.normals()[ta], pa, pb);
-                        s.consider(normalB, pa, pb);
-                        for (int m = 0; m < 9 && !(s.gap > limit); ++m)
-                        {
-                            const Eigen::Vector3d n = (pa[(m / 3 + 1) % 3] - pa[m / 3]).cross(pb[(m % 3 + 1) % 3] -
-                                                                                              pb[m % 3]);
-                            const double length = n.norm();
-                            if (length > 0.0)  // else parallel edges: no axis
-                                s.consider(n, pa, pb, length);
-                        }
+                        const Separation s = triangleSeparation(a_.normals()[ta], normalB, pa, pb, limit);
                         if (s.gap > limit)
                         {
                             if (s.gap < least)
@@ -578,6 +620,70 @@ namespace meshgap
         };
     }  // namespace
 
+    namespace
+    {
+        /** \brief Re-test the entries of a valid distance front at the pose \e X_AB, \e motion (B's displacement
+            summed since the front was written) later: an entry is kept while key - motion stays above the best so
+            far; else while its bound lowered by its own node's displacement since it was computed does (re-based on
+            this pose); else while the gap along its separating axis does; else the traversal runs below it and its
+            sub-front (in traversal's record) replaces it. Returns the number of entries re-tested in full. */
+        std::size_t retestFront(BvhFront &front, DistanceTraversal &traversal, const TriangleBvh &b,
+                                const Eigen::Isometry3d &X_AB, double motion, std::uint32_t stamp)
+        {
+            const std::size_t count = front.entries.size();
+            std::vector<BvhFront::Entry> &next = front.next;
+            const double pad = 1e-12 * motion;  // the roundoff of the summed motion
+            std::array<std::optional<StepMotion>, BvhFront::POSES> slots;
+            std::size_t retested = 0;
+            // An entry is still proven beyond the best when key - motion - pad > enough(): the scan skips those in
+            // a tight loop against that threshold, worked out again whenever the best changes.
+            double threshold = traversal.enough() + motion + pad;
+            for (std::size_t i = 0; i < count; threshold = traversal.enough() + motion + pad, ++i)
+            {
+                while (i < count && front.entries[i].key > threshold)
+                    ++i;
+                if (i == count || traversal.stopped())
+                    break;
+                BvhFront::Entry &e = front.entries[i];
+                // Its own node's displacement since its bound was computed, if that pose is still known (the
+                // motion's difference worked out once per pose).
+                const std::uint32_t age = stamp - e.stamp;
+                if (age < BvhFront::POSES)
+                {
+                    const std::uint32_t slot = e.stamp % BvhFront::POSES;
+                    if (!slots[slot])
+                        slots[slot].emplace(front.poses[slot], X_AB, b.nodes()[0]);
+                    // Its bound now, kept re-based on this pose (so the next queries' scan keeps it without any
+                    // work); the extra pad covers the roundoff of taking the motion out and back in.
+                    const double now = e.key - front.motions[slot] - slots[slot]->displacement(b.nodes()[e.b]) -
+                                       pad - 1e-15 * std::abs(e.key);
+                    if (now > traversal.enough())
+                    {
+                        e.key = now + motion;
+                        e.stamp = stamp;
+                        continue;
+                    }
+                }
+                // A pair of leaves: its gap along the axis that separated it last time.
+                double gap;
+                if (traversal.axisProves(e, gap))
+                {
+                    e.key = gap + motion;
+                    e.stamp = stamp;
+                    ++front.axisKept;
+                    continue;
+                }
+                ++retested;
+                const PairEntry pair{e.a, e.b};
+                traversal.run(pair, traversal.bound(pair));
+                // Its sub-front (at least one entry) replaces it: the last one in its place, the others appended.
+                front.entries[i] = next.back();
+                next.pop_back();
+            }
+            return retested;
+        }
+    }  // namespace
+
     void bvhDistance(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, double upperBound,
                      double stopBelow, BvhDistanceResult &result, std::uint32_t seedA, std::uint32_t seedB,
                      BvhFront *front, const Eigen::Vector3d *seedAxis)
@@ -621,86 +727,15 @@ namespace meshgap
         }
         if (front->valid)
         {
-            // Every entry's bound falls by at most B's displacement since it was computed: lower it by the motion
-            // summed since then (key - motion), padded against the roundoff of that sum.
-            const BvhFront::Entry *const begin = front->entries.data();
-            const std::size_t count = front->entries.size();
+            // Every entry's bound falls by at most B's displacement since it was computed.
             const double motion = front->motion + step;
-            const double pad = 1e-12 * motion;
-            std::vector<BvhFront::Entry> &next = front->next;
-            next.clear();
-            std::size_t retested = 0;
-            struct SlotMotion
-            {
-                bool ready{false};
-                Eigen::Matrix3d dR;
-                Eigen::Vector3d dt;
-                double turn, pad;
-            };
-            std::array<SlotMotion, BvhFront::POSES> slots;
-            DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, &next, motion, stamp);
+            front->next.clear();
+            DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, &front->next, motion, stamp);
             traversal.knowSeed(seedAxis);
-            // An entry is still proven beyond the best when key - motion - pad > enough(): the scan below skips
-            // those in a tight loop against that threshold, worked out again whenever the best changes.
-            double threshold = traversal.enough() + motion + pad;
-            for (std::size_t i = 0; i < count; threshold = traversal.enough() + motion + pad, ++i)
-            {
-                while (i < count && begin[i].key > threshold)
-                    ++i;
-                if (i == count || traversal.stopped())
-                    break;
-                const BvhFront::Entry &e = begin[i];
-                // Its own node's displacement since its bound was computed, if that pose is still known: the
-                // motion's difference worked out once per pose (nodeMotionBound() term by term).
-                const std::uint32_t age = stamp - e.stamp;
-                if (age < BvhFront::POSES)
-                {
-                    const std::uint32_t slot = e.stamp % BvhFront::POSES;
-                    SlotMotion &m = slots[slot];
-                    if (!m.ready)
-                    {
-                        const Eigen::Isometry3d &P = front->poses[slot];
-                        m.dR = X_AB.linear() - P.linear();
-                        m.dt = X_AB.translation() - P.translation();
-                        const double turn =
-                            std::sqrt(std::max(0.0, 3.0 - P.linear().cwiseProduct(X_AB.linear()).sum()));
-                        m.turn = turn + 1e-7 * (turn > 0.0);
-                        m.pad = 1e-12 * (rootB.center.norm() + rootB.radius + P.translation().norm() +
-                                         X_AB.translation().norm());
-                        m.ready = true;
-                    }
-                    const TriangleBvh::Node &nb = b.nodes()[e.b];
-                    const double displacement =
-                        ((m.dR * nb.center + m.dt).norm() + nb.radius * m.turn) * (1.0 + 1e-12) + m.pad;
-                    // Its bound now, kept re-based on this pose (so the next queries' scan keeps it without any
-                    // work); the extra pad covers the roundoff of taking the motion out and back in.
-                    const double now = e.key - front->motions[slot] - displacement - pad - 1e-15 * std::abs(e.key);
-                    if (now > traversal.enough())
-                    {
-                        front->entries[i].key = now + motion;
-                        front->entries[i].stamp = stamp;
-                        continue;
-                    }
-                }
-                // A pair of leaves: its gap along the axis that separated it last time.
-                double gap;
-                if (traversal.axisProves(e, gap))
-                {
-                    front->entries[i].key = gap + motion;
-                    front->entries[i].stamp = stamp;
-                    ++front->axisKept;
-                    continue;
-                }
-                ++retested;
-                const PairEntry pair{e.a, e.b};
-                traversal.run(pair, traversal.bound(pair));
-                // Its sub-front (at least one entry) replaces it: the last one in its place, the others appended.
-                front->entries[i] = next.back();
-                next.pop_back();
-            }
-            front->reused += count - retested;
+            const std::size_t retested = retestFront(*front, traversal, b, X_AB, motion, stamp);
+            front->reused += front->entries.size() - retested;
             front->retested += retested;
-            front->entries.insert(front->entries.end(), next.begin(), next.end());
+            front->entries.insert(front->entries.end(), front->next.begin(), front->next.end());
             front->motion = motion;
             front->poses[stamp % BvhFront::POSES] = X_AB;
             front->motions[stamp % BvhFront::POSES] = motion;
@@ -777,26 +812,6 @@ namespace meshgap
     }
     namespace
     {
-        /** \brief B's motion from an earlier pose \e P to \e X (both B in A's frame), to bound how far the points of a
-            node of B moved: nodeMotionBound() with the rotation's part worked out once. */
-        struct StepMotion
-        {
-            Eigen::Matrix3d dR;
-            Eigen::Vector3d dt;
-            double turn{0.0}, pad{0.0};
-            StepMotion(const Eigen::Isometry3d &P, const Eigen::Isometry3d &X, const TriangleBvh::Node &rootB)
-              : dR(X.linear() - P.linear()), dt(X.translation() - P.translation())
-            {
-                const double t = std::sqrt(std::max(0.0, 3.0 - P.linear().cwiseProduct(X.linear()).sum()));
-                turn = t + 1e-7 * (t > 0.0);
-                pad = 1e-12 * (rootB.center.norm() + rootB.radius + P.translation().norm() + X.translation().norm());
-            }
-            double displacement(const TriangleBvh::Node &n) const
-            {
-                return ((dR * n.center + dt).norm() + n.radius * turn) * (1.0 + 1e-12) + pad;
-            }
-        };
-
         /** \brief One collision test below a pair of nodes, depth first: box pairs proven apart by more than
             \e margin + twice the motion of B's node by \e lookahead (the last step), and triangle pairs apart by more
             than \e margin, go to \e record with their gap (key = gap + motion), so that most of the front stays
@@ -886,17 +901,7 @@ namespace meshgap
                         const std::uint32_t ta = a_.order()[i];
                         const Triangle &fa = ma.triangles[ta];
                         const Eigen::Vector3d pa[3] = {ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]]};
-                        Separation s;
-                        s.consider(a_.normals()[ta], pa, pb);
-                        s.consider(normalB, pa, pb);
-                        for (int m = 0; m < 9 && !(s.gap > margin_); ++m)
-                        {
-                            const Eigen::Vector3d n = (pa[(m / 3 + 1) % 3] - pa[m / 3]).cross(pb[(m % 3 + 1) % 3] -
-                                                                                              pb[m % 3]);
-                            const double length = n.norm();
-                            if (length > 0.0)
-                                s.consider(n, pa, pb, length);
-                        }
+                        const Separation s = triangleSeparation(a_.normals()[ta], normalB, pa, pb, margin_);
                         if (!(s.gap > margin_))
                         {
                             if (trianglesIntersect(pa[0], pa[1], pa[2], pb[0], pb[1], pb[2]))
@@ -924,6 +929,54 @@ namespace meshgap
             std::vector<PairEntry> &stack_;
         };
 
+    }  // namespace
+
+    namespace
+    {
+        /** \brief Re-test the entries of a valid collision front at the pose \e X_AB, \e motion (B's displacement
+            summed since the front was written) later: an entry is kept while key - motion stays above the margin,
+            else while its gap lowered by its own node's displacement since then does (re-based on this pose); else
+            the traversal runs below it and its sub-front (in traversal's record) replaces it. True at the first
+            intersecting pair (the front is then left as it is). \e retested counts the entries re-tested. */
+        bool retestCollisionFront(BvhFront &front, CollisionTraversal &traversal, const TriangleBvh &b,
+                                  const Eigen::Isometry3d &X_AB, double margin, double motion, std::uint32_t stamp,
+                                  std::size_t &retested)
+        {
+            const double pad = 1e-12 * motion;  // the roundoff of the summed motion
+            std::array<std::optional<StepMotion>, BvhFront::POSES> slots;
+            const std::size_t count = front.entries.size();
+            for (std::size_t i = 0; i < count; ++i)
+            {
+                // Still apart by the margin after every motion since its gap was found (key - motion > margin).
+                while (i < count && front.entries[i].key > margin + motion + pad)
+                    ++i;
+                if (i == count)
+                    break;
+                BvhFront::Entry &e = front.entries[i];
+                // Its own node's displacement since then, if that pose is still known; kept re-based on this pose.
+                const std::uint32_t age = stamp - e.stamp;
+                if (age < BvhFront::POSES && age > 0)
+                {
+                    const std::uint32_t slot = e.stamp % BvhFront::POSES;
+                    if (!slots[slot])
+                        slots[slot].emplace(front.poses[slot], X_AB, b.nodes()[0]);
+                    const double now = e.key - front.motions[slot] - slots[slot]->displacement(b.nodes()[e.b]) -
+                                       pad - 1e-15 * std::abs(e.key);
+                    if (now > margin)
+                    {
+                        e.key = now + motion;
+                        e.stamp = stamp;
+                        continue;
+                    }
+                }
+                ++retested;
+                if (traversal.run({e.a, e.b}))
+                    return true;
+                front.entries[i] = front.next.back();  // its sub-front replaces it (at least one entry)
+                front.next.pop_back();
+            }
+            return false;
+        }
     }  // namespace
 
     bool bvhCollide(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, BvhFront &front,
@@ -962,44 +1015,13 @@ namespace meshgap
         if (front.valid && small)
         {
             const double motion = front.motion + step;
-            const double pad = 1e-12 * motion;
-            std::vector<BvhFront::Entry> &next = front.next;
-            next.clear();
-            CollisionTraversal traversal(a, b, X, margin, &*last, &next, motion, stamp);
-            std::array<std::optional<StepMotion>, BvhFront::POSES> slots;
-            const std::size_t count = front.entries.size();
+            front.next.clear();
+            CollisionTraversal traversal(a, b, X, margin, &*last, &front.next, motion, stamp);
             std::size_t retested = 0;
-            for (std::size_t i = 0; i < count; ++i)
-            {
-                // Still apart by the margin after every motion since its gap was found (key - motion > margin).
-                while (i < count && front.entries[i].key > margin + motion + pad)
-                    ++i;
-                if (i == count)
-                    break;
-                BvhFront::Entry &e = front.entries[i];
-                // Its own node's displacement since then, if that pose is still known; kept re-based on this pose.
-                const std::uint32_t age = stamp - e.stamp;
-                if (age < BvhFront::POSES && age > 0)
-                {
-                    const std::uint32_t slot = e.stamp % BvhFront::POSES;
-                    if (!slots[slot])
-                        slots[slot].emplace(front.poses[slot], X_AB, rootB);
-                    const double now = e.key - front.motions[slot] - slots[slot]->displacement(b.nodes()[e.b]) -
-                                       pad - 1e-15 * std::abs(e.key);
-                    if (now > margin)
-                    {
-                        e.key = now + motion;
-                        e.stamp = stamp;
-                        continue;
-                    }
-                }
-                ++retested;
-                const PairEntry pair{e.a, e.b};
-                if (traversal.run(pair))
-                    return report(traversal);
-                front.entries[i] = next.back();  // its sub-front replaces it (at least one entry)
-                next.pop_back();
-            }
+            if (retestCollisionFront(front, traversal, b, X_AB, margin, motion, stamp, retested))
+                return report(traversal);
+            const std::size_t count = front.entries.size();
+            std::vector<BvhFront::Entry> &next = front.next;
             front.reused += count - retested;
             front.retested += retested;
             front.entries.insert(front.entries.end(), next.begin(), next.end());
