@@ -12,10 +12,7 @@ ORDER = ["", "mesh", "geometry", "distance", "scene", "ompl", "planners"]
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
 
 # Known arrows against the flow, each with the reason it is still there. Keep this list short and shrinking.
-ALLOWED = {
-    # NodeSizing (issue 15's file) measures the local feature size with the triangle BVH; it belongs in geometry/.
-    ("src/mesh/NodeSizing.cpp", "geometry"),
-}
+ALLOWED = set()
 
 
 def part_of_file(rel):

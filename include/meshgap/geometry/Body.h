@@ -11,7 +11,7 @@
 #include "meshgap/geometry/TriangleBvh.h"
 #include "meshgap/mesh/Mesh.h"
 #include "meshgap/mesh/MeshDistances.h"
-#include "meshgap/mesh/NodeSizing.h"
+#include "meshgap/geometry/NodeSizing.h"
 #include "meshgap/mesh/Refine.h"
 #include "meshgap/mesh/SurfaceGraph.h"
 

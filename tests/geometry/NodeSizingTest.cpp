@@ -7,7 +7,7 @@
 #include "TestMeshes.h"
 #include "meshgap/Exception.h"
 #include "meshgap/geometry/Body.h"
-#include "meshgap/mesh/NodeSizing.h"
+#include "meshgap/geometry/NodeSizing.h"
 #include "meshgap/mesh/Refine.h"
 
 using namespace meshgap;

@@ -1,4 +1,4 @@
-#include "meshgap/mesh/NodeSizing.h"
+#include "meshgap/geometry/NodeSizing.h"
 
 #include <algorithm>
 #include <cmath>
