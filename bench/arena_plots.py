@@ -66,9 +66,25 @@ def box(ax, labels, values, ylabel):
         ax.text(i + 1, top, 'n={}'.format(len(v)), ha='center', va='bottom', fontsize=7)
 
 
+def common_part(labels):
+    """The labels' common beginning up to its last '[' or ',' (e.g. 'BKPIECE1[meshgap-certified,' when only the
+    sampler differs), and the labels without it (and without the ']' it opened); ('', labels) if none."""
+    if len(labels) < 2:
+        return '', labels
+    prefix = os.path.commonprefix(labels)
+    cut = max(prefix.rfind('['), prefix.rfind(','))
+    if cut < 0:
+        return '', labels
+    prefix = prefix[:cut + 1]
+    opened = '[' in prefix
+    return prefix, [l[len(prefix):-1] if opened and l.endswith(']') else l[len(prefix):] for l in labels]
+
+
 def plot_experiment(name, planners, path):
-    labels = list(planners)
-    runs = [planners[p] for p in labels]
+    runs = [planners[p] for p in planners]
+    common, labels = common_part(list(planners))
+    if common:
+        name = '{}: {}...{}'.format(name, common, ']' if '[' in common else '')
     panels = [('solved exactly (%)', None), ('time (s)', 'time')]
     # Path length, not OMPL's best cost: the planners of one experiment optimise different objectives (RRT*'s
     # max-min clearance cost and a length are not one axis); length is the cost every run shares.
