@@ -32,8 +32,8 @@ namespace meshgap
        state not kept at random, and a full query only for a colliding one. sample() gives up (returns false)
        after OMPL's attempts count. Needs the space's validity checker to be a meshgap ClearanceChecker in CERTIFIED
        mode (looked up at construction): with another checker it samples uniformly and rejects invalid states, with a
-       warning. Planners that use valid-state samplers (PRM, PRM*, LazyPRM*, EST, BiEST, SBL, STRIDE, ...) use it; the
-       RRT family samples the space directly and ignores it.
+       warning. Planners that use valid-state samplers (PRM, PRM*, EST, BiEST, BKPIECE, SBL, STRIDE, ...) use it; the
+       RRT family and LazyPRM* sample the space directly and ignore it.
     */
     class NarrowPassageSampler : public ompl::base::ValidStateSampler
     {
