@@ -116,12 +116,16 @@ namespace meshgap
 
     bool NarrowPassageSampler::sampleNear(ompl::base::State *state, const ompl::base::State *near, double distance)
     {
+        // Free draws first, as the uniform sampler makes them: a collision test each, no bias where the
+        // neighbourhood is open (a tree planner's expansion there is as fast as with uniform sampling).
         for (unsigned attempt = 0; attempt < attempts_; ++attempt)
         {
             sampler_->sampleUniformNear(state, near, distance);
-            if (accept(state, true))
+            if (checker_ ? checker_->isValid(state) : si_->isValid(state))
                 return true;
         }
-        return false;
+        // Every draw collided, where uniform sampling gives up: the neighbourhood is (nearly) all obstacle, e.g.
+        // the inside of a passage. The last draw is pushed out along its penetration direction.
+        return checker_ && accept(state, true);
     }
 }  // namespace meshgap

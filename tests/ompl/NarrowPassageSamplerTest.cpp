@@ -20,13 +20,13 @@ namespace ob = ompl::base;
 
 namespace
 {
-    /** \brief A thick wall at x in [-0.5, 0.5] spanning the whole space but for a slot |y| < 0.3, and a small box
-        robot (half sizes 0.2 0.1 0.1) that fits through it only lying along x. */
-    ob::SpaceInformationPtr slotProblem()
+    /** \brief A thick wall at x in [-0.5, 0.5] spanning the whole space but for a slot |y| < \e halfGap (default
+        0.3), and a small box robot (half sizes 0.2 0.1 0.1) that fits through it only lying along x. */
+    ob::SpaceInformationPtr slotProblem(double halfGap = 0.3)
     {
-        const Mesh world =
-            test::merged(test::transformed(test::box(0.5, 1.85, 3.0, 2), test::translation(0, 2.15, 0)),
-                         test::transformed(test::box(0.5, 1.85, 3.0, 2), test::translation(0, -2.15, 0)));
+        const Mesh world = test::merged(
+            test::transformed(test::box(0.5, 1.85, 3.0, 2), test::translation(0, halfGap + 1.85, 0)),
+            test::transformed(test::box(0.5, 1.85, 3.0, 2), test::translation(0, -halfGap - 1.85, 0)));
         auto space = std::make_shared<ob::SE3StateSpace>();
         ob::RealVectorBounds bounds(3);
         bounds.setLow(-2);
@@ -71,6 +71,56 @@ TEST(NarrowPassageSampler, ValidStatesCrowdedIntoTheSlot)
     // sampler (pushing colliding samples out of the wall, then to the middle) many.
     EXPECT_GE(narrowInSlot, 2.5 * uniformInSlot + 20) << narrowInSlot << " vs " << uniformInSlot;
     std::printf("in the slot: narrow_passage %d, uniform %d of %d\n", narrowInSlot, uniformInSlot, n);
+}
+
+TEST(NarrowPassageSampler, SampleNearIsValidAndSucceedsWhereUniformGivesUp)
+{
+    // A slot barely wider than the robot (half gap 0.115 for its half width 0.1).
+    const ob::SpaceInformationPtr si = slotProblem(0.115);
+    const auto checker = std::static_pointer_cast<const ClearanceChecker>(si->getStateValidityChecker());
+    NarrowPassageSampler narrow(si.get());
+    const auto uniform = validStateSamplerAllocator("uniform")(si.get());
+    ob::State *near = si->allocState(), *s = si->allocState();
+    auto *se3 = near->as<ob::SE3StateSpace::StateType>();
+    se3->rotation().setIdentity();
+    const auto returned = [&](ob::ValidStateSampler &sampler, double distance, int n)
+    {
+        int count = 0;
+        for (int i = 0; i < n; ++i)
+            if (sampler.sampleNear(s, near, distance))
+            {
+                ++count;
+                EXPECT_TRUE(si->satisfiesBounds(s)) << sampler.getName();
+                EXPECT_FALSE(checker->scene().inCollision(poseFromState(*si->getStateSpace(), s)))
+                    << sampler.getName();
+            }
+        return count;
+    };
+    // From the slot's middle, within 0.3: some draws are free, most collide (a slot barely wider than the robot);
+    // every state returned is valid by the exact test, pushed out or not.
+    se3->setXYZ(0.0, 0.0, 0.0);
+    ASSERT_FALSE(checker->scene().inCollision(poseFromState(*si->getStateSpace(), near)));
+    const int inSlotNarrow = returned(narrow, 0.3, 100), inSlotUniform = returned(*uniform, 0.3, 100);
+    std::printf("sampleNear from the slot: narrow_passage %d, uniform %d of 100\n", inSlotNarrow, inSlotUniform);
+    // From inside the wall (x = 0, y = 1), within 0.05: every draw collides, so uniform sampling gives up each
+    // time; the narrow-passage sampler pushes the last draw out of the wall (the nearest way out is along x, by
+    // about 0.7), keeping y within the draw's 0.05 of the wall's state.
+    se3->setXYZ(0.0, 1.0, 0.0);
+    const int n = 50;
+    EXPECT_EQ(returned(*uniform, 0.05, n), 0);
+    int pushed = 0;
+    for (int i = 0; i < n; ++i)
+        if (narrow.sampleNear(s, near, 0.05))
+        {
+            ++pushed;
+            const auto *p = s->as<ob::SE3StateSpace::StateType>();
+            EXPECT_FALSE(checker->scene().inCollision(poseFromState(*si->getStateSpace(), s)));
+            EXPECT_GT(std::abs(p->getX()), 0.5) << "out of the wall along x";
+            EXPECT_NEAR(p->getY(), 1.0, 0.05 + 1e-9);
+        }
+    EXPECT_GE(pushed, n * 9 / 10);
+    si->freeState(near);
+    si->freeState(s);
 }
 
 TEST(NarrowPassageSampler, SelectableByNameFromTheCommandLineAndTheCfg)

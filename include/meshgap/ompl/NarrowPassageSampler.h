@@ -23,13 +23,17 @@ namespace meshgap
        over-sampled. Colliding samples are common exactly where the free space is thin, so the states it returns
        crowd into passages and sit in their middle: OMPL's obstacle-based sampler and its maximize-clearance
        sampler combined, with the push and the centring exact. sampleNear() (the local samples of tree planners
-       such as EST and BiEST) only pushes a colliding sample out: a free one is kept as it is. Cost: an exact
+       such as EST, BiEST and BKPIECE) draws near the given state as the uniform sampler does, up to OMPL's
+       attempts count, and returns the first free draw; only if every draw collides (where the uniform sampler
+       gives up: the neighbourhood is nearly all obstacle, as inside a passage) is the last one pushed out along its
+       penetration direction (not centred). So a tree grows as fast as with uniform sampling in open space and
+       still gets states where uniform sampling returns none. Cost: an exact
        collision test per sample; a bounded clearance query (ClearanceChecker::clearanceBelow()) only for a free
-       state not kept at random, and a full query only for a colliding one. Gives up (returns false)
+       state not kept at random, and a full query only for a colliding one. sample() gives up (returns false)
        after OMPL's attempts count. Needs the space's validity checker to be a meshgap ClearanceChecker in CERTIFIED
        mode (looked up at construction): with another checker it samples uniformly and rejects invalid states, with a
-       warning. Planners that use valid-state samplers (PRM, PRM*, LazyPRM*, EST, BiEST, SBL, STRIDE, ...) use it; the
-       RRT family samples the space directly and ignores it.
+       warning. Planners that use valid-state samplers (PRM, PRM*, EST, BiEST, BKPIECE, SBL, STRIDE, ...) use it; the
+       RRT family and LazyPRM* sample the space directly and ignore it.
     */
     class NarrowPassageSampler : public ompl::base::ValidStateSampler
     {
@@ -49,7 +53,7 @@ namespace meshgap
 
     private:
         /** \brief Turn a drawn state into a returned one (see the class description); false to draw again. A
-            \e local sample (sampleNear()) that is free is kept as it is, and one in collision is only pushed out. */
+            \e local sample (sampleNear()) in collision is only pushed out. */
         bool accept(ompl::base::State *state, bool local);
         /** \brief Gradient ascent of the clearance from the free \e state (of clearance \e clearance), at most
             medialSteps_ accepted steps; returns the clearance reached. */
