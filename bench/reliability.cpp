@@ -132,7 +132,7 @@ int main(int argc, char **argv)
         options.gridSize = 0.0;
     else if (sizing == "adaptive")
     {
-        options.sizing = GridSizing::Adaptive;
+        options.sizing = GridSizing::ADAPTIVE;
         options.adaptive = rule;
     }
     const std::vector<std::string> algorithms = splitList(algorithmsText);

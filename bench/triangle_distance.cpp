@@ -1,7 +1,7 @@
 // Triangle-pair primitives: ns per call of meshgap's triangleDistance() and trianglesIntersect() against FCL 0.7's
 // TriangleDistance<double>::triDistance and Intersect<double>::intersect_Triangle on the same random pairs (median
 // over repeated passes), and how often FCL's answer differs from meshgap's (which the unit tests check against an
-// independent brute-force reference). meshgap counts a pair within kTriangleContactTolerance (1e-12 of the
+// independent brute-force reference). meshgap counts a pair within TRIANGLE_CONTACT_TOLERANCE (1e-12 of the
 // coordinate scale) as touching, while FCL's tests are exact on the floats, so most "FCL free where meshgap touches"
 // are such near contacts; the distance column counts pairs whose distances differ by more than 1e-9.
 //

@@ -123,7 +123,7 @@ int main(int argc, char **argv)
     BodyOptions options;
     options.distances.memoryBudgetBytes = static_cast<std::size_t>(budgetMiB * 1024 * 1024);
     if (sizing == "adaptive")
-        options.sizing = GridSizing::Adaptive;
+        options.sizing = GridSizing::ADAPTIVE;
     WarmFast solver;
     solver.setGlobalEvery(globalEvery);
     try

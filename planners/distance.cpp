@@ -57,7 +57,7 @@ namespace
         BodyOptions options;
         options.gridSize = grid;
         if (adaptive)
-            options.sizing = GridSizing::Adaptive;
+            options.sizing = GridSizing::ADAPTIVE;
         options.distances = distances;
         BodyPtr body = Body::build(mesh, options);
         const Eigen::AlignedBox3d box = mesh.bounds();
@@ -86,11 +86,11 @@ namespace
     {
         switch (kind)
         {
-            case Penetration::DeepestNode:
+            case Penetration::DEEPEST_NODE:
                 return "in collision: minus the depth of the deepest node inside the other body";
-            case Penetration::NoNodeInside:
+            case Penetration::NO_NODE_INSIDE:
                 return "in collision: no node inside the other body, depth 0";
-            case Penetration::OpenBodies:
+            case Penetration::OPEN_BODIES:
                 return "in collision: open bodies have no depth";
             default:
                 return "in collision: depth not computed";

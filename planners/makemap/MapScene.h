@@ -24,11 +24,11 @@ namespace meshgap
         using Eigen::Vector2d;
         using Eigen::Vector3d;
 
-        constexpr double pi = 3.14159265358979323846;
+        constexpr double PI = 3.14159265358979323846;
 
         inline double radians(double degrees)
         {
-            return degrees * pi / 180.0;
+            return degrees * PI / 180.0;
         }
 
         /** \brief Largest edge of the battery and fixture meshes in cm (--battery-grid). */

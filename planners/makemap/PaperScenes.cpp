@@ -47,11 +47,11 @@ namespace meshgap
         // g * sqrt(2). So bodies are meshed with edges at most sqrt(2) g (they then average about g).
         const double sqrt2 = std::sqrt(2.0);
         double batteryGrid = 5.0 * sqrt2;           // Table II's 0.05 m = 5 cm (see maps/README.md); --battery-grid
-        constexpr double holeRadius = 3.0;          // alignment holes: hexagons of circumradius 3, 12 deep
-        constexpr double holeDepth = 12.0;
-        constexpr double pegRadius = 2.5;           // pegs: hexagons of circumradius 2.5, 10 long
-        constexpr double pegLength = 10.0;
-        constexpr double shelfTop = 6.0;            // the battery sits on the fixture's shelf
+        constexpr double HOLE_RADIUS = 3.0;          // alignment holes: hexagons of circumradius 3, 12 deep
+        constexpr double HOLE_DEPTH = 12.0;
+        constexpr double PEG_RADIUS = 2.5;           // pegs: hexagons of circumradius 2.5, 10 long
+        constexpr double PEG_LENGTH = 10.0;
+        constexpr double SHELF_TOP = 6.0;            // the battery sits on the fixture's shelf
         const Vector2d pegAt[2] = {{-24.0, 24.0}, {24.0, 72.0}};  // (y, z) of the pegs on the fixture plate
 
         /** \brief Battery (body frame): box x in [0, 31] (x = 0 the back face, towards the fixture), y in [-37, 37],
@@ -61,7 +61,7 @@ namespace meshgap
             Polyhedron p = meshgap::prismPolyhedron({{0.0, -37.0}, {31.0, -37.0}, {31.0, 37.0}, {0.0, 37.0}}, {}, 92.0);
             const std::size_t back = findFace(p, -Vector3d::UnitX(), Vector3d::Zero());
             for (const Vector2d &peg : pegAt)
-                p.addBoss(back, hexagonOnX(0.0, peg.x(), peg.y() - shelfTop, holeRadius), -holeDepth);
+                p.addBoss(back, hexagonOnX(0.0, peg.x(), peg.y() - SHELF_TOP, HOLE_RADIUS), -HOLE_DEPTH);
             return p.mesh(meshgap::uniformSizing(batteryGrid), "battery");
         }
 
@@ -72,7 +72,7 @@ namespace meshgap
         Mesh fixture()
         {
             Polyhedron p = meshgap::prismPolyhedron(
-                {{-8.0, 0.0}, {54.0, 0.0}, {54.0, 14.0}, {48.0, 14.0}, {48.0, shelfTop}, {0.0, shelfTop}, {0.0, 99.0},
+                {{-8.0, 0.0}, {54.0, 0.0}, {54.0, 14.0}, {48.0, 14.0}, {48.0, SHELF_TOP}, {0.0, SHELF_TOP}, {0.0, 99.0},
                  {-8.0, 99.0}},
                 {}, 86.0);
             // Profile drawn in (x, z), extruded along -y: (X, Y, Z) -> (X, 43 - Z, Y).
@@ -82,12 +82,12 @@ namespace meshgap
             p.transform(X);
             const std::size_t plate = findFace(p, Vector3d::UnitX(), Vector3d::Zero());
             for (const Vector2d &peg : pegAt)
-                p.addBoss(plate, hexagonOnX(0.0, peg.x(), peg.y(), pegRadius), pegLength);
-            const std::size_t shelf = findFace(p, Vector3d::UnitZ(), Vector3d(0.0, 0.0, shelfTop));
+                p.addBoss(plate, hexagonOnX(0.0, peg.x(), peg.y(), PEG_RADIUS), PEG_LENGTH);
+            const std::size_t shelf = findFace(p, Vector3d::UnitZ(), Vector3d(0.0, 0.0, SHELF_TOP));
             for (double side : {-1.0, 1.0})
             {
                 const double y0 = side * 38.5, y1 = side * 42.0;
-                p.addBoss(shelf, {{10.0, y0, shelfTop}, {44.0, y0, shelfTop}, {44.0, y1, shelfTop}, {10.0, y1, shelfTop}},
+                p.addBoss(shelf, {{10.0, y0, SHELF_TOP}, {44.0, y0, SHELF_TOP}, {44.0, y1, SHELF_TOP}, {10.0, y1, SHELF_TOP}},
                           6.0);
             }
             return p.mesh(meshgap::uniformSizing(batteryGrid), "fixture");
@@ -96,8 +96,8 @@ namespace meshgap
         // Hand and bowl, in mm (Table IV: hand 130 x 185 x 90, grid 3 to 30; bowl 300 x 60, grid 10, 36 segments).
 
         // Hand grid (before the sqrt(2)): 3 mm within 6 mm of a fingertip, growing slowly along the fingers (by
-        // handGrading per mm) and fast (0.35 per mm more) beyond 70 mm from the nearest tip, up to 30 mm on the back.
-        constexpr double handGrading = 0.055;
+        // HAND_GRADING per mm) and fast (0.35 per mm more) beyond 70 mm from the nearest tip, up to 30 mm on the back.
+        constexpr double HAND_GRADING = 0.055;
 
         struct Finger
         {
@@ -165,7 +165,7 @@ namespace meshgap
                 for (const Vector3d &t : tipPoints)
                     d = std::min(d, (p - t).norm());
                 return sqrt2 *
-                       std::min(30.0, 3.0 + handGrading * std::max(0.0, d - 6.0) + 0.35 * std::max(0.0, d - 70.0));
+                       std::min(30.0, 3.0 + HAND_GRADING * std::max(0.0, d - 6.0) + 0.35 * std::max(0.0, d - 70.0));
             };
             std::vector<Mesh> parts;
             Polyhedron palm = meshgap::prismPolyhedron({{-38.0, 0.0},
@@ -194,7 +194,7 @@ namespace meshgap
             return result;
         }
 
-        constexpr double bowlGrid = 11.6;  // grid giving Table IV's node count (see maps/README.md)
+        constexpr double BOWL_GRID = 11.6;  // grid giving Table IV's node count (see maps/README.md)
 
         /** \brief Bowl (body frame): outer diameter 300, height 60, wall 6, rim at z = 60, foot on z = 0; the circle
             linearised with 36 segments, grid 10. */
@@ -204,16 +204,16 @@ namespace meshgap
             const int wall = 12;
             for (int k = 1; k <= wall; ++k)  // outer wall: quarter ellipse from (80, 0) to (150, 60)
             {
-                const double t = 0.5 * pi * k / wall;
+                const double t = 0.5 * PI * k / wall;
                 profile.emplace_back(80.0 + 70.0 * std::sin(t), 60.0 * (1.0 - std::cos(t)));
             }
             for (int k = wall; k >= 0; --k)  // inner wall: from (144, 60) down to (80, 6)
             {
-                const double t = 0.5 * pi * k / wall;
+                const double t = 0.5 * PI * k / wall;
                 profile.emplace_back(80.0 + 64.0 * std::sin(t), 6.0 + 54.0 * (1.0 - std::cos(t)));
             }
             profile.emplace_back(0.0, 6.0);
-            return meshgap::revolutionPolyhedron(profile, 36).mesh(meshgap::uniformSizing(bowlGrid), "bowl");
+            return meshgap::revolutionPolyhedron(profile, 36).mesh(meshgap::uniformSizing(BOWL_GRID), "bowl");
         }
 
         Scene batteryFixture()
@@ -227,11 +227,11 @@ namespace meshgap
             // Position 1: battery 4 cm off the plate (pegs 6 cm into the holes), 0.3 cm above the shelf, rolled 0.1
             // degrees; slid sideways (-y) until a peg is 0.0747 from its hole's wall (Table III, exact).
             const Eigen::Isometry3d p1 =
-                pose(Vector3d(4.0, 0.0, shelfTop + 0.3), rotation(Vector3d::UnitX(), 0.1));
+                pose(Vector3d(4.0, 0.0, SHELF_TOP + 0.3), rotation(Vector3d::UnitX(), 0.1));
             s.poses.push_back(placeAtGap(*bodyA, *bodyB, p1, -Vector3d::UnitY(), 0.0747, "battery_fixture position 1"));
             // Position 2: 2.5 cm off the plate, yawed 0.3 degrees, 0.25 above the shelf; slid +y to 0.0987.
             const Eigen::Isometry3d p2 =
-                pose(Vector3d(2.5, 0.0, shelfTop + 0.25), rotation(Vector3d::UnitZ(), 0.3));
+                pose(Vector3d(2.5, 0.0, SHELF_TOP + 0.25), rotation(Vector3d::UnitZ(), 0.3));
             s.poses.push_back(placeAtGap(*bodyA, *bodyB, p2, Vector3d::UnitY(), 0.0987, "battery_fixture position 2"));
             // The planning problem does not start at position 1: with the pegs 6 into the holes and 0.07 of play, the
             // way out is a passage that sampling does not find. It starts just before insertion instead: the battery
@@ -239,8 +239,8 @@ namespace meshgap
             // 1.5 and pushed in, the holes would take the pegs), so the shelf, both rails and both peg tips are all
             // 1.5 away. The goal is in front of the shelf's lip at the same height: the battery has to be lifted over
             // the lip (6.5 higher at least). The shortest way skims the lip; one that keeps 1.5 goes higher.
-            s.start = pose(Vector3d(pegLength + 1.5, 0.0, shelfTop + 1.5));
-            s.goal = pose(Vector3d(61.0, 0.0, shelfTop + 1.5));
+            s.start = pose(Vector3d(PEG_LENGTH + 1.5, 0.0, SHELF_TOP + 1.5));
+            s.goal = pose(Vector3d(61.0, 0.0, SHELF_TOP + 1.5));
             auto near = [](double x, double y) { return std::abs(x - y) < 1e-9; };
             auto nearAxis = [](const Vector3d &c, const Vector2d &axis, double radius) {
                 return (Vector2d(c.y(), c.z()) - axis).norm() <= radius + 1e-9;
@@ -248,13 +248,13 @@ namespace meshgap
             const std::vector<std::string> partNamesA = {"peg1", "peg2", "plate", "shelf", "rails", "lip", "other"};
             s.partsA = partsByPlace(s.a, partNamesA, [&](const Vector3d &c) {
                 for (std::size_t i = 0; i < 2; ++i)
-                    if (c.x() > 1e-9 && c.x() <= pegLength + 1e-9 && nearAxis(c, pegAt[i], pegRadius))
+                    if (c.x() > 1e-9 && c.x() <= PEG_LENGTH + 1e-9 && nearAxis(c, pegAt[i], PEG_RADIUS))
                         return i;
                 if (near(c.x(), 0.0))
                     return std::size_t(2);
-                if (near(c.z(), shelfTop))
+                if (near(c.z(), SHELF_TOP))
                     return std::size_t(3);
-                if (c.z() > shelfTop + 1e-9 && std::abs(c.y()) >= 38.5 - 1e-9 && c.x() > 1e-9 && c.x() <= 44.0 + 1e-9)
+                if (c.z() > SHELF_TOP + 1e-9 && std::abs(c.y()) >= 38.5 - 1e-9 && c.x() > 1e-9 && c.x() <= 44.0 + 1e-9)
                     return std::size_t(4);
                 if (c.x() >= 48.0 - 1e-9)
                     return std::size_t(5);
@@ -262,8 +262,8 @@ namespace meshgap
             });
             s.partsB = partsByPlace(s.b, {"hole1", "hole2", "back", "bottom", "other"}, [&](const Vector3d &c) {
                 for (std::size_t i = 0; i < 2; ++i)
-                    if (c.x() > 1e-9 && c.x() <= holeDepth + 1e-9 &&
-                        nearAxis(c, pegAt[i] - Vector2d(0.0, shelfTop), holeRadius))
+                    if (c.x() > 1e-9 && c.x() <= HOLE_DEPTH + 1e-9 &&
+                        nearAxis(c, pegAt[i] - Vector2d(0.0, SHELF_TOP), HOLE_RADIUS))
                         return i;
                 if (near(c.x(), 0.0))
                     return std::size_t(2);

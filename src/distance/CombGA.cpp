@@ -132,18 +132,18 @@ namespace meshgap
             [this](const std::string &s)
             {
                 if (s == "random")
-                    setSeeding(Seeding::Random);
+                    setSeeding(Seeding::RANDOM);
                 else if (s == "clusters")
-                    setSeeding(Seeding::Clusters);
+                    setSeeding(Seeding::CLUSTERS);
                 else if (s == "mixed")
-                    setSeeding(Seeding::Mixed);
+                    setSeeding(Seeding::MIXED);
                 else
                     throw std::invalid_argument("seeding must be random, clusters or mixed");
             },
             [this]
             {
                 const Seeding s = getSeeding();
-                return std::string(s == Seeding::Clusters ? "clusters" : s == Seeding::Mixed ? "mixed" : "random");
+                return std::string(s == Seeding::CLUSTERS ? "clusters" : s == Seeding::MIXED ? "mixed" : "random");
             });
         params_.declareParam<int>(
             "restart_stall",
@@ -233,7 +233,7 @@ namespace meshgap
         std::vector<Individual> &population = work.population;
         population.assign(populationSize, Individual());
         std::size_t clusterMembers = 0;  // members drawn from cluster pairs: all (Clusters), every other (Mixed)
-        if (seeding != Seeding::Random)
+        if (seeding != Seeding::RANDOM)
         {
             // The nearest cluster pairs by signed sphere gap, nearest first, one member each (cycling if there are
             // fewer cluster pairs than members), a random node of each cluster.
@@ -249,7 +249,7 @@ namespace meshgap
                     gaps.emplace_back((ca[i].center - c).norm() - ca[i].radius - cb[j].radius,
                                       i * static_cast<std::uint32_t>(cb.size()) + j);
             }
-            clusterMembers = seeding == Seeding::Clusters ? populationSize : (populationSize + 1) / 2;
+            clusterMembers = seeding == Seeding::CLUSTERS ? populationSize : (populationSize + 1) / 2;
             const std::size_t kept = std::min(gaps.size(), clusterMembers);
             std::partial_sort(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(kept), gaps.end());
             const auto &orderA = a.clusterOrder(), &orderB = b.clusterOrder();
@@ -260,14 +260,14 @@ namespace meshgap
                 const std::uint32_t ka = std::uniform_int_distribution<std::uint32_t>(A.begin, A.end - 1)(rng);
                 const std::uint32_t kb = std::uniform_int_distribution<std::uint32_t>(B.begin, B.end - 1)(rng);
                 // Mixed: cluster members at the even places, random ones at the odd.
-                population[seeding == Seeding::Clusters ? k : 2 * k].pair = NodePair{orderA[ka], orderB[kb]};
+                population[seeding == Seeding::CLUSTERS ? k : 2 * k].pair = NodePair{orderA[ka], orderB[kb]};
             }
         }
         // Random members (the paper's draw, in its order: the warm start takes the first place without a draw).
         for (std::size_t i = 0; i < populationSize; ++i)
             if (i == 0 && request.start)
                 population[0].pair = *request.start;
-            else if (seeding == Seeding::Random || (seeding == Seeding::Mixed && i % 2 == 1))
+            else if (seeding == Seeding::RANDOM || (seeding == Seeding::MIXED && i % 2 == 1))
                 population[i].pair = NodePair{nodeA(rng), nodeB(rng)};
         bool stopped = false;
         for (std::size_t i = 0; i < populationSize && !stopped; ++i)

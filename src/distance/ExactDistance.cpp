@@ -120,13 +120,13 @@ namespace meshgap
                              DistanceResult &result)
         {
             result.penetrationDepth = 0.0;
-            result.penetration = Penetration::None;
+            result.penetration = Penetration::NONE;
             if (!result.inCollision)
                 return;
             if (mayStop)
             {
-                result.distance = kContactDistance;
-                result.penetration = Penetration::NotComputed;
+                result.distance = CONTACT_DISTANCE;
+                result.penetration = Penetration::NOT_COMPUTED;
             }
             else
                 setPenetration(a, b, X_AB, result);

@@ -234,7 +234,7 @@ namespace meshgap
         if (best.found)
         {
             estimate.depth = best.depth;
-            estimate.kind = Penetration::DeepestNode;
+            estimate.kind = Penetration::DEEPEST_NODE;
             estimate.witnessFound = true;
             if (best.hostIsA)
             {
@@ -252,7 +252,7 @@ namespace meshgap
             }
             return estimate;
         }
-        estimate.kind = a.isClosed() || b.isClosed() ? Penetration::NoNodeInside : Penetration::OpenBodies;
+        estimate.kind = a.isClosed() || b.isClosed() ? Penetration::NO_NODE_INSIDE : Penetration::OPEN_BODIES;
         // Witness: the touching pair bvhCollide() meets first (a fixed traversal order: a function of the pose).
         std::uint32_t ta = 0, tb = 0;
         if (bvhCollide(a.bvh(), b.bvh(), X_AB, &ta, &tb))
@@ -277,7 +277,7 @@ namespace meshgap
         result.inCollision = true;
         result.penetrationDepth = e.depth;
         result.penetration = e.kind;
-        result.distance = e.depth > 0.0 ? -e.depth : kContactDistance;
+        result.distance = e.depth > 0.0 ? -e.depth : CONTACT_DISTANCE;
         if (e.witnessFound)
         {
             result.onA = e.onA;

@@ -65,14 +65,14 @@ namespace meshgap
             [this](const std::string &s)
             {
                 if (s == "random")
-                    setGlobalSeeding(CombGA::Seeding::Random);
+                    setGlobalSeeding(CombGA::Seeding::RANDOM);
                 else if (s == "clusters")
-                    setGlobalSeeding(CombGA::Seeding::Clusters);
+                    setGlobalSeeding(CombGA::Seeding::CLUSTERS);
                 else
                     throw std::invalid_argument("global_seeding must be random or clusters");
             },
             [this]
-            { return std::string(getGlobalSeeding() == CombGA::Seeding::Clusters ? "clusters" : "random"); });
+            { return std::string(getGlobalSeeding() == CombGA::Seeding::CLUSTERS ? "clusters" : "random"); });
     }
 
     void WarmFast::setGapTolerance(double g)

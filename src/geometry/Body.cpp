@@ -11,7 +11,7 @@ namespace meshgap
         mesh.validate();
         BodyPtr body(new Body());
         std::vector<std::uint32_t> parent;
-        if (options.sizing == GridSizing::Adaptive)
+        if (options.sizing == GridSizing::ADAPTIVE)
         {
             const std::vector<double> sizes = adaptiveNodeSizes(mesh, options.adaptive);
             body->adaptive_ = true;

@@ -991,7 +991,7 @@ namespace meshgap
         const TriangleBvh::Node &rootA = a.nodes()[0], &rootB = b.nodes()[0];
         // Ten times trianglesIntersect()'s contact tolerance at the largest coordinate scale of any pair: a pair
         // kept apart by more than this is apart for trianglesIntersect() too.
-        const double margin = 10.0 * kTriangleContactTolerance *
+        const double margin = 10.0 * TRIANGLE_CONTACT_TOLERANCE *
                               (rootA.center.norm() + rootA.radius + rootB.center.norm() + rootB.radius + X.t.norm());
         const std::uint32_t stamp = ++front.stamp;
         const double step = front.started ? motionBound(b, front.poses[(stamp - 1) % BvhFront::POSES], X_AB)

@@ -14,13 +14,13 @@ namespace meshgap
 
         /* A triangle whose height over its longest edge is at most this fraction of that edge (about five units of
            roundoff) is treated as the union of its edges: dropping its face moves no distance by more than that
-           height, far below kTriangleContactTolerance, and keeps the plane frame below well defined. */
-        constexpr double kFlatHeight2 = 1e-30;
+           height, far below TRIANGLE_CONTACT_TOLERANCE, and keeps the plane frame below well defined. */
+        constexpr double FLAT_HEIGHT2 = 1e-30;
 
         /* Slack of the slab certificate that ends the search early, relative to the scale of
-           kTriangleContactTolerance: a few units of roundoff, so an early answer is never more than that above the
+           TRIANGLE_CONTACT_TOLERANCE: a few units of roundoff, so an early answer is never more than that above the
            minimum, and exact ties (parallel faces, whose corners lie on the slab's planes) still certify. */
-        constexpr double kCertificateSlack = 4e-16;
+        constexpr double CERTIFICATE_SLACK = 4e-16;
 
         /** \brief Squared distance from \e p to the segment [a, a + e], ee = e.e; \e t gets the closest point's
             parameter in [0, 1]. A zero-length segment is its start point. */
@@ -69,7 +69,7 @@ namespace meshgap
         /** \brief Orthonormal frame of a triangle's plane built on its longest edge ab by Gram-Schmidt (twice, so u
             and v are orthogonal to roundoff even for slivers): the triangle is (0,0), (L,0), (cx,cy) in (u, v),
             counter-clockwise, cy > 0, and n = u x v. \e face is false for a flat triangle (height at most
-            sqrt(kFlatHeight2) L, collinear corners, or a point). */
+            sqrt(FLAT_HEIGHT2) L, collinear corners, or a point). */
         struct Frame
         {
             Vec o, u, v, n;
@@ -108,7 +108,7 @@ namespace meshgap
             f.L = std::sqrt(lk);
             f.u = e * (1.0 / f.L);
             const double h2 = w.squaredNorm();
-            if (!(h2 > kFlatHeight2 * lk))
+            if (!(h2 > FLAT_HEIGHT2 * lk))
                 return;
             f.cy = std::sqrt(h2);
             f.v = w * (1.0 / f.cy);
@@ -201,7 +201,7 @@ namespace meshgap
             bool intersect{false};  ///< as documented for trianglesIntersect()
         };
 
-        /** \brief The scale of kTriangleContactTolerance for the pair. */
+        /** \brief The scale of TRIANGLE_CONTACT_TOLERANCE for the pair. */
         inline double contactScale(const Vec A[3], const Vec B[3])
         {
             Vec lo = A[0], hi = A[0];
@@ -239,9 +239,9 @@ namespace meshgap
         {
             Solution out;
             const double scale = contactScale(A, B);
-            const double tol = kTriangleContactTolerance * scale;
+            const double tol = TRIANGLE_CONTACT_TOLERANCE * scale;
             const double tol2 = tol * tol;
-            const double slack = kCertificateSlack * scale;
+            const double slack = CERTIFICATE_SLACK * scale;
 
             // Separated by either triangle's plane with more than the contact tolerance: they cannot intersect.
             const bool separated = separatedAlong((A[1] - A[0]).cross(A[2] - A[0]), A, B, tol) ||

@@ -73,7 +73,7 @@ namespace meshgap
         /** \brief A thread keeps the warm starts of its last few checkers: a warm start holds certificates (up to
             megabytes on large meshes), and a benchmark makes a checker per run, so the oldest (the smallest id, a
             checker made earlier) goes when a new one arrives. A checker whose warm start went starts cold again. */
-        constexpr std::size_t kWarmStartsPerThread = 8;
+        constexpr std::size_t WARM_STARTS_PER_THREAD = 8;
 
         /** \brief This thread's warm starts, one per checker (keyed by the checker's unique id, never its address,
             which a later checker could reuse). */
@@ -83,7 +83,7 @@ namespace meshgap
             auto found = warm.find(id);
             if (found != warm.end())
                 return found->second;
-            if (warm.size() >= kWarmStartsPerThread)
+            if (warm.size() >= WARM_STARTS_PER_THREAD)
                 warm.erase(std::min_element(warm.begin(), warm.end(),
                                             [](const auto &p, const auto &q) { return p.first < q.first; }));
             return warm[id];

@@ -13,7 +13,7 @@ namespace meshgap
 {
     namespace
     {
-        constexpr unsigned kMaxPairs = 8;
+        constexpr unsigned MAX_PAIRS = 8;
         using Vector6 = Eigen::Matrix<double, 6, 1>;
 
         /** \brief One pair's gradient in tangent coordinates (SE(3): 6, SE(2): the first 3 used): the derivative of
@@ -32,11 +32,11 @@ namespace meshgap
 
         /** \brief The minimum-norm point of the convex hull of \e h[0..k) (Euclidean; an SE(2) gradient has zeros
             past its 3 coordinates, which change no norm), exactly:
-            the best feasible affine minimum over every subset (k <= kMaxPairs, so at most 255 small systems). */
+            the best feasible affine minimum over every subset (k <= MAX_PAIRS, so at most 255 small systems). */
         Vector6 minNormPoint(const Vector6 *h, unsigned k)
         {
-            using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxPairs + 1, kMaxPairs + 1>;
-            using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxPairs + 1, 1>;
+            using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, MAX_PAIRS + 1, MAX_PAIRS + 1>;
+            using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, MAX_PAIRS + 1, 1>;
             Vector6 best = h[0];
             double bestNorm = h[0].squaredNorm();
             for (unsigned i = 1; i < k; ++i)
@@ -47,7 +47,7 @@ namespace meshgap
                 }
             for (unsigned mask = 1; mask < (1u << k); ++mask)
             {
-                unsigned idx[kMaxPairs], m = 0;
+                unsigned idx[MAX_PAIRS], m = 0;
                 for (unsigned i = 0; i < k; ++i)
                     if (mask & (1u << i))
                         idx[m++] = i;
@@ -136,16 +136,16 @@ namespace meshgap
         const Scene &scene = checker.scene();
         if (!std::isfinite(r.distance) || r.obstacle >= scene.obstacles().size())
             return r.distance;
-        if (r.inCollision && r.penetration != Penetration::DeepestNode)
-            return r.distance;  // no depth: the signed distance is kContactDistance, locally constant
+        if (r.inCollision && r.penetration != Penetration::DEEPEST_NODE)
+            return r.distance;  // no depth: the signed distance is CONTACT_DISTANCE, locally constant
 
         const Eigen::Isometry3d X = poseFromState(space, state);
         const Eigen::Vector3d origin = X.translation();
         const double radius = scene.robot().radiusAboutOrigin();
         const double tiny = 1e-14 * (1.0 + radius + origin.norm());
 
-        Vector6 g[kMaxPairs];
-        double distances[kMaxPairs];
+        Vector6 g[MAX_PAIRS];
+        double distances[MAX_PAIRS];
         unsigned k = 0;
         const Eigen::Vector3d d0 =
             r.inCollision ? Eigen::Vector3d(r.onObstacle - r.onRobot) : Eigen::Vector3d(r.onRobot - r.onObstacle);
@@ -173,7 +173,7 @@ namespace meshgap
                 if (d.norm() <= tiny)
                     continue;
                 const Vector6 gi = pairGradient(planar, origin, pair.onB, d.normalized());
-                if (k < kMaxPairs)
+                if (k < MAX_PAIRS)
                 {
                     g[k] = gi;
                     distances[k++] = pair.distance;
@@ -204,7 +204,7 @@ namespace meshgap
         {
             if (k == 1)
                 return g[0];
-            Vector6 h[kMaxPairs];
+            Vector6 h[MAX_PAIRS];
             for (unsigned i = 0; i < k; ++i)
                 h[i] = g[i].cwiseProduct(scale);
             return Vector6(minNormPoint(h, k).cwiseQuotient(scale));
@@ -219,7 +219,7 @@ namespace meshgap
             const double h = options.probeStep > 0.0 ? options.probeStep : 0.05 * r.distance;
             SceneWarmStart warm;
             SceneRequest request;
-            for (unsigned probe = 0; probe < options.probes && k < kMaxPairs; ++probe)
+            for (unsigned probe = 0; probe < options.probes && k < MAX_PAIRS; ++probe)
             {
                 const Vector6 scaled = result.cwiseProduct(scale);
                 const double norm = scaled.norm();  // ||g||

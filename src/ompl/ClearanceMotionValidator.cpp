@@ -57,7 +57,7 @@ namespace meshgap
         if (!checker_->isValid(s2))
             return true;
         const ompl::base::StateSpace &space = *si_->getStateSpace();
-        const unsigned n = std::min(space.validSegmentCount(s1, s2), kProbeSegments);
+        const unsigned n = std::min(space.validSegmentCount(s1, s2), PROBE_SEGMENTS);
         if (n < 2)
             return false;
         ompl::base::State *state = si_->allocState();

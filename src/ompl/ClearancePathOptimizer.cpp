@@ -81,7 +81,7 @@ namespace meshgap
         ob::State *s = si_->allocState();
         // The best sample can only fall; stop when no interval can hold a point more than the tolerance below it,
         // or at the sample cap (the bound is still certified, only looser).
-        for (unsigned samples = 0; !open.empty() && samples < kMaxSamplesPerMotion; ++samples)
+        for (unsigned samples = 0; !open.empty() && samples < MAX_SAMPLES_PER_MOTION; ++samples)
         {
             // Out of time while optimising: give up on this motion (a refuted bound rejects the change).
             if (ptc_ != nullptr && samples % 16 == 15 && (*ptc_)())
@@ -135,7 +135,7 @@ namespace meshgap
         double best = c[0];
         for (std::size_t i = 0; i + 1 < n; ++i)
             best = std::min(best, motionBound(path.getState(i), path.getState(i + 1), c[i], c[i + 1], tolerance,
-                                              kMeasureRelativeTolerance)
+                                              MEASURE_RELATIVE_TOLERANCE)
                                       .best);
         return best;
     }

@@ -38,10 +38,10 @@ namespace meshgap
 
         /** \brief This thread's cache, direct-mapped, shared by all objectives and checkers (each entry says which
             checker answered: a checker's clearance is a function of the state alone). */
-        constexpr std::size_t kCacheSize = 4096;
+        constexpr std::size_t CACHE_SIZE = 4096;
         std::vector<CachedClearance> &threadCache()
         {
-            thread_local std::vector<CachedClearance> cache(kCacheSize);
+            thread_local std::vector<CachedClearance> cache(CACHE_SIZE);
             return cache;
         }
 
@@ -54,7 +54,7 @@ namespace meshgap
                 std::memcpy(&bits, &x, sizeof bits);
                 h = (h ^ bits) * 1099511628211ull;
             }
-            return static_cast<std::size_t>(h ^ (h >> 29)) & (kCacheSize - 1);
+            return static_cast<std::size_t>(h ^ (h >> 29)) & (CACHE_SIZE - 1);
         }
 
         /** \brief A stretch of OMPL's grid between two grid states i < j whose clearances are known to be at least

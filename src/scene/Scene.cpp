@@ -333,6 +333,33 @@ namespace meshgap
     // per thread too (capacity kept); DistanceResult::history is only filled on request. tests/alloc checks every
     // query kind.
 
+    // How a query is answered (Scene::distance()'s contract in Scene.h):
+    // - Obstacles are visited in order of a lower bound on their distance (ties in R-tree order), the warm start's
+    //   obstacle first, and skipped once that bound exceeds the best distance so far (or request.upperBound). The
+    //   bound is the distance between world-frame axis-aligned boxes: the obstacle's, and the robot's (its BVH root
+    //   box and bounding sphere carried to the world frame, intersected, padded against roundoff), so only
+    //   obstacles that cannot be closer than the best so far are skipped.
+    // - Exact mode: refineExact() per visited obstacle with the warm start's ExactWarmStart of that obstacle (its
+    //   last closest triangle pair and traversal front). certified when every visited pair completed and none was
+    //   left unvisited that could be closer. Containment is decided per obstacle: a robot inside a closed part of
+    //   the world collides.
+    // - In collision (both modes) the distance is the minimum over every colliding obstacle of its pair's signed
+    //   distance (setPenetration(): minus the depth of the deepest node of one body inside the other, closed,
+    //   body, a lower bound on the penetration depth; CONTACT_DISTANCE, -2.2e-308, when that depth is 0 or the
+    //   bodies are open), ties to the smallest obstacle index. The first collision met ends the distance walk;
+    //   then every obstacle whose box overlaps the robot's is tested (deepestCollision()), so the answer (distance,
+    //   obstacle, penetration, witness points: the deepest node and its nearest surface point) does not depend on
+    //   the warm start or the visiting order. certified (the verdict is proven).
+    // - Fast mode: request.solver per visited obstacle (request.seed; the warm pair as the start on its obstacle;
+    //   warm-fast follows the run of poses with a WarmFastState per obstacle in the warm start), never certified;
+    //   the collision verdict is exact (decided first), so a colliding pose is never reported free, and its signed
+    //   distance is the exact mode's.
+    // - stopBelow: the query ends once the best distance is at or below it (an upper bound then, not certified; in
+    //   exact mode, inCollision is then set only if a touching pair was met). A collision then gets no depth:
+    //   distance CONTACT_DISTANCE, penetration NOT_COMPUTED, and the first collision met ends the query.
+    // - The warm start is updated to the closest obstacle (and, in exact mode, the pair and front of every obstacle
+    //   visited; in fast mode, the node pair). Ties between triangle pairs are broken canonically (bvhDistance()),
+    //   so a complete exact answer, its pair and witness points are the cold query's bit for bit.
     void Scene::exactDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart *warm,
                               SceneResult &result) const
     {
@@ -435,8 +462,8 @@ namespace meshgap
         {
             if (mayStop)
             {
-                result.distance = kContactDistance;
-                result.penetration = Penetration::NotComputed;
+                result.distance = CONTACT_DISTANCE;
+                result.penetration = Penetration::NOT_COMPUTED;
             }
             else
             {

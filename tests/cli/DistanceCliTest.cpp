@@ -321,7 +321,7 @@ TEST(DistanceCli, AdaptiveSizingGivesTheEnumerationMinimumOverAdaptiveNodes)
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find("adaptive node sizing"), std::string::npos) << r.err;
     BodyOptions options;
-    options.sizing = GridSizing::Adaptive;
+    options.sizing = GridSizing::ADAPTIVE;
     const Mesh cube = loadMesh(RES + "/cube.obj");
     const BodyPtr body = Body::build(cube, options);
     EXPECT_GT(body->numNodes(), cube.vertices.size());  // the rule refined it

@@ -604,7 +604,7 @@ TEST(CombSolvers, EvolutionBeatsItsInitialPopulationAndMultistartHillClimbing)
 // ---------------------------------------------------------------------------------------------------------------
 // Our variants of comb-GA (issue 15), off by default: cluster seeding and restarts of a stalled population.
 
-// Seeding::Clusters with two members and no generations (-nl: no climb) answers a node pair of one of the two
+// Seeding::CLUSTERS with two members and no generations (-nl: no climb) answers a node pair of one of the two
 // cluster pairs of least signed sphere gap, found here by brute force over Body::clusters(); every variant is never
 // below enumeration, consistent with its own pair, repeatable with a seed; the defaults are the paper's.
 TEST(CombSolvers, VariantsSeedFromTheNearestClustersAndRestart)
@@ -623,7 +623,7 @@ TEST(CombSolvers, VariantsSeedFromTheNearestClustersAndRestart)
             }
         std::sort(gaps.begin(), gaps.end());
         CombGA two(false);
-        two.setSeeding(CombGA::Seeding::Clusters);
+        two.setSeeding(CombGA::Seeding::CLUSTERS);
         two.setPopulationSize(2);
         two.setGenerations(0);
         const DistanceResult r = solve(two, a, b, X, k);
@@ -673,5 +673,5 @@ TEST(CombSolvers, VariantsSeedFromTheNearestClustersAndRestart)
     EXPECT_FALSE(ga.params().setParam("seeding", "nearest"));
     EXPECT_FALSE(ga.params().setParam("restart_stall", "-1"));
     EXPECT_TRUE(ga.params().setParam("seeding", "mixed"));
-    EXPECT_EQ(ga.getSeeding(), CombGA::Seeding::Mixed);
+    EXPECT_EQ(ga.getSeeding(), CombGA::Seeding::MIXED);
 }

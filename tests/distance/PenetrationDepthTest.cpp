@@ -117,7 +117,7 @@ TEST(PenetrationDepth, OverlappingSpheresWithinTheMeshResolutionOfTheTrueDepth)
             const double truth = r1 + r2 - c;
             const DistanceResult r = exactAt(*a, *b, X);
             ASSERT_TRUE(r.inCollision);
-            EXPECT_EQ(r.penetration, Penetration::DeepestNode);
+            EXPECT_EQ(r.penetration, Penetration::DEEPEST_NODE);
             EXPECT_EQ(r.distance, -r.penetrationDepth);
             EXPECT_LE(r.penetrationDepth, truth + 1e-12) << c;
             EXPECT_GE(r.penetrationDepth, truth - slack) << c;
@@ -142,7 +142,7 @@ TEST(PenetrationDepth, BoxPushedIntoABoxByAKnownAmount)
             X.linear() = Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX()).toRotationMatrix();
             const DistanceResult r = exactAt(*a, *b, X);
             ASSERT_TRUE(r.inCollision);
-            EXPECT_EQ(r.penetration, Penetration::DeepestNode);
+            EXPECT_EQ(r.penetration, Penetration::DEEPEST_NODE);
             EXPECT_NEAR(r.distance, -delta, 1e-12) << delta << " " << angle;
             EXPECT_NEAR(std::abs((r.onA - r.onB).x()), delta, 1e-12);
             // And the same from B's side.
@@ -162,7 +162,7 @@ TEST(PenetrationDepth, SmallBodyWhollyInsideABigOne)
     for (const DistanceResult &r : {exactAt(*a, *b, inside), exactAt(*b, *a, inside.inverse())})
     {
         ASSERT_TRUE(r.inCollision);
-        EXPECT_EQ(r.penetration, Penetration::DeepestNode);
+        EXPECT_EQ(r.penetration, Penetration::DEEPEST_NODE);
         EXPECT_GE(r.penetrationDepth, 1.2 - 1e-12);
         EXPECT_LE(r.penetrationDepth, 2.2 + 1e-12);
         EXPECT_LT(r.distance, -1.2 + 1e-12);
@@ -176,23 +176,23 @@ TEST(PenetrationDepth, ShallowCrossingWithNoNodeInsideIsStillNegative)
 {
     // A long box turned 45 degrees about y, its lowest edge (along y) dipping eps below the top face z = 1 of the
     // unit box: the surfaces cross, but every corner of each lies outside the other. Unrefined: no node inside,
-    // distance kContactDistance (< 0). Refined: nodes along that edge lie eps deep, the estimate finds them.
+    // distance CONTACT_DISTANCE (< 0). Refined: nodes along that edge lie eps deep, the estimate finds them.
     const double eps = 1e-3;
     const Mesh ma = test::box(1.0, 1.0, 1.0, 1), mb = test::box(0.5, 3.0, 0.5, 1);
     Eigen::Isometry3d X = test::translation(0.0, 0.2, 1.0 - eps + 0.5 * std::sqrt(2.0));
     X.linear() = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()).toRotationMatrix();
     const DistanceResult coarse = exactAt(*test::unrefinedBody(ma), *test::unrefinedBody(mb), X);
     ASSERT_TRUE(coarse.inCollision);
-    EXPECT_EQ(coarse.penetration, Penetration::NoNodeInside);
+    EXPECT_EQ(coarse.penetration, Penetration::NO_NODE_INSIDE);
     EXPECT_EQ(coarse.penetrationDepth, 0.0);
-    EXPECT_EQ(coarse.distance, kContactDistance);
+    EXPECT_EQ(coarse.distance, CONTACT_DISTANCE);
     EXPECT_LT(coarse.distance, 0.0);
     EXPECT_EQ(coarse.onA, coarse.onB);  // a touching point
     BodyOptions fine;
     fine.gridSize = 0.1;
     const DistanceResult refined = exactAt(*Body::build(ma, fine), *Body::build(mb, fine), X);
     ASSERT_TRUE(refined.inCollision);
-    EXPECT_EQ(refined.penetration, Penetration::DeepestNode);
+    EXPECT_EQ(refined.penetration, Penetration::DEEPEST_NODE);
     EXPECT_GT(refined.penetrationDepth, 0.0);
     EXPECT_LE(refined.penetrationDepth, eps + 1e-12);
 #ifdef MESHGAP_HAVE_FCL
@@ -206,22 +206,22 @@ TEST(PenetrationDepth, ShallowCrossingWithNoNodeInsideIsStillNegative)
     EXPECT_GE(touching.distance, -1e-12);
 }
 
-TEST(PenetrationDepth, OpenBodies)
+TEST(PenetrationDepth, OPEN_BODIES)
 {
-    // Two open sheets crossing: no inside, no depth: kContactDistance, OpenBodies.
+    // Two open sheets crossing: no inside, no depth: CONTACT_DISTANCE, OPEN_BODIES.
     const Mesh sheet = test::grid(2.0, 1.0, 4, 2);
     Eigen::Isometry3d X = test::translation(0.5, 0.5, -0.5);
     X.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();  // the plane y = 0.5
     const BodyPtr s = test::unrefinedBody(sheet);
     const DistanceResult r = exactAt(*s, *s, X);
     ASSERT_TRUE(r.inCollision);
-    EXPECT_EQ(r.penetration, Penetration::OpenBodies);
-    EXPECT_EQ(r.distance, kContactDistance);
+    EXPECT_EQ(r.penetration, Penetration::OPEN_BODIES);
+    EXPECT_EQ(r.distance, CONTACT_DISTANCE);
     // A sheet through a closed box: its nodes inside the box count (an open body inside a closed one collides).
     const BodyPtr box = test::unrefinedBody(test::box(0.5, 0.5, 0.5, 1));
     const DistanceResult through = exactAt(*box, *s, test::translation(-1.0, -0.5, 0.1));  // sheet at z = 0.1
     ASSERT_TRUE(through.inCollision);
-    EXPECT_EQ(through.penetration, Penetration::DeepestNode);
+    EXPECT_EQ(through.penetration, Penetration::DEEPEST_NODE);
     EXPECT_GT(through.penetrationDepth, 0.0);
     EXPECT_LE(through.penetrationDepth, 0.4 + 1e-12);  // no sheet point is deeper than the nearest face, z = 0.5
 }
@@ -253,8 +253,8 @@ TEST(PenetrationDepth, IsALowerBoundAndNeverNonNegativeInCollision)
         if (!r.inCollision)
             continue;
         ++collisions;
-        EXPECT_EQ(r.distance, r.penetrationDepth > 0.0 ? -r.penetrationDepth : kContactDistance);
-        if (r.penetration != Penetration::DeepestNode)
+        EXPECT_EQ(r.distance, r.penetrationDepth > 0.0 ? -r.penetrationDepth : CONTACT_DISTANCE);
+        if (r.penetration != Penetration::DEEPEST_NODE)
             continue;
         ++deep;
         for (int k = 0; k < 5; ++k)
@@ -310,7 +310,7 @@ TEST(PenetrationDepth, OmplAppRandomCollidingPosesAreNegative)
                 continue;
             ++collisions;
             EXPECT_TRUE(r.certified);
-            if (r.penetration != Penetration::DeepestNode)
+            if (r.penetration != Penetration::DEEPEST_NODE)
                 continue;
             ++deep;
             EXPECT_NEAR((r.onObstacle - r.onRobot).norm(), r.penetrationDepth, 1e-9 * world.size());

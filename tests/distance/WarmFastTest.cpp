@@ -163,7 +163,7 @@ TEST(WarmFast, ClusterSeededGlobalSearchNeverBelowExact)
     ASSERT_TRUE(solver.params().setParam("global_search", "comb-GA-wl"));
     EXPECT_TRUE(solver.getGlobalGa());
     ASSERT_TRUE(solver.params().setParam("global_seeding", "clusters"));
-    EXPECT_EQ(solver.getGlobalSeeding(), CombGA::Seeding::Clusters);
+    EXPECT_EQ(solver.getGlobalSeeding(), CombGA::Seeding::CLUSTERS);
     solver.setGlobalEvery(4);  // many global searches
     WarmFastState state;
     int compared = 0;

@@ -238,7 +238,7 @@ TEST(AdaptiveRefine, BodyUsesTheAdaptiveNodesAndKeepsTheSurface)
 {
     const Mesh mesh = blockAndPlate();
     BodyOptions options;
-    options.sizing = GridSizing::Adaptive;
+    options.sizing = GridSizing::ADAPTIVE;
     const BodyPtr body = Body::build(mesh, options);
     EXPECT_TRUE(body->adaptiveSizing());
     const Mesh expected = refineMesh(mesh, adaptiveNodeSizes(mesh, options.adaptive));

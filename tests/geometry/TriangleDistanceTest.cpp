@@ -113,7 +113,7 @@ namespace
         return m;
     }
 
-    /** The scale kTriangleContactTolerance is relative to: the larger of the six corners' extent (the largest side
+    /** The scale TRIANGLE_CONTACT_TOLERANCE is relative to: the larger of the six corners' extent (the largest side
         of their bounding box) and their largest absolute coordinate. */
     double contactScale(const Tri &a, const Tri &b)
     {
@@ -166,7 +166,7 @@ namespace
         const double d = dist(a, b, onA, onB);
         const HullPair ref = reference(a, b);
         const double tol = 1e-12 * coordinateScale(a, b);
-        const double contact = kTriangleContactTolerance * contactScale(a, b);
+        const double contact = TRIANGLE_CONTACT_TOLERANCE * contactScale(a, b);
         auto fail = [&](const std::string &what)
         {
             return ::testing::AssertionFailure()
@@ -322,8 +322,8 @@ namespace
         std::mt19937 rng_;
     };
 
-    const Vector3d kOrigin(0, 0, 0);
-    const double kPi = std::acos(-1.0);
+    const Vector3d origin(0, 0, 0);
+    const double pi = std::acos(-1.0);
 }  // namespace
 
 // ------------------------------------------------------------------------------------------------------------------
@@ -581,7 +581,7 @@ TEST(TriangleDistance, JustApartAndWithinTheContactTolerance)
     {
         const Tri b{Vector3d(2 + g, 0, 0), Vector3d(3 + g, 1, 1), Vector3d(3 + g, -1, 1)};
         const double expected = (2 + g) - 2;  // the gap as represented
-        const bool free = expected > kTriangleContactTolerance * contactScale(a, b);
+        const bool free = expected > TRIANGLE_CONTACT_TOLERANCE * contactScale(a, b);
         EXPECT_EQ(free, g > 1e-12);
         EXPECT_EQ(intersect(a, b), !free);
         EXPECT_EQ(dist(a, b), free ? expected : 0.0);
@@ -677,7 +677,7 @@ TEST(TriangleDistance, DegenerateTriangles)
     EXPECT_NEAR(dist(s, t, onA, onB), std::sqrt(1.8), 1e-15);
     EXPECT_TRUE(onB.isApprox(Vector3d(1, -0.6, 1.2), 1e-15));
     // Two points.
-    EXPECT_DOUBLE_EQ(dist({kOrigin, kOrigin, kOrigin}, {Vector3d(0, 3, 4), Vector3d(0, 3, 4), Vector3d(0, 3, 4)}), 5.0);
+    EXPECT_DOUBLE_EQ(dist({origin, origin, origin}, {Vector3d(0, 3, 4), Vector3d(0, 3, 4), Vector3d(0, 3, 4)}), 5.0);
     for (const Tri &b : {Tri{Vector3d(1, 1, 3), Vector3d(1, 1, 2), Vector3d(1, 1, 5)},
                          Tri{Vector3d(5, 5, 0), Vector3d(5, 5, 0), Vector3d(5, 5, 0)}, t})
     {
@@ -739,7 +739,7 @@ TEST(TrianglesIntersect, PiercedThroughTheInteriorIsIntersecting)
         double w[3] = {gen.uniform(0.1, 1.0), gen.uniform(0.1, 1.0), gen.uniform(0.1, 1.0)};
         const Vector3d x = (w[0] * a[0] + w[1] * a[1] + w[2] * a[2]) / (w[0] + w[1] + w[2]);
         const Vector3d tangent = gen.unit().cross(n).normalized();
-        const double angle = gen.logUniform(1e-4, kPi / 2);
+        const double angle = gen.logUniform(1e-4, pi / 2);
         const Vector3d d = std::sin(angle) * n + std::cos(angle) * tangent;
         const double reach = 1e-3 * (a[1] - a[0]).norm();  // short enough to stay inside A's plane region
         const Tri b{x - gen.uniform(0.01, 1.0) * reach * d, x + gen.uniform(0.01, 1.0) * reach * d, x + gen.inCube(s)};
@@ -766,7 +766,7 @@ TEST(TrianglesIntersect, SeparatedByAPlaneAreFree)
             v.z() = -std::abs(v.z());
         for (Vector3d &v : b)
             v.z() = gap + std::abs(v.z());
-        const Eigen::Matrix3d R = Eigen::AngleAxisd(gen.uniform(0.0, kPi), gen.unit()).toRotationMatrix();
+        const Eigen::Matrix3d R = Eigen::AngleAxisd(gen.uniform(0.0, pi), gen.unit()).toRotationMatrix();
         const Vector3d t = gen.inCube(s);
         for (Tri *tri : {&a, &b})
             for (Vector3d &v : *tri)

@@ -195,8 +195,8 @@ TEST(Scene, DistanceIsTheMinimumOverAllObstaclesAtRandomPoses)
             EXPECT_EQ(oracle.perObstacle[r.obstacle], r.distance);
             for (std::size_t k = 0; k < r.obstacle; ++k)
                 EXPECT_GT(oracle.perObstacle[k], r.distance);
-            EXPECT_EQ(r.distance, r.penetrationDepth > 0.0 ? -r.penetrationDepth : kContactDistance);
-            if (r.penetration == Penetration::DeepestNode)
+            EXPECT_EQ(r.distance, r.penetrationDepth > 0.0 ? -r.penetrationDepth : CONTACT_DISTANCE);
+            if (r.penetration == Penetration::DEEPEST_NODE)
             {
                 EXPECT_NEAR((r.onRobot - r.onObstacle).norm(), r.penetrationDepth, 1e-12);
             }
@@ -294,7 +294,7 @@ TEST(Scene, InCollisionTheDeepestObstacleWinsWhateverTheWarmStartOrOrder)
 {
     // Two boxes 3 apart; a long robot box bridging them, 0.05 into the first and 0.15 into the second (faces
     // parallel): signed distance -0.15 at the second, whether the warm start points at the first, the second or
-    // nothing, in both modes. With an early stop (a validity check) no depth: kContactDistance.
+    // nothing, in both modes. With an early stop (a validity check) no depth: CONTACT_DISTANCE.
     const Mesh world = test::merged(test::transformed(test::box(1.0, 1.0, 1.0, 2), pose(-2.5, 0, 0)),
                                     test::transformed(test::box(1.0, 1.0, 1.0, 2), pose(2.5, 0, 0)));
     BodyOptions options;
@@ -321,7 +321,7 @@ TEST(Scene, InCollisionTheDeepestObstacleWinsWhateverTheWarmStartOrOrder)
         for (const SceneResult &r : answers)
         {
             ASSERT_TRUE(r.inCollision);
-            EXPECT_EQ(r.penetration, Penetration::DeepestNode);
+            EXPECT_EQ(r.penetration, Penetration::DEEPEST_NODE);
             EXPECT_NEAR(r.distance, -0.15, 1e-12);
             EXPECT_EQ(r.obstacle, second);
             EXPECT_EQ(r.distance, answers[0].distance);
@@ -333,8 +333,8 @@ TEST(Scene, InCollisionTheDeepestObstacleWinsWhateverTheWarmStartOrOrder)
         SceneResult v;
         scene->distance(Y, validity, warm, v);
         EXPECT_TRUE(v.inCollision);
-        EXPECT_EQ(v.distance, kContactDistance);
-        EXPECT_EQ(v.penetration, Penetration::NotComputed);
+        EXPECT_EQ(v.distance, CONTACT_DISTANCE);
+        EXPECT_EQ(v.penetration, Penetration::NOT_COMPUTED);
     }
 }
 

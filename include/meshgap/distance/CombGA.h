@@ -27,13 +27,13 @@ namespace meshgap
        5%. So by default only G_max stops the search; "stall_generations" (setStallGenerations()) trades robustness for
        cost.
 
-       Initial population ("seeding", setSeeding()): Seeding::Random, the paper's and the default, draws node pairs
-       uniformly from A x B. Seeding::Clusters (our variant, off by default) draws them from the region pairs nearest
+       Initial population ("seeding", setSeeding()): Seeding::RANDOM, the paper's and the default, draws node pairs
+       uniformly from A x B. Seeding::CLUSTERS (our variant, off by default) draws them from the region pairs nearest
        each other: the bodies' node clusters (Body::clusters(), bounding spheres of at most 32 nodes, the leaves that
        enumeration prunes with) are paired, the pairs ranked by their signed sphere gap (centre distance minus both
        radii, as enumeration orders them), and member k of the population is a random node of each cluster of the
        k-th nearest cluster pair; the search from there is the paper's. It costs the clusters' pair count in sphere
-       gaps (not node evaluations, and not counted as such). Seeding::Mixed draws half the population that way and
+       gaps (not node evaluations, and not counted as such). Seeding::MIXED draws half the population that way and
        half at random. setRestartStall() re-draws a stalled population at random, keeping the best (a restart with
        the remaining generations). Both measured in bench/paper/README.md (issue 15); both off by default.
 
@@ -68,9 +68,9 @@ namespace meshgap
         /** \brief How the initial population is drawn (see the class description). */
         enum class Seeding
         {
-            Random,   ///< uniformly over A x B (the paper)
-            Clusters,  ///< one pair per nearest node-cluster pair, nearest first
-            Mixed      ///< half of them as Clusters (the even places), half as Random
+            RANDOM,    ///< uniformly over A x B (the paper)
+            CLUSTERS,  ///< one pair per nearest node-cluster pair, nearest first
+            MIXED      ///< half of them as CLUSTERS (the even places), half as Random
         };
 
         /** \brief "comb-GA-wl" when \e localSearch, "comb-GA-nl" otherwise. */
@@ -117,7 +117,7 @@ namespace meshgap
 
     private:
         bool localSearch_;
-        Seeding seeding_{Seeding::Random};
+        Seeding seeding_{Seeding::RANDOM};
         unsigned int restartStall_{0};
         unsigned int population_{DEFAULT_POPULATION};
         unsigned int generations_{DEFAULT_GENERATIONS};

@@ -43,17 +43,17 @@ namespace meshgap
     /** \brief What a colliding pair's (negative) distance is: how its penetration depth was found. */
     enum class Penetration
     {
-        None,          ///< not in collision (or collision not decided): distance is a distance, >= 0
-        DeepestNode,   ///< depth of the deepest node of one body inside the other, closed, one (PenetrationDepth.h)
-        NoNodeInside,  ///< in collision, no node inside the other body (crossing or touching surfaces): depth 0
-        OpenBodies,    ///< in collision, both bodies open (no inside, so no depth): depth 0
-        NotComputed    ///< in collision, depth not asked for (an early stop, stopBelow >= 0): depth 0
+        NONE,           ///< not in collision (or collision not decided): distance is a distance, >= 0
+        DEEPEST_NODE,   ///< depth of the deepest node of one body inside the other, closed, one (PenetrationDepth.h)
+        NO_NODE_INSIDE,  ///< in collision, no node inside the other body (crossing or touching surfaces): depth 0
+        OPEN_BODIES,    ///< in collision, both bodies open (no inside, so no depth): depth 0
+        NOT_COMPUTED    ///< in collision, depth not asked for (an early stop, stopBelow >= 0): depth 0
     };
 
     /** \brief The distance reported for a collision whose depth is 0 or not known (Penetration other than
-        DeepestNode): the largest double below zero that is normal (-2.2e-308), so that the sign alone says
+        DEEPEST_NODE): the largest double below zero that is normal (-2.2e-308), so that the sign alone says
         "in collision" (distance < 0 if and only if inCollision) while the magnitude claims no depth. */
-    constexpr double kContactDistance = -std::numeric_limits<double>::min();
+    constexpr double CONTACT_DISTANCE = -std::numeric_limits<double>::min();
 
     /** \brief What one query found, and what it cost. */
     struct DistanceResult
@@ -83,14 +83,14 @@ namespace meshgap
             a collision, by an intersecting triangle pair or a contained body). */
         bool certified{false};
         /** \brief The bodies intersect, touch, or one (closed) body lies inside the other. distance is then
-            negative (a signed distance): -penetrationDepth, or kContactDistance when that depth is 0 or not known.
+            negative (a signed distance): -penetrationDepth, or CONTACT_DISTANCE when that depth is 0 or not known.
             Always equal to distance < 0 once the exact stage has run; kept as a flag because a node-level answer
             (no exact stage) has decided nothing, and the flag says so where the sign could not. */
         bool inCollision{false};
         /** \brief In collision: the penetration depth estimate (>= 0; a lower bound on the translational penetration
             depth, see penetrationDepth() in PenetrationDepth.h) and how it was found. Outside collision: 0, None. */
         double penetrationDepth{0.0};
-        Penetration penetration{Penetration::None};
+        Penetration penetration{Penetration::NONE};
         std::uint32_t triangleA{0}, triangleB{0};  ///< closest surface triangles (Body::surface() indices)
         std::size_t triangleTests{0};              ///< exact triangle-pair tests made
         /** \brief Best value after each iteration, when DistanceRequest::recordHistory is set. */

@@ -36,7 +36,7 @@ namespace meshgap
            In collision inCollision is set, certified too (the verdict is proven), and distance becomes a signed
            distance, always negative: -penetrationDepth for the depth estimate of penetrationDepth()
            (PenetrationDepth.h: the deepest node of either body inside the other, closed, body; a lower bound on
-           the translational penetration depth), or kContactDistance (-2.2e-308) when that depth is 0 (surfaces
+           the translational penetration depth), or CONTACT_DISTANCE (-2.2e-308) when that depth is 0 (surfaces
            crossing with no node inside, or both bodies open: no inside, no depth). penetration says which; the
            witness points are then the deepest node and its nearest point on the other surface (onA - onB moves
            B by the depth to bring that node out), or a touching point. The signed distance does not depend on the
@@ -51,7 +51,7 @@ namespace meshgap
         \e stopBelow is exact and certified as usual; one at or below it is an upper bound on the distance, not
         necessarily the minimum, so certified stays false (except for a proven collision), and inCollision is set
         only if that pair touches: the bodies may still intersect elsewhere, and the containment test is not made.
-        With stopBelow >= 0 a collision gets no depth (penetration NotComputed, distance kContactDistance): the
+        With stopBelow >= 0 a collision gets no depth (penetration NOT_COMPUTED, distance CONTACT_DISTANCE): the
         caller asked for the verdict only. Negative (the default): never stop early.
 
         - upperBound: only a surface pair closer than this matters to the caller (a scene passes the best

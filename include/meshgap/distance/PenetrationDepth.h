@@ -14,10 +14,10 @@ namespace meshgap
     {
         /** \brief The depth (>= 0): see penetrationDepth(). */
         double depth{0.0};
-        /** \brief DeepestNode when some node lies inside the other body; otherwise NoNodeInside, or OpenBodies when
+        /** \brief DEEPEST_NODE when some node lies inside the other body; otherwise NO_NODE_INSIDE, or OPEN_BODIES when
             neither body is closed. */
-        Penetration kind{Penetration::NoNodeInside};
-        /** \brief For DeepestNode: the deepest node (on one body) and the nearest point to it on the other body's
+        Penetration kind{Penetration::NO_NODE_INSIDE};
+        /** \brief For DEEPEST_NODE: the deepest node (on one body) and the nearest point to it on the other body's
             surface, as points of A and of B, in A's frame (onA - onB is then the translation of B, of length depth,
             that brings that node to the surface). Otherwise a point common to two touching triangles (onA == onB),
             when bvhCollide() finds one. */
@@ -41,9 +41,8 @@ namespace meshgap
         when three directions are all ambiguous). Candidates are visited by branch and bound over the node
         clusters (deepest possible first; a cluster whose ball the surface does not cross takes one inside test),
         and a local side test at the nearest surface point (angle-weighted pseudonormal) filters the inside tests.
-        Measured per colliding pair (random poses, Release, this machine): 50-100 us on the OMPL.app cubicles and
-        Twistycool problems (open worlds: only world nodes inside the robot count), 2-6 ms on the paper's hand
-        meshes (3,184 robot nodes, thousands of point queries); a verdict-only query (stopBelow >= 0) skips it.
+        A verdict-only query (stopBelow >= 0) skips it (its cost per colliding pair: bench/README.md, "Penetration
+        depth").
 
         What it estimates. If a point p of B lies inside closed A at distance d from A's surface, every translation
         of B shorter than d keeps p inside A, so the bodies still collide: d, and so the returned depth, is a
@@ -51,21 +50,21 @@ namespace meshgap
         It is exact for a box pushed face-first into another box (a node at the deepest corner), and for two
         spheres it misses the true depth r1 + r2 - c only by the mesh resolution (the deepest point's distance to
         the nearest node, plus the gap between the sphere and its inscribed mesh). It is 0, with kind
-        NoNodeInside, when the surfaces cross or touch with no node inside the other body (a shallow crossing
+        NO_NODE_INSIDE, when the surfaces cross or touch with no node inside the other body (a shallow crossing
         between two node spacings): a finer grid finds such nodes. Nodes of an open body count when they lie inside
         a closed one (an open sheet through a closed body has points inside it, which is a collision too).
 
         Open bodies. An open surface has no inside, so there is no depth to estimate: with both bodies open the
-        result is depth 0, kind OpenBodies, and the witness is a touching triangle pair.
+        result is depth 0, kind OPEN_BODIES, and the witness is a touching triangle pair.
 
-        Call it for colliding bodies only (it does not decide collision: separated bodies get NoNodeInside, depth
+        Call it for colliding bodies only (it does not decide collision: separated bodies get NO_NODE_INSIDE, depth
         0, or a node "inside" a body it does not touch when one contains the other, which is a collision). A pure
         function of the bodies and the pose (no warm start, deterministic ties: the first node found in a fixed
         order wins). Thread-safe. */
     PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB);
 
     /** \brief Fill \e result for a colliding pair from penetrationDepth(): inCollision, distance =
-        -depth (kContactDistance when the depth is 0), penetrationDepth, penetration, and the witness points and
+        -depth (CONTACT_DISTANCE when the depth is 0), penetrationDepth, penetration, and the witness points and
         triangles when it found some; adds to triangleTests. */
     void setPenetration(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result);
 

@@ -22,8 +22,8 @@ namespace meshgap
     /** \brief How the grid size of a body's nodes is chosen. */
     enum class GridSizing
     {
-        Uniform,  ///< one size h everywhere (BodyOptions::gridSize)
-        Adaptive  ///< a size that follows the local feature size (BodyOptions::adaptive, adaptiveNodeSizes())
+        UNIFORM,  ///< one size h everywhere (BodyOptions::gridSize)
+        ADAPTIVE  ///< a size that follows the local feature size (BodyOptions::adaptive, adaptiveNodeSizes())
     };
 
     /** \brief How to turn a mesh into a body. */
@@ -38,7 +38,7 @@ namespace meshgap
         /** \brief Uniform (gridSize) or adaptive (finer at thin parts, pegs, holes and creases, coarser on large
             thick parts: refineMesh() with the sizes of adaptiveNodeSizes(adaptive)); gridSize is ignored when
             Adaptive. */
-        GridSizing sizing{GridSizing::Uniform};
+        GridSizing sizing{GridSizing::UNIFORM};
         /** \brief The adaptive rule (used when sizing is Adaptive). */
         AdaptiveSizing adaptive;
         /** \brief Mesh distances (built on first use of distances()). */

@@ -6,7 +6,7 @@
 namespace meshgap
 {
     /** \brief Relative tolerance of trianglesIntersect() and of the zero case of triangleDistance(): two triangles
-        whose computed distance is at most kTriangleContactTolerance * s are reported as intersecting (touching).
+        whose computed distance is at most TRIANGLE_CONTACT_TOLERANCE * s are reported as intersecting (touching).
         s (in the input's length unit) is the larger of the six vertices' extent (largest side of their common
         axis-aligned bounding box) and their largest absolute coordinate: coordinates of magnitude M are themselves
         only known to about 1e-16 M (a vertex carried into another frame by a pose moves by that much), so a contact
@@ -16,7 +16,7 @@ namespace meshgap
         triangles and nearly parallel edges, so the tolerance leaves a margin of about three orders of magnitude:
         a pair that really touches or intersects is never reported free, and a pair reported intersecting is at
         most 1e-12 s apart. */
-    constexpr double kTriangleContactTolerance = 1e-12;
+    constexpr double TRIANGLE_CONTACT_TOLERANCE = 1e-12;
 
     /** \brief Closest points of the segments [p0, p1] and [q0, q1]; returns their distance.
 
@@ -43,7 +43,7 @@ namespace meshgap
 
         Decided as: not separated by either triangle's plane with a margin, and either an edge of one crosses the
         other's face or the exact-distance computation of triangleDistance() gives at most
-        kTriangleContactTolerance times the scale s defined there. Conservative: when in doubt (within that
+        TRIANGLE_CONTACT_TOLERANCE times the scale s defined there. Conservative: when in doubt (within that
         tolerance) the answer is \c true. Equal to <tt>triangleDistance(...) == 0</tt> for the same arguments,
         symmetric in the two triangles and invariant under the order of each triangle's corners (bit for bit: the
         input is put in a canonical order first). Degenerate triangles are handled as the union of their edges. */

@@ -81,7 +81,7 @@ namespace meshgap
         bool isValid(const ompl::base::State *state, double &dist) const override;
         /** \brief Signed distance to the nearest obstacle: SceneResult::distance, negative (or 0) in collision. */
         double clearance(const ompl::base::State *state) const override;
-        /** \brief clearance() of a free state; for a state in collision a negative number (kContactDistance)
+        /** \brief clearance() of a free state; for a state in collision a negative number (CONTACT_DISTANCE)
             without the depth, found at about the price of isValid(): for a caller that only needs "in collision"
             there. Counted as a clearance call. */
         double clearanceOrContact(const ompl::base::State *state) const;

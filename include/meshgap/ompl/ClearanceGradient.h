@@ -30,7 +30,7 @@ namespace meshgap
     {
         bool inCollision{false};
         /** \brief The gradient is a direction: false where the answer has no witness direction (no obstacle, an
-            empty scene, or a collision of depth 0 or unknown: kContactDistance, where the reported signed distance
+            empty scene, or a collision of depth 0 or unknown: CONTACT_DISTANCE, where the reported signed distance
             is locally constant), and the gradient is then zero. */
         bool hasDirection{false};
         /** \brief Pairs combined: 1 where the clearance is smooth (one closest pair), more at a tie. */
@@ -61,11 +61,11 @@ namespace meshgap
          point to the robot's; translating the robot by dt changes the distance by n . dt, and rotating it by a
          world-frame rotation vector w about its origin x moves the witness point p = onRobot by w x (p - x), so the
          gradient is (n, (p - x) x n). SE(2): (n.x, n.y, ((p - x) x n).z).
-       - in collision with a depth (Penetration::DeepestNode): the signed distance is minus the depth of the
+       - in collision with a depth (Penetration::DEEPEST_NODE): the signed distance is minus the depth of the
          deepest node, which onRobot - onObstacle pushes out when reversed (README "Penetration depth"); the same
          formula with n = (onObstacle - onRobot) / |...| and p = onRobot (either the robot's node inside the obstacle
          or the point of the robot's surface nearest the obstacle's node) is the derivative of that signed
-         distance. Other collisions have no depth (kContactDistance): gradient 0, hasDirection false.
+         distance. Other collisions have no depth (CONTACT_DISTANCE): gradient 0, hasDirection false.
        - ties: every other obstacle whose exact distance is within the tie tolerance of the minimum (refineExact()
          bounded by minimum + tolerance, so far obstacles cost a box test) contributes its own pair's gradient
          g_i, up to 8 pairs, the closest kept. The clearance is then the minimum of the pairs' smooth distances,

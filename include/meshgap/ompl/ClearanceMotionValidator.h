@@ -46,7 +46,7 @@ namespace meshgap
         /** \brief Whether s2 or a state at k / n of the motion collides, n = min(validSegmentCount(), 4)
             (exact isValid() checks, middle first). */
         bool probesCollide(const ompl::base::State *s1, const ompl::base::State *s2) const;
-        static constexpr unsigned kProbeSegments = 4;
+        static constexpr unsigned PROBE_SEGMENTS = 4;
 
         ClearanceCheckerPtr checker_;
         double minStepFraction_{1e-4};

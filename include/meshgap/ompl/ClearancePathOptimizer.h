@@ -114,10 +114,10 @@ namespace meshgap
             double at{0.0};       ///< its fraction of the motion
             bool refuted{false};  ///< a sample below refuteBelow was found (the search stopped there)
         };
-        static constexpr unsigned kMaxSamplesPerMotion = 4000;
+        static constexpr unsigned MAX_SAMPLES_PER_MOTION = 4000;
         /** \brief minClearance()'s relative tolerance: a motion's minimum is found to within the larger of the
             tolerance and this fraction of it. */
-        static constexpr double kMeasureRelativeTolerance = 1e-3;
+        static constexpr double MEASURE_RELATIVE_TOLERANCE = 1e-3;
         /** \brief The minimum clearance along s1 -> s2 (clearances \e c1, \e c2 at the ends) by Lipschitz branch
             and bound, until best - lower <= max(tolerance, relative * best), or a sample below \e refuteBelow. */
         MotionBound motionBound(const ompl::base::State *s1, const ompl::base::State *s2, double c1, double c2,

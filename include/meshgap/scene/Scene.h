@@ -80,7 +80,7 @@ namespace meshgap
         bool inCollision{false};
         /** \brief In collision: the penetration depth estimate behind distance (>= 0) and how it was found. */
         double penetrationDepth{0.0};
-        Penetration penetration{Penetration::None};
+        Penetration penetration{Penetration::NONE};
         bool certified{false};       ///< exact and proven (every pair that survived the broad phase completed)
         std::size_t pairsChecked{0};  ///< robot/obstacle pairs that survived the broad phase
         std::size_t evaluations{0};   ///< node-pair evaluations (fast mode)
@@ -115,39 +115,13 @@ namespace meshgap
             test. Thread-safe given a warm start per caller; allocates nothing once warmed up. */
         bool inCollision(const Eigen::Isometry3d &X_WR, SceneWarmStart &warm) const;
 
-        /** \brief Minimum distance from the robot at \e X_WR to the obstacles. Obstacles are visited in order of a
-            lower bound on their distance (ties in R-tree order), the warm start's obstacle first, and skipped once that
-            bound exceeds the best distance found so far (or request.upperBound). Thread-safe given a warm start per
-            caller; allocates nothing once the calling thread has warmed up (tests/alloc).
-
-            The bound is the distance between world-frame axis-aligned boxes: the obstacle's, and the robot's (its
-            BVH root box and bounding sphere carried to the world frame, intersected, padded against roundoff), so
-            only obstacles that cannot be closer than the best so far are skipped.
-            - Exact mode: refineExact() per visited obstacle with the warm start's ExactWarmStart of that obstacle
-              (its last closest triangle pair and traversal front). certified when every visited pair completed and none was left
-              unvisited that could be closer. Containment is decided per obstacle: a robot inside a closed part of
-              the world collides.
-            - In collision (both modes) distance is the signed distance, negative: the minimum over every colliding
-              obstacle of its pair's signed distance (setPenetration(): minus the depth of the deepest node of one
-              body inside the other, closed, body, a lower bound on the penetration depth; kContactDistance,
-              -2.2e-308, when that depth is 0 or the bodies are open), ties to the smallest obstacle index. The first
-              collision met ends the distance walk; then every obstacle whose box overlaps the robot's is tested, so
-              the answer (distance, obstacle, penetration, witness points: the deepest node and its nearest surface
-              point) is a pure function of the pose, whatever the warm start or the visiting order. certified (the
-              verdict is proven).
-            - Fast mode: request.solver per visited obstacle (request.seed; the warm pair as the start on its
-              obstacle; warm-fast follows the run of poses with a WarmFastState per obstacle in the warm start),
-              never certified; but the collision verdict is exact (decided first), so a colliding pose is never
-              reported free, and its signed distance is the exact mode's.
-            - stopBelow: the query ends once the best distance is at or below it (an upper bound then, not certified;
-              in exact mode, inCollision is then set only if a touching pair was met). A collision then gets no
-              depth (it is not needed to refuse the pose): distance kContactDistance, penetration NotComputed, and
-              the first collision met ends the query.
-            \e warm is updated to the closest obstacle (and, in exact mode, the pair and front of every obstacle
-            visited; in fast mode, the node pair), whatever it held before. The warm start changes the cost, never the verdict;
-            the exact distance may differ from a cold query's in the last bits (at a minimum that several triangle
-            pairs reach, as at a vertex or between parallel faces, each pair's roundoff differs; measured: at most
-            5e-15 relative). */
+        /** \brief Minimum distance from the robot at \e X_WR to the obstacles, as \e request asks: exact and
+            certified, or fast mode's upper bound (request.exact); only below request.upperBound (else atLeast);
+            ended at request.stopBelow (then an upper bound, not certified). In collision the distance is signed,
+            negative: the deepest penetration over every colliding obstacle, a pure function of the pose. \e warm
+            carries what the caller's last query found (SceneWarmStart) and changes the cost, never the answer: a
+            complete exact answer is the cold one bit for bit. Thread-safe given a warm start per caller; allocates
+            nothing once the calling thread has warmed up (tests/alloc). How: Scene.cpp, exactDistance(). */
         void distance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
                       SceneResult &result) const;
         /** \brief The same answer with no warm start: a cold query, which keeps nothing (and allocates nothing once
