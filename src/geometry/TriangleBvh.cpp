@@ -314,6 +314,22 @@ namespace meshgap
         {
             return !a.isLeaf() && (b.isLeaf() || a.radius >= b.radius);
         }
+
+        /** \brief Push the two children of pair \e e (nodes \e na, \e nb) split as splitA() says. */
+        void pushChildren(std::vector<PairEntry> &stack, const PairEntry &e, const TriangleBvh::Node &na,
+                          const TriangleBvh::Node &nb)
+        {
+            if (splitA(na, nb))
+            {
+                stack.push_back({na.first, e.b});
+                stack.push_back({na.first + 1, e.b});
+            }
+            else
+            {
+                stack.push_back({e.a, nb.first});
+                stack.push_back({e.a, nb.first + 1});
+            }
+        }
     }  // namespace
 
     double nodeMotionBound(const Eigen::Vector3d &center, double radius, const Eigen::Isometry3d &from,
@@ -797,32 +813,22 @@ namespace meshgap
                 }
                 continue;
             }
-            if (splitA(na, nb))
-            {
-                stack.push_back({na.first, e.b});
-                stack.push_back({na.first + 1, e.b});
-            }
-            else
-            {
-                stack.push_back({e.a, nb.first});
-                stack.push_back({e.a, nb.first + 1});
-            }
+            pushChildren(stack, e, na, nb);
         }
         return false;
     }
     namespace
     {
-        /** \brief One collision test below a pair of nodes, depth first: box pairs proven apart by more than
-            \e margin + twice the motion of B's node by \e lookahead (the last step), and triangle pairs apart by more
-            than \e margin, go to \e record with their gap (key = gap + motion), so that most of the front stays
-            proven after a similar step; a pair
-            apart by less, or by an edge axis only, is kept with gap 0 (re-tested at the next pose). Pairs of
-            triangles that might touch are decided by trianglesIntersect(). */
+        /** \brief One collision test below a pair of nodes, depth first, writing a collision front: box pairs
+            proven apart by more than \e margin + twice the motion of B's node by \e lookahead (the last step), and
+            triangle pairs apart by more than \e margin, go to \e record with their gap (key = gap + motion), so that
+            most of the front stays proven after a similar step; a pair of triangles apart by less is kept with gap 0
+            (re-tested at the next pose). Pairs of triangles that might touch are decided by trianglesIntersect(). */
         class CollisionTraversal
         {
         public:
             CollisionTraversal(const TriangleBvh &a, const TriangleBvh &b, const RelativePose &X, double margin,
-                               const StepMotion *lookahead, std::vector<BvhFront::Entry> *record, double motion,
+                               const StepMotion &lookahead, std::vector<BvhFront::Entry> *record, double motion,
                                std::uint32_t stamp)
               : a_(a), b_(b), X_(X), margin_(margin), lookahead_(lookahead), record_(record), motion_(motion),
                 stamp_(stamp),
@@ -848,28 +854,13 @@ namespace meshgap
                     }
                     const double bound = lowerBound(na, nb, X_);
                     // Kept when apart by the margin plus twice the last step's motion of B's node, so that it stays
-                    // proven at the next pose or two; without a lookahead, as soon as separated.
-                    const double apart = lookahead_ ? margin_ + 2.0 * lookahead_->displacement(nb) : margin_;
-                    if (bound > apart)
+                    // proven at the next pose or two.
+                    if (bound > margin_ + 2.0 * lookahead_.displacement(nb))
                     {
                         keep(e, bound);
                         continue;
                     }
-                    if (!lookahead_ && separated(na, nb, X_))
-                    {
-                        keep(e, 0.0);
-                        continue;
-                    }
-                    if (splitA(na, nb))
-                    {
-                        stack_.push_back({na.first, e.b});
-                        stack_.push_back({na.first + 1, e.b});
-                    }
-                    else
-                    {
-                        stack_.push_back({e.a, nb.first});
-                        stack_.push_back({e.a, nb.first + 1});
-                    }
+                    pushChildren(stack_, e, na, nb);
                 }
                 return false;
             }
@@ -922,7 +913,7 @@ namespace meshgap
             const TriangleBvh &a_, &b_;
             const RelativePose &X_;
             const double margin_;
-            const StepMotion *lookahead_;
+            const StepMotion &lookahead_;
             std::vector<BvhFront::Entry> *record_;
             const double motion_;
             const std::uint32_t stamp_;
@@ -1016,7 +1007,7 @@ namespace meshgap
         {
             const double motion = front.motion + step;
             front.next.clear();
-            CollisionTraversal traversal(a, b, X, margin, &*last, &front.next, motion, stamp);
+            CollisionTraversal traversal(a, b, X, margin, *last, &front.next, motion, stamp);
             std::size_t retested = 0;
             if (retestCollisionFront(front, traversal, b, X_AB, margin, motion, stamp, retested))
                 return report(traversal);
@@ -1051,7 +1042,7 @@ namespace meshgap
         front.uses = 0;
         ++front.rebuilds;
         front.entries.clear();
-        CollisionTraversal traversal(a, b, X, margin, &*last, &front.entries, 0.0, stamp);
+        CollisionTraversal traversal(a, b, X, margin, *last, &front.entries, 0.0, stamp);
         if (traversal.run({0u, 0u}))
             return report(traversal);
         front.motion = 0.0;
