@@ -8,6 +8,7 @@
 #include <iostream>
 #include <random>
 
+#include "TestNote.h"
 #include "FclOracle.h"
 #include "TestMeshes.h"
 #include "meshgap/distance/ExactDistance.h"
@@ -126,7 +127,7 @@ TEST(PenetrationDepth, OverlappingSpheresWithinTheMeshResolutionOfTheTrueDepth)
             EXPECT_NEAR((r.onA - r.onB).norm(), r.penetrationDepth, 1e-12);
             EXPECT_TRUE(r.certified);
         }
-    std::cout << "[ depth    ] spheres: worst shortfall " << worst << " (bound " << slack << ")\n";
+    test::Note() << "[ depth    ] spheres: worst shortfall " << worst << " (bound " << slack << ")\n";
 }
 
 TEST(PenetrationDepth, BoxPushedIntoABoxByAKnownAmount)
@@ -318,7 +319,7 @@ TEST(PenetrationDepth, OmplAppRandomCollidingPosesAreNegative)
             EXPECT_TRUE(containsPoint(o, r.onRobot) || containsPoint(scene->robot(), X.inverse() * r.onObstacle))
                 << name << " pose " << i;
         }
-        std::cout << "[ depth    ] " << name << ": 150 random poses, " << collisions << " colliding, " << deep
+        test::Note() << "[ depth    ] " << name << ": 150 random poses, " << collisions << " colliding, " << deep
                   << " with a node inside\n";
         EXPECT_GT(collisions, 10u);
     }

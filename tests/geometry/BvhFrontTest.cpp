@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "TestNote.h"
 #include "TestMeshes.h"
 #include "meshgap/geometry/TriangleBvh.h"
 #include "meshgap/geometry/TriangleDistance.h"
@@ -124,7 +125,7 @@ TEST(BvhFront, EveryEntryStaysALowerBoundAndTheFrontACutAlongAMotion)
                                      << int(covered[k]) << " times";
         ++checked;
     }
-    std::cout << "[ front    ] " << checked << " fronts checked; entries kept " << front.reused << ", re-tested "
+    test::Note() << "[ front    ] " << checked << " fronts checked; entries kept " << front.reused << ", re-tested "
               << front.retested << ", rebuilds " << front.rebuilds << ", " << touching << " touching poses\n";
     EXPECT_GT(checked, 200u);
     EXPECT_GT(touching, 5u);   // the motion passes through A: collisions (early stops) on the way

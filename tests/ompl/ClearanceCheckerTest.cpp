@@ -10,6 +10,7 @@
 #include <iostream>
 #include <thread>
 
+#include "TestNote.h"
 #include "FclOracle.h"
 #include "TestMeshes.h"
 #include "meshgap/distance/ExactDistance.h"
@@ -132,7 +133,7 @@ TEST(ClearanceChecker, ValidStateAwayFromTheNearestObstacleIsFreeAndClearer)
     // The direction is useful, not just safe: most states get a valid state (measured: see the counts).
     EXPECT_GT(nearFixed, near * 8 / 10) << nearFixed << " of " << near;
     EXPECT_GT(collidingFixed, colliding / 3) << collidingFixed << " of " << colliding;
-    std::cout << "valid state away: " << collidingFixed << " of " << colliding << " colliding, " << nearFixed << " of "
+    test::Note() << "valid state away: " << collidingFixed << " of " << colliding << " colliding, " << nearFixed << " of "
               << near << " near\n";
 }
 #endif
@@ -284,7 +285,7 @@ TEST(ClearanceChecker, FastModeDefaultsToWarmFastNeverBelowExact)
     EXPECT_GT(free, 60);
     EXPECT_GT(colliding, 0) << "no state collides: the verdicts went untested";
     EXPECT_GE(2 * atExact, free) << atExact << " of " << free << " free states at the exact clearance";
-    std::cout << "warm-fast at the exact clearance at " << atExact << " of " << free << " free states\n";
+    test::Note() << "warm-fast at the exact clearance at " << atExact << " of " << free << " free states\n";
 }
 
 // Threads each walking the runs with one warm-fast checker: every answer at or above the exact one, every verdict

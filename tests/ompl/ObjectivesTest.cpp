@@ -9,6 +9,7 @@
 #include <ompl/base/StateValidityChecker.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "TestNote.h"
 #include "TestMeshes.h"
 #include "meshgap/ompl/ClearanceChecker.h"
 #include "meshgap/ompl/Objectives.h"
@@ -100,7 +101,7 @@ TEST(MaxMinClearanceObjective, SameCostsAsOmplsObjectiveFromFewerQueries)
     EXPECT_GT(invalid, 50);
     EXPECT_GT(interiorMinimum, 20);  // the pruning had minima between the endpoints to find
     EXPECT_LT(ours.queriedStates(), ours.gridStates());
-    std::cout << "[          ] " << free << " free and " << invalid << " invalid motions: " << ours.queriedStates()
+    test::Note() << "[          ] " << free << " free and " << invalid << " invalid motions: " << ours.queriedStates()
               << " states queried for " << ours.gridStates() << " grid states\n";
 }
 

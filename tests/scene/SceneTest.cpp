@@ -8,6 +8,7 @@
 #include <random>
 #include <thread>
 
+#include "TestNote.h"
 #include "FclOracle.h"
 #include "TestMeshes.h"
 #include "meshgap/Exception.h"
@@ -212,7 +213,7 @@ TEST(Scene, DistanceIsTheMinimumOverAllObstaclesAtRandomPoses)
         EXPECT_LT(distanceToSurface(scene->robot().surface(), X.inverse() * r.onRobot), 1e-12);
     }
     const double meanPairs = static_cast<double>(pairs) / 200.0;
-    std::cout << "[ scene    ] 200 random poses: " << collisions << " colliding, " << free
+    test::Note() << "[ scene    ] 200 random poses: " << collisions << " colliding, " << free
               << " free; pairs past the broad phase per query: " << meanPairs << " of 8\n";
     EXPECT_GT(collisions, 20u);
     EXPECT_GT(free, 40u);
@@ -272,7 +273,7 @@ TEST(Scene, WarmStartNeverChangesTheAnswerAlongAMotion)
         pairsCold += c.pairsChecked;
     }
     const double hitRate = static_cast<double>(hits) / static_cast<double>(warmQueries);
-    std::cout << "[ scene    ] " << poses.size() << " poses along 3 lines (" << collisions
+    test::Note() << "[ scene    ] " << poses.size() << " poses along 3 lines (" << collisions
               << " colliding): warm-start hit rate " << hitRate << ", bit-identical distances " << identical
               << " (worst relative difference " << worstDifference << ")"
               << ", pairs per query warm " << static_cast<double>(pairsWarm) / poses.size() << " / cold "
@@ -468,7 +469,7 @@ TEST(Scene, FastModeNeverCallsACollidingPoseFreeAndIsNeverBelowTheExactDistance)
         scene->distance(X, fast, cold3, again);
         EXPECT_EQ(again.distance, r.distance);
     }
-    std::cout << "[ scene    ] fast mode, 60 poses (" << collisions << " colliding): worst node/exact distance "
+    test::Note() << "[ scene    ] fast mode, 60 poses (" << collisions << " colliding): worst node/exact distance "
               << worstRatio << ", mean evaluations "
               << static_cast<double>(evaluations) / std::max<std::size_t>(free, 1) << "\n";
     EXPECT_GT(collisions, 5u);
@@ -642,7 +643,7 @@ TEST(Scene, OmplAppProblemsMatchFclAtPathStatesAndRandomPoses)
             const double d = test::fclDistance(fw, fr, X);
             EXPECT_NEAR(r.distance, d, 1e-6 * d + 1e-9 * world.size()) << name << " pose " << i;
         }
-        std::cout << "[ scene    ] " << name << ": " << scene->obstacles().size() << " obstacles; " << states.size()
+        test::Note() << "[ scene    ] " << name << ": " << scene->obstacles().size() << " obstacles; " << states.size()
                   << " path states + 100 random poses: " << collisions << " colliding, " << contained
                   << " contained (FCL: free), " << freeCount << " free; pairs past the broad phase "
                   << static_cast<double>(pairs) / poses.size() << " per query; warm-start hits along the path "
