@@ -435,6 +435,42 @@ namespace meshgap
         }
     }
 
+    bool Scene::fastCollision(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
+                              bool warmValid, SceneResult &result) const
+    {
+        // The signed distance in collision is the exact mode's (no depth with an early stop).
+        const bool mayStop = request.stopBelow >= 0.0;
+        DistanceResult deepest;
+        const std::size_t hit = mayStop ? firstCollision(X_WR)
+                                        : deepestCollision(X_WR, obstacles_.size(), deepest, result.pairsChecked);
+        if (hit == obstacles_.size())
+            return false;
+        if (mayStop)
+        {
+            result.distance = CONTACT_DISTANCE;
+            result.penetration = Penetration::NOT_COMPUTED;
+        }
+        else
+        {
+            result.distance = deepest.distance;
+            result.penetrationDepth = deepest.penetrationDepth;
+            result.penetration = deepest.penetration;
+            result.onObstacle = deepest.onA;
+            result.onRobot = deepest.onB;
+        }
+        result.obstacle = hit;
+        result.inCollision = true;
+        result.warmStartHit = warmValid && hit == warm.obstacle;
+        if (!result.warmStartHit)
+        {
+            // No node pair is known there: start from its first nodes, a valid if arbitrary guess.
+            warm.valid = true;
+            warm.obstacle = hit;
+            warm.nodes = NodePair();
+        }
+        return true;
+    }
+
     void Scene::fastDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
                              bool carried, SceneResult &result) const
     {
@@ -452,39 +488,10 @@ namespace meshgap
         const bool warmValid = warm.valid && warm.obstacle < obstacles_.size();
         result.certified = false;  // a node-level answer is never proven
 
-        // The collision verdict is exact whatever the node search would say, and the signed distance in collision
-        // is the exact mode's (no depth with an early stop).
-        const bool mayStop = request.stopBelow >= 0.0;
-        DistanceResult deepest;
-        const std::size_t hit = mayStop ? firstCollision(X_WR)
-                                        : deepestCollision(X_WR, obstacles_.size(), deepest, result.pairsChecked);
-        if (hit < obstacles_.size())
-        {
-            if (mayStop)
-            {
-                result.distance = CONTACT_DISTANCE;
-                result.penetration = Penetration::NOT_COMPUTED;
-            }
-            else
-            {
-                result.distance = deepest.distance;
-                result.penetrationDepth = deepest.penetrationDepth;
-                result.penetration = deepest.penetration;
-                result.onObstacle = deepest.onA;
-                result.onRobot = deepest.onB;
-            }
-            result.obstacle = hit;
-            result.inCollision = true;
-            result.warmStartHit = warmValid && hit == warm.obstacle;
-            if (!result.warmStartHit)
-            {
-                // No node pair is known there: start from its first nodes, a valid if arbitrary guess.
-                warm.valid = true;
-                warm.obstacle = hit;
-                warm.nodes = NodePair();
-            }
+        // The collision verdict is exact whatever the node search would say.
+        if (fastCollision(X_WR, request, warm, warmValid, result))
             return;
-        }
+        const bool mayStop = request.stopBelow >= 0.0;
 
         DistanceResult best;
         std::size_t bestK = obstacles_.size();

@@ -150,6 +150,10 @@ namespace meshgap
                            SceneResult &result) const;
         void fastDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
                           bool carried, SceneResult &result) const;
+        /** \brief Fast mode's exact collision verdict: true (and \e result filled as exact mode would) when the
+            robot at \e X_WR collides. */
+        bool fastCollision(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
+                           bool warmValid, SceneResult &result) const;
 
         BodyConstPtr robot_;
         std::vector<BodyConstPtr> obstacles_;
