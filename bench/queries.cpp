@@ -13,14 +13,14 @@
 //   - "random": --random poses uniform in the cfg's volume with a uniform rotation (fixed seed).
 // Per state, interleaved so machine load hits every column alike: FCL distance, FCL collision, meshgap cold
 // certified (Scene::distance without a warm start), warm certified (one warm start carried from state
-// to state), fast (SceneRequest::exact = false with --fast-solver, its own carried warm start), collision-only (Scene::inCollision),
-// collision-only warm (Scene::inCollision with its own warm start carried from state to state: collision fronts),
-// and enumeration (the exact node-level minimum over every obstacle, on every --enum-every'th state). --skip
-// leaves columns (cold, warm, fast, collision, collision-warm, enumeration) or sets (path, random) out; the two FCL columns are
-// the reference and always run. Median and 90th percentile in microseconds, the ratio of the medians to FCL's
-// (distance columns to FCL distance, collision-only to FCL collision), and disagreements counted: collision
-// verdicts of every column against FCL's collision; certified distances against FCL's distance, where both say
-// free, beyond 1e-6 relative + 1e-9 absolute; warm against cold (same verdict, signed distances within 1e-12
+// to state), fast (SceneRequest::exact = false with --fast-solver, its own carried warm start), collision-only
+// (Scene::inCollision), collision-only warm (Scene::inCollision with its own warm start carried from state to state:
+// collision fronts), and enumeration (the exact node-level minimum over every obstacle, on every --enum-every'th
+// state). --skip leaves columns (cold, warm, fast, collision, collision-warm, enumeration) or sets (path, random) out;
+// the two FCL columns are the reference and always run. Median and 90th percentile in microseconds, the ratio of the
+// medians to FCL's (distance columns to FCL distance, collision-only to FCL collision), and disagreements counted:
+// collision verdicts of every column against FCL's collision; certified distances against FCL's distance, where both
+// say free, beyond 1e-6 relative + 1e-9 absolute; warm against cold (same verdict, signed distances within 1e-12
 // relative: the warm start must never change the answer).
 //
 //   build/bench/meshgap_bench_queries [--data ../shared/data/omplapp] [--maps maps] [--problems a,b,c]
@@ -44,8 +44,8 @@
 #include <sstream>
 
 #include "CliMain.h"
-#include "PathInterpolation.h"
 #include "FclOracle.h"
+#include "PathInterpolation.h"
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
 #include "meshgap/distance/Enumeration.h"
@@ -253,9 +253,8 @@ namespace
                 std::abs(a.distance - b.distance) <= 1e-12 * std::max(std::abs(a.distance), std::abs(b.distance)));
     }
 
-    const char *const COLUMNS[] = {"FCL distance", "FCL collision",       "cold certified",
-                                   "warm certified", "fast",              "collision-only",
-                                   "collision-only, warm", "enumeration"};
+    const char *const COLUMNS[] = {"FCL distance", "FCL collision",  "cold certified",       "warm certified",
+                                   "fast",         "collision-only", "collision-only, warm", "enumeration"};
     /** \brief --skip names of the columns, in COLUMNS' order (the FCL columns are the reference: never skipped). */
     const char *const SKIP_NAMES[] = {"", "", "cold", "warm", "fast", "collision", "collision-warm", "enumeration"};
     enum Column
@@ -319,9 +318,10 @@ int main(int argc, char **argv)
                     known = true;
                 }
             if (!known)
-                throw Exception("--skip", "unknown column or set '" + name +
-                                              "' (valid: cold, warm, fast, collision, collision-warm, enumeration, path, random; "
-                                              "the FCL columns are the reference and always run)");
+                throw Exception("--skip",
+                                "unknown column or set '" + name +
+                                    "' (valid: cold, warm, fast, collision, collision-warm, enumeration, path, random; "
+                                    "the FCL columns are the reference and always run)");
         }
         if (enumEvery == 0)
             active[ENUM] = false;
@@ -426,8 +426,7 @@ int main(int argc, char **argv)
                     t[FCL_D].push_back(timed([&] { dF = test::fclDistance(fw, fr, X); }));
                     t[FCL_C].push_back(timed([&] { cF = test::fclCollide(fw, fr, X); }));
                     if (active[COLD])
-                        t[COLD].push_back(timed(
-                            [&] { scene->distance(X, certified, cold); }));
+                        t[COLD].push_back(timed([&] { scene->distance(X, certified, cold); }));
                     if (active[WARM])
                         t[WARM].push_back(timed([&] { scene->distance(X, certified, warm, hot); }));
                     if (active[FAST])
@@ -525,8 +524,7 @@ int main(int argc, char **argv)
                     {
                         if (!active[c])
                             continue;
-                        const double ref =
-                            c == COLL || c == WCOLL || c == FCL_C ? s[FCL_C].median : s[FCL_D].median;
+                        const double ref = c == COLL || c == WCOLL || c == FCL_C ? s[FCL_C].median : s[FCL_D].median;
                         *csv << problem.name << "," << set << "," << poses.size() << "," << colliding << ","
                              << world.triangles.size() << "," << robot.triangles.size() << ","
                              << scene->obstacles().size() << "," << COLUMNS[c] << "," << s[c].n << "," << s[c].median

@@ -20,7 +20,8 @@ namespace meshgap
             Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};
         };
 
-        /** \brief Exact distance of surface triangle ta of A to surface triangle tb of B (B's corners into A's frame). */
+        /** \brief Exact distance of surface triangle ta of A to surface triangle tb of B (B's corners into A's frame).
+         */
         double pairDistance(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, std::uint32_t ta,
                             std::uint32_t tb, Eigen::Vector3d &onA, Eigen::Vector3d &onB)
         {
@@ -135,8 +136,8 @@ namespace meshgap
 
     bool inCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, ExactWarmStart *warm)
     {
-        const bool touching = warm ? bvhCollide(a.bvh(), b.bvh(), X_AB, warm->collision)
-                                   : bvhCollide(a.bvh(), b.bvh(), X_AB);
+        const bool touching =
+            warm ? bvhCollide(a.bvh(), b.bvh(), X_AB, warm->collision) : bvhCollide(a.bvh(), b.bvh(), X_AB);
         return touching || oneInsideTheOther(a, b, X_AB);
     }
 
@@ -166,8 +167,8 @@ namespace meshgap
             const bool seeded = std::isfinite(best.d);
             // A seed that is the starting bound, apart, is not tested again: its distance and direction are known.
             const bool known = seeded && best.d <= upperBound && best.d > 0.0;
-            const Eigen::Vector3d seedAxis = known ? Eigen::Vector3d((best.onB - best.onA) / (best.onB - best.onA).norm())
-                                                   : Eigen::Vector3d::Zero();
+            const Eigen::Vector3d seedAxis =
+                known ? Eigen::Vector3d((best.onB - best.onA) / (best.onB - best.onA).norm()) : Eigen::Vector3d::Zero();
             bvhDistance(a.bvh(), b.bvh(), X_AB, std::min(best.d, upperBound), mayStop ? stopBelow : 0.0, traversal,
                         seeded ? best.ta : UINT32_MAX, seeded ? best.tb : UINT32_MAX, warm ? &warm->front : nullptr,
                         known ? &seedAxis : nullptr);

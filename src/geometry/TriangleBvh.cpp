@@ -1,7 +1,7 @@
 #include "meshgap/geometry/TriangleBvh.h"
 
-#include <algorithm>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -82,7 +82,8 @@ namespace meshgap
         for (std::uint32_t t = 0; t < n; ++t)
         {
             const Triangle &f = mesh.triangles[t];
-            const Eigen::Vector3d c = (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
+            const Eigen::Vector3d c =
+                (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
             const double length = c.norm();
             normals_[t] = length > 0.0 ? Eigen::Vector3d(c / length) : Eigen::Vector3d::Zero();  // zero: no bound
         }
@@ -117,7 +118,8 @@ namespace meshgap
             const Eigen::Vector3d direction = node.axes.col(axis);
             const std::uint32_t half = w.count / 2;
             std::nth_element(order_.begin() + w.first, order_.begin() + w.first + half,
-                             order_.begin() + w.first + w.count, [&](std::uint32_t i, std::uint32_t j)
+                             order_.begin() + w.first + w.count,
+                             [&](std::uint32_t i, std::uint32_t j)
                              { return direction.dot(centroid[i]) < direction.dot(centroid[j]); });
             const auto left = static_cast<std::uint32_t>(nodes_.size());
             nodes_.push_back(Node());
@@ -138,7 +140,7 @@ namespace meshgap
             Eigen::Matrix3d R, absR;
             Eigen::Vector3d t;
             explicit RelativePose(const Eigen::Isometry3d &X)
-              : R(X.linear()), absR(R.cwiseAbs().array() + 1e-12), t(X.translation())
+                : R(X.linear()), absR(R.cwiseAbs().array() + 1e-12), t(X.translation())
             {
             }
         };
@@ -187,7 +189,7 @@ namespace meshgap
             bound = std::max(bound, (P.T->cwiseAbs() - a.half - rb).maxCoeff());
             if (bound > enough)
                 return bound;
-            const Eigen::Vector3d s = P.C->transpose() * *P.T;          // T on B's axes
+            const Eigen::Vector3d s = P.C->transpose() * *P.T;        // T on B's axes
             const Eigen::Vector3d ra = P.absC->transpose() * a.half;  // A's box projected on B's axes
             bound = std::max(bound, (s.cwiseAbs() - ra - b.half).maxCoeff());
             return bound;
@@ -296,7 +298,10 @@ namespace meshgap
         }
 
         /** \brief Heap order: the least rank on top. */
-        bool farther(const Open &x, const Open &y) { return x.rank > y.rank; }
+        bool farther(const Open &x, const Open &y)
+        {
+            return x.rank > y.rank;
+        }
 
         /** \brief A traversal stack of this thread, emptied, its capacity kept from earlier calls: once warm, a query
             allocates nothing for it. Each call site has its own \e Site, so no traversal ever shares a stack with
@@ -363,7 +368,7 @@ namespace meshgap
             Eigen::Vector3d dt;
             double turn{0.0}, pad{0.0};
             StepMotion(const Eigen::Isometry3d &P, const Eigen::Isometry3d &X, const TriangleBvh::Node &rootB)
-              : dR(X.linear() - P.linear()), dt(X.translation() - P.translation())
+                : dR(X.linear() - P.linear()), dt(X.translation() - P.translation())
             {
                 const double t = std::sqrt(std::max(0.0, 3.0 - P.linear().cwiseProduct(X.linear()).sum()));
                 turn = t + 1e-7 * (t > 0.0);
@@ -385,9 +390,21 @@ namespace meshgap
             DistanceTraversal(const TriangleBvh &a, const TriangleBvh &b, const RelativePose &X, double slack,
                               double stopBelow, BvhDistanceResult &result, std::uint32_t bestA, std::uint32_t bestB,
                               std::vector<BvhFront::Entry> *record, double motion, std::uint32_t stamp)
-              : a_(a), b_(b), X_(X), slack_(slack), stopBelow_(stopBelow), result_(result), bestA_(bestA),
-                bestB_(bestB), record_(record), motion_(motion), stamp_(stamp), open_(threadStack<Open, 1>()),
-                seedA_(bestA), seedB_(bestB), seedDistance_(result.distance)
+                : a_(a),
+                  b_(b),
+                  X_(X),
+                  slack_(slack),
+                  stopBelow_(stopBelow),
+                  result_(result),
+                  bestA_(bestA),
+                  bestB_(bestB),
+                  record_(record),
+                  motion_(motion),
+                  stamp_(stamp),
+                  open_(threadStack<Open, 1>()),
+                  seedA_(bestA),
+                  seedB_(bestB),
+                  seedDistance_(result.distance)
             {
             }
 
@@ -419,12 +436,12 @@ namespace meshgap
             void keep(const PairEntry &e, double bound, const Eigen::Vector3d &axis = Eigen::Vector3d::Zero())
             {
                 if (record_)
-                    record_->push_back({e.a,
-                                        e.b,
-                                        stamp_,
-                                        {static_cast<float>(axis.x()), static_cast<float>(axis.y()),
-                                         static_cast<float>(axis.z())},
-                                        bound + motion_});
+                    record_->push_back(
+                        {e.a,
+                         e.b,
+                         stamp_,
+                         {static_cast<float>(axis.x()), static_cast<float>(axis.y()), static_cast<float>(axis.z())},
+                         bound + motion_});
             }
 
             /** \brief The prune threshold of the triangle pair (ta, tb): above the best distance plus the slack if
@@ -554,12 +571,12 @@ namespace meshgap
                         {
                             least = d;
                             // The closest points' direction separates the triangles by exactly d.
-                            axis = d > 0.0 ? Eigen::Vector3d((onB - onA) / (onB - onA).norm())
-                                           : Eigen::Vector3d::Zero();
+                            axis =
+                                d > 0.0 ? Eigen::Vector3d((onB - onA) / (onB - onA).norm()) : Eigen::Vector3d::Zero();
                         }
                         const bool closer = d < result_.distance - slack_;
-                        const bool tieWins = !closer && d <= result_.distance + slack_ &&
-                                             (ta < bestA_ || (ta == bestA_ && tb < bestB_));
+                        const bool tieWins =
+                            !closer && d <= result_.distance + slack_ && (ta < bestA_ || (ta == bestA_ && tb < bestB_));
                         if (closer || tieWins)
                         {
                             bestA_ = ta;
@@ -671,8 +688,8 @@ namespace meshgap
                         slots[slot].emplace(front.poses[slot], X_AB, b.nodes()[0]);
                     // Its bound now, kept re-based on this pose (so the next queries' scan keeps it without any
                     // work); the extra pad covers the roundoff of taking the motion out and back in.
-                    const double now = e.key - front.motions[slot] - slots[slot]->displacement(b.nodes()[e.b]) -
-                                       pad - 1e-15 * std::abs(e.key);
+                    const double now = e.key - front.motions[slot] - slots[slot]->displacement(b.nodes()[e.b]) - pad -
+                                       1e-15 * std::abs(e.key);
                     if (now > traversal.enough())
                     {
                         e.key = now + motion;
@@ -715,8 +732,8 @@ namespace meshgap
         const RelativePose X(X_AB);
         // Distances within this slack of each other are ties, broken by the smaller triangle pair (see the header).
         const TriangleBvh::Node &rootA = a.nodes()[0], &rootB = b.nodes()[0];
-        const double slack = 1e-12 * (rootA.center.norm() + rootA.radius + rootB.center.norm() + rootB.radius +
-                                      X.t.norm());
+        const double slack =
+            1e-12 * (rootA.center.norm() + rootA.radius + rootB.center.norm() + rootB.radius + X.t.norm());
         if (!front)
         {
             DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, nullptr, 0.0, 0);
@@ -728,8 +745,7 @@ namespace meshgap
         const std::uint32_t stamp = ++front->stamp;
         // Not a nearby pose (B moved further than the distance sought since the last query, as between a planner's
         // unrelated samples): no certificate carries over, and none is worth writing; a traversal from the roots.
-        const double step = front->started ? motionBound(b, front->poses[(stamp - 1) % BvhFront::POSES], X_AB)
-                                           : 0.0;
+        const double step = front->started ? motionBound(b, front->poses[(stamp - 1) % BvhFront::POSES], X_AB) : 0.0;
         front->started = true;
         if (step > upperBound)
         {
@@ -800,8 +816,8 @@ namespace meshgap
                     for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
                     {
                         const Triangle &fa = ma.triangles[a.order()[i]];
-                        if (trianglesIntersect(ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]], pb[0],
-                                               pb[1], pb[2]))
+                        if (trianglesIntersect(ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]], pb[0], pb[1],
+                                               pb[2]))
                         {
                             if (hitA)
                                 *hitA = a.order()[i];
@@ -830,9 +846,15 @@ namespace meshgap
             CollisionTraversal(const TriangleBvh &a, const TriangleBvh &b, const RelativePose &X, double margin,
                                const StepMotion &lookahead, std::vector<BvhFront::Entry> *record, double motion,
                                std::uint32_t stamp)
-              : a_(a), b_(b), X_(X), margin_(margin), lookahead_(lookahead), record_(record), motion_(motion),
-                stamp_(stamp),
-                stack_(threadStack<PairEntry, 6>())
+                : a_(a),
+                  b_(b),
+                  X_(X),
+                  margin_(margin),
+                  lookahead_(lookahead),
+                  record_(record),
+                  motion_(motion),
+                  stamp_(stamp),
+                  stack_(threadStack<PairEntry, 6>())
             {
             }
 
@@ -951,8 +973,8 @@ namespace meshgap
                     const std::uint32_t slot = e.stamp % BvhFront::POSES;
                     if (!slots[slot])
                         slots[slot].emplace(front.poses[slot], X_AB, b.nodes()[0]);
-                    const double now = e.key - front.motions[slot] - slots[slot]->displacement(b.nodes()[e.b]) -
-                                       pad - 1e-15 * std::abs(e.key);
+                    const double now = e.key - front.motions[slot] - slots[slot]->displacement(b.nodes()[e.b]) - pad -
+                                       1e-15 * std::abs(e.key);
                     if (now > margin)
                     {
                         e.key = now + motion;

@@ -132,9 +132,9 @@ namespace meshgap
                 // covers roundoff in the box distance (relative to the bound) and in the grown box's corners
                 // (relative to the coordinates): 1e-9 of either is far above roundoff.
                 const Point &lo = box.min_corner(), &hi = box.max_corner();
-                const double scale = std::max({extent, std::abs(bg::get<0>(lo)), std::abs(bg::get<1>(lo)),
-                                               std::abs(bg::get<2>(lo)), std::abs(bg::get<0>(hi)),
-                                               std::abs(bg::get<1>(hi)), std::abs(bg::get<2>(hi))});
+                const double scale =
+                    std::max({extent, std::abs(bg::get<0>(lo)), std::abs(bg::get<1>(lo)), std::abs(bg::get<2>(lo)),
+                              std::abs(bg::get<0>(hi)), std::abs(bg::get<1>(hi)), std::abs(bg::get<2>(hi))});
                 const double grow = bound + 1e-9 * (bound + scale) + 1e-300;
                 const Box grown(Point(bg::get<0>(lo) - grow, bg::get<1>(lo) - grow, bg::get<2>(lo) - grow),
                                 Point(bg::get<0>(hi) + grow, bg::get<1>(hi) + grow, bg::get<2>(hi) + grow));
@@ -441,8 +441,8 @@ namespace meshgap
         // The signed distance in collision is the exact mode's (no depth with an early stop).
         const bool mayStop = request.stopBelow >= 0.0;
         DistanceResult deepest;
-        const std::size_t hit = mayStop ? firstCollision(X_WR)
-                                        : deepestCollision(X_WR, obstacles_.size(), deepest, result.pairsChecked);
+        const std::size_t hit =
+            mayStop ? firstCollision(X_WR) : deepestCollision(X_WR, obstacles_.size(), deepest, result.pairsChecked);
         if (hit == obstacles_.size())
             return false;
         if (mayStop)
@@ -520,8 +520,9 @@ namespace meshgap
 
         // A node distance is never below its pair's exact distance, nor that below the box distance: pruning by
         // box distance against the best node distance skips no obstacle whose node answer could be smaller.
-        impl_->visitNearestFirst(impl_->robotBox(*robot_, X_WR), warmValid ? warm.obstacle : obstacles_.size(),
-                                 [&] { return best.distance; }, visit);
+        impl_->visitNearestFirst(
+            impl_->robotBox(*robot_, X_WR), warmValid ? warm.obstacle : obstacles_.size(),
+            [&] { return best.distance; }, visit);
 
         result.distance = best.distance;
         result.obstacle = bestK;

@@ -13,8 +13,9 @@ namespace meshgap
     namespace
     {
         /** \brief Run \e work(block, run) for every block in [0, blocks) on at most \e threads threads (the calling
-            thread one of them; \e run numbers the thread, from 0), each taking the next block not yet taken, so the threads finish together however the cost
-            varies along the batch; rethrow the first exception once all have stopped. */
+            thread one of them; \e run numbers the thread, from 0), each taking the next block not yet taken, so the
+           threads finish together however the cost varies along the batch; rethrow the first exception once all have
+           stopped. */
         template <typename Work>
         void forEachBlock(std::size_t blocks, unsigned threads, Work work)
         {
@@ -23,7 +24,8 @@ namespace meshgap
             const std::size_t runs = std::max<std::size_t>(1, std::min<std::size_t>(threads, blocks));
             std::atomic<std::size_t> next{0};
             std::vector<std::exception_ptr> errors(runs);
-            auto runOne = [&](std::size_t k) {
+            auto runOne = [&](std::size_t k)
+            {
                 try
                 {
                     for (std::size_t b = next++; b < blocks; b = next++)
@@ -58,18 +60,20 @@ namespace meshgap
         // each block afresh, so that it depends on the block alone, never on which thread took which block.
         const bool carry = request.exact && request.stopBelow < 0.0;
         std::vector<SceneWarmStart> starts(std::max(1u, threads));
-        forEachBlock(blocks, threads, [&](std::size_t b, std::size_t run) {
-            SceneWarmStart &start = starts[run];
-            if (!carry)
-                start.reset();
-            for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
-            {
-                if (warm)
-                    scene.distance(poses[i], request, start, results[i]);
-                else
-                    scene.distance(poses[i], request, results[i]);  // a cold query: no warm start
-            }
-        });
+        forEachBlock(blocks, threads,
+                     [&](std::size_t b, std::size_t run)
+                     {
+                         SceneWarmStart &start = starts[run];
+                         if (!carry)
+                             start.reset();
+                         for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
+                         {
+                             if (warm)
+                                 scene.distance(poses[i], request, start, results[i]);
+                             else
+                                 scene.distance(poses[i], request, results[i]);  // a cold query: no warm start
+                         }
+                     });
     }
 
     void inCollisionBatch(const Scene &scene, const std::vector<Eigen::Isometry3d> &poses, unsigned threads,
@@ -80,9 +84,11 @@ namespace meshgap
         // The verdict does not depend on the warm start: each thread carries its own (collision fronts) across
         // the blocks it takes, which pays along a trajectory and costs next to nothing between unrelated poses.
         std::vector<SceneWarmStart> starts(std::max(1u, threads));
-        forEachBlock(blocks, threads, [&](std::size_t b, std::size_t run) {
-            for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
-                results[i] = scene.inCollision(poses[i], starts[run]) ? 1 : 0;
-        });
+        forEachBlock(blocks, threads,
+                     [&](std::size_t b, std::size_t run)
+                     {
+                         for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
+                             results[i] = scene.inCollision(poses[i], starts[run]) ? 1 : 0;
+                     });
     }
 }  // namespace meshgap

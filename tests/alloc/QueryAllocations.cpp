@@ -16,9 +16,8 @@
 #include <vector>
 
 #include "TestMeshes.h"
-#include "meshgap/scene/Scene.h"
-
 #include "alloc/CountingAllocator.h"
+#include "meshgap/scene/Scene.h"
 
 namespace
 {
@@ -234,7 +233,8 @@ namespace meshgap
             for (int k = 0; k < 300; ++k)
             {
                 Eigen::Isometry3d X = test::translation(-0.5 + 0.02 * k, 0.4, 0.0);
-                X.linear() = Eigen::AngleAxisd(0.01 * k, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+                X.linear() =
+                    Eigen::AngleAxisd(0.01 * k, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
                 poses.push_back(X);
             }
             SceneWarmStart warm;

@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "TestNote.h"
 #include "TestMeshes.h"
+#include "TestNote.h"
 #include "meshgap/geometry/TriangleBvh.h"
 #include "meshgap/geometry/TriangleDistance.h"
 
@@ -101,8 +101,8 @@ TEST(BvhFront, EveryEntryStaysALowerBoundAndTheFrontACutAlongAMotion)
             for (std::uint32_t ta = 0; ta < na; ++ta)
             {
                 const Triangle &f = ma.triangles[ta];
-                exact[ta * nb + tb] = triangleDistance(ma.vertices[f[0]], ma.vertices[f[1]], ma.vertices[f[2]],
-                                                       pb[0], pb[1], pb[2], onA, onB);
+                exact[ta * nb + tb] = triangleDistance(ma.vertices[f[0]], ma.vertices[f[1]], ma.vertices[f[2]], pb[0],
+                                                       pb[1], pb[2], onA, onB);
             }
         }
         std::fill(covered.begin(), covered.end(), 0);
@@ -121,14 +121,14 @@ TEST(BvhFront, EveryEntryStaysALowerBoundAndTheFrontACutAlongAMotion)
                 }
         }
         for (std::size_t k = 0; k < covered.size(); ++k)
-            ASSERT_EQ(covered[k], 1) << "triangle pair " << k / nb << ", " << k % nb << " covered "
-                                     << int(covered[k]) << " times";
+            ASSERT_EQ(covered[k], 1) << "triangle pair " << k / nb << ", " << k % nb << " covered " << int(covered[k])
+                                     << " times";
         ++checked;
     }
     test::Note() << "[ front    ] " << checked << " fronts checked; entries kept " << front.reused << ", re-tested "
-              << front.retested << ", rebuilds " << front.rebuilds << ", " << touching << " touching poses\n";
+                 << front.retested << ", rebuilds " << front.rebuilds << ", " << touching << " touching poses\n";
     EXPECT_GT(checked, 200u);
-    EXPECT_GT(touching, 5u);   // the motion passes through A: collisions (early stops) on the way
+    EXPECT_GT(touching, 5u);  // the motion passes through A: collisions (early stops) on the way
     // The fronts checked were used: most queries started from one (the jumps and the deep contacts rebuild it), and
     // kept part of it without a test.
     EXPECT_LT(front.rebuilds, 120u);
@@ -190,8 +190,8 @@ TEST(BvhFront, ACollisionFrontGivesTheStatelessVerdictAndEveryEntryStaysApart)
         entries += front.entries.size();
         ++checked;
     }
-    EXPECT_GT(hits, 20u);      // the motion passes through A
-    EXPECT_GT(checked, 50u);   // and fronts were kept and used between the contacts and the jumps
+    EXPECT_GT(hits, 20u);     // the motion passes through A
+    EXPECT_GT(checked, 50u);  // and fronts were kept and used between the contacts and the jumps
     EXPECT_GT(front.reused, front.retested);
     EXPECT_GT(front.incoherent, 5u);  // the jumps do not write a front
     EXPECT_GT(entries, checked);
@@ -209,8 +209,9 @@ TEST(BvhFront, MotionBoundCoversEveryPointsDisplacement)
         const Eigen::Isometry3d from = test::randomPose(2 * k + 1, 2.0);
         Eigen::Isometry3d to = from;
         to.translation() += 0.1 * Eigen::Vector3d(u(rng), u(rng), u(rng));
-        to.linear() = to.linear() * Eigen::AngleAxisd(0.2 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized())
-                                        .toRotationMatrix();
+        to.linear() =
+            to.linear() *
+            Eigen::AngleAxisd(0.2 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
         const double bound = motionBound(b, from, to);
         for (const Eigen::Vector3d &v : mb.vertices)
             ASSERT_LE((to * v - from * v).norm(), bound);

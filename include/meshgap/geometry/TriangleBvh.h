@@ -82,10 +82,11 @@ namespace meshgap
           the keys keeps most entries without any work;
         - for an entry that fails that test and was computed within the last POSES traversals, the displacement of
           its own node of B between that traversal's pose and this one (nodeMotionBound()), much smaller for a part
-          near the centre of a rotation.
+          near the centre of a rotation; an entry kept that way is re-based on this pose.
         An entry that fails both is re-tested: a pair of leaves first along the axis that separated it last time
         (a sliding motion leaves that gap unchanged), then in full; any other pair by its box bound, descended where
-        it could beat the best, its sub-front replacing it. The answer is the cold traversal's: same prune rule, same tie rule. The front is
+        it could beat the best, its sub-front replacing it. The answer is the cold traversal's: same prune rule,
+        same tie rule. The front is
         rebuilt from the roots when it has grown past FRONT_GROWTH times the size of a fresh one, or when a
         traversal had to re-test more entries than half a fresh front (a motion too large to pay); and a query whose
         pose lies further from the last one than the distance it seeks (B's displacement above the upper bound, as
@@ -103,23 +104,23 @@ namespace meshgap
             /** \brief A pair of leaves: the axis that separated its triangles (unit, from A's towards B's; zero if
                 none), re-tested first: the gap along it is a fresh lower bound for about a tenth of a full test. */
             float axis[3];
-            double key;           ///< that lower bound on the pair's distance + motion at the time
+            double key;  ///< that lower bound on the pair's distance + motion at the time
         };
 
         std::vector<Entry> entries;  ///< the front (valid when valid is set)
         std::vector<Entry> next;     ///< sub-fronts of the entries being re-tested (kept for its capacity)
         std::array<Eigen::Isometry3d, POSES> poses;  ///< X_AB of the last POSES traversals, by stamp % POSES
-        std::array<double, POSES> motions{};          ///< motion at each of them
-        double motion{0.0};          ///< displacement bounds summed since the front was rebuilt
-        std::uint32_t stamp{0};      ///< the last traversal's number
-        std::size_t freshSize{0};    ///< size of the front the last traversal from the roots wrote
-        bool valid{false};           ///< entries cover the whole pair tree (false: start from the roots)
-        bool started{false};         ///< a traversal has run (poses holds its pose)
-        std::size_t reused{0};       ///< statistics: entries kept without a test, over the front's lifetime
-        std::size_t retested{0};     ///< entries re-tested in full
-        std::size_t axisKept{0};     ///< entries kept by their separating axis
-        std::size_t rebuilds{0};     ///< traversals from the roots that wrote a front
-        std::size_t incoherent{0};   ///< traversals from the roots for a pose too far from the last one
+        std::array<double, POSES> motions{};         ///< motion at each of them
+        double motion{0.0};                          ///< displacement bounds summed since the front was rebuilt
+        std::uint32_t stamp{0};                      ///< the last traversal's number
+        std::size_t freshSize{0};                    ///< size of the front the last traversal from the roots wrote
+        bool valid{false};          ///< entries cover the whole pair tree (false: start from the roots)
+        bool started{false};        ///< a traversal has run (poses holds its pose)
+        std::size_t reused{0};      ///< statistics: entries kept without a test, over the front's lifetime
+        std::size_t retested{0};    ///< entries re-tested in full
+        std::size_t axisKept{0};    ///< entries kept by their separating axis
+        std::size_t rebuilds{0};    ///< traversals from the roots that wrote a front
+        std::size_t incoherent{0};  ///< traversals from the roots for a pose too far from the last one
         /** \brief Collision fronts (bvhCollide()): queries the current front has answered; and, when fronts keep
             failing within two queries (motions as large as the gaps), how many tests run from the roots without
             writing one (doubled at each such failure, up to 64; back to 0 once a front lasts). */
@@ -199,8 +200,8 @@ namespace meshgap
             itself when none is closer (then found is false and triangle / closest are untouched). */
         double distance{std::numeric_limits<double>::infinity()};
         bool found{false};
-        std::uint32_t triangle{0};                           ///< the nearest triangle (mesh index)
-        Eigen::Vector3d closest{Eigen::Vector3d::Zero()};   ///< the nearest point on it, body frame
+        std::uint32_t triangle{0};                         ///< the nearest triangle (mesh index)
+        Eigen::Vector3d closest{Eigen::Vector3d::Zero()};  ///< the nearest point on it, body frame
         std::size_t triangleTests{0};
     };
 

@@ -35,11 +35,11 @@ namespace meshgap
     struct SceneWarmStart
     {
         bool valid{false};
-        std::size_t obstacle{0};  ///< obstacle of the last minimum
-        NodePair nodes;           ///< fast mode: its node pair
+        std::size_t obstacle{0};            ///< obstacle of the last minimum
+        NodePair nodes;                     ///< fast mode: its node pair
         std::vector<ExactWarmStart> pairs;  ///< exact mode: one per obstacle, sized by the first exact query
         std::vector<WarmFastState> fast;    ///< fast mode with the warm-fast solver: one per obstacle
-        std::uint64_t scene{0};   ///< Scene::id() of the scene pairs belongs to
+        std::uint64_t scene{0};             ///< Scene::id() of the scene pairs belongs to
 
         /** \brief Forget the history (the next query is answered as a cold one would be) but keep the memory, so
             that a caller who resets allocates nothing. */
@@ -72,8 +72,8 @@ namespace meshgap
     {
         /** \brief Minimum over all robot/obstacle pairs; negative in collision (a signed distance). */
         double distance{std::numeric_limits<double>::infinity()};
-        std::size_t obstacle{0};                                   ///< which obstacle is closest
-        Eigen::Vector3d onRobot{Eigen::Vector3d::Zero()};          ///< witness points, world frame
+        std::size_t obstacle{0};                           ///< which obstacle is closest
+        Eigen::Vector3d onRobot{Eigen::Vector3d::Zero()};  ///< witness points, world frame
         Eigen::Vector3d onObstacle{Eigen::Vector3d::Zero()};
         /** \brief The robot collides with an obstacle (intersecting, touching or one inside the other, decided
             exactly). distance is then negative (a signed distance, see Scene::distance()). */
@@ -81,7 +81,7 @@ namespace meshgap
         /** \brief In collision: the penetration depth estimate behind distance (>= 0) and how it was found. */
         double penetrationDepth{0.0};
         Penetration penetration{Penetration::NONE};
-        bool certified{false};       ///< exact and proven (every pair that survived the broad phase completed)
+        bool certified{false};        ///< exact and proven (every pair that survived the broad phase completed)
         std::size_t pairsChecked{0};  ///< robot/obstacle pairs that survived the broad phase
         std::size_t evaluations{0};   ///< node-pair evaluations (fast mode)
         bool warmStartHit{false};     ///< the minimum was at the warm start's obstacle
