@@ -20,8 +20,7 @@ namespace meshgap
             Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};
         };
 
-        /** \brief Exact distance of surface triangle ta of A to surface triangle tb of B (B's corners into A's frame).
-         */
+        /** \brief Exact distance of surface triangle ta of A to surface triangle tb of B (B's corners in A's frame). */
         double pairDistance(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, std::uint32_t ta,
                             std::uint32_t tb, Eigen::Vector3d &onA, Eigen::Vector3d &onB)
         {
