@@ -628,7 +628,8 @@ namespace meshgap
                 for (const auto &[c, cb] : {std::pair<PairEntry, double>{c1, b1}, {c2, b2}})
                     if (cb <= enough())
                     {
-                        open_.push_back({cb, rank(cb, a_.nodes()[c.a], b_.nodes()[c.b]), c});
+                        open_.push_back(
+                            {cb, bestFirst_ ? rank(cb, a_.nodes()[c.a], b_.nodes()[c.b]) : cb, c});  // rank: heap only
                         if (bestFirst_)
                             std::push_heap(open_.begin(), open_.end(), farther);
                     }
