@@ -225,9 +225,19 @@ namespace meshgap
             }
         };
 
+        /** \brief The distance bound given by the gaps \e g of two boxes' projections on three orthonormal axes
+            (one box's face axes): a point pair's offset has a component of at least g_i along each axis i where
+            g_i > 0, so its length is at least the norm of the positive gaps (for boxes apart diagonally, up to
+            sqrt(3) times the largest gap alone). The largest gap, <= 0, when the projections overlap on all three. */
+        double gapOnAxes(const Eigen::Vector3d &g)
+        {
+            const double largest = g.maxCoeff();
+            return largest > 0.0 ? g.cwiseMax(0.0).norm() : largest;
+        }
+
         /** \brief Lower bound on the distance between anything in box \e a and anything in box \e b (B's frame),
-            from the sphere gap (cheapest, and rotation-free), then the six face-axis gaps; <= 0 means the boxes may
-            touch. Once a partial bound exceeds \e enough (the caller prunes above it) that one is returned: still a
+            from the sphere gap (cheapest, and rotation-free), then the face-axis gaps of each box (gapOnAxes());
+            <= 0 means the boxes may touch. Once a partial bound exceeds \e enough (the caller prunes above it) that one is returned: still a
             lower bound, just not the best of the three. */
         double lowerBound(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X,
                           double enough = std::numeric_limits<double>::infinity())
@@ -238,12 +248,12 @@ namespace meshgap
                 return bound;
             const BoxPair P(a, b, X, offset);
             const Eigen::Vector3d rb = *P.absC * b.half;  // B's box projected on A's axes
-            bound = std::max(bound, (P.T->cwiseAbs() - a.half - rb).maxCoeff());
+            bound = std::max(bound, gapOnAxes(P.T->cwiseAbs() - a.half - rb));
             if (bound > enough)
                 return bound;
             const Eigen::Vector3d s = P.C->transpose() * *P.T;        // T on B's axes
             const Eigen::Vector3d ra = P.absC->transpose() * a.half;  // A's box projected on B's axes
-            bound = std::max(bound, (s.cwiseAbs() - ra - b.half).maxCoeff());
+            bound = std::max(bound, gapOnAxes(s.cwiseAbs() - ra - b.half));
             return bound;
         }
 
