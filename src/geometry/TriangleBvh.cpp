@@ -322,14 +322,17 @@ namespace meshgap
         }
 
         /** \brief The separating-axis gap of triangles p and q (unit normals \e np and \e nq): along either normal,
-            then along the nine edge-cross axes until one proves more than \e enough (a lower bound on their
-            distance; 0 when no axis separates them, as when they intersect). */
+            the unit axis \e extra if given, then the nine edge-cross axes until one proves more than \e enough (a
+            lower bound on their distance; 0 when no axis separates them, as when they intersect). */
         Separation triangleSeparation(const Eigen::Vector3d &np, const Eigen::Vector3d &nq, const Eigen::Vector3d *p,
-                                      const Eigen::Vector3d *q, double enough)
+                                      const Eigen::Vector3d *q, double enough,
+                                      const Eigen::Vector3d *extra = nullptr)
         {
             Separation s;
             s.consider(np, p, q);
             s.consider(nq, p, q);
+            if (extra && !(s.gap > enough))
+                s.consider(*extra, p, q);
             for (int m = 0; m < 9 && !(s.gap > enough); ++m)
             {
                 const Eigen::Vector3d n = (p[(m / 3 + 1) % 3] - p[m / 3]).cross(q[(m % 3 + 1) % 3] - q[m % 3]);
@@ -472,7 +475,12 @@ namespace meshgap
 
             /** \brief The seed pair's distance is the starting bound, computed by the caller exactly as leaves()
                 would, and \e axis (unit, from A's point towards B's) its witness direction: it is not tested again. */
-            void knowSeed(const Eigen::Vector3d *axis) { seedAxis_ = axis; }
+            void knowSeed(const Eigen::Vector3d *axis)
+            {
+                seedAxis_ = axis;
+                if (axis)
+                    bestAxis_ = *axis;
+            }
 
             /** \brief Prune threshold: a pair whose bound is above it cannot beat or tie the best so far. */
             double enough() const { return result_.distance + slack_; }
@@ -515,8 +523,10 @@ namespace meshgap
             }
 
             /** \brief A pair of leaves with a separating axis from an earlier pose: whether its gap along that axis
-                now (a lower bound on the distance of its triangles, into \e gap) proves it cannot beat the best. */
-            bool axisProves(const BvhFront::Entry &e, double &gap) const
+                now, or else along the best pair's witness direction (which proves the pairs tied with the best one
+                around a shared closest vertex or edge), proves it cannot beat the best; the gap (a lower bound on
+                the distance of its triangles) goes to \e gap, and the axis that proved it to the entry. */
+            bool axisProves(BvhFront::Entry &e, double &gap) const
             {
                 const Eigen::Vector3d axis(e.axis[0], e.axis[1], e.axis[2]);
                 const double length = axis.norm();
@@ -531,7 +541,18 @@ namespace meshgap
                 for (int k = 0; k < 3; ++k)
                     pb[k] = X_.R * mb.vertices[fb[k]] + X_.t;
                 gap = gapAlong(axis / length, pa, pb);
-                return gap > limit(ta, tb);
+                const double limit = this->limit(ta, tb);
+                if (gap > limit)
+                    return true;
+                if (bestAxis_.isZero())
+                    return false;
+                const double best = gapAlong(bestAxis_, pa, pb);
+                if (!(best > limit))
+                    return false;
+                gap = best;
+                for (int k = 0; k < 3; ++k)
+                    e.axis[k] = static_cast<float>(bestAxis_[k]);
+                return true;
             }
 
             /** \brief Search below pair \e start (lower bound \e startBound) to its end, or until the early stop. */
@@ -617,7 +638,8 @@ namespace meshgap
                         // rules it out: the triangles that share a vertex or an edge closest to the other body,
                         // which all tie, then cost no exact test.
                         const double limit = this->limit(ta, tb);
-                        const Separation s = triangleSeparation(a_.normals()[ta], normalB, pa, pb, limit);
+                        const Separation s = triangleSeparation(a_.normals()[ta], normalB, pa, pb, limit,
+                                                                bestAxis_.isZero() ? nullptr : &bestAxis_);
                         if (s.gap > limit)
                         {
                             if (s.gap < least)
@@ -649,6 +671,8 @@ namespace meshgap
                             result_.triangleB = tb;
                             result_.onA = onA;
                             result_.onB = onB;
+                            bestAxis_ = d > 0.0 ? Eigen::Vector3d((onB - onA) / (onB - onA).norm())
+                                                : Eigen::Vector3d::Zero();
                             if (d <= stopBelow_)
                             {
                                 stopped_ = true;
@@ -712,6 +736,7 @@ namespace meshgap
             const std::uint32_t seedA_, seedB_;
             const double seedDistance_;
             const Eigen::Vector3d *seedAxis_{nullptr};
+            Eigen::Vector3d bestAxis_{Eigen::Vector3d::Zero()};  // the best pair's witness direction (zero: none)
             bool stopped_{false};
         };
     }  // namespace
