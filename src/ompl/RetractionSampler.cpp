@@ -8,7 +8,7 @@
 namespace meshgap
 {
     RetractionSampler::RetractionSampler(const ompl::base::SpaceInformation *si)
-        : ompl::base::ValidStateSampler(si), sampler_(si->getStateSpace()->allocDefaultStateSampler())
+        : ompl::base::ValidStateSampler(si), sampler_(si->allocStateSampler())
     {
         name_ = "retraction";
         checker_ = std::dynamic_pointer_cast<const ClearanceChecker>(si->getStateValidityChecker());

@@ -44,7 +44,7 @@ namespace meshgap
     }
 
     WorkspaceMedialSampler::WorkspaceMedialSampler(const ompl::base::SpaceInformation *si)
-        : ompl::base::ValidStateSampler(si), sampler_(si->getStateSpace()->allocDefaultStateSampler()), retraction_(si)
+        : ompl::base::ValidStateSampler(si), sampler_(si->allocStateSampler()), retraction_(si)
     {
         name_ = "workspace_medial";
         checker_ = std::dynamic_pointer_cast<const ClearanceChecker>(si->getStateValidityChecker());
@@ -98,7 +98,7 @@ namespace meshgap
         const double d0 = pointDistance(p, w0, 2.0 * largest);  // far from everything: a cheap bounded answer
         if (!(d0 > 0.0) || d0 > largest)
             return false;
-        normal = (p - w0) / d0;
+        normal = (p - w0).normalized();
         // Along the ray from the nearest obstacle point w0 through p, the nearest point stays behind (on w0's
         // side) up to the medial axis and is ahead after it; inside an obstacle counts as ahead.
         const auto behind = [&](double t, bool &tooWide)
@@ -124,7 +124,15 @@ namespace meshgap
         }
         medial = w0 + 0.5 * (lo + hi) * normal;
         radius = pointDistance(medial, w);
-        return radius > 0.0 && box_.contains(medial);
+        if (!(radius > 0.0) || !box_.contains(medial))
+            return false;
+        // A passage has walls on opposite sides: just past the medial point the nearest obstacle point must lie
+        // across from w0 (more than 120 degrees round), not beside it as at a concave edge, whose bisector is
+        // medial too.
+        const Eigen::Vector3d past = w0 + hi * normal;
+        if (!(pointDistance(past, w, 2.0 * largest) > 0.0))
+            return false;
+        return (past - w).normalized().dot(normal) < -0.5;
     }
 
     bool WorkspaceMedialSampler::samplePassage(ompl::base::State *state)
@@ -160,7 +168,9 @@ namespace meshgap
         const Eigen::Quaterniond onto = Eigen::Quaterniond::FromTwoVectors(axis_.direction, best);
         const Eigen::Matrix3d R =
             Eigen::AngleAxisd(rng_.uniformReal(-M_PI, M_PI), best) * onto.toRotationMatrix();
-        const double offset = rng_.uniformReal(-axis_.halfLength, axis_.halfLength);
+        // An offset up to twice the half length: in the passage, entering it, or lined up in front of it (the
+        // states that join a passage's roadmap to the open space on either side).
+        const double offset = rng_.uniformReal(-2.0 * axis_.halfLength, 2.0 * axis_.halfLength);
         Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
         X.linear() = R;
         X.translation() = m - R * (axis_.centre + offset * axis_.direction);
@@ -194,42 +204,4 @@ namespace meshgap
         return retraction_.sampleNear(state, near, distance);
     }
 
-    WorkspaceMedialStateSampler::WorkspaceMedialStateSampler(const ompl::base::StateSpace *space,
-                                                             const ompl::base::SpaceInformation *si)
-        : ompl::base::StateSampler(space), uniform_(space->allocDefaultStateSampler()), passages_(si)
-    {
-    }
-
-    void WorkspaceMedialStateSampler::sampleUniform(ompl::base::State *state)
-    {
-        if (rng_.uniform01() < passageProbability_)
-            for (unsigned attempt = 0; attempt < passageAttempts_; ++attempt)
-                if (passages_.samplePassage(state))
-                    return;
-        uniform_->sampleUniform(state);
-    }
-
-    void WorkspaceMedialStateSampler::sampleUniformNear(ompl::base::State *state, const ompl::base::State *near,
-                                                        double distance)
-    {
-        uniform_->sampleUniformNear(state, near, distance);
-    }
-
-    void WorkspaceMedialStateSampler::sampleGaussian(ompl::base::State *state, const ompl::base::State *mean,
-                                                     double stdDev)
-    {
-        uniform_->sampleGaussian(state, mean, stdDev);
-    }
-
-    void useWorkspaceMedialStateSampler(const ompl::base::SpaceInformationPtr &si, double passageProbability)
-    {
-        const ompl::base::SpaceInformation *raw = si.get();
-        si->getStateSpace()->setStateSamplerAllocator(
-            [raw, passageProbability](const ompl::base::StateSpace *space)
-            {
-                auto sampler = std::make_shared<WorkspaceMedialStateSampler>(space, raw);
-                sampler->setPassageProbability(passageProbability);
-                return sampler;
-            });
-    }
 }  // namespace meshgap

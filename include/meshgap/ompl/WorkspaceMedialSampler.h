@@ -32,15 +32,20 @@ namespace meshgap
        where the nearest obstacle point changes side (bisection; exact point-to-obstacle distances from a scene of
        the same obstacles with a point-sized probe as robot). A medial point m whose radius rho (its distance to the
        obstacles) lies between the robot's cross-section radius (RobotAxis::radius) and max_radius_factor times it
-       (default 2) is a passage the robot fits through only just. The passage's direction there is the one, among
+       (default 2), and whose nearest obstacle points on either side lie across from each other (more than 120
+       degrees apart seen from m: not the bisector of a concave edge), is a passage the robot fits through only
+       just. The passage's direction there is the one, among
        directions_ (default 24) evenly spread in the plane normal to m's witness direction, along which the
        workspace stays open longest: the largest min(d(m + rho e), d(m - rho e)). (In a tube that is its axis; in a
        slot any direction of the slot's plane that stays in it.) The robot's long axis (RobotAxis::direction) is
-       turned onto +-e, rolled by a random angle about it, and placed so that a point of its axis at a random offset
-       in [-halfLength, halfLength] sits at m: the robot lies in the passage, or enters it from one end. A state
+       turned onto +-e, rolled by a random angle about it, and placed so that the point of its axis line at a random
+       offset in [-2 halfLength, 2 halfLength] from its centre sits at m: the robot lies in the passage, enters it
+       from one end, or waits lined up in front of it (the states that join the passage to the open space). A state
        that collides is retracted (RetractionSampler::retract(), the exact signed distance's gradient in the full
-       pose) and kept if that succeeds. With probability uniform_probability (default 0.5) sample() returns a
-       uniformly drawn valid state instead, so open space is covered too (a roadmap needs both). sampleNear() is
+       pose) and kept if that succeeds. sample() returns, with probability uniform_probability (default 0.5), a
+       uniformly drawn valid state (up to OMPL's attempts count), so open space is covered too (a roadmap needs
+       both); otherwise the first passage state of up to 2,000 draws (most workspace points are in open space or
+       in no passage of the robot's size, and are rejected after one bounded point query), or false. sampleNear() is
        RetractionSampler's: free draws near the state, the last one retracted if all collide. Nothing here depends
        on a particular problem: for a compact robot the long axis is an arbitrary one and the sampler still puts
        the robot in passages of its size. Every state returned is valid by the exact test and within the bounds.
@@ -60,12 +65,14 @@ namespace meshgap
         bool samplePassage(ompl::base::State *state);
 
         /** \brief The workspace medial point reached from \e p (see the class description) and its radius; false
-            if \e p is inside an obstacle or farther than the largest radius from every obstacle, or the medial
-            point lies out of the bounds. Public for tests. */
+            if \e p is inside an obstacle or farther than the largest radius from every obstacle, the medial
+            point lies out of the bounds, or its two sides are not across from each other. Public for tests. */
         bool medialPoint(const Eigen::Vector3d &p, Eigen::Vector3d &medial, double &radius,
                          Eigen::Vector3d &normal) const;
-        /** \brief Distance from the point \e p to the obstacles (negative or 0 inside one), and the nearest
-            obstacle point in \e nearest; \e bound (no witness) if the distance is at least \e bound. */
+        /** \brief Distance from the point \e p to the obstacles (negative or 0 inside one; the probe is a
+            tetrahedron of circumradius 1e-6 times the robot's cross-section radius, so the answer is within that of
+            the point's), and the nearest obstacle point in \e nearest; \e bound (no witness) if the distance is at
+            least \e bound. */
         double pointDistance(const Eigen::Vector3d &p, Eigen::Vector3d &nearest,
                              double bound = std::numeric_limits<double>::infinity()) const;
 
@@ -88,39 +95,6 @@ namespace meshgap
         unsigned directions_{24};
         unsigned passageAttempts_{2000};
     };
-
-    /**
-       @anchor mgWorkspaceMedialStateSampler
-       @par Short description
-       The state sampler of the RRT family (which draws targets with sampleUniform() and checks nothing) with
-       WorkspaceMedialSampler's passage states mixed in: with probability passage_probability (default 0.2) a
-       sampleUniform() call makes up to passage_attempts (default 200) of WorkspaceMedialSampler::samplePassage()'s
-       draws and returns the first passage state found; otherwise, or if none is found, the space's own uniform
-       draw. A tree then grows towards states that lie in the passages the robot fits through, lined up with them.
-       sampleUniformNear() and sampleGaussian() are the space's own. Installed by useWorkspaceMedialStateSampler().
-    */
-    class WorkspaceMedialStateSampler : public ompl::base::StateSampler
-    {
-    public:
-        WorkspaceMedialStateSampler(const ompl::base::StateSpace *space, const ompl::base::SpaceInformation *si);
-
-        void sampleUniform(ompl::base::State *state) override;
-        void sampleUniformNear(ompl::base::State *state, const ompl::base::State *near, double distance) override;
-        void sampleGaussian(ompl::base::State *state, const ompl::base::State *mean, double stdDev) override;
-
-        void setPassageProbability(double p) { passageProbability_ = p; }
-        void setPassageAttempts(unsigned n) { passageAttempts_ = n; }
-
-    private:
-        ompl::base::StateSamplerPtr uniform_;
-        WorkspaceMedialSampler passages_;
-        double passageProbability_{0.2};
-        unsigned passageAttempts_{200};
-    };
-
-    /** \brief Make \e si's state space allocate WorkspaceMedialStateSampler (for the RRT family; the valid-state
-        samplers of this file and RetractionSampler keep drawing from the space's default sampler). */
-    void useWorkspaceMedialStateSampler(const ompl::base::SpaceInformationPtr &si, double passageProbability = 0.2);
 }  // namespace meshgap
 
 #endif
