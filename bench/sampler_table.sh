@@ -5,8 +5,8 @@
 #
 #   bench/sampler_table.sh [BUILD_DIR] [OUT_DIR]
 #
-# Settings (environment): PROBLEMS (default "slotted_wall"; maps/ or ../shared/data/omplapp names), RUNS (3), TIME
-# (10 s a run), SEED (1), PLANNER (prm), SAMPLERS (all eight),
+# Settings (environment): PROBLEMS (default "slotted_wall"; maps/ or ../shared/data/omplapp names, or paths of
+# .cfg files), RUNS (3), TIME (10 s a run), SEED (1), PLANNER (prm), SAMPLERS (all eight),
 # SHARDS (1: the grid in that many processes at once; shard i seeds with SEED + i - 1).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -18,7 +18,9 @@ benchmark="$build/planners/meshgap_benchmark"
 [ -x "$benchmark" ] || { echo "error: $benchmark: not built" >&2; exit 1; }
 started=$SECONDS
 for problem in ${PROBLEMS:-slotted_wall}; do
-    if [ -f "$here/../maps/$problem/$problem.cfg" ]; then cfg="$here/../maps/$problem/$problem.cfg"; else cfg="$data/$problem.cfg"; fi
+    if [ -f "$problem" ]; then cfg="$problem"; problem="$(sed -n 's/^name *= *//p' "$cfg" | head -1)"
+    elif [ -f "$here/../maps/$problem/$problem.cfg" ]; then cfg="$here/../maps/$problem/$problem.cfg"
+    else cfg="$data/$problem.cfg"; fi
     mkdir -p "$out"
     rm -f "$out/$problem".*.log
     shards="${SHARDS:-1}"

@@ -1,7 +1,8 @@
 #include "meshgap/ompl/RetractionSampler.h"
 
-#include <cmath>
 #include <ompl/base/SpaceInformation.h>
+
+#include <cmath>
 
 #include "meshgap/ompl/ClearanceGradient.h"
 
@@ -15,8 +16,9 @@ namespace meshgap
         if (checker_ && checker_->mode() != ClearanceChecker::Mode::CERTIFIED)
             checker_.reset();
         if (!checker_)
-            OMPL_WARN("retraction: the validity checker is not a certified meshgap ClearanceChecker; sampling "
-                      "uniformly");
+            OMPL_WARN(
+                "retraction: the validity checker is not a certified meshgap ClearanceChecker; sampling "
+                "uniformly");
         work_ = si->allocState();
         params_.declareParam<double>(
             "free_probability", [this](double p) { setFreeProbability(p); }, [this] { return getFreeProbability(); });

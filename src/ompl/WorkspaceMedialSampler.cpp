@@ -1,9 +1,10 @@
 #include "meshgap/ompl/WorkspaceMedialSampler.h"
 
-#include <cmath>
-#include <Eigen/Eigenvalues>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
 
 namespace meshgap
 {
@@ -77,8 +78,7 @@ namespace meshgap
 
     WorkspaceMedialSampler::~WorkspaceMedialSampler() = default;
 
-    double WorkspaceMedialSampler::pointDistance(const Eigen::Vector3d &p, Eigen::Vector3d &nearest,
-                                                 double bound) const
+    double WorkspaceMedialSampler::pointDistance(const Eigen::Vector3d &p, Eigen::Vector3d &nearest, double bound) const
     {
         SceneRequest request;
         request.upperBound = bound;
@@ -166,8 +166,7 @@ namespace meshgap
             best = -best;
         // The robot's long axis onto the passage's, rolled at random, a random point of it at m.
         const Eigen::Quaterniond onto = Eigen::Quaterniond::FromTwoVectors(axis_.direction, best);
-        const Eigen::Matrix3d R =
-            Eigen::AngleAxisd(rng_.uniformReal(-M_PI, M_PI), best) * onto.toRotationMatrix();
+        const Eigen::Matrix3d R = Eigen::AngleAxisd(rng_.uniformReal(-M_PI, M_PI), best) * onto.toRotationMatrix();
         // An offset up to twice the half length: in the passage, entering it, or lined up in front of it (the
         // states that join a passage's roadmap to the open space on either side).
         const double offset = rng_.uniformReal(-2.0 * axis_.halfLength, 2.0 * axis_.halfLength);

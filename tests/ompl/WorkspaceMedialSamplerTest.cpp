@@ -26,8 +26,8 @@ namespace
     {
         const double t = 0.5, w = HALF_WIDTH;
         Mesh world = test::transformed(test::box(HALF_LENGTH, w + 2 * t, t, 2), test::translation(0, 0, w + t));
-        world = test::merged(world, test::transformed(test::box(HALF_LENGTH, w + 2 * t, t, 2),
-                                                      test::translation(0, 0, -w - t)));
+        world = test::merged(
+            world, test::transformed(test::box(HALF_LENGTH, w + 2 * t, t, 2), test::translation(0, 0, -w - t)));
         world = test::merged(world, test::transformed(test::box(HALF_LENGTH, t, w, 2), test::translation(0, w + t, 0)));
         world =
             test::merged(world, test::transformed(test::box(HALF_LENGTH, t, w, 2), test::translation(0, -w - t, 0)));
@@ -68,8 +68,8 @@ namespace
         return inChannel(s) && std::abs(rodAxis(si, s).x()) > std::cos(0.3);
     }
 
-    /** \brief Of \e n sample() calls: how many returned a state lined up in the channel or in front of it (each returned state checked free
-        by the exact test and within bounds); \e returned counts the states returned. */
+    /** \brief Of \e n sample() calls: how many returned a state lined up in the channel or in front of it (each
+       returned state checked free by the exact test and within bounds); \e returned counts the states returned. */
     int channelSamples(const ob::SpaceInformationPtr &si, ob::ValidStateSampler &sampler, int n, int &returned)
     {
         ob::State *s = si->allocState();
@@ -176,8 +176,8 @@ TEST(WorkspaceMedialSampler, PassageSamplesCrowdIntoTheChannel)
     const int inMedial = channelSamples(si, medial, n, returnedMedial);
     const int inRetraction = channelSamples(si, retraction, n, returnedRetraction);
     const int inUniform = channelSamples(si, *uniform, n, returnedUniform);
-    std::printf("lined up with the channel: workspace_medial %d of %d, retraction %d of %d, uniform %d of %d\n", inMedial,
-                returnedMedial, inRetraction, returnedRetraction, inUniform, returnedUniform);
+    std::printf("lined up with the channel: workspace_medial %d of %d, retraction %d of %d, uniform %d of %d\n",
+                inMedial, returnedMedial, inRetraction, returnedRetraction, inUniform, returnedUniform);
     // The channel is the only passage of the rod's size: most passage samples are lined up with it (in it, or in
     // front of it); such free states are a tiny part of the free space, which uniform sampling almost never hits.
     // sample() gives up after 2,000 draws of workspace points, of which about 0.3 % lie in the channel (the
@@ -187,4 +187,3 @@ TEST(WorkspaceMedialSampler, PassageSamplesCrowdIntoTheChannel)
     EXPECT_LE(inUniform, 4);
     EXPECT_GT(inRetraction, inUniform);
 }
-

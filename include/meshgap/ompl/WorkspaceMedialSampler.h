@@ -1,10 +1,11 @@
 #ifndef MESHGAP_OMPL_WORKSPACE_MEDIAL_SAMPLER_H
 #define MESHGAP_OMPL_WORKSPACE_MEDIAL_SAMPLER_H
 
-#include <limits>
 #include <ompl/base/StateSampler.h>
 #include <ompl/base/ValidStateSampler.h>
 #include <ompl/util/RandomNumbers.h>
+
+#include <limits>
 
 #include "meshgap/ompl/RetractionSampler.h"
 
@@ -15,10 +16,10 @@ namespace meshgap
         along it and away from it. */
     struct RobotAxis
     {
-        Eigen::Vector3d centre{Eigen::Vector3d::Zero()};  ///< the vertices' mean, robot frame
+        Eigen::Vector3d centre{Eigen::Vector3d::Zero()};      ///< the vertices' mean, robot frame
         Eigen::Vector3d direction{Eigen::Vector3d::UnitX()};  ///< unit principal axis, robot frame
-        double halfLength{0.0};  ///< largest |(v - centre) . direction| over the vertices
-        double radius{0.0};      ///< largest distance of a vertex from the axis line: the cross-section's radius
+        double halfLength{0.0};                               ///< largest |(v - centre) . direction| over the vertices
+        double radius{0.0};  ///< largest distance of a vertex from the axis line: the cross-section's radius
 
         static RobotAxis of(const Mesh &robot);
     };
