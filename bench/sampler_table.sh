@@ -5,23 +5,30 @@
 #
 #   bench/sampler_table.sh [BUILD_DIR] [OUT_DIR]
 #
-# Settings (environment): PROBLEMS (default "slotted_wall"; maps/ or ../shared/data/omplapp names), RUNS (3), TIME
-# (10 s a run), SEED (1), PLANNER (prm), SAMPLERS (all six).
+# Settings (environment): PROBLEMS (default "slotted_wall"; maps/ or ../shared/data/omplapp names, or paths of
+# .cfg files), RUNS (3), TIME (10 s a run), SEED (1), PLANNER (prm), SAMPLERS (all eight),
+# SHARDS (1: the grid in that many processes at once; shard i seeds with SEED + i - 1).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${1:-$here/../build}"
 out="${2:-sampler-results}"
 data="${MESHGAP_SHARED_DATA_DIR:-$here/../../shared/data}/omplapp"
-samplers="${SAMPLERS:-uniform,gaussian,obstacle_based,bridge_test,max_clearance,narrow_passage}"
+samplers="${SAMPLERS:-uniform,gaussian,obstacle_based,bridge_test,max_clearance,narrow_passage,retraction,workspace_medial}"
 benchmark="$build/planners/meshgap_benchmark"
 [ -x "$benchmark" ] || { echo "error: $benchmark: not built" >&2; exit 1; }
 started=$SECONDS
 for problem in ${PROBLEMS:-slotted_wall}; do
-    if [ -f "$here/../maps/$problem/$problem.cfg" ]; then cfg="$here/../maps/$problem/$problem.cfg"; else cfg="$data/$problem.cfg"; fi
+    if [ -f "$problem" ]; then cfg="$problem"; problem="$(sed -n 's/^name *= *//p' "$cfg" | head -1)"
+    elif [ -f "$here/../maps/$problem/$problem.cfg" ]; then cfg="$here/../maps/$problem/$problem.cfg"
+    else cfg="$data/$problem.cfg"; fi
     mkdir -p "$out"
     rm -f "$out/$problem".*.log
-    nice "$benchmark" --cfg "$cfg" --planner "${PLANNER:-prm}" --checker certified --sampler "$samplers" \
-        --runs "${RUNS:-3}" --time "${TIME:-10}" --seed "${SEED:-1}" --out "$out"
+    shards="${SHARDS:-1}"
+    for ((i = 1; i <= shards; ++i)); do
+        nice "$benchmark" --cfg "$cfg" --planner "${PLANNER:-prm}" --checker certified --sampler "$samplers" \
+            --runs "${RUNS:-3}" --time "${TIME:-10}" --seed "${SEED:-1}" --shard "$i/$shards" --out "$out" &
+    done
+    wait
 done
 echo "wall time: $((SECONDS - started)) s" >&2
 /usr/bin/python3 "$here/clearance_summary.py" solve "$out"/*.log

@@ -8,6 +8,8 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/ompl/NarrowPassageSampler.h"
+#include "meshgap/ompl/RetractionSampler.h"
+#include "meshgap/ompl/WorkspaceMedialSampler.h"
 
 namespace meshgap
 {
@@ -29,6 +31,8 @@ namespace meshgap
                 {"bridge_test", make<ob::BridgeTestValidStateSampler>()},
                 {"max_clearance", make<ob::MaximizeClearanceValidStateSampler>()},
                 {"narrow_passage", make<NarrowPassageSampler>()},
+                {"retraction", make<RetractionSampler>()},
+                {"workspace_medial", make<WorkspaceMedialSampler>()},
             };
             return samplers;
         }

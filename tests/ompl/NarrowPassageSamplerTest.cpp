@@ -24,9 +24,9 @@ namespace
         0.3), and a small box robot (half sizes 0.2 0.1 0.1) that fits through it only lying along x. */
     ob::SpaceInformationPtr slotProblem(double halfGap = 0.3)
     {
-        const Mesh world = test::merged(
-            test::transformed(test::box(0.5, 1.85, 3.0, 2), test::translation(0, halfGap + 1.85, 0)),
-            test::transformed(test::box(0.5, 1.85, 3.0, 2), test::translation(0, -halfGap - 1.85, 0)));
+        const Mesh world =
+            test::merged(test::transformed(test::box(0.5, 1.85, 3.0, 2), test::translation(0, halfGap + 1.85, 0)),
+                         test::transformed(test::box(0.5, 1.85, 3.0, 2), test::translation(0, -halfGap - 1.85, 0)));
         auto space = std::make_shared<ob::SE3StateSpace>();
         ob::RealVectorBounds bounds(3);
         bounds.setLow(-2);
@@ -91,8 +91,7 @@ TEST(NarrowPassageSampler, SampleNearIsValidAndSucceedsWhereUniformGivesUp)
             {
                 ++count;
                 EXPECT_TRUE(si->satisfiesBounds(s)) << sampler.getName();
-                EXPECT_FALSE(checker->scene().inCollision(poseFromState(*si->getStateSpace(), s)))
-                    << sampler.getName();
+                EXPECT_FALSE(checker->scene().inCollision(poseFromState(*si->getStateSpace(), s))) << sampler.getName();
             }
         return count;
     };
@@ -146,8 +145,8 @@ TEST(NarrowPassageSampler, SelectableByNameFromTheCommandLineAndTheCfg)
     {
         const std::string what = e.what();
         EXPECT_NE(what.find("--sampler"), std::string::npos) << what;
-        for (const char *name :
-             {"uniform", "gaussian", "obstacle_based", "bridge_test", "max_clearance", "narrow_passage"})
+        for (const char *name : {"uniform", "gaussian", "obstacle_based", "bridge_test", "max_clearance",
+                                 "narrow_passage", "retraction", "workspace_medial"})
             EXPECT_NE(what.find(name), std::string::npos) << what;
     }
 

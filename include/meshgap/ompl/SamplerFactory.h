@@ -9,7 +9,8 @@
 namespace meshgap
 {
     /** \brief Valid-state sampler names, as OMPL.app's cfg key [problem] sampler= spells OMPL's (uniform, gaussian,
-        obstacle_based, bridge_test, max_clearance) and meshgap's narrow_passage (NarrowPassageSampler). */
+        obstacle_based, bridge_test, max_clearance) and meshgap's narrow_passage (NarrowPassageSampler), retraction
+        (RetractionSampler) and workspace_medial (WorkspaceMedialSampler). */
     std::vector<std::string> validStateSamplerNames();
 
     /** \brief The allocator of the named valid-state sampler. Throws meshgap::Exception (prefixed \e where: the
