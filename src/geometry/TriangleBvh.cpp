@@ -76,56 +76,63 @@ namespace meshgap
                                          const Eigen::Matrix3d &axes, std::uint32_t first, std::uint32_t count,
                                          std::vector<std::uint32_t> &order)
         {
-            // Each triangle's box along the node's axes, once.
+            // Each triangle's box and centroid along the node's axes, once.
             std::vector<Eigen::AlignedBox3d> boxes(count);
-            std::vector<std::uint32_t> local(count);
+            std::vector<Eigen::Vector3d> centre(count);
             for (std::uint32_t k = 0; k < count; ++k)
             {
-                local[k] = k;
                 for (std::uint32_t v : mesh.triangles[order[first + k]])
                     boxes[k].extend(Eigen::Vector3d(axes.transpose() * mesh.vertices[v]));
+                centre[k] = axes.transpose() * centroid[order[first + k]];
             }
             auto area = [](const Eigen::AlignedBox3d &box)
             {
                 const Eigen::Vector3d d = box.sizes();
                 return d.x() * d.y() + d.y() * d.z() + d.z() * d.x();
             };
+            // Sorted along an axis: by the centroid's coordinate, ties by triangle index (deterministic).
+            std::vector<std::pair<double, std::uint32_t>> sorted(count), bestSorted;
+            auto sortAlong = [&](int axis, std::vector<std::pair<double, std::uint32_t>> &keys)
+            {
+                for (std::uint32_t k = 0; k < count; ++k)
+                    keys[k] = {centre[k][axis], k};
+                std::sort(keys.begin(), keys.end(),
+                          [&](const auto &x, const auto &y)
+                          {
+                              return x.first < y.first ||
+                                     (x.first == y.first && order[first + x.second] < order[first + y.second]);
+                          });
+            };
             std::vector<double> leftArea(count);
             double bestCost = std::numeric_limits<double>::infinity();
-            int bestAxis = 0;
             std::uint32_t bestCut = count / 2;
             for (int axis = 0; axis < 3; ++axis)
             {
-                const Eigen::Vector3d direction = axes.col(axis);
-                auto before = [&](std::uint32_t i, std::uint32_t j)
-                {
-                    const double pi = direction.dot(centroid[order[first + i]]),
-                                 pj = direction.dot(centroid[order[first + j]]);
-                    return pi < pj || (pi == pj && order[first + i] < order[first + j]);
-                };
-                std::sort(local.begin(), local.end(), before);
+                sortAlong(axis, sorted);
                 Eigen::AlignedBox3d left, right;
                 for (std::uint32_t k = 0; k < count; ++k)
-                    leftArea[k] = area(left.extend(boxes[local[k]]));
+                    leftArea[k] = area(left.extend(boxes[sorted[k].second]));
+                bool better = false;
                 for (std::uint32_t k = count - 1; k >= 1; --k)
                 {
                     // The first k triangles on one side, the rest on the other.
-                    const double cost = leftArea[k - 1] * k + area(right.extend(boxes[local[k]])) * (count - k);
+                    const double cost = leftArea[k - 1] * k + area(right.extend(boxes[sorted[k].second])) * (count - k);
                     if (cost < bestCost)
                     {
                         bestCost = cost;
-                        bestAxis = axis;
                         bestCut = k;
+                        better = true;
                     }
                 }
+                if (better || bestSorted.empty())
+                    bestSorted.swap(sorted);
+                if (sorted.size() != count)
+                    sorted.resize(count);
             }
-            const Eigen::Vector3d direction = axes.col(bestAxis);
-            std::sort(order.begin() + first, order.begin() + first + count,
-                      [&](std::uint32_t i, std::uint32_t j)
-                      {
-                          const double pi = direction.dot(centroid[i]), pj = direction.dot(centroid[j]);
-                          return pi < pj || (pi == pj && i < j);
-                      });
+            std::vector<std::uint32_t> reordered(count);
+            for (std::uint32_t k = 0; k < count; ++k)
+                reordered[k] = order[first + bestSorted[k].second];
+            std::copy(reordered.begin(), reordered.end(), order.begin() + first);
             return bestCut;
         }
     }  // namespace
