@@ -288,19 +288,21 @@ namespace
 
     /** \brief meshgap_plan's steps through the same library calls: the problem, the planner with its parameters,
         solve, then the dense clearance (support/DenseClearance.h); the summary with meshgap_plan's fields. */
-    py::tuple plan(const py::handle &cfgObject, const std::string &planner, const std::string &objective,
-                   double time, std::uint32_t seed, const std::string &mode, const std::string &motion,
-                   unsigned dense, const py::dict &paramsObject, const py::object &reportObject)
+    py::tuple plan(const py::handle &cfgObject, const std::string &planner, const std::string &objective, double time,
+                   std::uint32_t seed, const std::string &checker, const std::string &motion, unsigned dense,
+                   const py::dict &paramsObject, const py::object &reportObject, const py::object &modeObject)
     {
         namespace ob = ompl::base;
         const std::string cfg = pathArg(cfgObject, "cfg");
         const std::string reportFile = reportObject.is_none() ? std::string() : pathArg(reportObject, "report");
-        if (mode != "certified" && mode != "fast")
-            throw Exception("mode", "'" + mode + "' is not certified or fast");
+        if (!modeObject.is_none())  // the old spelling, as meshgap_plan refuses --mode
+            throw Exception("mode", "renamed: use checker='certified' or checker='fast'");
+        if (checker != "certified" && checker != "fast")
+            throw Exception("checker", "'" + checker + "' is not certified or fast");
         if (motion != "discrete" && motion != "clearance")
             throw Exception("motion", "'" + motion + "' is not discrete or clearance");
-        if (motion == "clearance" && mode != "certified")
-            throw Exception("motion", "clearance needs mode certified (it steps by exact clearance)");
+        if (motion == "clearance" && checker != "certified")
+            throw Exception("motion", "clearance needs checker certified (it steps by exact clearance)");
         if (!(time > 0.0) || !std::isfinite(time))
             throw Exception("time", "must be positive and finite");
         if (dense < 1)
@@ -321,9 +323,9 @@ namespace
             ompl::msg::setLogLevel(level);
         }
         const ProblemConfig config = readProblemConfig(cfg);
-        OmplProblem problem = setupProblem(config, mode == "certified" ? ClearanceChecker::Mode::CERTIFIED :
-                                                                         ClearanceChecker::Mode::FAST,
-                                           objective);
+        OmplProblem problem = setupProblem(
+            config, checker == "certified" ? ClearanceChecker::Mode::CERTIFIED : ClearanceChecker::Mode::FAST,
+            objective);
         const ob::SpaceInformationPtr si = problem.setup->getSpaceInformation();
         if (motion == "clearance")
             si->setMotionValidator(std::make_shared<ClearanceMotionValidator>(si, problem.checker));
@@ -357,7 +359,7 @@ namespace
                 {"problem", config.name + (config.planar ? " (SE(2))" : " (SE(3))")},
                 {"planner", planner},
                 {"objective", problem.objective},
-                {"clearance mode", mode + ", motion " + motion},
+                {"clearance mode", checker + ", motion " + motion},
                 {"status", status.asString()},
                 {"planning time", std::to_string(problem.setup->getLastPlanComputationTime()) + " s"}};
             writePlanReport(*problem.scene, d ? reportFromDense(*d, rows) : reportWithoutPath(config, rows),
@@ -370,7 +372,7 @@ namespace
         summary["planar"] = config.planar;
         summary["planner"] = planner;
         summary["objective"] = problem.objective;
-        summary["mode"] = mode;
+        summary["checker"] = checker;
         summary["motion"] = motion;
         summary["status"] = status.asString();
         summary["solved"] = havePath;
@@ -499,14 +501,14 @@ PYBIND11_MODULE(meshgap, m)
     m.def("load_mesh", [](const py::handle &path) { return meshArrays(meshArg(path, "path")); }, py::arg("path"),
           "Load a mesh file as meshgap does (welded, cleaned): a (V, F) pair of numpy arrays.");
     m.def("plan", &plan, py::arg("cfg"), py::kw_only(), py::arg("planner") = "rrtconnect", py::arg("objective") = "",
-          py::arg("time") = 10.0, py::arg("seed") = 1, py::arg("mode") = "certified", py::arg("motion") = "discrete",
-          py::arg("dense") = 4, py::arg("params") = py::dict(),
-          py::arg("report") = py::none(),
+          py::arg("time") = 10.0, py::arg("seed") = 1, py::arg("checker") = "certified", py::arg("motion") = "discrete",
+          py::arg("dense") = 4, py::arg("params") = py::dict(), py::arg("report") = py::none(),
+          py::arg("mode") = py::none(),
           "Plan for an OMPL.app .cfg problem as meshgap_plan does. Returns (path, summary): the solution's states "
           "as an (M, 7) or (M, 3) array (empty when none was found) and a dict (problem, planner, objective, status, "
           "solved, exact, planning_time, length, cost, min_clearance over the dense path, dense_path_free, and "
-          "'dense': the dense path's poses, arc_length, clearance, in_collision). report: also write the HTML plan "
-          "report there.");
+          "'dense': the dense path's poses, arc_length, clearance, in_collision). checker: certified or fast, as "
+          "meshgap_plan's --checker (the old mode= is refused). report: also write the HTML plan report there.");
     m.attr("SCENE_BATCH_BLOCK") = SCENE_BATCH_BLOCK;
     m.attr("REPORT_AVAILABLE") = planReportAvailable();  // three.js was found at build time: plan(report=...) works
 }
