@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "CliMain.h"
+#include "meshgap/Exception.h"
 #include "meshgap/Text.h"
 #include "meshgap/distance/SolverFactory.h"
 #include "meshgap/geometry/Body.h"
@@ -249,7 +250,7 @@ namespace
     }
 }  // namespace
 
-int main(int argc, char **argv)
+static int run(int argc, char **argv)
 {
     // The repository's maps/, found from this source file's path (CMake compiles it by its absolute path).
     std::string maps = (fs::path(__FILE__).parent_path().parent_path() / "maps").string();
@@ -269,204 +270,173 @@ int main(int argc, char **argv)
         "scenes", po::value(&scenesText), "comma-separated scene names")("algorithms", po::value(&algorithmsText),
                                                                          "comma-separated algorithm names");
     po::variables_map vm;
-    try
-    {
-        if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
-            return 0;
-    }
-    catch (const std::exception &e)
-    {
-        std::fprintf(stderr, "%s\n", e.what());
-        return 1;
-    }
+    if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
+        return 0;
     if (runsCount < 1 || climbs < 0)
-    {
-        std::fprintf(stderr, "--runs must be at least 1 and --climbs not negative\n");
-        return 1;
-    }
+        throw Exception("--runs / --climbs", "--runs must be at least 1 and --climbs not negative");
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
     const std::vector<std::string> scenes = splitList(scenesText), algorithms = splitList(algorithmsText);
     std::vector<DistanceSolverPtr> solvers;
-    try
-    {
-        for (const std::string &name : algorithms)
-            solvers.push_back(allocSolver(name));
-    }
-    catch (const std::exception &e)
-    {
-        std::fprintf(stderr, "%s\n", e.what());
-        return 1;
-    }
+    for (const std::string &name : algorithms)
+        solvers.push_back(allocSolver(name));
     fs::create_directories(out);
     std::ofstream results(fs::path(out) / "results.csv");
     results << csvHeader();
 
     const auto startAll = Clock::now();
     std::vector<Summary> summaries;
-    try
+    for (const std::string &scene : scenes)
     {
-        for (const std::string &scene : scenes)
+        const fs::path dir = fs::path(maps) / scene;
+        const Mesh meshA = loadMesh((dir / (scene + "_a.obj")).string());
+        const Mesh meshB = loadMesh((dir / (scene + "_b.obj")).string());
+        const std::vector<Eigen::Isometry3d> poses = readPoses((dir / (scene + ".poses")).string());
+        BodyOptions options;
+        options.gridSize = 0.0;  // the meshes exactly as generated (the paper's node counts)
+        const auto buildStart = Clock::now();
+        const BodyPtr a = Body::build(meshA, options), b = Body::build(meshB, options);
+        // D and P are built on first use; build them here so that no run's time includes them.
+        a->distances();
+        b->distances();
+        std::fprintf(stderr, "[%7.1f s] %s: A %u nodes, B %u nodes, %zu pose(s); bodies and mesh distances %.2f s\n",
+                     elapsed(startAll), scene.c_str(), a->numNodes(), b->numNodes(), poses.size(), elapsed(buildStart));
+#ifdef MESHGAP_HAVE_FCL
+        const auto fclA = test::fclModel(meshA), fclB = test::fclModel(meshB);
+#endif
+        for (std::size_t p = 0; p < poses.size(); ++p)
         {
-            const fs::path dir = fs::path(maps) / scene;
-            const Mesh meshA = loadMesh((dir / (scene + "_a.obj")).string());
-            const Mesh meshB = loadMesh((dir / (scene + "_b.obj")).string());
-            const std::vector<Eigen::Isometry3d> poses = readPoses((dir / (scene + ".poses")).string());
-            BodyOptions options;
-            options.gridSize = 0.0;  // the meshes exactly as generated (the paper's node counts)
-            const auto buildStart = Clock::now();
-            const BodyPtr a = Body::build(meshA, options), b = Body::build(meshB, options);
-            // D and P are built on first use; build them here so that no run's time includes them.
-            a->distances();
-            b->distances();
-            std::fprintf(
-                stderr, "[%7.1f s] %s: A %u nodes, B %u nodes, %zu pose(s); bodies and mesh distances %.2f s\n",
-                elapsed(startAll), scene.c_str(), a->numNodes(), b->numNodes(), poses.size(), elapsed(buildStart));
+            const Eigen::Isometry3d &X_AB = poses[p];
+            const int pose = static_cast<int>(p) + 1;
+            double exact = std::nan("");
 #ifdef MESHGAP_HAVE_FCL
-            const auto fclA = test::fclModel(meshA), fclB = test::fclModel(meshB);
+            exact = test::fclDistance(fclA, fclB, X_AB);
 #endif
-            for (std::size_t p = 0; p < poses.size(); ++p)
+            // Enumeration: the reference, timed as the median of 5 runs.
+            const DistanceSolverPtr enumeration = allocSolver("enumeration");
+            DistanceResult reference;
+            std::vector<double> enumTimes;
+            for (int k = 0; k < 5; ++k)
             {
-                const Eigen::Isometry3d &X_AB = poses[p];
-                const int pose = static_cast<int>(p) + 1;
-                double exact = std::nan("");
-#ifdef MESHGAP_HAVE_FCL
-                exact = test::fclDistance(fclA, fclB, X_AB);
-#endif
-                // Enumeration: the reference, timed as the median of 5 runs.
-                const DistanceSolverPtr enumeration = allocSolver("enumeration");
-                DistanceResult reference;
-                std::vector<double> enumTimes;
-                for (int k = 0; k < 5; ++k)
+                DistanceRequest request;
+                enumeration->solve(*a, *b, X_AB, request, reference);
+                enumTimes.push_back(reference.seconds);
+            }
+            Summary enumSummary;
+            enumSummary.scene = scene;
+            enumSummary.pose = pose;
+            enumSummary.algorithm = "enumeration";
+            enumSummary.runs = 5;
+            enumSummary.nodesA = a->numNodes();
+            enumSummary.nodesB = b->numNodes();
+            enumSummary.exact = exact;
+            enumSummary.enumDistance = reference.distance;
+            enumSummary.enumMs = 1e3 * median(enumTimes);
+            enumSummary.successRate = enumSummary.regionRate = enumSummary.basinRate = 1.0;
+            enumSummary.bestDistance = enumSummary.meanDistance = enumSummary.medianDistance =
+                enumSummary.worstDistance = reference.distance;
+            enumSummary.meanEvaluations = static_cast<double>(reference.evaluations);
+            enumSummary.meanKflops = static_cast<double>(reference.flops()) / 1e3;
+            enumSummary.medianMs = enumSummary.meanMs = enumSummary.enumMs;
+            std::fprintf(stderr, "[%7.1f s] %s pos %d: enumeration %.9g (exact %.9g) in %.3f ms\n", elapsed(startAll),
+                         scene.c_str(), pose, reference.distance, exact, enumSummary.enumMs);
+
+            std::ofstream history(fs::path(out) / ("history_" + scene + "_pos" + std::to_string(pose) + ".csv"));
+            history << "algorithm,iteration,median_run,median_all,p10_all,p90_all\n";
+            std::vector<Summary> poseSummaries{enumSummary};
+            const DistanceSolverPtr climber = allocSolver("hill-climb");
+
+            // The landscape at node level: hill climbs (III-E) from random node pairs, the paper's "multi point
+            // local search". Each one ends at a local minimum; count the distinct ones and how often the global
+            // one is reached.
+            if (climbs > 0)
+            {
+                const auto climbStart = Clock::now();
+                std::vector<Run> runs;
+                runs.reserve(climbs);
+                std::set<std::pair<std::uint32_t, std::uint32_t>> minima;
+                for (int i = 0; i < climbs; ++i)
                 {
                     DistanceRequest request;
-                    enumeration->solve(*a, *b, X_AB, request, reference);
-                    enumTimes.push_back(reference.seconds);
+                    request.seed = seed + static_cast<std::uint64_t>(i);
+                    DistanceResult r;
+                    climber->solve(*a, *b, X_AB, request, r);
+                    minima.insert({r.nodes.a, r.nodes.b});
+                    const bool success = sameDistance(r.distance, reference.distance);
+                    runs.push_back({r.distance,
+                                    r.evaluations,
+                                    r.iterations,
+                                    r.localSteps,
+                                    r.convergedAt,
+                                    r.seconds,
+                                    success,
+                                    inGlobalRegion(*a, *b, r.nodes, reference.nodes),
+                                    success,
+                                    {}});
                 }
-                Summary enumSummary;
-                enumSummary.scene = scene;
-                enumSummary.pose = pose;
-                enumSummary.algorithm = "enumeration";
-                enumSummary.runs = 5;
-                enumSummary.nodesA = a->numNodes();
-                enumSummary.nodesB = b->numNodes();
-                enumSummary.exact = exact;
-                enumSummary.enumDistance = reference.distance;
-                enumSummary.enumMs = 1e3 * median(enumTimes);
-                enumSummary.successRate = enumSummary.regionRate = enumSummary.basinRate = 1.0;
-                enumSummary.bestDistance = enumSummary.meanDistance = enumSummary.medianDistance =
-                    enumSummary.worstDistance = reference.distance;
-                enumSummary.meanEvaluations = static_cast<double>(reference.evaluations);
-                enumSummary.meanKflops = static_cast<double>(reference.flops()) / 1e3;
-                enumSummary.medianMs = enumSummary.meanMs = enumSummary.enumMs;
-                std::fprintf(stderr, "[%7.1f s] %s pos %d: enumeration %.9g (exact %.9g) in %.3f ms\n",
-                             elapsed(startAll), scene.c_str(), pose, reference.distance, exact, enumSummary.enumMs);
-
-                std::ofstream history(fs::path(out) / ("history_" + scene + "_pos" + std::to_string(pose) + ".csv"));
-                history << "algorithm,iteration,median_run,median_all,p10_all,p90_all\n";
-                std::vector<Summary> poseSummaries{enumSummary};
-                const DistanceSolverPtr climber = allocSolver("hill-climb");
-
-                // The landscape at node level: hill climbs (III-E) from random node pairs, the paper's "multi point
-                // local search". Each one ends at a local minimum; count the distinct ones and how often the global
-                // one is reached.
-                if (climbs > 0)
-                {
-                    const auto climbStart = Clock::now();
-                    std::vector<Run> runs;
-                    runs.reserve(climbs);
-                    std::set<std::pair<std::uint32_t, std::uint32_t>> minima;
-                    for (int i = 0; i < climbs; ++i)
-                    {
-                        DistanceRequest request;
-                        request.seed = seed + static_cast<std::uint64_t>(i);
-                        DistanceResult r;
-                        climber->solve(*a, *b, X_AB, request, r);
-                        minima.insert({r.nodes.a, r.nodes.b});
-                        const bool success = sameDistance(r.distance, reference.distance);
-                        runs.push_back({r.distance,
-                                        r.evaluations,
-                                        r.iterations,
-                                        r.localSteps,
-                                        r.convergedAt,
-                                        r.seconds,
-                                        success,
-                                        inGlobalRegion(*a, *b, r.nodes, reference.nodes),
-                                        success,
-                                        {}});
-                    }
-                    Summary s = summarize(runs);
-                    s.scene = scene;
-                    s.pose = pose;
-                    s.algorithm = "hill-climb";
-                    s.nodesA = a->numNodes();
-                    s.nodesB = b->numNodes();
-                    s.exact = exact;
-                    s.enumDistance = reference.distance;
-                    s.enumMs = enumSummary.enumMs;
-                    s.distinctMinima = minima.size();
-                    poseSummaries.push_back(s);
-                    std::fprintf(
-                        stderr,
-                        "[%7.1f s] %s pos %d: hill-climb %d climbs in %.1f s: %zu distinct local minima, %.2f%% "
-                        "reach the global one\n",
-                        elapsed(startAll), scene.c_str(), pose, climbs, elapsed(climbStart), minima.size(),
-                        100.0 * s.successRate);
-                }
-                for (const DistanceSolverPtr &solver : solvers)
-                {
-                    const auto algStart = Clock::now();
-                    std::vector<Run> runs;
-                    runs.reserve(runsCount);
-                    for (int i = 0; i < runsCount; ++i)
-                    {
-                        DistanceRequest request;
-                        request.seed = seed + static_cast<std::uint64_t>(i);
-                        request.recordHistory = true;
-                        DistanceResult r;
-                        solver->solve(*a, *b, X_AB, request, r);
-                        // The answer lies in the basin of the global minimum when a hill climb started from it
-                        // reaches the enumeration minimum.
-                        DistanceRequest climb;
-                        climb.start = r.nodes;
-                        DistanceResult climbed;
-                        climber->solve(*a, *b, X_AB, climb, climbed);
-                        runs.push_back({r.distance, r.evaluations, r.iterations, r.localSteps, r.convergedAt, r.seconds,
-                                        sameDistance(r.distance, reference.distance),
-                                        inGlobalRegion(*a, *b, r.nodes, reference.nodes),
-                                        sameDistance(climbed.distance, reference.distance), std::move(r.history)});
-                    }
-                    Summary s = summarize(runs);
-                    s.scene = scene;
-                    s.pose = pose;
-                    s.algorithm = solver->getName();
-                    s.nodesA = a->numNodes();
-                    s.nodesB = b->numNodes();
-                    s.exact = exact;
-                    s.enumDistance = reference.distance;
-                    s.enumMs = enumSummary.enumMs;
-                    poseSummaries.push_back(s);
-                    writeHistory(history, solver->getName(), runs);
-                    std::fprintf(stderr,
-                                 "[%7.1f s] %s pos %d: %-10s %d runs in %.1f s: success %.0f%%, mean %.6g, worst %.6g, "
-                                 "%.0f kflops\n",
-                                 elapsed(startAll), scene.c_str(), pose, solver->getName().c_str(), runsCount,
-                                 elapsed(algStart), 100.0 * s.successRate, s.meanDistance, s.worstDistance,
-                                 s.meanKflops);
-                }
-                for (const Summary &s : poseSummaries)
-                {
-                    results << csvRow(s);
-                    summaries.push_back(s);
-                }
-                results.flush();
+                Summary s = summarize(runs);
+                s.scene = scene;
+                s.pose = pose;
+                s.algorithm = "hill-climb";
+                s.nodesA = a->numNodes();
+                s.nodesB = b->numNodes();
+                s.exact = exact;
+                s.enumDistance = reference.distance;
+                s.enumMs = enumSummary.enumMs;
+                s.distinctMinima = minima.size();
+                poseSummaries.push_back(s);
+                std::fprintf(stderr,
+                             "[%7.1f s] %s pos %d: hill-climb %d climbs in %.1f s: %zu distinct local minima, %.2f%% "
+                             "reach the global one\n",
+                             elapsed(startAll), scene.c_str(), pose, climbs, elapsed(climbStart), minima.size(),
+                             100.0 * s.successRate);
             }
+            for (const DistanceSolverPtr &solver : solvers)
+            {
+                const auto algStart = Clock::now();
+                std::vector<Run> runs;
+                runs.reserve(runsCount);
+                for (int i = 0; i < runsCount; ++i)
+                {
+                    DistanceRequest request;
+                    request.seed = seed + static_cast<std::uint64_t>(i);
+                    request.recordHistory = true;
+                    DistanceResult r;
+                    solver->solve(*a, *b, X_AB, request, r);
+                    // The answer lies in the basin of the global minimum when a hill climb started from it
+                    // reaches the enumeration minimum.
+                    DistanceRequest climb;
+                    climb.start = r.nodes;
+                    DistanceResult climbed;
+                    climber->solve(*a, *b, X_AB, climb, climbed);
+                    runs.push_back({r.distance, r.evaluations, r.iterations, r.localSteps, r.convergedAt, r.seconds,
+                                    sameDistance(r.distance, reference.distance),
+                                    inGlobalRegion(*a, *b, r.nodes, reference.nodes),
+                                    sameDistance(climbed.distance, reference.distance), std::move(r.history)});
+                }
+                Summary s = summarize(runs);
+                s.scene = scene;
+                s.pose = pose;
+                s.algorithm = solver->getName();
+                s.nodesA = a->numNodes();
+                s.nodesB = b->numNodes();
+                s.exact = exact;
+                s.enumDistance = reference.distance;
+                s.enumMs = enumSummary.enumMs;
+                poseSummaries.push_back(s);
+                writeHistory(history, solver->getName(), runs);
+                std::fprintf(stderr,
+                             "[%7.1f s] %s pos %d: %-10s %d runs in %.1f s: success %.0f%%, mean %.6g, worst %.6g, "
+                             "%.0f kflops\n",
+                             elapsed(startAll), scene.c_str(), pose, solver->getName().c_str(), runsCount,
+                             elapsed(algStart), 100.0 * s.successRate, s.meanDistance, s.worstDistance, s.meanKflops);
+            }
+            for (const Summary &s : poseSummaries)
+            {
+                results << csvRow(s);
+                summaries.push_back(s);
+            }
+            results.flush();
         }
-    }
-    catch (const std::exception &e)
-    {
-        // A missing or broken map file, or a solver error: say which and stop.
-        std::fprintf(stderr, "%s\n", e.what());
-        return 1;
     }
 
     std::printf(
@@ -510,4 +480,9 @@ int main(int argc, char **argv)
     }
     std::fprintf(stderr, "[%7.1f s] done; CSVs in %s\n", elapsed(startAll), out.c_str());
     return 0;
+}
+
+int main(int argc, char **argv)
+{
+    return meshgap::cli::runMain(argc, argv, run);
 }

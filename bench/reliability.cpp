@@ -34,6 +34,7 @@
 
 #include "CliMain.h"
 #include "PathInterpolation.h"
+#include "meshgap/Exception.h"
 #include "meshgap/Text.h"
 #include "meshgap/distance/CombGA.h"
 #include "meshgap/distance/ExactDistance.h"
@@ -75,7 +76,7 @@ namespace
     };
 }  // namespace
 
-int main(int argc, char **argv)
+static int run(int argc, char **argv)
 {
     std::string maps = "maps";
     std::string data = std::string(MESHGAP_SHARED_DATA_DIR) + "/omplapp", sizing = "none", csvFile;
@@ -106,26 +107,12 @@ int main(int argc, char **argv)
         "grading", po::value(&rule.grading), "adaptive: size growth per unit mesh distance")(
         "csv", po::value(&csvFile), "also write one CSV row per scene-pose and algorithm");
     po::variables_map vm;
-    try
-    {
-        if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
-            return 0;
-    }
-    catch (const std::exception &e)
-    {
-        std::fprintf(stderr, "%s\n", e.what());
-        return 1;
-    }
+    if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
+        return 0;
     if (sizing != "none" && sizing != "uniform" && sizing != "adaptive")
-    {
-        std::fprintf(stderr, "--sizing: '%s' is not one of none, uniform, adaptive\n", sizing.c_str());
-        return 1;
-    }
+        throw Exception("--sizing", "'" + sizing + "' is not one of none, uniform, adaptive");
     if (runs < 1 || posesPerProblem < 1)
-    {
-        std::fprintf(stderr, "--runs and --poses must be at least 1\n");
-        return 1;
-    }
+        throw Exception("--runs / --poses", "must be at least 1");
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
     BodyOptions options;
     if (sizing == "none")
@@ -137,30 +124,21 @@ int main(int argc, char **argv)
     }
     const std::vector<std::string> algorithms = splitList(algorithmsText);
     std::vector<DistanceSolverPtr> solvers;
-    try
+    for (const std::string &spec : algorithms)
     {
-        for (const std::string &spec : algorithms)
+        // NAME[:PARAM=VALUE...], e.g. comb-GA-wl:seeding=clusters (the solver's ParamSet).
+        std::vector<std::string> parts;
+        std::stringstream ss(spec);
+        for (std::string part; std::getline(ss, part, ':');)
+            parts.push_back(part);
+        solvers.push_back(allocSolver(parts[0]));
+        for (std::size_t k = 1; k < parts.size(); ++k)
         {
-            // NAME[:PARAM=VALUE...], e.g. comb-GA-wl:seeding=clusters (the solver's ParamSet).
-            std::vector<std::string> parts;
-            std::stringstream ss(spec);
-            for (std::string part; std::getline(ss, part, ':');)
-                parts.push_back(part);
-            solvers.push_back(allocSolver(parts[0]));
-            for (std::size_t k = 1; k < parts.size(); ++k)
-            {
-                const std::size_t eq = parts[k].find('=');
-                if (eq == std::string::npos ||
-                    !solvers.back()->params().setParam(parts[k].substr(0, eq), parts[k].substr(eq + 1)))
-                    throw std::runtime_error("--algorithms: '" + parts[k] + "' is not a valid PARAM=VALUE of " +
-                                             parts[0]);
-            }
+            const std::size_t eq = parts[k].find('=');
+            if (eq == std::string::npos ||
+                !solvers.back()->params().setParam(parts[k].substr(0, eq), parts[k].substr(eq + 1)))
+                throw std::runtime_error("--algorithms: '" + parts[k] + "' is not a valid PARAM=VALUE of " + parts[0]);
         }
-    }
-    catch (const std::exception &e)
-    {
-        std::fprintf(stderr, "%s\n", e.what());
-        return 1;
     }
 
     // The bodies and poses of every problem.
@@ -171,64 +149,57 @@ int main(int argc, char **argv)
         std::vector<Case> cases;
     };
     std::vector<Problem> problems;
-    try
+    for (const std::string &scene : splitList(scenesText))
     {
-        for (const std::string &scene : splitList(scenesText))
-        {
-            const fs::path dir = fs::path(maps) / scene;
-            Problem p{scene, loadMesh((dir / (scene + "_a.obj")).string()), loadMesh((dir / (scene + "_b.obj")).string()), {}};
-            const auto poses = readPoses((dir / (scene + ".poses")).string());
-            for (std::size_t k = 0; k < poses.size(); ++k)
-                p.cases.push_back({scene, "pos " + std::to_string(k + 1), poses[k]});
-            problems.push_back(std::move(p));
-        }
-        std::vector<std::string> names;
-        if (problemsText != "none" && fs::is_directory(data))
-        {
-            if (problemsText.empty())
-            {
-                for (const auto &entry : fs::directory_iterator(data))
-                    if (entry.path().extension() == ".cfg")
-                        names.push_back(entry.path().stem().string());
-                std::sort(names.begin(), names.end());
-            }
-            else
-                names = splitList(problemsText);
-        }
-        else if (problemsText != "none")
-            std::fprintf(stderr, "no OMPL.app problems: %s is not a folder\n", data.c_str());
-        std::vector<std::pair<std::string, std::string>> seen;  // (world, robot) already in the list
-        for (const std::string &name : names)
-        {
-            const fs::path cfgPath = fs::path(data) / (name + ".cfg");
-            const ProblemConfig cfg = readProblemConfig(cfgPath.string());
-            if (std::find(seen.begin(), seen.end(), std::make_pair(cfg.world, cfg.robot)) != seen.end())
-            {
-                std::fprintf(stderr, "skipping %s: same meshes as a problem above\n", name.c_str());
-                continue;
-            }
-            seen.emplace_back(cfg.world, cfg.robot);
-            Problem p{name, loadMesh(cfg.world), loadRobotMesh(cfg.robot, cfg.planar), {}};
-            std::vector<Eigen::Isometry3d> path;
-            const fs::path pathFile = fs::path(data) / (name + ".path");
-            if (fs::exists(pathFile))
-                path = readPoses(pathFile.string());
-            else
-            {
-                path.push_back(cfg.start);
-                if (cfg.goal)
-                    path.push_back(*cfg.goal);
-            }
-            const auto poses = bench::interpolatePath(path, static_cast<std::size_t>(posesPerProblem));
-            for (std::size_t k = 0; k < poses.size(); ++k)
-                p.cases.push_back({name, "pose " + std::to_string(k + 1) + "/" + std::to_string(poses.size()), poses[k]});
-            problems.push_back(std::move(p));
-        }
+        const fs::path dir = fs::path(maps) / scene;
+        Problem p{
+            scene, loadMesh((dir / (scene + "_a.obj")).string()), loadMesh((dir / (scene + "_b.obj")).string()), {}};
+        const auto poses = readPoses((dir / (scene + ".poses")).string());
+        for (std::size_t k = 0; k < poses.size(); ++k)
+            p.cases.push_back({scene, "pos " + std::to_string(k + 1), poses[k]});
+        problems.push_back(std::move(p));
     }
-    catch (const std::exception &e)
+    std::vector<std::string> names;
+    if (problemsText != "none" && fs::is_directory(data))
     {
-        std::fprintf(stderr, "%s\n", e.what());
-        return 1;
+        if (problemsText.empty())
+        {
+            for (const auto &entry : fs::directory_iterator(data))
+                if (entry.path().extension() == ".cfg")
+                    names.push_back(entry.path().stem().string());
+            std::sort(names.begin(), names.end());
+        }
+        else
+            names = splitList(problemsText);
+    }
+    else if (problemsText != "none")
+        std::fprintf(stderr, "no OMPL.app problems: %s is not a folder\n", data.c_str());
+    std::vector<std::pair<std::string, std::string>> seen;  // (world, robot) already in the list
+    for (const std::string &name : names)
+    {
+        const fs::path cfgPath = fs::path(data) / (name + ".cfg");
+        const ProblemConfig cfg = readProblemConfig(cfgPath.string());
+        if (std::find(seen.begin(), seen.end(), std::make_pair(cfg.world, cfg.robot)) != seen.end())
+        {
+            std::fprintf(stderr, "skipping %s: same meshes as a problem above\n", name.c_str());
+            continue;
+        }
+        seen.emplace_back(cfg.world, cfg.robot);
+        Problem p{name, loadMesh(cfg.world), loadRobotMesh(cfg.robot, cfg.planar), {}};
+        std::vector<Eigen::Isometry3d> path;
+        const fs::path pathFile = fs::path(data) / (name + ".path");
+        if (fs::exists(pathFile))
+            path = readPoses(pathFile.string());
+        else
+        {
+            path.push_back(cfg.start);
+            if (cfg.goal)
+                path.push_back(*cfg.goal);
+        }
+        const auto poses = bench::interpolatePath(path, static_cast<std::size_t>(posesPerProblem));
+        for (std::size_t k = 0; k < poses.size(); ++k)
+            p.cases.push_back({name, "pose " + std::to_string(k + 1) + "/" + std::to_string(poses.size()), poses[k]});
+        problems.push_back(std::move(p));
     }
 
     std::unique_ptr<std::ofstream> csv;
@@ -341,4 +312,9 @@ int main(int argc, char **argv)
         std::printf("%s\n", row.c_str());
     std::fprintf(stderr, "total %.1f s\n", std::chrono::duration<double>(Clock::now() - start).count());
     return 0;
+}
+
+int main(int argc, char **argv)
+{
+    return meshgap::cli::runMain(argc, argv, run);
 }

@@ -29,8 +29,9 @@
 #include <sstream>
 
 #include "CliMain.h"
-#include "PathInterpolation.h"
 #include "FclOracle.h"
+#include "PathInterpolation.h"
+#include "meshgap/Exception.h"
 #include "meshgap/distance/WarmFast.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/Pose.h"
@@ -81,7 +82,7 @@ namespace
     };
 }  // namespace
 
-int main(int argc, char **argv)
+static int run(int argc, char **argv)
 {
     std::string data = std::string(MESHGAP_SHARED_DATA_DIR) + "/omplapp", maps = "maps", csvFile, sizing = "uniform", problemsText,
                 globalSeeding = "random", globalSearch = "multistart";
@@ -104,21 +105,10 @@ int main(int argc, char **argv)
         "problems", po::value(&problemsText), "only these problems and maps, comma separated (default: all)")(
         "csv", po::value(&csvFile), "CSV output");
     po::variables_map vm;
-    try
-    {
-        if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
-            return 0;
-    }
-    catch (const std::exception &e)
-    {
-        std::fprintf(stderr, "%s\n", e.what());
-        return 1;
-    }
+    if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
+        return 0;
     if (sizing != "uniform" && sizing != "adaptive")
-    {
-        std::fprintf(stderr, "--sizing: '%s' is not uniform or adaptive\n", sizing.c_str());
-        return 1;
-    }
+        throw Exception("--sizing", "'" + sizing + "' is not uniform or adaptive");
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
     BodyOptions options;
     options.distances.memoryBudgetBytes = static_cast<std::size_t>(budgetMiB * 1024 * 1024);
@@ -126,81 +116,67 @@ int main(int argc, char **argv)
         options.sizing = GridSizing::ADAPTIVE;
     WarmFast solver;
     solver.setGlobalEvery(globalEvery);
-    try
-    {
-        solver.setGlobalEvaluations(globalEvaluations);
-        if (!solver.params().setParam("global_seeding", globalSeeding))
-            throw std::invalid_argument("'" + globalSeeding + "' is not random or clusters");
-        if (!solver.params().setParam("global_search", globalSearch))
-            throw std::invalid_argument("'" + globalSearch + "' is not multistart or comb-GA-wl");
-    }
-    catch (const std::exception &e)
-    {
-        std::fprintf(stderr, "--global-evaluations / --global-seeding / --global-search: %s\n", e.what());
-        return 1;
-    }
+    if (globalEvaluations == 0)
+        throw Exception("--global-evaluations", "must be positive");
+    solver.setGlobalEvaluations(globalEvaluations);
+    if (!solver.params().setParam("global_seeding", globalSeeding))
+        throw Exception("--global-seeding", "'" + globalSeeding + "' is not random or clusters");
+    if (!solver.params().setParam("global_search", globalSearch))
+        throw Exception("--global-search", "'" + globalSearch + "' is not multistart or comb-GA-wl");
     solver.setGapTolerance(gap);
     solver.setSurfacePatch(!noPatch);
 
     std::vector<Problem> problems;
-    try
+    auto wanted = [&](const std::string &name)
     {
-        auto wanted = [&](const std::string &name)
-        {
-            if (problemsText.empty())
+        if (problemsText.empty())
+            return true;
+        std::stringstream ss(problemsText);
+        for (std::string item; std::getline(ss, item, ',');)
+            if (item == name)
                 return true;
-            std::stringstream ss(problemsText);
-            for (std::string item; std::getline(ss, item, ',');)
-                if (item == name)
-                    return true;
-            return false;
-        };
-        for (const char *name : {"cubicles", "Easy", "Twistycool"})
+        return false;
+    };
+    for (const char *name : {"cubicles", "Easy", "Twistycool"})
+    {
+        if (!wanted(name))
+            continue;
+        const fs::path cfg = fs::path(data) / (std::string(name) + ".cfg"),
+                       path = fs::path(data) / (std::string(name) + ".path");
+        if (!fs::exists(cfg) || !fs::exists(path))
         {
+            std::fprintf(stderr, "skipping %s: %s or its .path not found\n", name, cfg.c_str());
+            continue;
+        }
+        problems.push_back({name, readProblemConfig(cfg.string()), readPoses(path.string())});
+    }
+    if (fs::is_directory(maps))
+    {
+        std::vector<fs::path> dirs;
+        for (const auto &entry : fs::directory_iterator(maps))
+            if (entry.is_directory())
+                dirs.push_back(entry.path());
+        std::sort(dirs.begin(), dirs.end());
+        for (const fs::path &dir : dirs)
+        {
+            const std::string name = dir.filename().string();
             if (!wanted(name))
                 continue;
-            const fs::path cfg = fs::path(data) / (std::string(name) + ".cfg"),
-                           path = fs::path(data) / (std::string(name) + ".path");
-            if (!fs::exists(cfg) || !fs::exists(path))
-            {
-                std::fprintf(stderr, "skipping %s: %s or its .path not found\n", name, cfg.c_str());
+            const fs::path cfg = dir / (name + ".cfg"), poses = dir / (name + ".poses");
+            if (!fs::exists(cfg) || !fs::exists(poses))
                 continue;
-            }
-            problems.push_back({name, readProblemConfig(cfg.string()), readPoses(path.string())});
-        }
-        if (fs::is_directory(maps))
-        {
-            std::vector<fs::path> dirs;
-            for (const auto &entry : fs::directory_iterator(maps))
-                if (entry.is_directory())
-                    dirs.push_back(entry.path());
-            std::sort(dirs.begin(), dirs.end());
-            for (const fs::path &dir : dirs)
+            Problem p{name, readProblemConfig(cfg.string()), {}};
+            LoadReport report;
+            loadRobotMesh(p.config.robot, &report);
+            for (Eigen::Isometry3d X : readPoses(poses.string()))
             {
-                const std::string name = dir.filename().string();
-                if (!wanted(name))
-                    continue;
-                const fs::path cfg = dir / (name + ".cfg"), poses = dir / (name + ".poses");
-                if (!fs::exists(cfg) || !fs::exists(poses))
-                    continue;
-                Problem p{name, readProblemConfig(cfg.string()), {}};
-                LoadReport report;
-                loadRobotMesh(p.config.robot, &report);
-                for (Eigen::Isometry3d X : readPoses(poses.string()))
-                {
-                    X.translate(report.omplAppCenter);
-                    p.path.push_back(X);
-                }
-                if (p.config.goal)
-                    p.path.push_back(*p.config.goal);
-                problems.push_back(std::move(p));
+                X.translate(report.omplAppCenter);
+                p.path.push_back(X);
             }
+            if (p.config.goal)
+                p.path.push_back(*p.config.goal);
+            problems.push_back(std::move(p));
         }
-    }
-    catch (const std::exception &e)
-    {
-        std::fprintf(stderr, "%s\n", e.what());
-        return 1;
     }
 
     std::unique_ptr<std::ofstream> csv;
@@ -303,4 +279,9 @@ int main(int argc, char **argv)
                  << "\n";
     }
     return 0;
+}
+
+int main(int argc, char **argv)
+{
+    return meshgap::cli::runMain(argc, argv, run);
 }

@@ -286,44 +286,92 @@ namespace
         return py::make_tuple(V, F);
     }
 
-    /** \brief meshgap_plan's steps through the same library calls: the problem, the planner with its parameters,
-        solve, then the dense clearance (support/DenseClearance.h); the summary with meshgap_plan's fields. */
-    py::tuple plan(const py::handle &cfgObject, const std::string &planner, const std::string &objective,
-                   double time, std::uint32_t seed, const std::string &mode, const std::string &motion,
-                   unsigned dense, const py::dict &paramsObject, const py::object &reportObject)
+    /** \brief plan()'s arguments checked as meshgap_plan checks its flags (the old mode= refused). */
+    void checkPlanArguments(const std::string &checker, const std::string &motion, double time, unsigned dense,
+                            const py::object &modeObject)
     {
-        namespace ob = ompl::base;
-        const std::string cfg = pathArg(cfgObject, "cfg");
-        const std::string reportFile = reportObject.is_none() ? std::string() : pathArg(reportObject, "report");
-        if (mode != "certified" && mode != "fast")
-            throw Exception("mode", "'" + mode + "' is not certified or fast");
+        if (!modeObject.is_none())  // the old spelling, as meshgap_plan refuses --mode
+            throw Exception("mode", "renamed: use checker='certified' or checker='fast'");
+        if (checker != "certified" && checker != "fast")
+            throw Exception("checker", "'" + checker + "' is not certified or fast");
         if (motion != "discrete" && motion != "clearance")
             throw Exception("motion", "'" + motion + "' is not discrete or clearance");
-        if (motion == "clearance" && mode != "certified")
-            throw Exception("motion", "clearance needs mode certified (it steps by exact clearance)");
+        if (motion == "clearance" && checker != "certified")
+            throw Exception("motion", "clearance needs checker certified (it steps by exact clearance)");
         if (!(time > 0.0) || !std::isfinite(time))
             throw Exception("time", "must be positive and finite");
         if (dense < 1)
             throw Exception("dense", "must be at least 1");
-        std::vector<std::pair<std::string, std::string>> params;  // values as text, as --param NAME=VALUE gives them
+    }
+
+    /** \brief The dense path of plan()'s summary: poses, arc_length, clearance, in_collision. */
+    py::dict denseDict(const DenseClearance &d, const std::vector<Eigen::Isometry3d> &denseStates, bool planar)
+    {
+        py::dict dd;
+        dd["poses"] = poseArray(denseStates, planar);
+        dd["arc_length"] = py::array_t<double>(py::ssize_t(d.arcLength.size()), d.arcLength.data());
+        dd["clearance"] = py::array_t<double>(py::ssize_t(d.clearance.size()), d.clearance.data());
+        py::array_t<bool> collide(py::ssize_t(d.inCollision.size()));
+        for (std::size_t i = 0; i < d.inCollision.size(); ++i)
+            collide.mutable_at(py::ssize_t(i)) = d.inCollision[i] != 0;
+        dd["in_collision"] = collide;
+        return dd;
+    }
+
+    /** \brief plan()'s planner parameters as text, as --param NAME=VALUE gives them (a bool as 1 or 0). */
+    std::vector<std::pair<std::string, std::string>> paramTexts(const py::dict &paramsObject)
+    {
+        std::vector<std::pair<std::string, std::string>> params;
         for (const auto &[name, value] : paramsObject)
             params.emplace_back(py::str(name).cast<std::string>(),
                                 py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "1" : "0") :
                                                                     py::str(value).cast<std::string>());
+        return params;
+    }
+
+    /** \brief OMPL's seed: OMPL logs an error when the seed is set again in one process, yet it does restart its
+        seed generator: the same seed gives the same path (tested). Keep that message out of a notebook. */
+    void setSeedQuietly(std::uint32_t seed)
+    {
+        const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+        ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+        ompl::RNG::setSeed(seed);
+        ompl::msg::setLogLevel(level);
+    }
+
+    /** \brief plan()'s HTML report with meshgap_plan's rows, and the dense path \e d when there is one. */
+    void writeReport(const std::string &file, const OmplProblem &problem, const ProblemConfig &config,
+                     const DenseClearance *d, const std::string &planner, const std::string &clearanceMode,
+                     const std::string &status)
+    {
+        const std::vector<std::pair<std::string, std::string>> rows = {
+            {"problem", config.name + (config.planar ? " (SE(2))" : " (SE(3))")},
+            {"planner", planner},
+            {"objective", problem.objective},
+            {"clearance mode", clearanceMode},
+            {"status", status},
+            {"planning time", std::to_string(problem.setup->getLastPlanComputationTime()) + " s"}};
+        writePlanReport(*problem.scene, d ? reportFromDense(*d, rows) : reportWithoutPath(config, rows), file);
+    }
+
+    /** \brief meshgap_plan's steps through the same library calls: the problem, the planner with its parameters,
+        solve, then the dense clearance (support/DenseClearance.h); the summary with meshgap_plan's fields. */
+    py::tuple plan(const py::handle &cfgObject, const std::string &planner, const std::string &objective, double time,
+                   std::uint32_t seed, const std::string &checker, const std::string &motion, unsigned dense,
+                   const py::dict &paramsObject, const py::object &reportObject, const py::object &modeObject)
+    {
+        namespace ob = ompl::base;
+        const std::string cfg = pathArg(cfgObject, "cfg");
+        const std::string reportFile = reportObject.is_none() ? std::string() : pathArg(reportObject, "report");
+        checkPlanArguments(checker, motion, time, dense, modeObject);
+        const std::vector<std::pair<std::string, std::string>> params = paramTexts(paramsObject);
 
         py::gil_scoped_release release;
-        {
-            // OMPL logs an error when the seed is set again in one process, yet it does restart its seed
-            // generator: the same seed gives the same path (tested). Keep that message out of a notebook.
-            const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
-            ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
-            ompl::RNG::setSeed(seed);
-            ompl::msg::setLogLevel(level);
-        }
+        setSeedQuietly(seed);
         const ProblemConfig config = readProblemConfig(cfg);
-        OmplProblem problem = setupProblem(config, mode == "certified" ? ClearanceChecker::Mode::CERTIFIED :
-                                                                         ClearanceChecker::Mode::FAST,
-                                           objective);
+        OmplProblem problem = setupProblem(
+            config, checker == "certified" ? ClearanceChecker::Mode::CERTIFIED : ClearanceChecker::Mode::FAST,
+            objective);
         const ob::SpaceInformationPtr si = problem.setup->getSpaceInformation();
         if (motion == "clearance")
             si->setMotionValidator(std::make_shared<ClearanceMotionValidator>(si, problem.checker));
@@ -352,17 +400,8 @@ namespace
             cost = path.cost(problem.setup->getOptimizationObjective()).value();
         }
         if (!reportFile.empty())
-        {
-            std::vector<std::pair<std::string, std::string>> rows = {
-                {"problem", config.name + (config.planar ? " (SE(2))" : " (SE(3))")},
-                {"planner", planner},
-                {"objective", problem.objective},
-                {"clearance mode", mode + ", motion " + motion},
-                {"status", status.asString()},
-                {"planning time", std::to_string(problem.setup->getLastPlanComputationTime()) + " s"}};
-            writePlanReport(*problem.scene, d ? reportFromDense(*d, rows) : reportWithoutPath(config, rows),
-                            reportFile);
-        }
+            writeReport(reportFile, problem, config, d.get(), planner, checker + ", motion " + motion,
+                        status.asString());
 
         py::gil_scoped_acquire acquire;
         py::dict summary;
@@ -370,7 +409,7 @@ namespace
         summary["planar"] = config.planar;
         summary["planner"] = planner;
         summary["objective"] = problem.objective;
-        summary["mode"] = mode;
+        summary["checker"] = checker;
         summary["motion"] = motion;
         summary["status"] = status.asString();
         summary["solved"] = havePath;
@@ -387,15 +426,7 @@ namespace
             summary["min_clearance"] = d->minClearance;
             summary["min_clearance_arc_length"] = d->arcLength[d->argmin];
             summary["dense_path_free"] = d->collisions == 0;
-            py::dict dd;
-            dd["poses"] = poseArray(denseStates, config.planar);
-            dd["arc_length"] = py::array_t<double>(py::ssize_t(d->arcLength.size()), d->arcLength.data());
-            dd["clearance"] = py::array_t<double>(py::ssize_t(d->clearance.size()), d->clearance.data());
-            py::array_t<bool> collide(py::ssize_t(d->inCollision.size()));
-            for (std::size_t i = 0; i < d->inCollision.size(); ++i)
-                collide.mutable_at(py::ssize_t(i)) = d->inCollision[i] != 0;
-            dd["in_collision"] = collide;
-            summary["dense"] = dd;
+            summary["dense"] = denseDict(*d, denseStates, config.planar);
         }
         return py::make_tuple(poseArray(states, config.planar), summary);
     }
@@ -499,14 +530,14 @@ PYBIND11_MODULE(meshgap, m)
     m.def("load_mesh", [](const py::handle &path) { return meshArrays(meshArg(path, "path")); }, py::arg("path"),
           "Load a mesh file as meshgap does (welded, cleaned): a (V, F) pair of numpy arrays.");
     m.def("plan", &plan, py::arg("cfg"), py::kw_only(), py::arg("planner") = "rrtconnect", py::arg("objective") = "",
-          py::arg("time") = 10.0, py::arg("seed") = 1, py::arg("mode") = "certified", py::arg("motion") = "discrete",
-          py::arg("dense") = 4, py::arg("params") = py::dict(),
-          py::arg("report") = py::none(),
+          py::arg("time") = 10.0, py::arg("seed") = 1, py::arg("checker") = "certified", py::arg("motion") = "discrete",
+          py::arg("dense") = 4, py::arg("params") = py::dict(), py::arg("report") = py::none(),
+          py::arg("mode") = py::none(),
           "Plan for an OMPL.app .cfg problem as meshgap_plan does. Returns (path, summary): the solution's states "
           "as an (M, 7) or (M, 3) array (empty when none was found) and a dict (problem, planner, objective, status, "
           "solved, exact, planning_time, length, cost, min_clearance over the dense path, dense_path_free, and "
-          "'dense': the dense path's poses, arc_length, clearance, in_collision). report: also write the HTML plan "
-          "report there.");
+          "'dense': the dense path's poses, arc_length, clearance, in_collision). checker: certified or fast, as "
+          "meshgap_plan's --checker (the old mode= is refused). report: also write the HTML plan report there.");
     m.attr("SCENE_BATCH_BLOCK") = SCENE_BATCH_BLOCK;
     m.attr("REPORT_AVAILABLE") = planReportAvailable();  // three.js was found at build time: plan(report=...) works
 }

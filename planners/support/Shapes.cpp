@@ -936,6 +936,37 @@ namespace meshgap
         return p;
     }
 
+    namespace
+    {
+        /** \brief The unit tangents of a tube's \e path segments; throws (naming \e where) for a repeated point, a
+            bend of 120 degrees or more, or segments too short for the bends' mitres at \e radius. */
+        std::vector<Eigen::Vector3d> tubeTangents(const std::vector<Eigen::Vector3d> &path, double radius,
+                                                  const std::string &where)
+        {
+            std::vector<Eigen::Vector3d> tangent;
+            for (std::size_t j = 0; j + 1 < path.size(); ++j)
+            {
+                const Eigen::Vector3d d = path[j + 1] - path[j];
+                if (!(d.norm() > 0.0))
+                    throw Exception(where, "repeated path point");
+                tangent.push_back(d.normalized());
+            }
+            for (std::size_t j = 1; j < tangent.size(); ++j)
+            {
+                if (tangent[j - 1].dot(tangent[j]) < -0.5)
+                    throw Exception(where, "a bend of 120 degrees or more");
+                // The mitre reaches radius * tan(bend / 2) along each segment; keep it inside both neighbours.
+                const double half = 0.5 * std::acos(std::clamp(tangent[j - 1].dot(tangent[j]), -1.0, 1.0));
+                const double reach = radius * std::tan(half);
+                const double before = (path[j] - path[j - 1]).norm() - (j >= 2 ? reach : 0.0);
+                const double after = (path[j + 1] - path[j]).norm() - (j + 2 < path.size() ? reach : 0.0);
+                if (reach >= before || reach >= after)
+                    throw Exception(where, "path segments too short for the bends at this radius");
+            }
+            return tangent;
+        }
+    }  // namespace
+
     Polyhedron tubePolyhedron(const std::vector<Eigen::Vector3d> &path, double radius, unsigned int segments,
                               unsigned int capRings)
     {
@@ -943,26 +974,7 @@ namespace meshgap
         if (path.size() < 2 || segments < 3 || capRings < 1 || !(radius > 0.0) || !std::isfinite(radius))
             throw Exception(where, "need two or more path points, three or more segments, one or more cap rings "
                                    "and a positive radius");
-        std::vector<Eigen::Vector3d> tangent;
-        for (std::size_t j = 0; j + 1 < path.size(); ++j)
-        {
-            const Eigen::Vector3d d = path[j + 1] - path[j];
-            if (!(d.norm() > 0.0))
-                throw Exception(where, "repeated path point");
-            tangent.push_back(d.normalized());
-        }
-        for (std::size_t j = 1; j < tangent.size(); ++j)
-        {
-            if (tangent[j - 1].dot(tangent[j]) < -0.5)
-                throw Exception(where, "a bend of 120 degrees or more");
-            // The mitre reaches radius * tan(bend / 2) along each segment; keep it inside both neighbours.
-            const double half = 0.5 * std::acos(std::clamp(tangent[j - 1].dot(tangent[j]), -1.0, 1.0));
-            const double reach = radius * std::tan(half);
-            const double before = (path[j] - path[j - 1]).norm() - (j >= 2 ? reach : 0.0);
-            const double after = (path[j + 1] - path[j]).norm() - (j + 2 < path.size() ? reach : 0.0);
-            if (reach >= before || reach >= after)
-                throw Exception(where, "path segments too short for the bends at this radius");
-        }
+        const std::vector<Eigen::Vector3d> tangent = tubeTangents(path, radius, where);
         Polyhedron p;
         Eigen::Vector3d u, v;
         std::tie(u, v) = planeAxes(tangent[0]);
@@ -1011,9 +1023,7 @@ namespace meshgap
         ring(path.back(), radius, tangent.back(), tangent.back());
         cap(path.back(), tangent.back(), true);
         for (std::size_t i = 0; i + 1 < stations.size(); ++i)
-        {
             stitchRings(p, stations[i], stations[i + 1], segments);
-        }
         if (p.volume() < 0.0)
             p.reverse();
         return p;

@@ -91,6 +91,302 @@ namespace meshgap
             std::vector<std::pair<double, std::uint32_t>> clusterGaps;  ///< (signed sphere gap, i * |B's| + j)
             MoveScratch moves;
         };
+
+        /** \brief The settings of one query, read once (a query sees one consistent set even if params change). */
+        struct Settings
+        {
+            std::size_t populationSize;
+            unsigned int maxGenerations;
+            double mutationRate, crossoverRate;
+            bool localSearch;
+            std::size_t stallGenerations;
+            CombGA::Seeding seeding;
+            std::size_t restartStall;
+            std::size_t cap;  ///< the request's evaluation cap (0: none)
+        };
+
+        /** \brief One comb-GA query: the population, the best pair so far, and the steps of a generation. */
+        class GaRun
+        {
+        public:
+            GaRun(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, const DistanceRequest &request,
+                  const Settings &settings, Scratch &work, DistanceResult &result)
+                : a_(a),
+                  b_(b),
+                  X_AB_(X_AB),
+                  request_(request),
+                  s_(settings),
+                  rng_(request.seed),
+                  evaluator_(a, b, X_AB),
+                  distancesA_(a.distances()),
+                  distancesB_(b.distances()),
+                  radiusA_(0.5 * distancesA_.maxDistance()),
+                  radiusB_(0.5 * distancesB_.maxDistance()),
+                  work_(work),
+                  population_(work.population),
+                  offspring_(work.offspring),
+                  scratch_(work.moves),
+                  result_(result)
+            {
+                scratch_.reserve(std::max(distancesA_.graph().numNodes(), distancesB_.graph().numNodes()));
+            }
+
+            /** \brief The whole search; the best pair found goes into the result. */
+            void run()
+            {
+                seedClusters();
+                seedRandom();
+                bool stopped = !evaluatePopulation(0, false);
+                record();
+                offspring_.clear();
+                offspring_.reserve(s_.populationSize);
+                std::size_t generation = 0, lastRestart = 0;
+                bool converged = false;
+                while (!stopped && !converged && generation < s_.maxGenerations)
+                {
+                    ++generation;
+                    select();
+                    mate();
+                    mutate();
+                    stopped = !evaluateOffspring(generation);
+                    record();
+                    if (stopped)
+                        break;
+                    keepElite();
+                    // Restart (optional, see setRestartStall()): no better pair for restartStall generations since
+                    // the last improvement or restart: every member but the best drawn again.
+                    if (s_.restartStall != 0 && generation - std::max(convergedAt_, lastRestart) >= s_.restartStall &&
+                        generation < s_.maxGenerations)
+                    {
+                        lastRestart = generation;
+                        if (!evaluatePopulation(generation, true))
+                            break;
+                    }
+                    // Convergence (optional, see setStallGenerations()): no better pair for stallGenerations
+                    // generations.
+                    converged = s_.stallGenerations != 0 && generation - convergedAt_ >= s_.stallGenerations;
+                }
+                evaluator_.fill(best_.pair, best_.d2, result_);
+                result_.localSteps = localSteps_;
+                result_.iterations = generation;
+                result_.convergedAt = convergedAt_;
+            }
+
+        private:
+            /** \brief A new trial point: d^2, then (wl) the hill climb whose result replaces it. False when the cap is
+                reached. */
+            bool evaluate(Individual &x, std::size_t generation)
+            {
+                if (s_.cap != 0 && evaluator_.evaluations() >= s_.cap)
+                    return false;
+                x.d2 = evaluator_.d2(x.pair);
+                if (s_.localSearch)
+                    localSteps_ += hillClimb(evaluator_, x.pair, x.d2, s_.cap);
+                if (x.d2 < best_.d2)
+                {
+                    best_ = x;
+                    convergedAt_ = generation;
+                }
+                return true;
+            }
+
+            void record()
+            {
+                if (request_.recordHistory)
+                    result_.history.push_back(std::sqrt(best_.d2));
+            }
+
+            /** \brief A node pair drawn uniformly from A x B. */
+            NodePair randomPair()
+            {
+                std::uniform_int_distribution<std::uint32_t> nodeA(0, a_.numNodes() - 1), nodeB(0, b_.numNodes() - 1);
+                return NodePair{nodeA(rng_), nodeB(rng_)};
+            }
+
+            /** \brief Initial population, cluster members (Seeding CLUSTERS: all, MIXED: every other): the nearest
+                cluster pairs by signed sphere gap, nearest first, one member each (cycling if there are fewer
+                cluster pairs than members), a random node of each cluster. */
+            void seedClusters()
+            {
+                population_.assign(s_.populationSize, Individual());
+                if (s_.seeding == CombGA::Seeding::RANDOM)
+                    return;
+                const auto &ca = a_.clusters(), &cb = b_.clusters();
+                const Eigen::Matrix3d R = X_AB_.linear();
+                const Eigen::Vector3d t = X_AB_.translation();
+                auto &gaps = work_.clusterGaps;
+                gaps.clear();
+                for (std::uint32_t j = 0; j < cb.size(); ++j)
+                {
+                    const Eigen::Vector3d c = R * cb[j].center + t;
+                    for (std::uint32_t i = 0; i < ca.size(); ++i)
+                        gaps.emplace_back((ca[i].center - c).norm() - ca[i].radius - cb[j].radius,
+                                          i * static_cast<std::uint32_t>(cb.size()) + j);
+                }
+                const bool clustersOnly = s_.seeding == CombGA::Seeding::CLUSTERS;
+                const std::size_t clusterMembers = clustersOnly ? s_.populationSize : (s_.populationSize + 1) / 2;
+                const std::size_t kept = std::min(gaps.size(), clusterMembers);
+                std::partial_sort(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(kept), gaps.end());
+                const auto &orderA = a_.clusterOrder(), &orderB = b_.clusterOrder();
+                for (std::size_t k = 0; k < clusterMembers; ++k)
+                {
+                    const std::uint32_t key = gaps[k % kept].second;
+                    const NodeCluster &A = ca[key / cb.size()], &B = cb[key % cb.size()];
+                    const std::uint32_t ka = std::uniform_int_distribution<std::uint32_t>(A.begin, A.end - 1)(rng_);
+                    const std::uint32_t kb = std::uniform_int_distribution<std::uint32_t>(B.begin, B.end - 1)(rng_);
+                    // Mixed: cluster members at the even places, random ones at the odd.
+                    population_[clustersOnly ? k : 2 * k].pair = NodePair{orderA[ka], orderB[kb]};
+                }
+            }
+
+            /** \brief Random members (the paper's draw, in its order: the warm start takes the first place without a
+                draw). */
+            void seedRandom()
+            {
+                for (std::size_t i = 0; i < s_.populationSize; ++i)
+                    if (i == 0 && request_.start)
+                        population_[0].pair = *request_.start;
+                    else if (s_.seeding == CombGA::Seeding::RANDOM ||
+                             (s_.seeding == CombGA::Seeding::MIXED && i % 2 == 1))
+                        population_[i].pair = randomPair();
+            }
+
+            /** \brief Selection: SUS, then a shuffle, since SUS returns its picks in population order and consecutive
+                picks would otherwise mate with their neighbours in the array. */
+            void select()
+            {
+                maxMinusFitness(population_, work_.fitness);
+                stochasticUniversalSampling(work_.fitness, s_.populationSize, rng_, work_.picks);
+                std::shuffle(work_.picks.begin(), work_.picks.end(), rng_);
+            }
+
+            /** \brief Mating: each pair of parents gives two offspring, mesh mated with probability p_x (both drawn
+                independently by the rule of eq. 5, centred on the fitter parent), copies of the parents otherwise. */
+            void mate()
+            {
+                const std::vector<std::size_t> &picks = work_.picks;
+                std::uniform_real_distribution<double> unit(0.0, 1.0);  // a local: its bounds fold into the code
+                offspring_.clear();
+                for (std::size_t k = 0; k + 1 < s_.populationSize; k += 2)
+                {
+                    const Individual &p1 = population_[picks[k]], &p2 = population_[picks[k + 1]];
+                    if (unit(rng_) < s_.crossoverRate)
+                    {
+                        const Individual &fitter = p1.d2 <= p2.d2 ? p1 : p2, &other = p1.d2 <= p2.d2 ? p2 : p1;
+                        for (int child = 0; child < 2; ++child)
+                        {
+                            const Offspring o = meshMated(fitter, other);
+                            offspring_.push_back(o);
+                        }
+                    }
+                    else
+                    {
+                        offspring_.push_back({p1, false});
+                        offspring_.push_back({p2, false});
+                    }
+                }
+                if (s_.populationSize % 2 == 1)  // the odd one out passes on unmated
+                    offspring_.push_back({population_[picks.back()], false});
+            }
+
+            /** \brief One mesh-mated child of \e fitter and \e other. */
+            Offspring meshMated(const Individual &fitter, const Individual &other)
+            {
+                Offspring o{{NodePair(), 0.0}, true};
+                o.x.pair.a = meshMate(distancesA_, fitter.pair.a, other.pair.a, fitter.d2, other.d2, rng_, scratch_);
+                o.x.pair.b = meshMate(distancesB_, fitter.pair.b, other.pair.b, fitter.d2, other.d2, rng_, scratch_);
+                // An offspring equal to a parent is no new trial point: it keeps the parent's known d^2.
+                for (const Individual *parent : {&fitter, &other})
+                    if (o.fresh && o.x.pair == parent->pair)
+                    {
+                        o.x.d2 = parent->d2;
+                        o.fresh = false;
+                    }
+                return o;
+            }
+
+            /** \brief Mutation: the random move, per gene, with probability p_m, within r_max = max(D)/2. */
+            void mutate()
+            {
+                std::uniform_real_distribution<double> unit(0.0, 1.0);
+                for (Offspring &o : offspring_)
+                {
+                    if (unit(rng_) < s_.mutationRate)
+                    {
+                        o.x.pair.a = randomMove(distancesA_, o.x.pair.a, radiusA_, rng_, scratch_);
+                        o.fresh = true;
+                    }
+                    if (unit(rng_) < s_.mutationRate)
+                    {
+                        o.x.pair.b = randomMove(distancesB_, o.x.pair.b, radiusB_, rng_, scratch_);
+                        o.fresh = true;
+                    }
+                }
+            }
+
+            /** \brief Evaluation of the new trial points (hill-climbed first for -wl); false at the cap. */
+            bool evaluateOffspring(std::size_t generation)
+            {
+                for (Offspring &o : offspring_)
+                    if (o.fresh && !evaluate(o.x, generation))
+                        return false;
+                return true;
+            }
+
+            /** \brief Elitism: the best pair ever seen replaces the worst offspring unless it is already among them;
+                the offspring become the population. */
+            void keepElite()
+            {
+                const bool bestPresent = std::any_of(offspring_.begin(), offspring_.end(),
+                                                     [&](const Offspring &o) { return o.x.pair == best_.pair; });
+                if (!bestPresent)
+                    std::max_element(offspring_.begin(), offspring_.end(),
+                                     [](const Offspring &p, const Offspring &q) { return p.x.d2 < q.x.d2; })
+                        ->x = best_;
+                for (std::size_t i = 0; i < s_.populationSize; ++i)
+                    population_[i] = offspring_[i].x;
+            }
+
+            /** \brief Evaluate the population in order; with \e redraw (a restart), every member but one copy of the
+                best is first drawn again uniformly at random. False when the cap is reached. */
+            bool evaluatePopulation(std::size_t generation, bool redraw)
+            {
+                bool bestKept = !redraw;  // one copy of the best stays (a collapsed population is all copies)
+                for (std::size_t i = 0; i < s_.populationSize; ++i)
+                {
+                    if (redraw)
+                    {
+                        if (!bestKept && population_[i].pair == best_.pair)
+                        {
+                            bestKept = true;
+                            continue;
+                        }
+                        population_[i].pair = randomPair();
+                    }
+                    if (!evaluate(population_[i], generation))
+                        return false;
+                }
+                return true;
+            }
+
+            const Body &a_, &b_;
+            const Eigen::Isometry3d &X_AB_;
+            const DistanceRequest &request_;
+            const Settings s_;  // by value: read in the hot loops without an indirection
+            QueryRng rng_;
+            PairEvaluator evaluator_;
+            const MeshDistances &distancesA_, &distancesB_;
+            /** \brief The mutation radius, fixed at max(D)/2 (III-B.3: "In the present case r_max was fixed to
+                max(D)/2"). */
+            const double radiusA_, radiusB_;
+            Scratch &work_;
+            std::vector<Individual> &population_;
+            std::vector<Offspring> &offspring_;
+            MoveScratch &scratch_;
+            DistanceResult &result_;
+            Individual best_{NodePair(), std::numeric_limits<double>::infinity()};
+            std::size_t convergedAt_{0}, localSteps_{0};
+        };
     }  // namespace
 
     CombGA::CombGA(bool localSearch)
@@ -183,213 +479,10 @@ namespace meshgap
         const auto startTime = std::chrono::steady_clock::now();
         result = DistanceResult();
         checkRequest(a, b, request);
-
-        // Every setting is read once here, so a query sees one consistent set even if params change meanwhile.
-        const std::size_t populationSize = population_;
-        const unsigned int maxGenerations = generations_;
-        const double mutationRate = mutationRate_, crossoverRate = crossoverRate_;
-        const bool localSearch = localSearch_;
-        const std::size_t stallGenerations = stallGenerations_;
-        const Seeding seeding = seeding_;
-        const std::size_t restartStall = restartStall_;
-        const std::size_t cap = request.maxEvaluations;
-
-        QueryRng rng(request.seed);
-        std::uniform_real_distribution<double> unit(0.0, 1.0);
-        std::uniform_int_distribution<std::uint32_t> nodeA(0, a.numNodes() - 1), nodeB(0, b.numNodes() - 1);
-        PairEvaluator evaluator(a, b, X_AB);
-        const MeshDistances &distancesA = a.distances(), &distancesB = b.distances();
-        // The mutation radius is fixed at max(D)/2 (III-B.3: "In the present case r_max was fixed to max(D)/2").
-        const double radiusA = 0.5 * distancesA.maxDistance(), radiusB = 0.5 * distancesB.maxDistance();
+        const Settings settings{population_,       generations_, mutationRate_, crossoverRate_,        localSearch_,
+                                stallGenerations_, seeding_,     restartStall_, request.maxEvaluations};
         ThreadScratch<Scratch> lease;
-        Scratch &work = lease.get();
-        MoveScratch &scratch = work.moves;
-        scratch.reserve(std::max(distancesA.graph().numNodes(), distancesB.graph().numNodes()));
-
-        Individual best{NodePair(), std::numeric_limits<double>::infinity()};
-        std::size_t convergedAt = 0, localSteps = 0;
-        // A new trial point: d^2, then (wl) the hill climb whose result replaces it. False when the cap is reached.
-        auto evaluate = [&](Individual &x, std::size_t generation)
-        {
-            if (cap != 0 && evaluator.evaluations() >= cap)
-                return false;
-            x.d2 = evaluator.d2(x.pair);
-            if (localSearch)
-                localSteps += hillClimb(evaluator, x.pair, x.d2, cap);
-            if (x.d2 < best.d2)
-            {
-                best = x;
-                convergedAt = generation;
-            }
-            return true;
-        };
-        auto record = [&]
-        {
-            if (request.recordHistory)
-                result.history.push_back(std::sqrt(best.d2));
-        };
-
-        // Initial population (III-D): at random, with the warm start as its first member when given.
-        std::vector<Individual> &population = work.population;
-        population.assign(populationSize, Individual());
-        std::size_t clusterMembers = 0;  // members drawn from cluster pairs: all (Clusters), every other (Mixed)
-        if (seeding != Seeding::RANDOM)
-        {
-            // The nearest cluster pairs by signed sphere gap, nearest first, one member each (cycling if there are
-            // fewer cluster pairs than members), a random node of each cluster.
-            const auto &ca = a.clusters(), &cb = b.clusters();
-            const Eigen::Matrix3d R = X_AB.linear();
-            const Eigen::Vector3d t = X_AB.translation();
-            auto &gaps = work.clusterGaps;
-            gaps.clear();
-            for (std::uint32_t j = 0; j < cb.size(); ++j)
-            {
-                const Eigen::Vector3d c = R * cb[j].center + t;
-                for (std::uint32_t i = 0; i < ca.size(); ++i)
-                    gaps.emplace_back((ca[i].center - c).norm() - ca[i].radius - cb[j].radius,
-                                      i * static_cast<std::uint32_t>(cb.size()) + j);
-            }
-            clusterMembers = seeding == Seeding::CLUSTERS ? populationSize : (populationSize + 1) / 2;
-            const std::size_t kept = std::min(gaps.size(), clusterMembers);
-            std::partial_sort(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(kept), gaps.end());
-            const auto &orderA = a.clusterOrder(), &orderB = b.clusterOrder();
-            for (std::size_t k = 0; k < clusterMembers; ++k)
-            {
-                const std::uint32_t key = gaps[k % kept].second;
-                const NodeCluster &A = ca[key / cb.size()], &B = cb[key % cb.size()];
-                const std::uint32_t ka = std::uniform_int_distribution<std::uint32_t>(A.begin, A.end - 1)(rng);
-                const std::uint32_t kb = std::uniform_int_distribution<std::uint32_t>(B.begin, B.end - 1)(rng);
-                // Mixed: cluster members at the even places, random ones at the odd.
-                population[seeding == Seeding::CLUSTERS ? k : 2 * k].pair = NodePair{orderA[ka], orderB[kb]};
-            }
-        }
-        // Random members (the paper's draw, in its order: the warm start takes the first place without a draw).
-        for (std::size_t i = 0; i < populationSize; ++i)
-            if (i == 0 && request.start)
-                population[0].pair = *request.start;
-            else if (seeding == Seeding::RANDOM || (seeding == Seeding::MIXED && i % 2 == 1))
-                population[i].pair = NodePair{nodeA(rng), nodeB(rng)};
-        bool stopped = false;
-        for (std::size_t i = 0; i < populationSize && !stopped; ++i)
-            stopped = !evaluate(population[i], 0);
-        record();
-
-        std::vector<double> &fitness = work.fitness;
-        std::vector<std::size_t> &picks = work.picks;
-        std::vector<Offspring> &offspring = work.offspring;
-        offspring.clear();
-        offspring.reserve(populationSize);
-        std::size_t generation = 0, lastRestart = 0;
-        bool converged = false;
-        while (!stopped && !converged && generation < maxGenerations)
-        {
-            ++generation;
-            // Selection: SUS, then a shuffle, since SUS returns its picks in population order and consecutive
-            // picks would otherwise mate with their neighbours in the array.
-            maxMinusFitness(population, fitness);
-            stochasticUniversalSampling(fitness, populationSize, rng, picks);
-            std::shuffle(picks.begin(), picks.end(), rng);
-
-            // Mating: each pair of parents gives two offspring, mesh mated with probability p_x (both drawn
-            // independently by the rule of eq. 5, centred on the fitter parent), copies of the parents otherwise.
-            offspring.clear();
-            for (std::size_t k = 0; k + 1 < populationSize; k += 2)
-            {
-                const Individual &p1 = population[picks[k]], &p2 = population[picks[k + 1]];
-                if (unit(rng) < crossoverRate)
-                {
-                    const Individual &fitter = p1.d2 <= p2.d2 ? p1 : p2, &other = p1.d2 <= p2.d2 ? p2 : p1;
-                    for (int child = 0; child < 2; ++child)
-                    {
-                        Offspring o{{NodePair(), 0.0}, true};
-                        o.x.pair.a =
-                            meshMate(distancesA, fitter.pair.a, other.pair.a, fitter.d2, other.d2, rng, scratch);
-                        o.x.pair.b =
-                            meshMate(distancesB, fitter.pair.b, other.pair.b, fitter.d2, other.d2, rng, scratch);
-                        // An offspring equal to a parent is no new trial point: it keeps the parent's known d^2.
-                        for (const Individual *parent : {&fitter, &other})
-                            if (o.fresh && o.x.pair == parent->pair)
-                            {
-                                o.x.d2 = parent->d2;
-                                o.fresh = false;
-                            }
-                        offspring.push_back(o);
-                    }
-                }
-                else
-                {
-                    offspring.push_back({p1, false});
-                    offspring.push_back({p2, false});
-                }
-            }
-            if (populationSize % 2 == 1)  // the odd one out passes on unmated
-                offspring.push_back({population[picks.back()], false});
-
-            // Mutation: the random move, per gene, with probability p_m, within r_max = max(D)/2.
-            for (Offspring &o : offspring)
-            {
-                if (unit(rng) < mutationRate)
-                {
-                    o.x.pair.a = randomMove(distancesA, o.x.pair.a, radiusA, rng, scratch);
-                    o.fresh = true;
-                }
-                if (unit(rng) < mutationRate)
-                {
-                    o.x.pair.b = randomMove(distancesB, o.x.pair.b, radiusB, rng, scratch);
-                    o.fresh = true;
-                }
-            }
-
-            // Evaluation of the new trial points (hill-climbed first for -wl).
-            for (Offspring &o : offspring)
-                if (o.fresh && !evaluate(o.x, generation))
-                {
-                    stopped = true;
-                    break;
-                }
-            record();
-            if (stopped)
-                break;
-
-            // Elitism: the best pair ever seen replaces the worst offspring unless it is already among them.
-            const bool bestPresent = std::any_of(offspring.begin(), offspring.end(),
-                                                 [&](const Offspring &o) { return o.x.pair == best.pair; });
-            if (!bestPresent)
-                std::max_element(offspring.begin(), offspring.end(),
-                                 [](const Offspring &p, const Offspring &q) { return p.x.d2 < q.x.d2; })
-                    ->x = best;
-            for (std::size_t i = 0; i < populationSize; ++i)
-                population[i] = offspring[i].x;
-
-            // Restart (optional, see setRestartStall()): no better pair for restartStall generations since the
-            // last improvement or restart: every member but the best is drawn again uniformly at random.
-            if (restartStall != 0 && generation - std::max(convergedAt, lastRestart) >= restartStall &&
-                generation < maxGenerations)
-            {
-                lastRestart = generation;
-                bool bestKept = false;  // one copy of the best stays (a collapsed population is all copies)
-                for (std::size_t i = 0; i < populationSize && !stopped; ++i)
-                {
-                    if (!bestKept && population[i].pair == best.pair)
-                    {
-                        bestKept = true;
-                        continue;
-                    }
-                    population[i].pair = NodePair{nodeA(rng), nodeB(rng)};
-                    stopped = !evaluate(population[i], generation);
-                }
-                if (stopped)
-                    break;
-            }
-
-            // Convergence (optional, see setStallGenerations()): no better pair for stallGenerations generations.
-            converged = stallGenerations != 0 && generation - convergedAt >= stallGenerations;
-        }
-
-        evaluator.fill(best.pair, best.d2, result);
-        result.localSteps = localSteps;
-        result.iterations = generation;
-        result.convergedAt = convergedAt;
+        GaRun(a, b, X_AB, request, settings, lease.get(), result).run();
         result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
     }
 }  // namespace meshgap

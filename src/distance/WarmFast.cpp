@@ -22,6 +22,149 @@ namespace meshgap
             const double theta = Eigen::Quaterniond(X1.linear()).angularDistance(Eigen::Quaterniond(X2.linear()));
             return 2.0 * std::sin(0.5 * std::min(theta, M_PI)) * r + (X2.translation() - X1.translation()).norm();
         }
+
+        /** \brief A triangle's corners with its centroid sphere (in A's frame). */
+        struct Corners
+        {
+            Eigen::Vector3d p0, p1, p2, c;
+            double r;
+        };
+
+        inline Corners corners(const Eigen::Vector3d &p0, const Eigen::Vector3d &p1, const Eigen::Vector3d &p2)
+        {
+            Corners k{p0, p1, p2, (p0 + p1 + p2) / 3.0, 0.0};
+            k.r = std::sqrt(std::max({(p0 - k.c).squaredNorm(), (p1 - k.c).squaredNorm(), (p2 - k.c).squaredNorm()}));
+            return k;
+        }
+
+        /** \brief When triangle q lies wholly on one side of triangle p's plane, its nearest corner's distance to that
+            plane (a lower bound on the triangles' distance); 0 otherwise. */
+        inline double planeGap(const Eigen::Vector3d &p0, const Eigen::Vector3d &p1, const Eigen::Vector3d &p2,
+                               const Eigen::Vector3d &q0, const Eigen::Vector3d &q1, const Eigen::Vector3d &q2)
+        {
+            const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
+            const double len = n.norm();
+            if (!(len > 0.0))
+                return 0.0;
+            const double s0 = n.dot(q0 - p0) / len, s1 = n.dot(q1 - p0) / len, s2 = n.dot(q2 - p0) / len;
+            if (s0 > 0.0 && s1 > 0.0 && s2 > 0.0)
+                return std::min({s0, s1, s2});
+            if (s0 < 0.0 && s1 < 0.0 && s2 < 0.0)
+                return -std::max({s0, s1, s2});
+            return 0.0;
+        }
+
+        /** \brief WarmFast::patch()'s search: the closest triangle pair found so far (ta, tb at distance best; none
+            while ta is UINT32_MAX, best then the node pair's own distance: the patch only improves on it). */
+        class PatchSearch
+        {
+        public:
+            PatchSearch(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result)
+                : a_(a), b_(b), sa_(a.surface()), sb_(b.surface()), X_AB_(X_AB), result_(result), best_(result.distance)
+            {
+            }
+
+            bool found() const { return ta_ != UINT32_MAX; }
+
+            /** \brief A's triangle \e t's corners; B's are carried by X_AB. Computed once per triangle where one side
+                of the descent stays fixed (the profile: most candidate pairs end at a bound). */
+            Corners cornersA(std::uint32_t t) const
+            {
+                const Triangle &f = sa_.triangles[t];
+                return corners(sa_.vertices[f[0]], sa_.vertices[f[1]], sa_.vertices[f[2]]);
+            }
+            Corners cornersB(std::uint32_t t) const
+            {
+                const Triangle &f = sb_.triangles[t];
+                return corners(X_AB_ * sb_.vertices[f[0]], X_AB_ * sb_.vertices[f[1]], X_AB_ * sb_.vertices[f[2]]);
+            }
+
+            void test(std::uint32_t ta, std::uint32_t tb) { test(cornersA(ta), cornersB(tb), ta, tb); }
+
+            /** \brief Triangles ta of A and tb of B: their exact distance unless a bound shows they are no closer. */
+            void test(const Corners &ka, const Corners &kb, std::uint32_t ta, std::uint32_t tb)
+            {
+                // Exact pruning: the gap between the triangles' centroid spheres is a lower bound on their distance.
+                if ((ka.c - kb.c).norm() - ka.r - kb.r >= best_)
+                    return;
+                // And the plane bound, both ways.
+                if (planeGap(ka.p0, ka.p1, ka.p2, kb.p0, kb.p1, kb.p2) >= best_ ||
+                    planeGap(kb.p0, kb.p1, kb.p2, ka.p0, ka.p1, ka.p2) >= best_)
+                    return;
+                Eigen::Vector3d onA, onB;
+                const double d = triangleDistance(ka.p0, ka.p1, ka.p2, kb.p0, kb.p1, kb.p2, onA, onB);
+                ++result_.triangleTests;
+                if (d < best_)
+                {
+                    best_ = d;
+                    ta_ = ta;
+                    tb_ = tb;
+                    result_.onA = onA;
+                    result_.onB = onB;
+                }
+            }
+
+            /** \brief The triangles around the node pair: every pair of them when there are at most 64 pairs,
+                otherwise (large fans, as at CAD vertices) each triangle around one node against the best triangle
+                around the other (or the first one there). */
+            void testFans()
+            {
+                const std::uint32_t *beginA = a_.beginNodeTriangles(result_.nodes.a);
+                const std::uint32_t *endA = a_.endNodeTriangles(result_.nodes.a);
+                const std::uint32_t *beginB = b_.beginNodeTriangles(result_.nodes.b);
+                const std::uint32_t *endB = b_.endNodeTriangles(result_.nodes.b);
+                if ((endA - beginA) * (endB - beginB) <= 64)  // small fans: every pair
+                {
+                    for (const std::uint32_t *i = beginA; i != endA; ++i)
+                        for (const std::uint32_t *j = beginB; j != endB; ++j)
+                            test(*i, *j);
+                }
+                else if (beginA != endA && beginB != endB)
+                {
+                    const std::uint32_t fixedB = tb_ != UINT32_MAX ? tb_ : *beginB;
+                    for (const std::uint32_t *i = beginA; i != endA; ++i)
+                        test(*i, fixedB);
+                    const std::uint32_t fixedA = ta_ != UINT32_MAX ? ta_ : *beginA;
+                    for (const std::uint32_t *j = beginB; j != endB; ++j)
+                        test(fixedA, *j);
+                }
+            }
+
+            /** \brief Descent over corner-sharing neighbours while the pair improves. */
+            void descend()
+            {
+                for (bool improved = found(); improved;)
+                {
+                    const std::uint32_t ca = ta_, cb = tb_;
+                    const Corners fixedA = cornersA(ca), fixedB = cornersB(cb);
+                    for (const std::uint32_t *i = a_.beginTriangleNeighbours(ca); i != a_.endTriangleNeighbours(ca);
+                         ++i)
+                        test(cornersA(*i), fixedB, *i, cb);
+                    for (const std::uint32_t *j = b_.beginTriangleNeighbours(cb); j != b_.endTriangleNeighbours(cb);
+                         ++j)
+                        test(fixedA, cornersB(*j), ca, *j);
+                    improved = ta_ != ca || tb_ != cb;
+                }
+            }
+
+            /** \brief The pair found, if any, into the result. */
+            void finish()
+            {
+                if (!found())
+                    return;
+                result_.distance = best_;
+                result_.triangleA = ta_;
+                result_.triangleB = tb_;
+            }
+
+        private:
+            const Body &a_, &b_;
+            const Mesh &sa_, &sb_;
+            const Eigen::Isometry3d &X_AB_;
+            DistanceResult &result_;
+            double best_;
+            std::uint32_t ta_{UINT32_MAX}, tb_{UINT32_MAX};
+        };
     }  // namespace
 
     WarmFast::WarmFast() : DistanceSolver("warm-fast")
@@ -128,114 +271,16 @@ namespace meshgap
     void WarmFast::patch(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, std::uint32_t warmA,
                          std::uint32_t warmB, bool fans, DistanceResult &result) const
     {
-        const Mesh &sa = a.surface(), &sb = b.surface();
-        // A triangle's corners in A's frame with its centroid sphere; B's are carried by X_AB. Computed once per
-        // triangle where one side of the descent stays fixed (the profile: most candidate pairs end at a bound).
-        struct Corners
-        {
-            Eigen::Vector3d p0, p1, p2, c;
-            double r;
-        };
-        auto corners = [](const Eigen::Vector3d &p0, const Eigen::Vector3d &p1, const Eigen::Vector3d &p2)
-        {
-            Corners k{p0, p1, p2, (p0 + p1 + p2) / 3.0, 0.0};
-            k.r = std::sqrt(std::max({(p0 - k.c).squaredNorm(), (p1 - k.c).squaredNorm(), (p2 - k.c).squaredNorm()}));
-            return k;
-        };
-        auto cornersA = [&](std::uint32_t t)
-        {
-            const Triangle &f = sa.triangles[t];
-            return corners(sa.vertices[f[0]], sa.vertices[f[1]], sa.vertices[f[2]]);
-        };
-        auto cornersB = [&](std::uint32_t t)
-        {
-            const Triangle &f = sb.triangles[t];
-            return corners(X_AB * sb.vertices[f[0]], X_AB * sb.vertices[f[1]], X_AB * sb.vertices[f[2]]);
-        };
-        auto testCorners = [&](const Corners &ka, const Corners &kb, std::uint32_t ta, std::uint32_t tb, double &best,
-                               std::uint32_t &bestA, std::uint32_t &bestB)
-        {
-            const Eigen::Vector3d &a0 = ka.p0, &a1 = ka.p1, &a2 = ka.p2, &b0 = kb.p0, &b1 = kb.p1, &b2 = kb.p2;
-            // Exact pruning: the gap between the triangles' centroid spheres is a lower bound on their distance.
-            if ((ka.c - kb.c).norm() - ka.r - kb.r >= best)
-                return;
-            // And the plane bound: when one triangle lies wholly on one side of the other's plane, its nearest
-            // corner's distance to that plane is a lower bound too.
-            auto planeGap = [](const Eigen::Vector3d &p0, const Eigen::Vector3d &p1, const Eigen::Vector3d &p2,
-                               const Eigen::Vector3d &q0, const Eigen::Vector3d &q1, const Eigen::Vector3d &q2)
-            {
-                const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
-                const double len = n.norm();
-                if (!(len > 0.0))
-                    return 0.0;
-                const double s0 = n.dot(q0 - p0) / len, s1 = n.dot(q1 - p0) / len, s2 = n.dot(q2 - p0) / len;
-                if (s0 > 0.0 && s1 > 0.0 && s2 > 0.0)
-                    return std::min({s0, s1, s2});
-                if (s0 < 0.0 && s1 < 0.0 && s2 < 0.0)
-                    return -std::max({s0, s1, s2});
-                return 0.0;
-            };
-            if (planeGap(a0, a1, a2, b0, b1, b2) >= best || planeGap(b0, b1, b2, a0, a1, a2) >= best)
-                return;
-            Eigen::Vector3d onA, onB;
-            const double d = triangleDistance(a0, a1, a2, b0, b1, b2, onA, onB);
-            ++result.triangleTests;
-            if (d < best)
-            {
-                best = d;
-                bestA = ta;
-                bestB = tb;
-                result.onA = onA;
-                result.onB = onB;
-            }
-        };
-        auto test = [&](std::uint32_t ta, std::uint32_t tb, double &best, std::uint32_t &bestA, std::uint32_t &bestB)
-        { testCorners(cornersA(ta), cornersB(tb), ta, tb, best, bestA, bestB); };
-        double best = result.distance;  // the node pair's own distance: the patch only improves on it
-        std::uint32_t ta = UINT32_MAX, tb = UINT32_MAX;
-        // Seeds: the last answer's triangle pair (a warm start), then, if \e fans, the triangles around the two nodes: every pair
-        // of them when there are at most 64 pairs, otherwise (large fans, as at CAD vertices) each triangle around
-        // one node against the best triangle around the other (or the first one there).
-        if (warmA != UINT32_MAX && warmA < sa.triangles.size() && warmB < sb.triangles.size())
-            test(warmA, warmB, best, ta, tb);
-        const std::uint32_t *beginA = a.beginNodeTriangles(result.nodes.a), *endA = a.endNodeTriangles(result.nodes.a);
-        const std::uint32_t *beginB = b.beginNodeTriangles(result.nodes.b), *endB = b.endNodeTriangles(result.nodes.b);
+        PatchSearch search(a, b, X_AB, result);
+        // Seeds: the last answer's triangle pair (a warm start), then, if \e fans, the triangles around the two nodes.
+        if (warmA != UINT32_MAX && warmA < a.surface().triangles.size() && warmB < b.surface().triangles.size())
+            search.test(warmA, warmB);
         // When the node pair did not move, the last triangle pair and the descent suffice, unless it did not beat
         // the node pair.
-        fans = fans || ta == UINT32_MAX;
-        if (fans && (endA - beginA) * (endB - beginB) <= 64)  // small fans: every pair
-        {
-            for (const std::uint32_t *i = beginA; i != endA; ++i)
-                for (const std::uint32_t *j = beginB; j != endB; ++j)
-                    test(*i, *j, best, ta, tb);
-        }
-        else if (fans && beginA != endA && beginB != endB)
-        {
-            const std::uint32_t fixedB = tb != UINT32_MAX ? tb : *beginB;
-            for (const std::uint32_t *i = beginA; i != endA; ++i)
-                test(*i, fixedB, best, ta, tb);
-            const std::uint32_t fixedA = ta != UINT32_MAX ? ta : *beginA;
-            for (const std::uint32_t *j = beginB; j != endB; ++j)
-                test(fixedA, *j, best, ta, tb);
-        }
-        // Descent over corner-sharing neighbours while the pair improves.
-        for (bool improved = ta != UINT32_MAX; improved;)
-        {
-            improved = false;
-            const std::uint32_t ca = ta, cb = tb;
-            const Corners fixedA = cornersA(ca), fixedB = cornersB(cb);
-            for (const std::uint32_t *i = a.beginTriangleNeighbours(ca); i != a.endTriangleNeighbours(ca); ++i)
-                testCorners(cornersA(*i), fixedB, *i, cb, best, ta, tb);
-            for (const std::uint32_t *j = b.beginTriangleNeighbours(cb); j != b.endTriangleNeighbours(cb); ++j)
-                testCorners(fixedA, cornersB(*j), ca, *j, best, ta, tb);
-            improved = ta != ca || tb != cb;
-        }
-        if (ta != UINT32_MAX)
-        {
-            result.distance = best;
-            result.triangleA = ta;
-            result.triangleB = tb;
-        }
+        if (fans || !search.found())
+            search.testFans();
+        search.descend();
+        search.finish();
     }
 
     void WarmFast::solveWarm(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, WarmFastState &state,

@@ -38,120 +38,156 @@ namespace meshgap
             const Eigen::Vector3d d = ((p - node.center).cwiseAbs() - node.half).cwiseMax(0.0);
             return d.norm();
         }
+
+        /** \brief Per vertex of a mesh, the distance to the nearest triangle that faces against one of the vertex's
+            own triangles: a BVH over the triangles with a box of unit normals per tree node. */
+        class OpposingSearch
+        {
+        public:
+            explicit OpposingSearch(const Mesh &mesh)
+                : mesh_(mesh), bvh_(mesh), nodes_(bvh_.nodes()), order_(bvh_.order())
+            {
+                computeNormals();
+                boxes_.resize(nodes_.size());
+                buildBox(0);
+                incident_.resize(mesh.vertices.size());
+                for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+                    if (valid_[t])
+                        for (std::uint32_t v : mesh.triangles[t])
+                            incident_[v].push_back(t);
+            }
+
+            /** \brief The distance from vertex \e v to the nearest opposing triangle (infinity if none, or if \e v
+                has no valid triangle). */
+            double nearest(std::size_t v)
+            {
+                double best = std::numeric_limits<double>::infinity();
+                if (incident_[v].empty())
+                    return best;
+                own_.clear();
+                for (std::uint32_t t : incident_[v])
+                    own_.push_back(normal_[t]);
+                const Eigen::Vector3d &p = mesh_.vertices[v];
+                queue_ = {};
+                if (faces(boxes_[0]))
+                    queue_.emplace(pointBoxDistance(p, nodes_[0]), 0u);
+                while (!queue_.empty())
+                {
+                    const auto [bound, i] = queue_.top();
+                    queue_.pop();
+                    if (bound >= best)
+                        break;
+                    const TriangleBvh::Node &node = nodes_[i];
+                    if (node.isLeaf())
+                    {
+                        best = std::min(best, nearestInLeaf(p, node));
+                        continue;
+                    }
+                    for (std::uint32_t c : {node.first, node.first + 1})
+                        if (faces(boxes_[c]))
+                        {
+                            const double d = pointBoxDistance(p, nodes_[c]);
+                            if (d < best)
+                                queue_.emplace(d, c);
+                        }
+                }
+                return best;
+            }
+
+        private:
+            /** \brief Unit normals, zero for degenerate triangles (those are skipped). */
+            void computeNormals()
+            {
+                normal_.resize(mesh_.triangles.size());
+                valid_.assign(mesh_.triangles.size(), 0);
+                for (std::size_t t = 0; t < mesh_.triangles.size(); ++t)
+                {
+                    const Triangle &f = mesh_.triangles[t];
+                    const Eigen::Vector3d n = (mesh_.vertices[f[1]] - mesh_.vertices[f[0]])
+                                                  .cross(mesh_.vertices[f[2]] - mesh_.vertices[f[0]]);
+                    const double len = n.norm();
+                    if (len > 0.0 && std::isfinite(len))
+                    {
+                        normal_[t] = n / len;
+                        valid_[t] = 1;
+                    }
+                    else
+                        normal_[t].setZero();
+                }
+            }
+
+            /** \brief Normal boxes bottom-up (post-order over the tree, children first + 0 and first + 1). */
+            void buildBox(std::uint32_t i)
+            {
+                const TriangleBvh::Node &node = nodes_[i];
+                NormalBox &box = boxes_[i];
+                if (node.isLeaf())
+                {
+                    for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
+                        if (valid_[order_[k]])
+                        {
+                            box.lo = box.lo.cwiseMin(normal_[order_[k]]);
+                            box.hi = box.hi.cwiseMax(normal_[order_[k]]);
+                        }
+                    return;
+                }
+                buildBox(node.first);
+                buildBox(node.first + 1);
+                box.lo = boxes_[node.first].lo.cwiseMin(boxes_[node.first + 1].lo);
+                box.hi = boxes_[node.first].hi.cwiseMax(boxes_[node.first + 1].hi);
+            }
+
+            bool faces(const NormalBox &box) const
+            {
+                for (const Eigen::Vector3d &m : own_)
+                    if (box.minDot(m) < OPPOSING_COS)
+                        return true;
+                return false;
+            }
+
+            double nearestInLeaf(const Eigen::Vector3d &p, const TriangleBvh::Node &node) const
+            {
+                double best = std::numeric_limits<double>::infinity();
+                for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
+                {
+                    const std::uint32_t t = order_[k];
+                    if (!valid_[t])
+                        continue;
+                    bool opposing = false;
+                    for (const Eigen::Vector3d &m : own_)
+                        opposing = opposing || normal_[t].dot(m) < OPPOSING_COS;
+                    if (!opposing)
+                        continue;
+                    const Triangle &f = mesh_.triangles[t];
+                    Eigen::Vector3d on;
+                    best = std::min(best, pointTriangleDistance(p, mesh_.vertices[f[0]], mesh_.vertices[f[1]],
+                                                                mesh_.vertices[f[2]], on));
+                }
+                return best;
+            }
+
+            using Entry = std::pair<double, std::uint32_t>;  // (lower bound, tree node), nearest first
+            const Mesh &mesh_;
+            const TriangleBvh bvh_;
+            const std::vector<TriangleBvh::Node> &nodes_;
+            const std::vector<std::uint32_t> &order_;
+            std::vector<Eigen::Vector3d> normal_;
+            std::vector<char> valid_;
+            std::vector<NormalBox> boxes_;
+            std::vector<std::vector<std::uint32_t>> incident_;  ///< valid triangles per vertex
+            std::vector<Eigen::Vector3d> own_;                  ///< the current vertex's triangle normals
+            std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue_;
+        };
     }  // namespace
 
     std::vector<double> localFeatureSizes(const Mesh &mesh)
     {
-        const std::size_t nv = mesh.vertices.size();
-        std::vector<double> lfs(nv, std::numeric_limits<double>::infinity());
+        std::vector<double> lfs(mesh.vertices.size(), std::numeric_limits<double>::infinity());
         if (mesh.triangles.empty())
             return lfs;
-        const TriangleBvh bvh(mesh);
-        const auto &nodes = bvh.nodes();
-        const auto &order = bvh.order();
-        // Unit normals, zero for degenerate triangles (those are skipped).
-        std::vector<Eigen::Vector3d> normal(mesh.triangles.size());
-        std::vector<char> valid(mesh.triangles.size(), 0);
-        for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-        {
-            const Triangle &f = mesh.triangles[t];
-            const Eigen::Vector3d n =
-                (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
-            const double len = n.norm();
-            if (len > 0.0 && std::isfinite(len))
-            {
-                normal[t] = n / len;
-                valid[t] = 1;
-            }
-            else
-                normal[t].setZero();
-        }
-        // Normal boxes bottom-up (post-order over the tree, children first + 0 and first + 1).
-        std::vector<NormalBox> boxes(nodes.size());
-        std::function<void(std::uint32_t)> build = [&](std::uint32_t i) {
-            const TriangleBvh::Node &node = nodes[i];
-            NormalBox &box = boxes[i];
-            if (node.isLeaf())
-            {
-                for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
-                    if (valid[order[k]])
-                    {
-                        box.lo = box.lo.cwiseMin(normal[order[k]]);
-                        box.hi = box.hi.cwiseMax(normal[order[k]]);
-                    }
-                return;
-            }
-            build(node.first);
-            build(node.first + 1);
-            box.lo = boxes[node.first].lo.cwiseMin(boxes[node.first + 1].lo);
-            box.hi = boxes[node.first].hi.cwiseMax(boxes[node.first + 1].hi);
-        };
-        build(0);
-
-        // Incident triangle normals per vertex.
-        std::vector<std::vector<std::uint32_t>> incident(nv);
-        for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
-            if (valid[t])
-                for (std::uint32_t v : mesh.triangles[t])
-                    incident[v].push_back(t);
-
-        using Entry = std::pair<double, std::uint32_t>;  // (lower bound, tree node), nearest first
-        std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-        std::vector<Eigen::Vector3d> own;
-        for (std::size_t v = 0; v < nv; ++v)
-        {
-            if (incident[v].empty())
-                continue;
-            own.clear();
-            for (std::uint32_t t : incident[v])
-                own.push_back(normal[t]);
-            auto faces = [&](const NormalBox &box) {
-                for (const Eigen::Vector3d &m : own)
-                    if (box.minDot(m) < OPPOSING_COS)
-                        return true;
-                return false;
-            };
-            const Eigen::Vector3d &p = mesh.vertices[v];
-            double best = std::numeric_limits<double>::infinity();
-            queue = {};
-            if (faces(boxes[0]))
-                queue.emplace(pointBoxDistance(p, nodes[0]), 0u);
-            while (!queue.empty())
-            {
-                const auto [bound, i] = queue.top();
-                queue.pop();
-                if (bound >= best)
-                    break;
-                const TriangleBvh::Node &node = nodes[i];
-                if (node.isLeaf())
-                {
-                    for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
-                    {
-                        const std::uint32_t t = order[k];
-                        if (!valid[t])
-                            continue;
-                        bool opposing = false;
-                        for (const Eigen::Vector3d &m : own)
-                            opposing = opposing || normal[t].dot(m) < OPPOSING_COS;
-                        if (!opposing)
-                            continue;
-                        const Triangle &f = mesh.triangles[t];
-                        Eigen::Vector3d on;
-                        best = std::min(best, pointTriangleDistance(p, mesh.vertices[f[0]], mesh.vertices[f[1]],
-                                                                    mesh.vertices[f[2]], on));
-                    }
-                    continue;
-                }
-                for (std::uint32_t c : {node.first, node.first + 1})
-                    if (faces(boxes[c]))
-                    {
-                        const double d = pointBoxDistance(p, nodes[c]);
-                        if (d < best)
-                            queue.emplace(d, c);
-                    }
-            }
-            lfs[v] = best;
-        }
+        OpposingSearch search(mesh);
+        for (std::size_t v = 0; v < lfs.size(); ++v)
+            lfs[v] = search.nearest(v);
         return lfs;
     }
 

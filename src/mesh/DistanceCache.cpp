@@ -204,6 +204,33 @@ namespace meshgap
         return (std::filesystem::path(dir) / name).string();
     }
 
+    namespace
+    {
+        /** \brief Why a cache file's \e header (of a file of \e fileSize bytes) does not fit a mesh graph of \e
+           numNodes nodes and \e hash; empty if it does. */
+        std::string headerMismatch(const CacheHeader &header, std::uint64_t hash, std::uint32_t numNodes,
+                                   std::uintmax_t fileSize)
+        {
+            if (std::memcmp(header.magic, MAGIC, sizeof MAGIC) != 0)
+                return "bad magic: not a meshgap distance table";
+            if (header.version != FORMAT_VERSION)
+                return "format version " + std::to_string(header.version) + ", expected " +
+                       std::to_string(FORMAT_VERSION);
+            if (header.byteOrder != BYTE_ORDER_MARK)
+                return "written with another byte order";
+            if (header.nodeCount != numNodes)
+                return "stale: " + std::to_string(header.nodeCount) + " nodes, the mesh has " +
+                       std::to_string(numNodes);
+            if (header.graphHash != hash)
+                return "stale: written for a different mesh graph (hash mismatch)";
+            const std::uint64_t expectedPayload = payloadBytes(numNodes);
+            if (header.payloadBytes != expectedPayload || fileSize != sizeof(CacheHeader) + expectedPayload)
+                return "truncated or padded: " + std::to_string(fileSize) + " bytes, expected " +
+                       std::to_string(sizeof(CacheHeader) + expectedPayload);
+            return "";
+        }
+    }  // namespace
+
     bool readDistanceCache(const std::string &path, std::uint64_t hash, std::uint32_t numNodes, double *D,
                            std::uint32_t *P)
     {
@@ -240,38 +267,10 @@ namespace meshgap
             rejectCache(path, "cannot read its header");
             return false;
         }
-        if (std::memcmp(header.magic, MAGIC, sizeof MAGIC) != 0)
+        const std::string mismatch = headerMismatch(header, hash, numNodes, fileSize);
+        if (!mismatch.empty())
         {
-            rejectCache(path, "bad magic: not a meshgap distance table");
-            return false;
-        }
-        if (header.version != FORMAT_VERSION)
-        {
-            rejectCache(path, "format version " + std::to_string(header.version) + ", expected " +
-                                  std::to_string(FORMAT_VERSION));
-            return false;
-        }
-        if (header.byteOrder != BYTE_ORDER_MARK)
-        {
-            rejectCache(path, "written with another byte order");
-            return false;
-        }
-        if (header.nodeCount != numNodes)
-        {
-            rejectCache(path, "stale: " + std::to_string(header.nodeCount) + " nodes, the mesh has " +
-                                  std::to_string(numNodes));
-            return false;
-        }
-        if (header.graphHash != hash)
-        {
-            rejectCache(path, "stale: written for a different mesh graph (hash mismatch)");
-            return false;
-        }
-        const std::uint64_t expectedPayload = payloadBytes(numNodes);
-        if (header.payloadBytes != expectedPayload || fileSize != sizeof(CacheHeader) + expectedPayload)
-        {
-            rejectCache(path, "truncated or padded: " + std::to_string(fileSize) + " bytes, expected " +
-                                  std::to_string(sizeof(CacheHeader) + expectedPayload));
+            rejectCache(path, mismatch);
             return false;
         }
         const std::size_t entries = std::size_t(numNodes) * numNodes;

@@ -24,27 +24,56 @@ namespace meshgap
 
         /** \brief Longest-edge bisection of \e mesh while some edge ab is longer than (size[a] + size[b]) / 2;
             \e size grows with the mesh (a midpoint gets its edge's mean). */
-        void bisect(Mesh &mesh, std::vector<double> &size, std::vector<std::uint32_t> &parent)
+        class Bisection
         {
-            // Edge -> triangles that use it; a max-heap of edges to split (entries may be stale).
-            std::unordered_map<EdgeKey, std::vector<std::uint32_t>> edgeTriangles;
-            edgeTriangles.reserve(mesh.triangles.size() * 2);
-            std::priority_queue<std::pair<double, EdgeKey>> longest;
-            std::unordered_set<EdgeKey> forced;  // not over their size, but longest in a triangle of one that is
-            auto length = [&mesh](std::uint32_t a, std::uint32_t b) {
-                return (mesh.vertices[a] - mesh.vertices[b]).norm();
-            };
-            auto tooLong = [&](std::uint32_t a, std::uint32_t b) {
-                return length(a, b) > 0.5 * (size[a] + size[b]);
-            };
-            auto addEdge = [&](std::uint32_t a, std::uint32_t b, std::uint32_t t) {
-                auto &list = edgeTriangles[key(a, b)];
-                if (list.empty() && tooLong(a, b))
-                    longest.emplace(length(a, b), key(a, b));
+        public:
+            Bisection(Mesh &mesh, std::vector<double> &size, std::vector<std::uint32_t> &parent)
+                : mesh_(mesh), size_(size), parent_(parent)
+            {
+                edgeTriangles_.reserve(mesh.triangles.size() * 2);
+                for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+                    for (int k = 0; k < 3; ++k)
+                        addEdge(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3], t);
+            }
+
+            void run()
+            {
+                while (!longest_.empty())
+                {
+                    const auto [len, e] = longest_.top();
+                    longest_.pop();
+                    auto found = edgeTriangles_.find(e);
+                    if (found == edgeTriangles_.end() || found->second.empty())
+                        continue;  // already split
+                    if (deferForLonger(found->second, len))
+                    {
+                        longest_.emplace(len, e);
+                        continue;
+                    }
+                    forced_.erase(e);
+                    const std::vector<std::uint32_t> incident = std::move(found->second);
+                    edgeTriangles_.erase(found);
+                    split(static_cast<std::uint32_t>(e >> 32), static_cast<std::uint32_t>(e & 0xffffffffu), incident);
+                }
+            }
+
+        private:
+            double length(std::uint32_t a, std::uint32_t b) const
+            {
+                return (mesh_.vertices[a] - mesh_.vertices[b]).norm();
+            }
+
+            void addEdge(std::uint32_t a, std::uint32_t b, std::uint32_t t)
+            {
+                auto &list = edgeTriangles_[key(a, b)];
+                if (list.empty() && length(a, b) > 0.5 * (size_[a] + size_[b]))
+                    longest_.emplace(length(a, b), key(a, b));
                 list.push_back(t);
-            };
-            auto removeFromEdge = [&](std::uint32_t a, std::uint32_t b, std::uint32_t t) {
-                auto &list = edgeTriangles[key(a, b)];
+            }
+
+            void removeFromEdge(std::uint32_t a, std::uint32_t b, std::uint32_t t)
+            {
+                auto &list = edgeTriangles_[key(a, b)];
                 for (std::size_t i = 0; i < list.size(); ++i)
                     if (list[i] == t)
                     {
@@ -52,57 +81,48 @@ namespace meshgap
                         list.pop_back();
                         break;
                     }
-            };
-            for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
-                for (int k = 0; k < 3; ++k)
-                    addEdge(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3], t);
+            }
 
-            while (!longest.empty())
+            /** \brief Rivara: a longer edge of a triangle sharing the edge (of length \e len) goes first (then the
+                edge comes back); true if there is one. */
+            bool deferForLonger(const std::vector<std::uint32_t> &triangles, double len)
             {
-                const auto [len, e] = longest.top();
-                longest.pop();
-                auto found = edgeTriangles.find(e);
-                if (found == edgeTriangles.end() || found->second.empty())
-                    continue;  // already split
-                const auto a = static_cast<std::uint32_t>(e >> 32), b = static_cast<std::uint32_t>(e & 0xffffffffu);
-                // Rivara: a longer edge of a triangle sharing e goes first (then e comes back).
                 bool deferred = false;
-                for (std::uint32_t t : found->second)
+                for (std::uint32_t t : triangles)
                     for (int k = 0; k < 3; ++k)
                     {
-                        const std::uint32_t p = mesh.triangles[t][k], q = mesh.triangles[t][(k + 1) % 3];
+                        const std::uint32_t p = mesh_.triangles[t][k], q = mesh_.triangles[t][(k + 1) % 3];
                         const double l = length(p, q);
-                        if (l > len && forced.insert(key(p, q)).second)
+                        if (l > len && forced_.insert(key(p, q)).second)
                         {
-                            longest.emplace(l, key(p, q));
+                            longest_.emplace(l, key(p, q));
                             deferred = true;
                         }
                         else if (l > len)
-                            deferred = true;  // already queued, and longer, so it is popped before e again
+                            deferred = true;  // already queued, and longer, so it is popped before this edge again
                     }
-                if (deferred)
-                {
-                    longest.emplace(len, e);
-                    continue;
-                }
-                forced.erase(e);
-                const std::vector<std::uint32_t> incident = std::move(found->second);
-                edgeTriangles.erase(found);
-                const auto m = static_cast<std::uint32_t>(mesh.vertices.size());
-                mesh.vertices.push_back(0.5 * (mesh.vertices[a] + mesh.vertices[b]));
-                size.push_back(0.5 * (size[a] + size[b]));
+                return deferred;
+            }
+
+            /** \brief Split edge ab at its midpoint m: each incident triangle (p, q, r) becomes (p, m, r) and a new
+                (m, q, r). */
+            void split(std::uint32_t a, std::uint32_t b, const std::vector<std::uint32_t> &incident)
+            {
+                const auto m = static_cast<std::uint32_t>(mesh_.vertices.size());
+                mesh_.vertices.push_back(0.5 * (mesh_.vertices[a] + mesh_.vertices[b]));
+                size_.push_back(0.5 * (size_[a] + size_[b]));
                 for (std::uint32_t t : incident)
                 {
                     // Rotate so that the split edge is (p, q) in the triangle's own winding: (p, q, r).
-                    const Triangle tri = mesh.triangles[t];
+                    const Triangle tri = mesh_.triangles[t];
                     int k = 0;
                     while (!((tri[k] == a || tri[k] == b) && (tri[(k + 1) % 3] == a || tri[(k + 1) % 3] == b)))
                         ++k;
                     const std::uint32_t p = tri[k], q = tri[(k + 1) % 3], r = tri[(k + 2) % 3];
-                    const auto u = static_cast<std::uint32_t>(mesh.triangles.size());
-                    mesh.triangles[t] = {p, m, r};
-                    mesh.triangles.push_back({m, q, r});
-                    parent.push_back(parent[t]);
+                    const auto u = static_cast<std::uint32_t>(mesh_.triangles.size());
+                    mesh_.triangles[t] = {p, m, r};
+                    mesh_.triangles.push_back({m, q, r});
+                    parent_.push_back(parent_[t]);
                     removeFromEdge(q, r, t);
                     addEdge(q, r, u);
                     addEdge(p, m, t);
@@ -111,7 +131,15 @@ namespace meshgap
                     addEdge(m, r, u);
                 }
             }
-        }
+
+            Mesh &mesh_;
+            std::vector<double> &size_;
+            std::vector<std::uint32_t> &parent_;
+            /** \brief Edge -> triangles that use it; a max-heap of edges to split (entries may be stale). */
+            std::unordered_map<EdgeKey, std::vector<std::uint32_t>> edgeTriangles_;
+            std::priority_queue<std::pair<double, EdgeKey>> longest_;
+            std::unordered_set<EdgeKey> forced_;  ///< not over their size, but longest in a triangle of one that is
+        };
 
         Mesh refine(const Mesh &input, std::vector<double> size, RefineReport *report,
                     std::vector<std::uint32_t> *parentOut)
@@ -126,7 +154,7 @@ namespace meshgap
                 report->trianglesBefore = input.triangles.size();
             }
             if (!size.empty())
-                bisect(mesh, size, parent);
+                Bisection(mesh, size, parent).run();
             if (parentOut)
                 parentOut->swap(parent);
             if (report)

@@ -84,6 +84,141 @@ namespace meshgap
             }
             return best;
         }
+
+        /** \brief The gradients of the nearly active pairs (at most MAX_PAIRS; when full, a closer pair replaces the
+            farthest one, never the first), and their minimum-norm combination. */
+        struct Bundle
+        {
+            Vector6 g[MAX_PAIRS];
+            double distances[MAX_PAIRS];
+            unsigned k{0};
+            Vector6 scale;  ///< the metric |g_t|^2 + |g_w|^2 / L^2 as a scaling of the rotation part by 1 / L
+
+            Bundle(bool planar, double L)
+            {
+                scale = Vector6::Ones();
+                if (planar)
+                    scale(2) = 1.0 / L;
+                else
+                    scale.tail<3>().setConstant(1.0 / L);
+            }
+
+            void add(const Vector6 &gi, double distance)
+            {
+                if (k < MAX_PAIRS)
+                {
+                    g[k] = gi;
+                    distances[k++] = distance;
+                    return;
+                }
+                const unsigned worst =
+                    static_cast<unsigned>(std::max_element(distances + 1, distances + k) - distances);
+                if (distance < distances[worst])
+                {
+                    g[worst] = gi;
+                    distances[worst] = distance;
+                }
+            }
+
+            /** \brief Minimum norm in the metric: scale the rotation part, solve, scale back. */
+            Vector6 combine() const
+            {
+                if (k == 1)
+                    return g[0];
+                Vector6 h[MAX_PAIRS];
+                for (unsigned i = 0; i < k; ++i)
+                    h[i] = g[i].cwiseProduct(scale);
+                return Vector6(minNormPoint(h, k).cwiseQuotient(scale));
+            }
+        };
+
+        /** \brief What the gradient's steps share: the scene, the query's pose and answer, the frame. */
+        struct GradientQuery
+        {
+            const Scene &scene;
+            const SceneResult &r;
+            const Eigen::Isometry3d X;
+            const bool planar;
+            const double L;     ///< the length scale of rotations (the robot's radius, 1 if none)
+            const double tiny;  ///< a witness vector shorter than this has no direction
+        };
+
+        /** \brief Add the closest pairs of the other obstacles within \e tieTolerance of the clearance. */
+        void addTiedObstacles(const GradientQuery &q, double tieTolerance, Bundle &bundle)
+        {
+            const double limit = q.r.distance + tieTolerance;
+            for (std::size_t o = 0; o < q.scene.obstacles().size(); ++o)
+            {
+                if (o == q.r.obstacle)
+                    continue;
+                DistanceResult pair;
+                DistanceRequest bounded;
+                bounded.upperBound = std::nextafter(limit, HUGE_VAL);
+                // Obstacles are in the world frame: X_AB is the robot's pose, and the witnesses are world points.
+                refineExact(*q.scene.obstacles()[o], q.scene.robot(), q.X, pair, bounded);
+                if (pair.inCollision || !(pair.distance <= limit))
+                    continue;
+                const Eigen::Vector3d d = pair.onB - pair.onA;
+                if (d.norm() <= q.tiny)
+                    continue;
+                bundle.add(pairGradient(q.planar, q.X.translation(), pair.onB, d.normalized()), pair.distance);
+            }
+        }
+
+        /** \brief X moved by alpha M^-1 g (M the metric): translation alpha g_t, rotation alpha g_w / L^2. */
+        Eigen::Isometry3d stepPose(const GradientQuery &q, const Vector6 &g, double alpha)
+        {
+            Eigen::Isometry3d Y = q.X;
+            if (q.planar)
+            {
+                Y.translation() += alpha * Eigen::Vector3d(g(0), g(1), 0.0);
+                Y.linear() =
+                    Eigen::AngleAxisd(alpha * g(2) / (q.L * q.L), Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                    q.X.linear();
+            }
+            else
+            {
+                Y.translation() += alpha * g.head<3>();
+                const Eigen::Vector3d w = alpha * g.tail<3>() / (q.L * q.L);
+                if (w.norm() > 0.0)
+                    Y.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix() * q.X.linear();
+            }
+            return Y;
+        }
+
+        /** \brief Probes for ties the per-obstacle test cannot see (two closest pairs on one obstacle): a step of
+            length \e probeStep along the ascent direction should raise the clearance by about probeStep * ||g||; if
+            it raises it by less than half that, the pair met there is a nearly active one: its gradient joins the
+            bundle. Returns the combined gradient; \e probed counts the pairs added. */
+        Vector6 probeHiddenPairs(const GradientQuery &q, const ClearanceGradientOptions &options, Bundle &bundle,
+                                 Vector6 result, unsigned &probed)
+        {
+            const double h = options.probeStep > 0.0 ? options.probeStep : 0.05 * q.r.distance;
+            SceneWarmStart warm;
+            SceneRequest request;
+            for (unsigned probe = 0; probe < options.probes && bundle.k < MAX_PAIRS; ++probe)
+            {
+                const double norm = result.cwiseProduct(bundle.scale).norm();  // ||g||
+                if (!(norm > 1e-9))
+                    break;
+                // The step v = alpha M^-1 g with alpha = h / ||g||: it moves no robot point much further than h.
+                const double alpha = h / norm;
+                const Eigen::Isometry3d Y = stepPose(q, result, alpha);
+                SceneResult s;
+                q.scene.distance(Y, request, warm, s);
+                if (s.inCollision || !std::isfinite(s.distance))
+                    break;
+                if (s.distance >= q.r.distance + 0.5 * alpha * norm * norm)
+                    break;  // the direction raises the clearance as predicted: no hidden pair in the way
+                const Eigen::Vector3d d = s.onRobot - s.onObstacle;
+                if (d.norm() <= q.tiny)
+                    break;
+                bundle.add(pairGradient(q.planar, Y.translation(), s.onRobot, d.normalized()), s.distance);
+                ++probed;
+                result = bundle.combine();
+            }
+            return result;
+        }
     }  // namespace
 
     unsigned tangentDimension(const ompl::base::StateSpace &space)
@@ -125,7 +260,6 @@ namespace meshgap
             throw Exception("ClearanceGradient", "needs a checker in CERTIFIED mode (exact witness points)");
         const ompl::base::StateSpace &space = *checker.spaceInformation().getStateSpace();
         const unsigned dim = tangentDimension(space);
-        const bool planar = dim == 3;
         gradient.assign(dim, 0.0);
         ClearanceGradientInfo local;
         ClearanceGradientInfo &out = info != nullptr ? *info : local;
@@ -140,124 +274,22 @@ namespace meshgap
             return r.distance;  // no depth: the signed distance is CONTACT_DISTANCE, locally constant
 
         const Eigen::Isometry3d X = poseFromState(space, state);
-        const Eigen::Vector3d origin = X.translation();
         const double radius = scene.robot().radiusAboutOrigin();
-        const double tiny = 1e-14 * (1.0 + radius + origin.norm());
-
-        Vector6 g[MAX_PAIRS];
-        double distances[MAX_PAIRS];
-        unsigned k = 0;
+        const GradientQuery q{
+            scene, r, X, dim == 3, radius > 0.0 ? radius : 1.0, 1e-14 * (1.0 + radius + X.translation().norm())};
         const Eigen::Vector3d d0 =
             r.inCollision ? Eigen::Vector3d(r.onObstacle - r.onRobot) : Eigen::Vector3d(r.onRobot - r.onObstacle);
-        if (d0.norm() <= tiny)
+        if (d0.norm() <= q.tiny)
             return r.distance;  // coincident witnesses: no direction
-        g[k] = pairGradient(planar, origin, r.onRobot, d0.normalized());
-        distances[k++] = r.distance;
-
+        Bundle bundle(q.planar, q.L);
+        bundle.add(pairGradient(q.planar, X.translation(), r.onRobot, d0.normalized()), r.distance);
         if (!r.inCollision)
-        {
-            const double tolerance = options.tieTolerance >= 0.0 ? options.tieTolerance : 1e-9 * (1.0 + radius);
-            const double limit = r.distance + tolerance;
-            for (std::size_t o = 0; o < scene.obstacles().size(); ++o)
-            {
-                if (o == r.obstacle)
-                    continue;
-                DistanceResult pair;
-                DistanceRequest bounded;
-                bounded.upperBound = std::nextafter(limit, HUGE_VAL);
-                // Obstacles are in the world frame: X_AB is the robot's pose, and the witnesses are world points.
-                refineExact(*scene.obstacles()[o], scene.robot(), X, pair, bounded);
-                if (pair.inCollision || !(pair.distance <= limit))
-                    continue;
-                const Eigen::Vector3d d = pair.onB - pair.onA;
-                if (d.norm() <= tiny)
-                    continue;
-                const Vector6 gi = pairGradient(planar, origin, pair.onB, d.normalized());
-                if (k < MAX_PAIRS)
-                {
-                    g[k] = gi;
-                    distances[k++] = pair.distance;
-                }
-                else
-                {
-                    // Full: replace the farthest pair if this one is closer.
-                    const unsigned worst =
-                        static_cast<unsigned>(std::max_element(distances + 1, distances + k) - distances);
-                    if (pair.distance < distances[worst])
-                    {
-                        g[worst] = gi;
-                        distances[worst] = pair.distance;
-                    }
-                }
-            }
-        }
+            addTiedObstacles(q, options.tieTolerance >= 0.0 ? options.tieTolerance : 1e-9 * (1.0 + radius), bundle);
         out.hasDirection = true;
-
-        // Minimum norm in the metric |g_t|^2 + |g_w|^2 / L^2: scale the rotation part by 1 / L, solve, scale back.
-        const double L = radius > 0.0 ? radius : 1.0;
-        Vector6 scale = Vector6::Ones();
-        if (planar)
-            scale(2) = 1.0 / L;
-        else
-            scale.tail<3>().setConstant(1.0 / L);
-        auto combine = [&]
-        {
-            if (k == 1)
-                return g[0];
-            Vector6 h[MAX_PAIRS];
-            for (unsigned i = 0; i < k; ++i)
-                h[i] = g[i].cwiseProduct(scale);
-            return Vector6(minNormPoint(h, k).cwiseQuotient(scale));
-        };
-        Vector6 result = combine();
-
-        // Probes for ties the per-obstacle test cannot see (two closest pairs on one obstacle): a step of length
-        // probeStep along the ascent direction should raise the clearance by about probeStep * ||g||; if it raises
-        // it by less than half that, the pair met there is a nearly active one: its gradient joins the bundle.
+        Vector6 result = bundle.combine();
         if (!r.inCollision && options.probes > 0)
-        {
-            const double h = options.probeStep > 0.0 ? options.probeStep : 0.05 * r.distance;
-            SceneWarmStart warm;
-            SceneRequest request;
-            for (unsigned probe = 0; probe < options.probes && k < MAX_PAIRS; ++probe)
-            {
-                const Vector6 scaled = result.cwiseProduct(scale);
-                const double norm = scaled.norm();  // ||g||
-                if (!(norm > 1e-9))
-                    break;
-                // The step v = alpha M^-1 g with alpha = h / ||g||: it moves no robot point much further than h.
-                const double alpha = h / norm;
-                Eigen::Isometry3d Y = X;
-                if (planar)
-                {
-                    Y.translation() += alpha * Eigen::Vector3d(result(0), result(1), 0.0);
-                    Y.linear() =
-                        Eigen::AngleAxisd(alpha * result(2) / (L * L), Eigen::Vector3d::UnitZ()).toRotationMatrix() *
-                        X.linear();
-                }
-                else
-                {
-                    Y.translation() += alpha * result.head<3>();
-                    const Eigen::Vector3d w = alpha * result.tail<3>() / (L * L);
-                    if (w.norm() > 0.0)
-                        Y.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix() * X.linear();
-                }
-                SceneResult q;
-                scene.distance(Y, request, warm, q);
-                if (q.inCollision || !std::isfinite(q.distance))
-                    break;
-                if (q.distance >= r.distance + 0.5 * alpha * norm * norm)
-                    break;  // the direction raises the clearance as predicted: no hidden pair in the way
-                const Eigen::Vector3d d = q.onRobot - q.onObstacle;
-                if (d.norm() <= tiny)
-                    break;
-                g[k] = pairGradient(planar, Y.translation(), q.onRobot, d.normalized());
-                distances[k++] = q.distance;
-                ++out.probedPairs;
-                result = combine();
-            }
-        }
-        out.activePairs = k;
+            result = probeHiddenPairs(q, options, bundle, result, out.probedPairs);
+        out.activePairs = bundle.k;
         for (unsigned i = 0; i < dim; ++i)
             gradient[i] = result(i);
         return r.distance;

@@ -16,17 +16,6 @@ namespace meshgap
     namespace ob = ompl::base;
     namespace og = ompl::geometric;
 
-    /** \brief The path being optimised, with what is known about it: c[i] the clearance of state i, m[i] the
-        certified lower bound on the clearance along motion i (states i, i + 1), b[i] its least clear sample and f[i]
-        where along it, alpha[i] state i's step length. */
-    struct ClearancePathOptimizer::Work
-    {
-        std::vector<ob::State *> &states;
-        std::vector<double> c, m, b, f, alpha;
-        double length{0.0};
-        explicit Work(std::vector<ob::State *> &s) : states(s) {}
-    };
-
     ClearancePathOptimizer::ClearancePathOptimizer(const ob::SpaceInformationPtr &si, ClearanceCheckerPtr checker)
         : si_(si), checker_(std::move(checker))
     {
@@ -165,6 +154,320 @@ namespace meshgap
         return optimize(path, ob::timedPlannerTerminationCondition(timeLimit_));
     }
 
+    /** \brief One optimize() call: the path being optimised, with what is known about it (c[i] the clearance of state
+        i, m[i] the certified lower bound on the clearance along motion i (states i, i + 1), b[i] its least clear
+        sample and f[i] where along it, alpha[i] state i's step length), the call's settings, and its steps. */
+    struct ClearancePathOptimizer::Work
+    {
+        Work(ClearancePathOptimizer &optimizer, std::vector<ob::State *> &s, const ob::PlannerTerminationCondition &p)
+            : opt(optimizer),
+              states(s),
+              ptc(p),
+              space(*optimizer.si_->getStateSpace()),
+              L(optimizer.checker_->scene().robot().radiusAboutOrigin())
+        {
+        }
+
+        ClearancePathOptimizer &opt;
+        std::vector<ob::State *> &states;
+        const ob::PlannerTerminationCondition &ptc;
+        const ob::StateSpace &space;
+        const double L;  ///< the robot's radius about its origin: the length scale of rotations
+        std::vector<double> c, m, b, f, alpha;
+        double length{0.0};
+        double tolerance{0.0};
+        /** \brief While optimising, a motion's bound need only be as tight as a fraction of its own clearance: a
+            motion far above the path's minimum is not worth many queries. The bounds kept (m) are certified lower
+            bounds. */
+        double relative{0.02};
+        double maxLength{0.0};
+        std::size_t maxStates{0};
+        std::vector<double> gradient, step;  ///< move()'s buffers
+        ob::State *candidate{nullptr};       ///< move()'s trial state
+
+        MotionBound bound(const ob::State *s1, const ob::State *s2, double c1, double c2,
+                          double refuteBelow = -std::numeric_limits<double>::infinity()) const
+        {
+            return opt.motionBound(s1, s2, c1, c2, tolerance, relative, refuteBelow);
+        }
+        void keep(std::size_t i, const MotionBound &r)
+        {
+            m[i] = r.lower;
+            b[i] = r.best;
+            f[i] = r.at;
+        }
+        void report(const ob::State *s1, const ob::State *s2) const
+        {
+            if (opt.onMotion_)
+                opt.onMotion_(s1, s2);
+        }
+        double currentMin() const { return *std::min_element(m.begin(), m.end()); }
+        double initialAlpha(double clearance) const { return std::max(0.5 * clearance, 1e-3 * L); }
+
+        void start(const ClearancePathOptimizer::Stats &stats);
+        void insertAt(std::size_t i, ob::State *s, double cs, const MotionBound &ra, const MotionBound &rb);
+        bool split(std::size_t i, double fraction);
+        bool insertAtDip(std::size_t i);
+        bool move(std::size_t i);
+        bool bridge(std::size_t i, std::size_t j);
+        void eraseStates(std::size_t first, std::size_t last);
+        void splitLongMotions();
+        bool insertAtDips();
+        bool moveStates(std::vector<std::size_t> &order);
+        bool removeRedundant();
+        bool shortcuts(ompl::RNG &rng);
+    };
+
+    /** \brief The bounds of every motion, and the step lengths, of the path as given (c and tolerance set). */
+    void ClearancePathOptimizer::Work::start(const ClearancePathOptimizer::Stats &stats)
+    {
+        const std::size_t n0 = states.size();
+        m.resize(n0 - 1);
+        b.resize(n0 - 1);
+        f.resize(n0 - 1);
+        for (std::size_t i = 0; i + 1 < n0; ++i)
+            keep(i, bound(states[i], states[i + 1], c[i], c[i + 1]));
+        length = stats.lengthBefore;
+        maxLength = opt.maxLengthFactor_ * stats.lengthBefore;
+        maxStates = std::max<std::size_t>(4 * n0, 200);
+        alpha.assign(n0, 0.0);
+        for (std::size_t i = 0; i < n0; ++i)
+            alpha[i] = initialAlpha(c[i]);
+    }
+
+    void ClearancePathOptimizer::Work::insertAt(std::size_t i, ob::State *s, double cs, const MotionBound &ra,
+                                                const MotionBound &rb)
+    {
+        const auto at = static_cast<long>(i) + 1;
+        states.insert(states.begin() + at, s);
+        c.insert(c.begin() + at, cs);
+        alpha.insert(alpha.begin() + at, initialAlpha(cs));
+        m.insert(m.begin() + at, rb.lower);
+        b.insert(b.begin() + at, rb.best);
+        f.insert(f.begin() + at, rb.at);
+        keep(i, ra);
+    }
+
+    /** \brief Split motion i at \e fraction (the same curve), kept only if both halves are certified by the validator
+        and their bounds are no lower than the whole's; true if done. */
+    bool ClearancePathOptimizer::Work::split(std::size_t i, double fraction)
+    {
+        ob::State *s = opt.si_->allocState();
+        space.interpolate(states[i], states[i + 1], fraction, s);
+        const double cs = opt.checker_->clearance(s);
+        if (!(cs > 0.0) || !opt.validator_->checkMotion(states[i], s) || !opt.validator_->checkMotion(s, states[i + 1]))
+        {
+            opt.si_->freeState(s);
+            return false;
+        }
+        // The halves trace the same curve as the whole (OMPL's interpolation along a geodesic), so the whole's
+        // certified bound holds for both; their own bounds can only tighten it.
+        MotionBound ra = bound(states[i], s, c[i], cs);
+        MotionBound rb = bound(s, states[i + 1], cs, c[i + 1]);
+        ra.lower = std::max(ra.lower, m[i]);
+        rb.lower = std::max(rb.lower, m[i]);
+        report(states[i], s);
+        report(s, states[i + 1]);
+        insertAt(i, s, cs, ra, rb);
+        ++opt.stats_.inserted;
+        return true;
+    }
+
+    /** \brief Insert a state at the interior dip of motion i, if it is meaningfully below both ends. */
+    bool ClearancePathOptimizer::Work::insertAtDip(std::size_t i)
+    {
+        return states.size() < maxStates && f[i] > 0.02 && f[i] < 0.98 &&
+               b[i] < std::min(c[i], c[i + 1]) - std::max(tolerance, relative * b[i]) && split(i, f[i]);
+    }
+
+    /** \brief Move interior state i up the gradient (backtracking); true if a step was accepted. */
+    bool ClearancePathOptimizer::Work::move(std::size_t i)
+    {
+        ob::State *prev = states[i - 1], *next = states[i + 1];
+        ClearanceGradientOptions options;
+        options.tieTolerance = 0.05 * std::max(c[i], 0.0) + 1e-9 * (1.0 + L);
+        options.probes = 3;
+        ClearanceGradientInfo info;
+        clearanceGradient(*opt.checker_, states[i], gradient, options, &info);
+        double g2 = 0.0;
+        for (std::size_t k = 0; k < gradient.size(); ++k)
+            g2 +=
+                k < (gradient.size() == 3 ? 2u : 3u) ? gradient[k] * gradient[k] : gradient[k] * gradient[k] / (L * L);
+        if (!info.hasDirection || !(g2 > 1e-12))
+            return false;
+        const double floor = std::min(m[i - 1], m[i]);
+        const double oldSegments = opt.si_->distance(prev, states[i]) + opt.si_->distance(states[i], next);
+        // alpha is the step's length scale; normalise so the first trial moves about alpha.
+        double a = alpha[i] / std::sqrt(g2);
+        for (int trial = 0; trial < 6 && !ptc(); ++trial, a *= 0.5)
+        {
+            ascentStep(gradient, L, a, step);
+            applyTangentStep(space, states[i], step.data(), candidate);
+            if (!opt.si_->satisfiesBounds(candidate))
+                continue;
+            const double cc = opt.checker_->clearance(candidate);
+            if (!(cc > c[i]))
+                continue;
+            const double newLength =
+                length - oldSegments + opt.si_->distance(prev, candidate) + opt.si_->distance(candidate, next);
+            if (newLength > maxLength)
+                continue;
+            const MotionBound ra = bound(prev, candidate, c[i - 1], cc, floor);
+            if (ra.lower < floor)
+                continue;
+            const MotionBound rb = bound(candidate, next, cc, c[i + 1], floor);
+            if (rb.lower < floor)
+                continue;
+            if (!opt.validator_->checkMotion(prev, candidate) || !opt.validator_->checkMotion(candidate, next))
+                continue;
+            report(prev, candidate);
+            report(candidate, next);
+            opt.si_->copyState(states[i], candidate);
+            c[i] = cc;
+            keep(i - 1, ra);
+            keep(i, rb);
+            length = newLength;
+            alpha[i] = std::min(2.0 * a * std::sqrt(g2), L);
+            ++opt.stats_.moves;
+            return true;
+        }
+        alpha[i] = std::max(a * std::sqrt(g2), 1e-6 * L);
+        return false;
+    }
+
+    /** \brief Remove states first .. last - 1 (freed) and what is known about them. */
+    void ClearancePathOptimizer::Work::eraseStates(std::size_t first, std::size_t last)
+    {
+        for (std::size_t k = first; k < last; ++k)
+            opt.si_->freeState(states[k]);
+        const auto from = static_cast<long>(first), to = static_cast<long>(last);
+        states.erase(states.begin() + from, states.begin() + to);
+        c.erase(c.begin() + from, c.begin() + to);
+        alpha.erase(alpha.begin() + from, alpha.begin() + to);
+        m.erase(m.begin() + from, m.begin() + to);
+        b.erase(b.begin() + from, b.begin() + to);
+        f.erase(f.begin() + from, f.begin() + to);
+    }
+
+    /** \brief Replace states i+1 .. j-1 by the single motion i -> j if its bound is no lower; true if done. */
+    bool ClearancePathOptimizer::Work::bridge(std::size_t i, std::size_t j)
+    {
+        const double floor = *std::min_element(m.begin() + static_cast<long>(i), m.begin() + static_cast<long>(j));
+        const MotionBound r = bound(states[i], states[j], c[i], c[j], floor);
+        if (r.lower < floor || !opt.validator_->checkMotion(states[i], states[j]))
+            return false;
+        report(states[i], states[j]);
+        double removedLength = 0.0;
+        for (std::size_t k = i; k < j; ++k)
+            removedLength += opt.si_->distance(states[k], states[k + 1]);
+        length += opt.si_->distance(states[i], states[j]) - removedLength;
+        eraseStates(i + 1, j);
+        keep(i, r);
+        return true;
+    }
+
+    /** \brief Give the path room to bend: split long motions (sweep above 1/32 of the whole) at their middle. */
+    void ClearancePathOptimizer::Work::splitLongMotions()
+    {
+        double total = 0.0;
+        for (std::size_t i = 0; i + 1 < states.size(); ++i)
+            total += sweepBound(space, states[i], states[i + 1], L);
+        const double longest = total / 32.0;
+        for (std::size_t i = 0; i + 1 < states.size() && states.size() < maxStates && !ptc();)
+            if (sweepBound(space, states[i], states[i + 1], L) <= longest || !split(i, 0.5))
+                ++i;
+    }
+
+    bool ClearancePathOptimizer::Work::insertAtDips()
+    {
+        bool changed = false;
+        for (std::size_t i = 0; i + 1 < states.size() && !ptc(); ++i)
+            if (insertAtDip(i))
+            {
+                changed = true;
+                ++i;
+            }
+        return changed;
+    }
+
+    /** \brief move() every interior state, least clear neighbourhood first. */
+    bool ClearancePathOptimizer::Work::moveStates(std::vector<std::size_t> &order)
+    {
+        order.resize(states.size() > 2 ? states.size() - 2 : 0);
+        std::iota(order.begin(), order.end(), std::size_t{1});
+        std::stable_sort(order.begin(), order.end(),
+                         [this](std::size_t p, std::size_t q)
+                         { return std::min(m[p - 1], m[p]) < std::min(m[q - 1], m[q]); });
+        bool changed = false;
+        for (std::size_t i : order)
+        {
+            if (ptc())
+                break;
+            changed = move(i) || changed;
+        }
+        return changed;
+    }
+
+    /** \brief Bridge over every state whose neighbours see each other no less clearly. */
+    bool ClearancePathOptimizer::Work::removeRedundant()
+    {
+        bool changed = false;
+        for (std::size_t i = 1; i + 1 < states.size() && !ptc();)
+            if (bridge(i - 1, i + 1))
+            {
+                ++opt.stats_.removed;
+                changed = true;
+            }
+            else
+                ++i;
+        return changed;
+    }
+
+    /** \brief Random shortcuts (as many tries as states) between states at least three apart. */
+    bool ClearancePathOptimizer::Work::shortcuts(ompl::RNG &rng)
+    {
+        bool changed = false;
+        for (std::size_t attempt = 0; attempt < states.size() && states.size() > 3 && !ptc(); ++attempt)
+        {
+            const int last = static_cast<int>(states.size()) - 1;
+            std::size_t i = static_cast<std::size_t>(rng.uniformInt(0, last));
+            std::size_t j = static_cast<std::size_t>(rng.uniformInt(0, last));
+            if (i > j)
+                std::swap(i, j);
+            if (j < i + 3)
+                continue;  // neighbours' neighbours are the redundancy pass's
+            if (bridge(i, j))
+            {
+                ++opt.stats_.shortcuts;
+                opt.stats_.removed += static_cast<unsigned>(j - i - 1);
+                changed = true;
+            }
+        }
+        return changed;
+    }
+
+    void ClearancePathOptimizer::improve(Work &w)
+    {
+        // The path's minimum can never exceed its ends' clearance: once the bound is there, nothing is left to gain.
+        const double ceiling = (1.0 - w.relative) * std::min(w.c.front(), w.c.back()) - w.tolerance;
+        auto done = [&] { return w.ptc() || w.currentMin() >= target_ || w.currentMin() >= ceiling; };
+        if (!done())
+            w.splitLongMotions();
+        ompl::RNG rng(seed_);
+        std::vector<std::size_t> order;
+        while (!done() && stats_.rounds < maxRounds_)
+        {
+            ++stats_.rounds;
+            bool changed = w.insertAtDips();
+            changed = w.moveStates(order) || changed;
+            changed = w.removeRedundant() || changed;
+            if (shortcut_)
+                changed = w.shortcuts(rng) || changed;
+            if (!changed)
+                break;
+        }
+    }
+
     bool ClearancePathOptimizer::optimize(og::PathGeometric &path, const ob::PlannerTerminationCondition &ptc)
     {
         const auto start = std::chrono::steady_clock::now();
@@ -184,265 +487,47 @@ namespace meshgap
             return false;
         }
 
-        const ob::StateSpace &space = *si_->getStateSpace();
-        const double L = checker_->scene().robot().radiusAboutOrigin();
         const og::PathGeometric input(path);
         struct ClearPtc  // ptc_ is set only while the optimisation loop runs (never while measuring)
         {
             const ob::PlannerTerminationCondition *&ptc;
             ~ClearPtc() { ptc = nullptr; }
         } clearPtc{ptc_};
-        Work w(path.getStates());
+        Work w(*this, path.getStates(), ptc);
         w.c.resize(n0);
         for (std::size_t i = 0; i < n0; ++i)
             w.c[i] = checker_->clearance(w.states[i]);
-        const double tolerance = tolerance_ > 0.0 ? tolerance_ : defaultTolerance(w.c);
+        w.tolerance = tolerance_ > 0.0 ? tolerance_ : defaultTolerance(w.c);
         // The input measured now (before the clock matters), the output at the end, the same way.
-        const double inputMeasure = minClearance(input, tolerance);
-        // While optimising, a motion's bound need only be as tight as a fraction of its own clearance: a motion far
-        // above the path's minimum is not worth many queries. The bounds kept (m) are certified lower bounds.
-        const double relative = 0.02;
-        w.m.resize(n0 - 1);
-        w.b.resize(n0 - 1);
-        w.f.resize(n0 - 1);
-        auto keep = [&w](std::size_t i, const MotionBound &r)
-        {
-            w.m[i] = r.lower;
-            w.b[i] = r.best;
-            w.f[i] = r.at;
-        };
-        for (std::size_t i = 0; i + 1 < n0; ++i)
-            keep(i, motionBound(w.states[i], w.states[i + 1], w.c[i], w.c[i + 1], tolerance, relative));
-        w.length = stats_.lengthBefore;
-        const double maxLength = maxLengthFactor_ * stats_.lengthBefore;
-        const std::size_t maxStates = std::max<std::size_t>(4 * n0, 200);
-        w.alpha.assign(n0, 0.0);
-        for (std::size_t i = 0; i < n0; ++i)
-            w.alpha[i] = std::max(0.5 * w.c[i], 1e-3 * L);
-
-        ompl::RNG rng(seed_);
-        std::vector<double> gradient, step;
-        ob::State *candidate = si_->allocState();
-        auto report = [this](const ob::State *a, const ob::State *b)
-        {
-            if (onMotion_)
-                onMotion_(a, b);
-        };
-        auto currentMin = [&w] { return *std::min_element(w.m.begin(), w.m.end()); };
-        auto insertAt =
-            [&w](std::size_t i, ob::State *s, double cs, double alpha, const MotionBound &ra, const MotionBound &rb)
-        {
-            const auto at = static_cast<long>(i) + 1;
-            w.states.insert(w.states.begin() + at, s);
-            w.c.insert(w.c.begin() + at, cs);
-            w.alpha.insert(w.alpha.begin() + at, alpha);
-            w.m.insert(w.m.begin() + at, rb.lower);
-            w.b.insert(w.b.begin() + at, rb.best);
-            w.f.insert(w.f.begin() + at, rb.at);
-            w.m[i] = ra.lower;
-            w.b[i] = ra.best;
-            w.f[i] = ra.at;
-        };
-
-        // Split motion i at \e fraction (the same curve), kept only if both halves are certified by the validator
-        // and their bounds are no lower than the whole's; true if done.
-        auto split = [&](std::size_t i, double fraction)
-        {
-            ob::State *s = si_->allocState();
-            space.interpolate(w.states[i], w.states[i + 1], fraction, s);
-            const double cs = checker_->clearance(s);
-            if (!(cs > 0.0) || !validator_->checkMotion(w.states[i], s) || !validator_->checkMotion(s, w.states[i + 1]))
-            {
-                si_->freeState(s);
-                return false;
-            }
-            // The halves trace the same curve as the whole (OMPL's interpolation along a geodesic), so the whole's
-            // certified bound holds for both; their own bounds can only tighten it.
-            MotionBound ra = motionBound(w.states[i], s, w.c[i], cs, tolerance, relative);
-            MotionBound rb = motionBound(s, w.states[i + 1], cs, w.c[i + 1], tolerance, relative);
-            ra.lower = std::max(ra.lower, w.m[i]);
-            rb.lower = std::max(rb.lower, w.m[i]);
-            report(w.states[i], s);
-            report(s, w.states[i + 1]);
-            insertAt(i, s, cs, std::max(0.5 * cs, 1e-3 * L), ra, rb);
-            ++stats_.inserted;
-            return true;
-        };
-        // Insert a state at the interior dip of motion i, if it is meaningfully below both ends.
-        auto insertAtDip = [&](std::size_t i)
-        {
-            return w.states.size() < maxStates && w.f[i] > 0.02 && w.f[i] < 0.98 &&
-                   w.b[i] < std::min(w.c[i], w.c[i + 1]) - std::max(tolerance, relative * w.b[i]) && split(i, w.f[i]);
-        };
-
-        // Move interior state i up the gradient (backtracking); true if a step was accepted.
-        auto move = [&](std::size_t i)
-        {
-            ob::State *prev = w.states[i - 1], *next = w.states[i + 1];
-            ClearanceGradientOptions options;
-            options.tieTolerance = 0.05 * std::max(w.c[i], 0.0) + 1e-9 * (1.0 + L);
-            options.probes = 3;
-            ClearanceGradientInfo info;
-            clearanceGradient(*checker_, w.states[i], gradient, options, &info);
-            double g2 = 0.0;
-            for (std::size_t k = 0; k < gradient.size(); ++k)
-                g2 += k < (gradient.size() == 3 ? 2u : 3u) ? gradient[k] * gradient[k]
-                                                           : gradient[k] * gradient[k] / (L * L);
-            if (!info.hasDirection || !(g2 > 1e-12))
-                return false;
-            const double floor = std::min(w.m[i - 1], w.m[i]);
-            const double oldSegments = si_->distance(prev, w.states[i]) + si_->distance(w.states[i], next);
-            // alpha is the step's length scale; normalise so the first trial moves about alpha.
-            double alpha = w.alpha[i] / std::sqrt(g2);
-            for (int trial = 0; trial < 6 && !ptc(); ++trial, alpha *= 0.5)
-            {
-                ascentStep(gradient, L, alpha, step);
-                applyTangentStep(space, w.states[i], step.data(), candidate);
-                if (!si_->satisfiesBounds(candidate))
-                    continue;
-                const double cc = checker_->clearance(candidate);
-                if (!(cc > w.c[i]))
-                    continue;
-                const double newLength =
-                    w.length - oldSegments + si_->distance(prev, candidate) + si_->distance(candidate, next);
-                if (newLength > maxLength)
-                    continue;
-                const MotionBound ra = motionBound(prev, candidate, w.c[i - 1], cc, tolerance, relative, floor);
-                if (ra.lower < floor)
-                    continue;
-                const MotionBound rb = motionBound(candidate, next, cc, w.c[i + 1], tolerance, relative, floor);
-                if (rb.lower < floor)
-                    continue;
-                if (!validator_->checkMotion(prev, candidate) || !validator_->checkMotion(candidate, next))
-                    continue;
-                report(prev, candidate);
-                report(candidate, next);
-                si_->copyState(w.states[i], candidate);
-                w.c[i] = cc;
-                keep(i - 1, ra);
-                keep(i, rb);
-                w.length = newLength;
-                w.alpha[i] = std::min(2.0 * alpha * std::sqrt(g2), L);
-                ++stats_.moves;
-                return true;
-            }
-            w.alpha[i] = std::max(alpha * std::sqrt(g2), 1e-6 * L);
-            return false;
-        };
-
-        // Replace states i+1 .. j-1 by the single motion i -> j if its bound is no lower; true if done.
-        auto bridge = [&](std::size_t i, std::size_t j)
-        {
-            const double floor =
-                *std::min_element(w.m.begin() + static_cast<long>(i), w.m.begin() + static_cast<long>(j));
-            const MotionBound r = motionBound(w.states[i], w.states[j], w.c[i], w.c[j], tolerance, relative, floor);
-            if (r.lower < floor || !validator_->checkMotion(w.states[i], w.states[j]))
-                return false;
-            report(w.states[i], w.states[j]);
-            double removedLength = 0.0;
-            for (std::size_t k = i; k < j; ++k)
-                removedLength += si_->distance(w.states[k], w.states[k + 1]);
-            w.length += si_->distance(w.states[i], w.states[j]) - removedLength;
-            for (std::size_t k = i + 1; k < j; ++k)
-                si_->freeState(w.states[k]);
-            const auto first = static_cast<long>(i) + 1, last = static_cast<long>(j);
-            w.states.erase(w.states.begin() + first, w.states.begin() + last);
-            w.c.erase(w.c.begin() + first, w.c.begin() + last);
-            w.alpha.erase(w.alpha.begin() + first, w.alpha.begin() + last);
-            w.m.erase(w.m.begin() + first, w.m.begin() + last);
-            w.b.erase(w.b.begin() + first, w.b.begin() + last);
-            w.f.erase(w.f.begin() + first, w.f.begin() + last);
-            keep(i, r);
-            return true;
-        };
-
+        const double inputMeasure = minClearance(input, w.tolerance);
+        w.start(stats_);
+        w.candidate = si_->allocState();
         ptc_ = &ptc;
-        // The path's minimum can never exceed its ends' clearance: once the bound is there, nothing is left to gain.
-        const double ceiling = (1.0 - relative) * std::min(w.c.front(), w.c.back()) - tolerance;
-        auto done = [&] { return ptc() || currentMin() >= target_ || currentMin() >= ceiling; };
-        // First give the path room to bend: split long motions (sweep above 1/32 of the whole) at their middle.
-        if (!done())
-        {
-            double total = 0.0;
-            for (std::size_t i = 0; i + 1 < w.states.size(); ++i)
-                total += sweepBound(space, w.states[i], w.states[i + 1], L);
-            const double longest = total / 32.0;
-            for (std::size_t i = 0; i + 1 < w.states.size() && w.states.size() < maxStates && !ptc();)
-                if (sweepBound(space, w.states[i], w.states[i + 1], L) <= longest || !split(i, 0.5))
-                    ++i;
-        }
-
-        std::vector<std::size_t> order;
-        while (!done() && stats_.rounds < maxRounds_)
-        {
-            ++stats_.rounds;
-            bool changed = false;
-            for (std::size_t i = 0; i + 1 < w.states.size() && !ptc(); ++i)
-                if (insertAtDip(i))
-                {
-                    changed = true;
-                    ++i;
-                }
-            // Interior states, least clear neighbourhood first.
-            order.resize(w.states.size() > 2 ? w.states.size() - 2 : 0);
-            std::iota(order.begin(), order.end(), std::size_t{1});
-            std::stable_sort(order.begin(), order.end(),
-                             [&w](std::size_t a, std::size_t b)
-                             { return std::min(w.m[a - 1], w.m[a]) < std::min(w.m[b - 1], w.m[b]); });
-            for (std::size_t i : order)
-            {
-                if (ptc())
-                    break;
-                changed = move(i) || changed;
-            }
-            for (std::size_t i = 1; i + 1 < w.states.size() && !ptc();)
-                if (bridge(i - 1, i + 1))
-                {
-                    ++stats_.removed;
-                    changed = true;
-                }
-                else
-                    ++i;
-            if (shortcut_)
-                for (std::size_t attempt = 0; attempt < w.states.size() && w.states.size() > 3 && !ptc(); ++attempt)
-                {
-                    const int last = static_cast<int>(w.states.size()) - 1;
-                    std::size_t i = static_cast<std::size_t>(rng.uniformInt(0, last));
-                    std::size_t j = static_cast<std::size_t>(rng.uniformInt(0, last));
-                    if (i > j)
-                        std::swap(i, j);
-                    if (j < i + 3)
-                        continue;  // neighbours' neighbours are the redundancy pass's
-                    if (bridge(i, j))
-                    {
-                        ++stats_.shortcuts;
-                        stats_.removed += static_cast<unsigned>(j - i - 1);
-                        changed = true;
-                    }
-                }
-            if (!changed)
-                break;
-        }
+        improve(w);
         ptc_ = nullptr;
-        si_->freeState(candidate);
-        stats_.lowerBoundAfter = currentMin();
+        si_->freeState(w.candidate);
+        stats_.lowerBoundAfter = w.currentMin();
+        keepTheClearer(path, input, inputMeasure, w.tolerance);
+        stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return stats_.minClearanceAfter > stats_.minClearanceBefore;
+    }
 
+    void ClearancePathOptimizer::keepTheClearer(og::PathGeometric &path, const og::PathGeometric &input,
+                                                double inputMeasure, double tolerance)
+    {
         // Measured again from scratch, the same way as the input: never hand back a less clear path.
         const bool changed = stats_.moves + stats_.inserted + stats_.removed > 0;
         const double after = changed ? minClearance(path, tolerance) : inputMeasure;
-        const double inputAgain = inputMeasure;
-        if (after < inputAgain)
+        if (after < inputMeasure)
         {
             path = input;
-            stats_.minClearanceAfter = inputAgain;
+            stats_.minClearanceAfter = inputMeasure;
             stats_.restored = true;
         }
         else
             stats_.minClearanceAfter = after;
-        stats_.minClearanceBefore = inputAgain;
+        stats_.minClearanceBefore = inputMeasure;
         stats_.statesAfter = static_cast<unsigned>(path.getStateCount());
         stats_.lengthAfter = path.length();
-        stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        return stats_.minClearanceAfter > stats_.minClearanceBefore;
     }
 }  // namespace meshgap

@@ -1,7 +1,5 @@
 #include "meshgap/ompl/PlannerFactory.h"
 
-#include <functional>
-#include <map>
 #include <ompl/geometric/planners/est/BiEST.h>
 #include <ompl/geometric/planners/est/EST.h>
 #include <ompl/geometric/planners/fmt/FMT.h>
@@ -22,7 +20,10 @@
 #include <ompl/geometric/planners/sbl/SBL.h>
 #include <ompl/geometric/planners/stride/STRIDE.h>
 
+#include <functional>
+
 #include "meshgap/Exception.h"
+#include "meshgap/Registry.h"
 #include "meshgap/Text.h"
 #include "meshgap/ompl/ClearanceOptimizingPlanner.h"
 
@@ -38,45 +39,50 @@ namespace meshgap
             return [](const ompl::base::SpaceInformationPtr &si) { return std::make_shared<P>(si); };
         }
 
-        const std::map<std::string, Allocator> &registry()
+        const Registry<Allocator> &registry()
         {
             namespace og = ompl::geometric;
-            static const std::map<std::string, Allocator> planners = {
-                {"biest", make<og::BiEST>()},     {"bitstar", make<og::BITstar>()},
-                {"bkpiece", make<og::BKPIECE1>()}, {"est", make<og::EST>()},
-                {"fmt", make<og::FMT>()},          {"informedrrtstar", make<og::InformedRRTstar>()},
-                {"kpiece", make<og::KPIECE1>()},   {"lazyprmstar", make<og::LazyPRMstar>()},
-                {"lbkpiece", make<og::LBKPIECE1>()}, {"lbtrrt", make<og::LBTRRT>()},
-                {"pdst", make<og::PDST>()},        {"prm", make<og::PRM>()},
-                {"prmstar", make<og::PRMstar>()},  {"rrt", make<og::RRT>()},
-                {"rrtconnect", make<og::RRTConnect>()}, {"rrtstar", make<og::RRTstar>()},
-                {"sbl", make<og::SBL>()},          {"stride", make<og::STRIDE>()},
-                {"trrt", make<og::TRRT>()},
-                // RRTConnect, then the clearance path optimiser for the time left (ClearanceOptimizingPlanner).
-                {"rrtconnect+opt",
-                 [](const ompl::base::SpaceInformationPtr &si) -> ompl::base::PlannerPtr {
-                     return std::make_shared<ClearanceOptimizingPlanner>(std::make_shared<og::RRTConnect>(si),
-                                                                         "RRTConnect+opt");
-                 }},
-            };
+            static const Registry<Allocator> planners(
+                "planner",
+                {
+                    {"biest", make<og::BiEST>()},
+                    {"bitstar", make<og::BITstar>()},
+                    {"bkpiece", make<og::BKPIECE1>()},
+                    {"est", make<og::EST>()},
+                    {"fmt", make<og::FMT>()},
+                    {"informedrrtstar", make<og::InformedRRTstar>()},
+                    {"kpiece", make<og::KPIECE1>()},
+                    {"lazyprmstar", make<og::LazyPRMstar>()},
+                    {"lbkpiece", make<og::LBKPIECE1>()},
+                    {"lbtrrt", make<og::LBTRRT>()},
+                    {"pdst", make<og::PDST>()},
+                    {"prm", make<og::PRM>()},
+                    {"prmstar", make<og::PRMstar>()},
+                    {"rrt", make<og::RRT>()},
+                    {"rrtconnect", make<og::RRTConnect>()},
+                    // RRTConnect, then the clearance path optimiser for the time left (ClearanceOptimizingPlanner).
+                    {"rrtconnect+opt",
+                     [](const ompl::base::SpaceInformationPtr &si) -> ompl::base::PlannerPtr {
+                         return std::make_shared<ClearanceOptimizingPlanner>(std::make_shared<og::RRTConnect>(si),
+                                                                             "RRTConnect+opt");
+                     }},
+                    {"rrtstar", make<og::RRTstar>()},
+                    {"sbl", make<og::SBL>()},
+                    {"stride", make<og::STRIDE>()},
+                    {"trrt", make<og::TRRT>()},
+                });
             return planners;
         }
     }  // namespace
 
     std::vector<std::string> plannerNames()
     {
-        std::vector<std::string> names;
-        for (const auto &entry : registry())
-            names.push_back(entry.first);
-        return names;
+        return registry().names();
     }
 
     ompl::base::PlannerPtr allocPlanner(const std::string &name, const ompl::base::SpaceInformationPtr &si)
     {
-        const auto it = registry().find(name);
-        if (it != registry().end())
-            return it->second(si);
-        throw Exception("planner", "unknown planner '" + name + "'; valid names: " + joinNames(plannerNames()));
+        return registry().at(name, "planner")(si);
     }
 
     void setPlannerParam(ompl::base::Planner &planner, const std::string &key, const std::string &value,
@@ -86,8 +92,8 @@ namespace meshgap
         {
             std::vector<std::string> names;
             planner.params().getParamNames(names);
-            throw Exception(where, "'" + key + "' is no parameter of " + planner.getName() + "; its parameters: " +
-                                       (names.empty() ? "none" : joinNames(names)));
+            throw Exception(where, "'" + key + "' is no parameter of " + planner.getName() +
+                                       "; its parameters: " + (names.empty() ? "none" : joinNames(names)));
         }
         bool set = false;
         try

@@ -20,6 +20,7 @@ def test_plan_returns_a_valid_path(tmp_path):
     report = tmp_path / "plan.html" if meshgap.REPORT_AVAILABLE else None
     path, summary = meshgap.plan(HAND_BOWL, planner="rrtconnect", time=20.0, seed=3, report=report)
     assert summary["solved"] and summary["exact"] and summary["problem"] == "hand_bowl" and not summary["planar"]
+    assert summary["checker"] == "certified"
     assert path.ndim == 2 and path.shape[1] == 7 and len(path) == summary["states"] >= 2
     scene = meshgap.Scene.from_cfg(HAND_BOWL)
     assert same_pose(path[0], scene.start) and same_pose(path[-1], scene.goal)
@@ -38,6 +39,13 @@ def test_same_seed_same_path():
     first, _ = meshgap.plan(HAND_BOWL, seed=11, time=20.0)
     again, _ = meshgap.plan(HAND_BOWL, seed=11, time=20.0)
     assert np.array_equal(first, again)
+
+
+def test_fast_checker_plans_a_free_path():
+    """checker="fast", as meshgap_plan --checker fast: validity is still exact, so every state is free."""
+    path, summary = meshgap.plan(HAND_BOWL, checker="fast", time=20.0, seed=3)
+    assert summary["checker"] == "fast" and summary["solved"]
+    assert not meshgap.Scene.from_cfg(HAND_BOWL).in_collision(path).any()
 
 
 def test_plan_with_clearance_objective_and_params():
@@ -71,7 +79,9 @@ def test_planar_problem(tmp_path):
     ({"objective": "nosuch"}, ["--objective", "nosuch"], "objective"),
     ({"params": {"nosuch": "1"}}, None, r"^params: "),
     ({"time": -1.0}, None, r"^time: must be positive"),
-    ({"mode": "both"}, None, r"^mode: 'both' is not certified or fast$"),
+    ({"checker": "both"}, None, r"^checker: 'both' is not certified or fast$"),
+    ({"mode": "fast"}, None, r"^mode: renamed: use checker='certified' or checker='fast'$"),
+    ({"checker": "fast", "motion": "clearance"}, None, r"^motion: clearance needs checker certified"),
 ])
 def test_bad_plan_arguments(kwargs, flag, message):
     with pytest.raises(ValueError, match=message) as raised:

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Reports the C++ functions (and Allman-style lambdas) longer than a limit, longest first.
 
-Usage: function_lengths.py [--max N] [--fail] FILE_OR_FOLDER...   (default: --max 80; --fail: exit 1 if any)
+Usage: function_lengths.py [--max N] [--fail] [--exclude FILE...] FILE_OR_FOLDER...
+(default: --max 80; --fail: exit 1 if any; --exclude: files not looked at, each matched as the end of a path)
 
 A heuristic for code in meshgap's style (.clang-format: Allman braces): a body is a line holding only "{" whose previous
 code line has a "(" and is not a control statement; it ends at the "}" with the same indentation."""
@@ -47,6 +48,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--max", type=int, default=80)
     parser.add_argument("--fail", action="store_true")
+    parser.add_argument("--exclude", nargs="*", default=[])
     parser.add_argument("paths", nargs="+")
     args = parser.parse_args()
     found = []
@@ -54,6 +56,8 @@ def main():
         files = [root] if os.path.isfile(root) else \
             [os.path.join(d, f) for d, _, fs in os.walk(root) for f in fs if f.endswith((".cpp", ".h"))]
         for path in sorted(files):
+            if any(path.replace(os.sep, "/").endswith(e) for e in args.exclude):
+                continue
             found += [(n, path, line, head) for n, line, head in bodies(path) if n > args.max]
     for n, path, line, head in sorted(found, reverse=True):
         print(f"{n:5d} lines  {path}:{line}  {head}")

@@ -126,6 +126,12 @@ namespace meshgap
         /** \brief 1e-3 times the smallest of \e clearances (at least 1e-9 times the robot's radius). */
         double defaultTolerance(const std::vector<double> &clearances) const;
         void validateInput(const ompl::geometric::PathGeometric &path) const;
+        /** \brief optimize()'s rounds over \e w until done, converged or out of rounds. */
+        void improve(Work &w);
+        /** \brief Measure the result as the input was measured (\e inputMeasure): if less clear, put \e input
+            back. Fills the after-statistics. */
+        void keepTheClearer(ompl::geometric::PathGeometric &path, const ompl::geometric::PathGeometric &input,
+                            double inputMeasure, double tolerance);
 
         ompl::base::SpaceInformationPtr si_;
         ClearanceCheckerPtr checker_;
