@@ -605,6 +605,29 @@ namespace meshgap
             }
 
         private:
+            /** \brief The triangle pair (ta, tb) at exact distance \e d (witnesses \e onA, \e onB) becomes the best
+                if it is closer by more than the slack, or ties within it and ranks first (the canonical tie rule);
+                returns whether it did. */
+            bool offer(std::uint32_t ta, std::uint32_t tb, double d, const Eigen::Vector3d &onA,
+                       const Eigen::Vector3d &onB)
+            {
+                const bool closer = d < result_.distance - slack_;
+                const bool tieWins =
+                    !closer && d <= result_.distance + slack_ && (ta < bestA_ || (ta == bestA_ && tb < bestB_));
+                if (!closer && !tieWins)
+                    return false;
+                bestA_ = ta;
+                bestB_ = tb;
+                result_.distance = d;
+                result_.found = true;
+                result_.triangleA = ta;
+                result_.triangleB = tb;
+                result_.onA = onA;
+                result_.onB = onB;
+                bestAxis_ = d > 0.0 ? Eigen::Vector3d((onB - onA) / (onB - onA).norm()) : Eigen::Vector3d::Zero();
+                return true;
+            }
+
             /** \brief Test every triangle pair of two leaves; returns a lower bound on the leaf pair's distance
                 (the least of each triangle pair's gap or distance; \e boxBound if the early stop cut it short) and,
                 for a single pair of triangles, in \e axis the axis that gave it (zero if none). */
@@ -665,27 +688,11 @@ namespace meshgap
                             axis =
                                 d > 0.0 ? Eigen::Vector3d((onB - onA) / (onB - onA).norm()) : Eigen::Vector3d::Zero();
                         }
-                        const bool closer = d < result_.distance - slack_;
-                        const bool tieWins =
-                            !closer && d <= result_.distance + slack_ && (ta < bestA_ || (ta == bestA_ && tb < bestB_));
-                        if (closer || tieWins)
+                        if (offer(ta, tb, d, onA, onB) && d <= stopBelow_)
                         {
-                            bestA_ = ta;
-                            bestB_ = tb;
-                            result_.distance = d;
-                            result_.found = true;
-                            result_.triangleA = ta;
-                            result_.triangleB = tb;
-                            result_.onA = onA;
-                            result_.onB = onB;
-                            bestAxis_ = d > 0.0 ? Eigen::Vector3d((onB - onA) / (onB - onA).norm())
-                                                : Eigen::Vector3d::Zero();
-                            if (d <= stopBelow_)
-                            {
-                                stopped_ = true;
-                                axis.setZero();
-                                return boxBound;  // pairs of these leaves may be left untested
-                            }
+                            stopped_ = true;
+                            axis.setZero();
+                            return boxBound;  // pairs of these leaves may be left untested
                         }
                     }
                 }
@@ -884,16 +891,45 @@ namespace meshgap
         front->valid = true;
     }
 
+    namespace
+    {
+        /** \brief Whether a triangle of leaf \e na and one of leaf \e nb (placed by \e X) intersect; the first such
+            pair goes to \e hitA / \e hitB. */
+        bool leavesIntersect(const TriangleBvh &a, const TriangleBvh &b, const RelativePose &X,
+                             const TriangleBvh::Node &na, const TriangleBvh::Node &nb, std::uint32_t &hitA,
+                             std::uint32_t &hitB)
+        {
+            const Mesh &ma = a.mesh(), &mb = b.mesh();
+            Eigen::Vector3d pb[3];
+            for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
+            {
+                const std::uint32_t tb = b.order()[j];
+                for (int k = 0; k < 3; ++k)
+                    pb[k] = X.R * mb.vertices[mb.triangles[tb][k]] + X.t;
+                for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
+                {
+                    const Triangle &fa = ma.triangles[a.order()[i]];
+                    if (trianglesIntersect(ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]], pb[0], pb[1],
+                                           pb[2]))
+                    {
+                        hitA = a.order()[i];
+                        hitB = tb;
+                        return true;
+                    }
+                }
+            }
+            return false;
+        }
+    }  // namespace
+
     bool bvhCollide(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, std::uint32_t *hitA,
                     std::uint32_t *hitB)
     {
         if (a.nodes().empty() || b.nodes().empty())
             return false;
         const RelativePose X(X_AB);
-        const Mesh &ma = a.mesh(), &mb = b.mesh();
         std::vector<PairEntry> &stack = threadStack<PairEntry, 3>();
         stack.push_back({0u, 0u});
-        Eigen::Vector3d pb[3];
         while (!stack.empty())
         {
             const PairEntry e = stack.back();
@@ -903,24 +939,14 @@ namespace meshgap
                 continue;
             if (na.isLeaf() && nb.isLeaf())
             {
-                for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
+                std::uint32_t ta, tb;
+                if (leavesIntersect(a, b, X, na, nb, ta, tb))
                 {
-                    const std::uint32_t tb = b.order()[j];
-                    for (int k = 0; k < 3; ++k)
-                        pb[k] = X.R * mb.vertices[mb.triangles[tb][k]] + X.t;
-                    for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
-                    {
-                        const Triangle &fa = ma.triangles[a.order()[i]];
-                        if (trianglesIntersect(ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]], pb[0], pb[1],
-                                               pb[2]))
-                        {
-                            if (hitA)
-                                *hitA = a.order()[i];
-                            if (hitB)
-                                *hitB = tb;
-                            return true;
-                        }
-                    }
+                    if (hitA)
+                        *hitA = ta;
+                    if (hitB)
+                        *hitB = tb;
+                    return true;
                 }
                 continue;
             }
@@ -1128,11 +1154,9 @@ namespace meshgap
             std::size_t retested = 0;
             if (retestCollisionFront(front, traversal, b, X_AB, margin, motion, stamp, retested))
                 return report(traversal);
-            const std::size_t count = front.entries.size();
-            std::vector<BvhFront::Entry> &next = front.next;
-            front.reused += count - retested;
+            front.reused += front.entries.size() - retested;
             front.retested += retested;
-            front.entries.insert(front.entries.end(), next.begin(), next.end());
+            front.entries.insert(front.entries.end(), front.next.begin(), front.next.end());
             front.motion = motion;
             front.motions[stamp % BvhFront::POSES] = motion;
             front.valid = front.entries.size() <= BvhFront::FRONT_GROWTH * front.freshSize + 16 &&

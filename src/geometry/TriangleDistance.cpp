@@ -197,7 +197,7 @@ namespace meshgap
         struct Solution
         {
             double distance2{std::numeric_limits<double>::infinity()};  ///< squared distance, 0 when intersecting
-            Vec onA, onB;
+            Vec onA{Vec::Zero()}, onB{Vec::Zero()};
             bool intersect{false};  ///< as documented for trianglesIntersect()
         };
 
@@ -232,59 +232,62 @@ namespace meshgap
             return gap > 0.0 && gap * gap > tol * tol * n.squaredNorm();
         }
 
-        /** \brief Distance, witnesses and intersection of the canonically ordered triangles A and B. Both public
-            triangle-pair functions decide with exactly this, so they always agree; with \e intersectOnly it returns
-            as soon as a plane separates them (then only \e intersect, false, is meaningful). */
-        Solution solve(const Vec A[3], const Vec B[3], bool intersectOnly)
+        /** \brief The steps of solve() for the canonically ordered triangles A and B, and what they share: each
+            triangle's plane frame, the other's corners placed in it, and the best candidate so far (out). */
+        class PairSolve
         {
-            Solution out;
-            const double scale = contactScale(A, B);
-            const double tol = TRIANGLE_CONTACT_TOLERANCE * scale;
-            const double tol2 = tol * tol;
-            const double slack = CERTIFICATE_SLACK * scale;
-
-            // Separated by either triangle's plane with more than the contact tolerance: they cannot intersect.
-            const bool separated = separatedAlong((A[1] - A[0]).cross(A[2] - A[0]), A, B, tol) ||
-                                   separatedAlong((B[1] - B[0]).cross(B[2] - B[0]), A, B, tol);
-            if (separated && intersectOnly)
-                return out;
-
-            Frame fa, fb;
-            makeFrame(A, fa);
-            makeFrame(B, fb);
-
-            // Each triangle's corners in the other's plane frame; the three edge orientations (>= 0: inner side).
-            double xa[3], ya[3], za[3], xb[3], yb[3], zb[3];
-            double oa[3][3], ob[3][3];  // oa[i]: corner i of A against fb's three edges
-            bool inB[3] = {false, false, false}, inA[3] = {false, false, false};  // foot inside the other face
-            auto place = [](const Frame &f, const Vec &p, double &x, double &y, double &z, double o[3])
+        public:
+            PairSolve(const Vec *A, const Vec *B) : A_(A), B_(B)
             {
-                const Vec d = p - f.o;
-                x = d.dot(f.u);
-                y = d.dot(f.v);
-                z = d.dot(f.n);
-                o[0] = y;
-                o[1] = (f.cx - f.L) * y - f.cy * (x - f.L);
-                o[2] = f.cy * x - f.cx * y;
-                return o[0] >= 0.0 && o[1] >= 0.0 && o[2] >= 0.0;
-            };
-            for (int i = 0; i < 3; ++i)
-            {
-                if (fb.face)
-                    inB[i] = place(fb, A[i], xa[i], ya[i], za[i], oa[i]);
-                if (fa.face)
-                    inA[i] = place(fa, B[i], xb[i], yb[i], zb[i], ob[i]);
+                const double scale = contactScale(A, B);
+                const double tol = TRIANGLE_CONTACT_TOLERANCE * scale;
+                tol2_ = tol * tol;
+                slack_ = CERTIFICATE_SLACK * scale;
+                // Separated by either triangle's plane with more than the contact tolerance: they cannot intersect.
+                separated = separatedAlong((A[1] - A[0]).cross(A[2] - A[0]), A, B, tol) ||
+                            separatedAlong((B[1] - B[0]).cross(B[2] - B[0]), A, B, tol);
             }
 
-            // An edge of one triangle crossing the other's face: they intersect, the crossing point is common.
-            if (!separated)
+            bool separated;
+            Solution out;
+
+            /** \brief Each triangle's corners in the other's plane frame, with the three edge orientations (>= 0:
+                inner side) and whether the foot lies inside the other face. */
+            void placeCorners()
+            {
+                makeFrame(A_, fa_);
+                makeFrame(B_, fb_);
+                auto place = [](const Frame &f, const Vec &p, double &x, double &y, double &z, double o[3])
+                {
+                    const Vec d = p - f.o;
+                    x = d.dot(f.u);
+                    y = d.dot(f.v);
+                    z = d.dot(f.n);
+                    o[0] = y;
+                    o[1] = (f.cx - f.L) * y - f.cy * (x - f.L);
+                    o[2] = f.cy * x - f.cx * y;
+                    return o[0] >= 0.0 && o[1] >= 0.0 && o[2] >= 0.0;
+                };
+                for (int i = 0; i < 3; ++i)
+                {
+                    if (fb_.face)
+                        inB_[i] = place(fb_, A_[i], xa_[i], ya_[i], za_[i], oa_[i]);
+                    if (fa_.face)
+                        inA_[i] = place(fa_, B_[i], xb_[i], yb_[i], zb_[i], ob_[i]);
+                }
+            }
+
+            /** \brief An edge of one triangle crossing the other's face: they intersect, the crossing point is
+                common (set in out). */
+            bool edgeCrossesFace()
+            {
                 for (int side = 0; side < 2; ++side)
                 {
-                    const Frame &f = side ? fa : fb;
+                    const Frame &f = side ? fa_ : fb_;
                     if (!f.face)
                         continue;
-                    const Vec *P = side ? B : A;
-                    const double *x = side ? xb : xa, *y = side ? yb : ya, *z = side ? zb : za;
+                    const Vec *P = side ? B_ : A_;
+                    const double *x = side ? xb_ : xa_, *y = side ? yb_ : ya_, *z = side ? zb_ : za_;
                     for (int i = 0; i < 3; ++i)
                     {
                         const int j = (i + 1) % 3;
@@ -296,128 +299,176 @@ namespace meshgap
                         out.intersect = true;
                         out.distance2 = 0.0;
                         out.onA = out.onB = P[i] + lambda * (P[j] - P[i]);
-                        return out;
+                        return true;
                     }
                 }
+                return false;
+            }
 
-            double &best2 = out.distance2;
-            // Finished: a contact within the tolerance, or a candidate the slab certificate proves minimal.
-            auto finished = [&]()
+            /** \brief Finished: a contact within the tolerance, or a candidate the slab certificate proves minimal. */
+            bool finished()
             {
-                if (!separated && best2 <= tol2)
+                if (!separated && out.distance2 <= tol2_)
                 {
                     out.intersect = true;
-                    best2 = 0.0;
+                    out.distance2 = 0.0;
                     out.onA = out.onB = 0.5 * (out.onA + out.onB);
                     return true;
                 }
-                return best2 < std::numeric_limits<double>::infinity() && certified(A, B, out.onA, out.onB, slack);
-            };
-
-            // Corner pairs: a cheap first upper bound for the pruning below.
-            for (int i = 0; i < 3; ++i)
-                for (int j = 0; j < 3; ++j)
-                {
-                    const double c2 = (B[j] - A[i]).squaredNorm();
-                    if (c2 < best2)
-                    {
-                        best2 = c2;
-                        out.onA = A[i];
-                        out.onB = B[j];
-                    }
-                }
-
-            // Vertex-face pairs whose foot lies inside the face.
-            for (int side = 0; side < 2; ++side)
-            {
-                const Frame &f = side ? fa : fb;
-                const Vec *P = side ? B : A;
-                const double *x = side ? xb : xa, *y = side ? yb : ya, *z = side ? zb : za;
-                const bool *in = side ? inA : inB;
-                for (int i = 0; i < 3; ++i)
-                    if (in[i] && z[i] * z[i] < best2)
-                    {
-                        best2 = z[i] * z[i];
-                        const Vec foot = f.o + x[i] * f.u + y[i] * f.v;
-                        out.onA = side ? foot : P[i];
-                        out.onB = side ? P[i] : foot;
-                    }
+                return out.distance2 < std::numeric_limits<double>::infinity() &&
+                       certified(A_, B_, out.onA, out.onB, slack_);
             }
-            if (finished())
-                return out;
 
-            const Vec eA[3] = {A[1] - A[0], A[2] - A[1], A[0] - A[2]};
-            const Vec eB[3] = {B[1] - B[0], B[2] - B[1], B[0] - B[2]};
-            const double eeA[3] = {eA[0].squaredNorm(), eA[1].squaredNorm(), eA[2].squaredNorm()};
-            const double eeB[3] = {eB[0].squaredNorm(), eB[1].squaredNorm(), eB[2].squaredNorm()};
-
-            // Vertex-edge pairs (the boundary of every edge-edge pair). A corner whose foot is inside the other face
-            // has the face closer than its edges; otherwise the closest point is on an edge the foot lies beyond
-            // (orientation < 0), no closer than z^2 + (distance to the edge's line)^2. Frame edge m of a triangle is
-            // its edge (k + m) % 3, k the frame's first corner; o[0] is the distance to edge 0's line, o[1] and o[2]
-            // that distance times the edge's length.
-            for (int side = 0; side < 2; ++side)
+            /** \brief Corner pairs (a cheap first upper bound for the pruning of the later steps), then vertex-face
+                pairs whose foot lies inside the face. */
+            void cornersAndFaces()
             {
-                const Frame &f = side ? fa : fb;
-                const Vec *P = side ? B : A, *T = side ? A : B;
-                const Vec *eT = side ? eA : eB;
-                const double *eeT = side ? eeA : eeB;
-                const bool *in = side ? inA : inB;
-                const double *z = side ? zb : za;
-                const double(*o)[3] = side ? ob : oa;
+                double &best2 = out.distance2;
                 for (int i = 0; i < 3; ++i)
-                {
-                    if (in[i] || (f.face && z[i] * z[i] >= best2))
-                        continue;
-                    for (int m = 0; m < 3; ++m)
+                    for (int j = 0; j < 3; ++j)
                     {
-                        const int j = f.face ? (f.k + m) % 3 : m;
-                        if (f.face && (o[i][m] >= 0.0 || z[i] * z[i] + o[i][m] * o[i][m] / (m ? eeT[j] : 1.0) >= best2))
-                            continue;
-                        double t;
-                        const double c2 = pointSegment2(P[i], T[j], eT[j], eeT[j], t);
+                        const double c2 = (B_[j] - A_[i]).squaredNorm();
                         if (c2 < best2)
                         {
                             best2 = c2;
-                            const Vec q = T[j] + t * eT[j];
-                            out.onA = side ? q : P[i];
-                            out.onB = side ? P[i] : q;
+                            out.onA = A_[i];
+                            out.onB = B_[j];
+                        }
+                    }
+                for (int side = 0; side < 2; ++side)
+                {
+                    const Frame &f = side ? fa_ : fb_;
+                    const Vec *P = side ? B_ : A_;
+                    const double *x = side ? xb_ : xa_, *y = side ? yb_ : ya_, *z = side ? zb_ : za_;
+                    const bool *in = side ? inA_ : inB_;
+                    for (int i = 0; i < 3; ++i)
+                        if (in[i] && z[i] * z[i] < best2)
+                        {
+                            best2 = z[i] * z[i];
+                            const Vec foot = f.o + x[i] * f.u + y[i] * f.v;
+                            out.onA = side ? foot : P[i];
+                            out.onB = side ? P[i] : foot;
+                        }
+                }
+            }
+
+            /** \brief Vertex-edge pairs (the boundary of every edge-edge pair). A corner whose foot is inside the other
+                face has the face closer than its edges; otherwise the closest point is on an edge the foot lies
+                beyond (orientation < 0), no closer than z^2 + (distance to the edge's line)^2. Frame edge m of a
+                triangle is its edge (k + m) % 3, k the frame's first corner; o[0] is the distance to edge 0's line,
+                o[1] and o[2] that distance times the edge's length. */
+            void vertexEdge()
+            {
+                double &best2 = out.distance2;
+                for (int side = 0; side < 2; ++side)
+                {
+                    const Frame &f = side ? fa_ : fb_;
+                    const Vec *P = side ? B_ : A_, *T = side ? A_ : B_;
+                    const Vec *eT = side ? eA_ : eB_;
+                    const double *eeT = side ? eeA_ : eeB_;
+                    const bool *in = side ? inA_ : inB_;
+                    const double *z = side ? zb_ : za_;
+                    const double(*o)[3] = side ? ob_ : oa_;
+                    for (int i = 0; i < 3; ++i)
+                    {
+                        if (in[i] || (f.face && z[i] * z[i] >= best2))
+                            continue;
+                        for (int m = 0; m < 3; ++m)
+                        {
+                            const int j = f.face ? (f.k + m) % 3 : m;
+                            if (f.face &&
+                                (o[i][m] >= 0.0 || z[i] * z[i] + o[i][m] * o[i][m] / (m ? eeT[j] : 1.0) >= best2))
+                                continue;
+                            double t;
+                            const double c2 = pointSegment2(P[i], T[j], eT[j], eeT[j], t);
+                            if (c2 < best2)
+                            {
+                                best2 = c2;
+                                const Vec q = T[j] + t * eT[j];
+                                out.onA = side ? q : P[i];
+                                out.onB = side ? P[i] : q;
+                            }
                         }
                     }
                 }
             }
-            if (finished())
-                return out;
 
-            // Edge-edge pairs with the closest points inside both edges, skipping pairs that one triangle's plane
-            // keeps at least sqrt(best2) apart (an edge entirely on one side of it, that far away).
-            auto planeBound = [](const Frame &f, const double *z, int i)
+            /** \brief Edge-edge pairs with the closest points inside both edges, skipping pairs that one triangle's
+                plane keeps at least sqrt(best2) apart (an edge entirely on one side of it, that far away). */
+            void edgeEdge()
             {
-                const double z0 = z[i], z1 = z[(i + 1) % 3];
-                if (!f.face || (z0 < 0.0) != (z1 < 0.0) || z0 == 0.0 || z1 == 0.0)
-                    return 0.0;
-                const double m = std::min(std::abs(z0), std::abs(z1));
-                return m * m;
-            };
-            for (int i = 0; i < 3; ++i)
-            {
-                if (planeBound(fb, za, i) >= best2)
-                    continue;
-                for (int j = 0; j < 3; ++j)
+                double &best2 = out.distance2;
+                auto planeBound = [](const Frame &f, const double *z, int i)
                 {
-                    if (planeBound(fa, zb, j) >= best2)
+                    const double z0 = z[i], z1 = z[(i + 1) % 3];
+                    if (!f.face || (z0 < 0.0) != (z1 < 0.0) || z0 == 0.0 || z1 == 0.0)
+                        return 0.0;
+                    const double m = std::min(std::abs(z0), std::abs(z1));
+                    return m * m;
+                };
+                for (int i = 0; i < 3; ++i)
+                {
+                    if (planeBound(fb_, za_, i) >= best2)
                         continue;
-                    double s, t, c2;
-                    if (segmentInterior2(A[i], eA[i], B[j], eB[j], eeB[j], s, t, c2) && c2 < best2)
+                    for (int j = 0; j < 3; ++j)
                     {
-                        best2 = c2;
-                        out.onA = A[i] + s * eA[i];
-                        out.onB = B[j] + t * eB[j];
+                        if (planeBound(fa_, zb_, j) >= best2)
+                            continue;
+                        double s, t, c2;
+                        if (segmentInterior2(A_[i], eA_[i], B_[j], eB_[j], eeB_[j], s, t, c2) && c2 < best2)
+                        {
+                            best2 = c2;
+                            out.onA = A_[i] + s * eA_[i];
+                            out.onB = B_[j] + t * eB_[j];
+                        }
                     }
                 }
             }
-            finished();
-            return out;
+
+            /** \brief The edges of both triangles and their squared lengths, for the last two steps. */
+            void edges()
+            {
+                for (int i = 0; i < 3; ++i)
+                {
+                    eA_[i] = A_[(i + 1) % 3] - A_[i];
+                    eB_[i] = B_[(i + 1) % 3] - B_[i];
+                    eeA_[i] = eA_[i].squaredNorm();
+                    eeB_[i] = eB_[i].squaredNorm();
+                }
+            }
+
+        private:
+            const Vec *A_, *B_;
+            double tol2_, slack_;
+            Frame fa_, fb_;
+            double xa_[3], ya_[3], za_[3], xb_[3], yb_[3], zb_[3];
+            double oa_[3][3], ob_[3][3];  // oa_[i]: corner i of A against fb_'s three edges
+            bool inB_[3] = {false, false, false}, inA_[3] = {false, false, false};  // foot inside the other face
+            Vec eA_[3], eB_[3];
+            double eeA_[3], eeB_[3];
+        };
+
+        /** \brief Distance, witnesses and intersection of the canonically ordered triangles A and B. Both public
+            triangle-pair functions decide with exactly this, so they always agree; with \e intersectOnly it returns
+            as soon as a plane separates them (then only \e intersect, false, is meaningful). */
+        Solution solve(const Vec A[3], const Vec B[3], bool intersectOnly)
+        {
+            PairSolve pair(A, B);
+            if (pair.separated && intersectOnly)
+                return pair.out;
+            pair.placeCorners();
+            if (!pair.separated && pair.edgeCrossesFace())
+                return pair.out;
+            pair.cornersAndFaces();
+            if (pair.finished())
+                return pair.out;
+            pair.edges();
+            pair.vertexEdge();
+            if (pair.finished())
+                return pair.out;
+            pair.edgeEdge();
+            pair.finished();
+            return pair.out;
         }
     }  // namespace
 
