@@ -117,7 +117,7 @@ namespace meshgap
         /** \brief The signed distance once result.inCollision is decided: nothing to add when free; in collision the
             depth (setPenetration()), unless the caller stops early (\e mayStop), who asked for the verdict only. */
         void finishCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, bool mayStop,
-                             DistanceResult &result)
+                             DistanceResult &result, ExactWarmStart *warm)
         {
             result.penetrationDepth = 0.0;
             result.penetration = Penetration::NONE;
@@ -129,7 +129,7 @@ namespace meshgap
                 result.penetration = Penetration::NOT_COMPUTED;
             }
             else
-                setPenetration(a, b, X_AB, result);
+                setPenetration(a, b, X_AB, result, warm ? &warm->penetration : nullptr);
         }
     }  // namespace
 
@@ -184,7 +184,7 @@ namespace meshgap
             result.distance = std::numeric_limits<double>::infinity();
             result.certified = true;
             result.inCollision = oneInsideTheOther(a, b, X_AB);
-            finishCollision(a, b, X_AB, mayStop, result);
+            finishCollision(a, b, X_AB, mayStop, result, warm);
             return;
         }
 
@@ -206,7 +206,7 @@ namespace meshgap
         result.certified = !stoppedEarly;
         if (!result.inCollision && !stoppedEarly)
             result.inCollision = oneInsideTheOther(a, b, X_AB);  // the witnesses stay the closest surface points
-        finishCollision(a, b, X_AB, mayStop, result);
+        finishCollision(a, b, X_AB, mayStop, result, warm);
     }
 
     void ExactSolver::solve(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, const DistanceRequest &request,

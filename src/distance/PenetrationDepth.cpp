@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
 #include <limits>
+#include <vector>
 
 #include "meshgap/ThreadScratch.h"
 #include "meshgap/distance/ExactDistance.h"
@@ -19,8 +19,10 @@ namespace meshgap
             double depth{0.0};
             bool found{false};
             bool hostIsA{false};
-            std::uint32_t node{0};                              ///< node of the other body (the mover)
-            std::uint32_t triangle{0};                          ///< host surface triangle nearest to it
+            std::uint32_t node{0};                             ///< node of the other body (the mover)
+            std::uint32_t position{0};                         ///< its index in the mover's clusterOrder()
+            std::uint32_t cluster{0};                          ///< the mover's cluster holding it
+            std::uint32_t triangle{0};                         ///< host surface triangle nearest to it
             Eigen::Vector3d point{Eigen::Vector3d::Zero()};    ///< the node, host frame
             Eigen::Vector3d closest{Eigen::Vector3d::Zero()};  ///< nearest host surface point, host frame
         };
@@ -105,94 +107,191 @@ namespace meshgap
             return side * orient < 0.0 ? -1 : 1;
         }
 
-        /** \brief Nodes of \e mover (placed in the host's frame by \e X_HM) inside the closed \e host, deeper than
-            \e best. Branch and bound over the mover's node clusters: a cluster (centre c, radius r) whose centre is
-            at distance d from the host's surface holds no node deeper than d + r, so clusters are visited in
-            decreasing order of that bound until it falls to the deepest node so far; and when d > r no surface
-            crosses the cluster's ball, so all its nodes are on the same side as c: one inside test for them all.
-            Inside tests: localSide() first, a filter; what it calls outside is skipped, anything else is confirmed
-            by insideClosedBody(). So no outside node ever counts; where the filter is wrong (overlapping shells,
-            mixed winding) an inside node may be skipped, which only lowers the estimate. */
-        void deepestNodeIn(const Body &host, const Body &mover, const Eigen::Isometry3d &X_HM, bool hostIsA,
-                           Deepest &best, PenetrationEstimate &estimate)
+        /** \brief The search for the nodes of \e mover (placed in the host's frame by \e X_HM) inside the closed
+            \e host that are deeper than the deepest so far. Branch and bound over the mover's node clusters: a
+            cluster (centre c, radius r) whose centre is at distance d from the host's surface holds no node deeper
+            than d + r, so clusters are visited in decreasing order of that bound until it falls to the deepest node
+            so far; and when d > r no surface crosses the cluster's ball, so all its nodes are on the same side as c:
+            one inside test for them all. Inside tests: localSide() first, a filter; what it calls outside is skipped,
+            anything else is confirmed by insideClosedBody(). So no outside node ever counts; where the filter is wrong
+            (overlapping shells, mixed winding) an inside node may be skipped, which only lowers the estimate.
+
+            What run() returns is a function of the pose and of nothing else: the first node, in the visiting order
+            (clusters by decreasing bound, ties by index; nodes in clusterOrder()), of those it accepts at the largest
+            depth. Every node's depth and verdict are functions of the pose (bvhPointDistance() gives the same
+            nearest triangle whatever bounds it is given, as long as the distance lies between them), and a bound
+            prunes only with a pad above roundoff (pad()), so a node deeper than the deepest so far is never skipped.
+            Hence starting from any depth below the answer's (a warm start's lower bound) gives the same node: it only
+            skips nodes that cannot win. */
+        class NodeSearch
         {
-            const TriangleBvh::Node &root = host.bvh().nodes()[0];
-            const Eigen::Matrix3d R = X_HM.linear();
-            const Eigen::Vector3d t = X_HM.translation();
-            const double infinity = std::numeric_limits<double>::infinity();
-            const double orient = orientation(host);
-            auto inside = [&](const Eigen::Vector3d &p, const BvhPointResult &nearest)
+        public:
+            NodeSearch(const Body &host, const Body &mover, const Eigen::Isometry3d &X_HM, bool hostIsA,
+                       PenetrationEstimate &estimate)
+                : host_(host),
+                  mover_(mover),
+                  root_(host.bvh().nodes()[0]),
+                  R_(X_HM.linear()),
+                  t_(X_HM.translation()),
+                  orient_(orientation(host)),
+                  slack_(1e-12 * (root_.center.norm() + root_.half.norm()) + 1e-300),
+                  hostIsA_(hostIsA),
+                  estimate_(estimate)
             {
-                if (localSide(host, p, nearest.triangle, nearest.closest, orient) > 0)
-                    return false;
-                ++estimate.insideTests;
-                return insideClosedBody(host, p);
-            };
-            struct Candidate
-            {
-                double bound, centreDistance;
-                std::uint32_t cluster;
-                BvhPointResult nearest;  ///< of the centre
-            };
-            ThreadScratch<std::vector<Candidate>> scratch;  // a warmed-up thread allocates nothing here
-            std::vector<Candidate> &candidates = scratch.get();
-            candidates.clear();
-            for (std::uint32_t k = 0; k < mover.clusters().size(); ++k)
-            {
-                const NodeCluster &cluster = mover.clusters()[k];
-                const Eigen::Vector3d c = R * cluster.center + t;
-                if ((root.local(c).cwiseAbs() - root.half).cwiseMax(0.0).norm() > cluster.radius)
-                    continue;  // no node of it in the host's box
-                BvhPointResult r;
-                bvhPointDistance(host.bvh(), c, infinity, -1.0, r);
-                estimate.triangleTests += r.triangleTests;
-                candidates.push_back({r.distance + cluster.radius, r.distance, k, r});
             }
-            // Largest bound first; ties by cluster index (a fixed order: the answer is a function of the pose).
-            std::sort(candidates.begin(), candidates.end(), [](const Candidate &x, const Candidate &y)
-                      { return x.bound > y.bound || (x.bound == y.bound && x.cluster < y.cluster); });
-            for (const Candidate &candidate : candidates)
+
+            /** \brief Visit the nodes that may be deeper than \e best (its depth is a lower bound, found or not);
+                \e best becomes the deepest found, if any is deeper. */
+            void run(Deepest &best)
             {
-                if (candidate.bound <= best.depth)
-                    break;  // neither this cluster nor any later one holds a deeper node
-                const NodeCluster &cluster = mover.clusters()[candidate.cluster];
-                // The ball (centre c, radius < distance to the surface) lies wholly inside or wholly outside.
-                const bool oneSide = candidate.centreDistance > cluster.radius;
-                const Eigen::Vector3d centre = R * cluster.center + t;
-                if (oneSide && !inside(centre, candidate.nearest))
-                    continue;
-                for (std::uint32_t k = cluster.begin; k < cluster.end; ++k)
+                ThreadScratch<std::vector<Candidate>> scratch;  // a warmed-up thread allocates nothing here
+                std::vector<Candidate> &candidates = scratch.get();
+                candidates.clear();
+                Candidate next;
+                for (std::uint32_t k = 0; k < mover_.clusters().size(); ++k)
+                    if (candidate(k, next))
+                        candidates.push_back(next);
+                // Largest bound first; ties by cluster index (a fixed order: the answer is a function of the pose).
+                std::sort(candidates.begin(), candidates.end(),
+                          [](const Candidate &x, const Candidate &y)
+                          { return x.bound > y.bound || (x.bound == y.bound && x.cluster < y.cluster); });
+                for (const Candidate &candidate : candidates)
                 {
-                    const std::uint32_t i = mover.clusterOrder()[k];
-                    const Eigen::Vector3d p = R * mover.node(i) + t;
-                    if (root.outside(p))
-                        continue;
-                    // Nearer to the surface than the deepest so far: cannot be the deepest, inside or not. The
-                    // centre's nearest point is at most |p - c| farther from p: a bound that may settle that at once,
-                    // and otherwise prunes the search (padded so that the nearest triangle is found below it).
-                    const double bound = candidate.centreDistance + (p - centre).norm();
-                    if (bound <= best.depth)
-                        continue;
-                    ++estimate.nodesTested;
-                    BvhPointResult r;
-                    bvhPointDistance(host.bvh(), p, bound * (1.0 + 1e-9) + 1e-300, best.depth, r);
-                    if (!r.found)
-                        bvhPointDistance(host.bvh(), p, infinity, best.depth, r);  // roundoff; never seen
-                    estimate.triangleTests += r.triangleTests;
-                    if (!(r.distance > best.depth))
-                        continue;
-                    if (!oneSide && !inside(p, r))
-                        continue;
-                    best.depth = r.distance;
-                    best.found = true;
-                    best.hostIsA = hostIsA;
-                    best.node = i;
-                    best.triangle = r.triangle;
-                    best.point = p;
-                    best.closest = r.closest;
+                    if (pad(candidate.bound) <= best.depth)
+                        break;  // neither this cluster nor any later one holds a deeper node
+                    const NodeCluster &cluster = mover_.clusters()[candidate.cluster];
+                    for (std::uint32_t k = cluster.begin; k < cluster.end; ++k)
+                    {
+                        Eigen::Vector3d p;
+                        BvhPointResult r;
+                        if (!deeper(candidate, k, best.depth, p, r))
+                            continue;
+                        best.depth = r.distance;
+                        best.found = true;
+                        best.hostIsA = hostIsA_;
+                        best.node = mover_.clusterOrder()[k];
+                        best.position = k;
+                        best.cluster = candidate.cluster;
+                        best.triangle = r.triangle;
+                        best.point = p;
+                        best.closest = r.closest;
+                    }
                 }
             }
-        }
+
+            /** \brief The depth run() gives the node at \e position of the mover's clusterOrder(), in cluster \e k, if
+                it would accept it (the same tests on the same points; the bounds change no result); 0 if it would
+                not. A lower bound on what run() finds, then. */
+            double depthOf(std::uint32_t k, std::uint32_t position)
+            {
+                Candidate c;
+                Eigen::Vector3d p;
+                BvhPointResult r;
+                return candidate(k, c) && deeper(c, position, 0.0, p, r) ? r.distance : 0.0;
+            }
+
+        private:
+            /** \brief \e x raised above the roundoff of the distances it bounds (relative, and absolute at the scale
+                of the host's coordinates): a node whose computed depth exceeds a depth d has a padded bound above d. */
+            double pad(double x) const { return x * (1.0 + 1e-9) + slack_; }
+
+            /** \brief A cluster of the mover that may hold nodes inside the host, at this pose. */
+            struct Candidate
+            {
+                /** \brief No node of the cluster inside the host is deeper than this: dc + r with the centre inside;
+                    r - dc with the centre outside (the segment from an inside node to the centre crosses the
+                    surface, at least dc from the centre); negative when the ball is wholly outside. */
+                double bound;
+                double centreDistance;  ///< dc: from the centre to the host's surface
+                std::uint32_t cluster;
+                BvhPointResult nearest;  ///< of the centre
+                Eigen::Vector3d centre;  ///< host frame
+                bool oneSide;            ///< dc > r: the surface does not cross the ball
+                bool centreInside;       ///< see inside(); decides the bound, and the nodes' side when oneSide
+            };
+
+            /** \brief Whether the node at \e position of the mover's clusterOrder() (in cluster \e c) lies inside the
+                host deeper than \e floor: then \e p is the node and \e r its nearest surface point. Every test that
+                rules it out before the exact distance is a sound bound, so the verdict and \e r do not depend on
+                \e floor, for a node deeper than it. */
+            bool deeper(const Candidate &c, std::uint32_t position, double floor, Eigen::Vector3d &p, BvhPointResult &r)
+            {
+                p = R_ * mover_.node(mover_.clusterOrder()[position]) + t_;
+                if (root_.outside(p))
+                    return false;
+                const double dc = c.centreDistance, offset = (p - c.centre).norm();
+                // Depth bounds, as the cluster's (Candidate::bound) with |p - c| for the radius (never above it, so
+                // that the cluster's bound is never below its nodes').
+                const double bound = dc + offset, beyond = std::min(offset, mover_.clusters()[c.cluster].radius) - dc;
+                if (pad(c.centreInside ? bound : beyond) <= floor)
+                    return false;
+                double upper = pad(bound);
+                if (!c.oneSide)
+                {
+                    // The distance to the centre's nearest triangle: the same value the search would give that
+                    // triangle, so the node's distance is at most that, exactly.
+                    const Mesh &m = host_.surface();
+                    const Triangle &f = m.triangles[c.nearest.triangle];
+                    Eigen::Vector3d on;
+                    ++estimate_.triangleTests;
+                    const double d = pointTriangleDistance(p, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], on);
+                    if (d <= floor)
+                        return false;
+                    upper = std::min(upper, pad(d));
+                }
+                ++estimate_.nodesTested;
+                bvhPointDistance(host_.bvh(), p, upper, floor, r);
+                if (!r.found)
+                    bvhPointDistance(host_.bvh(), p, std::numeric_limits<double>::infinity(), floor, r);  // never
+                estimate_.triangleTests += r.triangleTests;
+                if (!(r.distance > floor))
+                    return false;
+                bool in;
+                if (c.oneSide)
+                    in = c.centreInside;  // the whole ball is on the centre's side
+                else if (c.centreInside)
+                    in = pad(offset) < dc || inside(p, r);  // within dc of an inside centre: no surface between
+                else
+                    // Beyond the bound of an outside centre no node counts, whatever its own test says: the bound
+                    // that prunes is then part of the verdict, so a pruned node is never one that would count.
+                    in = !(r.distance > pad(beyond)) && inside(p, r);
+                return in;
+            }
+
+            /** \brief Cluster \e k as a candidate (false when none of its nodes can lie in the host's box). */
+            bool candidate(std::uint32_t k, Candidate &out)
+            {
+                const NodeCluster &cluster = mover_.clusters()[k];
+                out.centre = R_ * cluster.center + t_;
+                if ((root_.local(out.centre).cwiseAbs() - root_.half).cwiseMax(0.0).norm() > cluster.radius)
+                    return false;
+                bvhPointDistance(host_.bvh(), out.centre, std::numeric_limits<double>::infinity(), -1.0, out.nearest);
+                estimate_.triangleTests += out.nearest.triangleTests;
+                out.cluster = k;
+                out.centreDistance = out.nearest.distance;
+                out.oneSide = out.centreDistance > cluster.radius;
+                out.centreInside = inside(out.centre, out.nearest);
+                out.bound =
+                    out.centreInside ? out.centreDistance + cluster.radius : cluster.radius - out.centreDistance;
+                return true;
+            }
+
+            bool inside(const Eigen::Vector3d &p, const BvhPointResult &nearest)
+            {
+                if (localSide(host_, p, nearest.triangle, nearest.closest, orient_) > 0)
+                    return false;
+                ++estimate_.insideTests;
+                return insideClosedBody(host_, p);
+            }
+
+            const Body &host_, &mover_;
+            const TriangleBvh::Node &root_;
+            const Eigen::Matrix3d R_;
+            const Eigen::Vector3d t_;
+            const double orient_, slack_;
+            const bool hostIsA_;
+            PenetrationEstimate &estimate_;
+        };
 
         /** \brief A surface triangle holding node \e i of \e body. */
         std::uint32_t triangleOfNode(const Body &body, std::uint32_t i)
@@ -222,14 +321,51 @@ namespace meshgap
         return containsPoint(body, p);
     }
 
-    PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)
+    PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB,
+                                         PenetrationWarmStart *warm)
     {
         PenetrationEstimate estimate;
+        const bool closedA = a.isClosed() && !a.surface().triangles.empty(),
+                   closedB = b.isClosed() && !b.surface().triangles.empty();
+        const Eigen::Isometry3d X_BA = X_AB.inverse();
+        auto search = [&](bool hostIsA)
+        { return hostIsA ? NodeSearch(a, b, X_AB, true, estimate) : NodeSearch(b, a, X_BA, false, estimate); };
+
+        // The last deepest node's depth at this pose, just below it: a lower bound to start from (NodeSearch says
+        // why the answer stays the cold one).
         Deepest best;
-        if (a.isClosed() && !a.surface().triangles.empty())
-            deepestNodeIn(a, b, X_AB, true, best, estimate);
-        if (b.isClosed() && !b.surface().triangles.empty())
-            deepestNodeIn(b, a, X_AB.inverse(), false, best, estimate);
+        if (warm && warm->valid && (warm->hostIsA ? closedA : closedB))
+        {
+            const Body &mover = warm->hostIsA ? b : a;
+            if (warm->cluster < mover.clusters().size() && warm->position >= mover.clusters()[warm->cluster].begin &&
+                warm->position < mover.clusters()[warm->cluster].end)
+            {
+                const double seed = search(warm->hostIsA).depthOf(warm->cluster, warm->position);
+                if (seed > 0.0)
+                    best.depth = std::nextafter(seed, 0.0);
+            }
+        }
+        const bool seeded = best.depth > 0.0;
+        if (closedA)
+            search(true).run(best);
+        if (closedB)
+            search(false).run(best);
+        if (seeded && !best.found)
+        {
+            // Cannot happen (the seed itself is found); if it did, the cold search gives the answer.
+            best = Deepest();
+            if (closedA)
+                search(true).run(best);
+            if (closedB)
+                search(false).run(best);
+        }
+        if (warm)
+        {
+            warm->valid = best.found;
+            warm->hostIsA = best.hostIsA;
+            warm->cluster = best.cluster;
+            warm->position = best.position;
+        }
 
         if (best.found)
         {
@@ -271,9 +407,10 @@ namespace meshgap
         return estimate;
     }
 
-    void setPenetration(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result)
+    void setPenetration(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
+                        PenetrationWarmStart *warm)
     {
-        const PenetrationEstimate e = penetrationDepth(a, b, X_AB);
+        const PenetrationEstimate e = penetrationDepth(a, b, X_AB, warm);
         result.inCollision = true;
         result.penetrationDepth = e.depth;
         result.penetration = e.kind;

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "meshgap/distance/DistanceSolver.h"
+#include "meshgap/distance/PenetrationDepth.h"
 #include "meshgap/geometry/TriangleBvh.h"
 
 namespace meshgap
@@ -16,8 +17,9 @@ namespace meshgap
     {
         bool valid{false};  ///< triangleA / triangleB hold the last closest pair
         std::uint32_t triangleA{0}, triangleB{0};
-        BvhFront front;      ///< of the last distance traversal
-        BvhFront collision;  ///< of the last collision test (inCollision() with a warm start)
+        BvhFront front;                    ///< of the last distance traversal
+        BvhFront collision;                ///< of the last collision test (inCollision() with a warm start)
+        PenetrationWarmStart penetration;  ///< the last deepest node, in collision (penetrationDepth())
         /** \brief Bytes held, this object included. */
         std::size_t memoryBytes() const { return sizeof(*this) + front.memoryBytes() + collision.memoryBytes(); }
     };
