@@ -27,16 +27,6 @@ namespace meshgap
             Eigen::Vector3d closest{Eigen::Vector3d::Zero()};  ///< nearest host surface point, host frame
         };
 
-        /** \brief +1 when \e body's triangles wind outward (positive signed volume), -1 when inward. */
-        double orientation(const Body &body)
-        {
-            const Mesh &m = body.surface();
-            double volume = 0.0;
-            for (const Triangle &f : m.triangles)
-                volume += m.vertices[f[0]].dot(m.vertices[f[1]].cross(m.vertices[f[2]]));
-            return volume >= 0.0 ? 1.0 : -1.0;
-        }
-
         /** \brief Which side of \e host's surface \e p is on, judged at its nearest surface point \e q (on triangle
             \e t): the sign of (p - q) against the angle-weighted pseudonormal of the feature q lies on (face, edge or
             corner; Baerentzen and Aanaes, 2005), times \e orient. -1 inside, +1 outside, 0 too close to call. Exact
@@ -133,7 +123,7 @@ namespace meshgap
                   root_(host.bvh().nodes()[0]),
                   R_(X_HM.linear()),
                   t_(X_HM.translation()),
-                  orient_(orientation(host)),
+                  orient_(host.orientation()),
                   slack_(1e-12 * (root_.center.norm() + root_.half.norm()) + 1e-300),
                   hostIsA_(hostIsA),
                   estimate_(estimate)
@@ -155,10 +145,12 @@ namespace meshgap
                 std::sort(candidates.begin(), candidates.end(),
                           [](const Candidate &x, const Candidate &y)
                           { return x.bound > y.bound || (x.bound == y.bound && x.cluster < y.cluster); });
-                for (const Candidate &candidate : candidates)
+                for (Candidate &candidate : candidates)
                 {
                     if (pad(candidate.bound) <= best.depth)
                         break;  // neither this cluster nor any later one holds a deeper node
+                    if (candidate.oneSide && !centreInside(candidate))
+                        continue;  // a ball wholly outside
                     const NodeCluster &cluster = mover_.clusters()[candidate.cluster];
                     for (std::uint32_t k = cluster.begin; k < cluster.end; ++k)
                     {
@@ -207,14 +199,28 @@ namespace meshgap
                 BvhPointResult nearest;  ///< of the centre
                 Eigen::Vector3d centre;  ///< host frame
                 bool oneSide;            ///< dc > r: the surface does not cross the ball
-                bool centreInside;       ///< see inside(); decides the bound, and the nodes' side when oneSide
+                /** \brief The local side test at the centre's nearest point (localSide()) says outside. It decides
+                    which bound applies; the nodes' verdicts then include that bound (deeper()). */
+                bool centreOutside;
+                int inside{-1};  ///< the centre's inside test (insideClosedBody()), made when first needed: 0, 1
             };
+
+            /** \brief The centre's inside test, made once. */
+            bool centreInside(Candidate &c)
+            {
+                if (c.inside < 0)
+                {
+                    ++estimate_.insideTests;
+                    c.inside = insideClosedBody(host_, c.centre) ? 1 : 0;
+                }
+                return c.inside == 1;
+            }
 
             /** \brief Whether the node at \e position of the mover's clusterOrder() (in cluster \e c) lies inside the
                 host deeper than \e floor: then \e p is the node and \e r its nearest surface point. Every test that
                 rules it out before the exact distance is a sound bound, so the verdict and \e r do not depend on
                 \e floor, for a node deeper than it. */
-            bool deeper(const Candidate &c, std::uint32_t position, double floor, Eigen::Vector3d &p, BvhPointResult &r)
+            bool deeper(Candidate &c, std::uint32_t position, double floor, Eigen::Vector3d &p, BvhPointResult &r)
             {
                 p = R_ * mover_.node(mover_.clusterOrder()[position]) + t_;
                 if (root_.outside(p))
@@ -223,7 +229,7 @@ namespace meshgap
                 // Depth bounds, as the cluster's (Candidate::bound) with |p - c| for the radius (never above it, so
                 // that the cluster's bound is never below its nodes').
                 const double bound = dc + offset, beyond = std::min(offset, mover_.clusters()[c.cluster].radius) - dc;
-                if (pad(c.centreInside ? bound : beyond) <= floor)
+                if (pad(c.centreOutside ? beyond : bound) <= floor)
                     return false;
                 double upper = pad(bound);
                 if (!c.oneSide)
@@ -246,16 +252,14 @@ namespace meshgap
                 estimate_.triangleTests += r.triangleTests;
                 if (!(r.distance > floor))
                     return false;
-                bool in;
-                if (c.oneSide)
-                    in = c.centreInside;  // the whole ball is on the centre's side
-                else if (c.centreInside)
-                    in = pad(offset) < dc || inside(p, r);  // within dc of an inside centre: no surface between
-                else
+                if (c.centreOutside)
                     // Beyond the bound of an outside centre no node counts, whatever its own test says: the bound
                     // that prunes is then part of the verdict, so a pruned node is never one that would count.
-                    in = !(r.distance > pad(beyond)) && inside(p, r);
-                return in;
+                    return !(r.distance > pad(beyond)) && (!c.oneSide && inside(p, r));
+                if (c.oneSide)
+                    return centreInside(c);  // the whole ball is on the centre's side
+                // Within dc of an inside centre there is no surface between: inside too.
+                return (pad(offset) < dc && centreInside(c)) || inside(p, r);
             }
 
             /** \brief Cluster \e k as a candidate (false when none of its nodes can lie in the host's box). */
@@ -270,9 +274,11 @@ namespace meshgap
                 out.cluster = k;
                 out.centreDistance = out.nearest.distance;
                 out.oneSide = out.centreDistance > cluster.radius;
-                out.centreInside = inside(out.centre, out.nearest);
+                out.centreOutside =
+                    localSide(host_, out.centre, out.nearest.triangle, out.nearest.closest, orient_) > 0;
+                out.inside = -1;
                 out.bound =
-                    out.centreInside ? out.centreDistance + cluster.radius : cluster.radius - out.centreDistance;
+                    out.centreOutside ? cluster.radius - out.centreDistance : out.centreDistance + cluster.radius;
                 return true;
             }
 
