@@ -306,27 +306,6 @@ namespace meshgap
         }
     }  // namespace
 
-    bool insideClosedBody(const Body &body, const Eigen::Vector3d &p)
-    {
-        if (!body.isClosed())
-            return false;
-        const TriangleBvh::Node &root = body.bvh().nodes()[0];
-        if (root.outside(p))
-            return false;  // outside the bounding box
-        // Directions off every axis and diagonal (OMPL.app's walls are axis-aligned: a ray along an axis would graze
-        // their edges).
-        static const Eigen::Vector3d directions[] = {Eigen::Vector3d(0.5773, 0.6532, 0.4898),
-                                                     Eigen::Vector3d(-0.3217, 0.8469, -0.4234),
-                                                     Eigen::Vector3d(0.7071, -0.2764, -0.6508)};
-        for (const Eigen::Vector3d &d : directions)
-        {
-            int winding = 0;
-            if (bvhRayWinding(body.bvh(), p, d, winding))
-                return winding != 0;
-        }
-        return containsPoint(body, p);
-    }
-
     PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB,
                                          PenetrationWarmStart *warm)
     {

@@ -73,10 +73,16 @@ namespace meshgap
         the same verdict at a fraction of the cost along a run of nearby poses. */
     bool inCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, ExactWarmStart *warm = nullptr);
 
-    /** \brief True when \e p (in the body's frame) is inside the closed body \e body (generalised winding number
-        over its surface triangles > 1/2, summed over all of them: O(n); insideClosedBody() in PenetrationDepth.h
-        gives the same verdict by ray casting through the BVH). Always false for an open body. */
+    /** \brief True when \e p (in the body's frame) is inside the closed body \e body: its generalised winding
+        number, summed over every surface triangle, is above 1/2. O(n): the definition, and the tests' oracle;
+        insideClosedBody() gives the same verdict faster. Always false for an open body or a point outside the
+        body's bounding box. */
     bool containsPoint(const Body &body, const Eigen::Vector3d &p);
+
+    /** \brief containsPoint()'s verdict in O(log n): the winding number by ray casting through the BVH
+        (bvhRayWinding()) along up to three fixed directions, and containsPoint()'s sum when all three are
+        ambiguous. Always false for an open body or a point outside the body's bounding box. */
+    bool insideClosedBody(const Body &body, const Eigen::Vector3d &p);
 
     /**
        @anchor mgExact

@@ -89,11 +89,6 @@ namespace meshgap
         triangles when it found some; adds to triangleTests. \e warm: as penetrationDepth()'s. */
     void setPenetration(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
                         PenetrationWarmStart *warm = nullptr);
-
-    /** \brief True when \e p (body frame) is inside the closed \e body: bvhRayWinding() along up to three fixed
-        directions, containsPoint() when all three are ambiguous. Always false for an open body. The same verdict
-        as containsPoint() (both compute the winding number), in O(log n) instead of O(n). */
-    bool insideClosedBody(const Body &body, const Eigen::Vector3d &p);
 }  // namespace meshgap
 
 #endif
