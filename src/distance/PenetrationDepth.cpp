@@ -139,7 +139,7 @@ namespace meshgap
                 candidates.clear();
                 Candidate next;
                 for (std::uint32_t k = 0; k < mover_.clusters().size(); ++k)
-                    if (candidate(k, next))
+                    if (candidate(k, best.depth, next))
                         candidates.push_back(next);
                 // Largest bound first; ties by cluster index (a fixed order: the answer is a function of the pose).
                 std::sort(candidates.begin(), candidates.end(),
@@ -179,7 +179,7 @@ namespace meshgap
                 Candidate c;
                 Eigen::Vector3d p;
                 BvhPointResult r;
-                return candidate(k, c) && deeper(c, position, 0.0, p, r) ? r.distance : 0.0;
+                return candidate(k, 0.0, c) && deeper(c, position, 0.0, p, r) ? r.distance : 0.0;
             }
 
         private:
@@ -262,15 +262,28 @@ namespace meshgap
                 return (pad(offset) < dc && centreInside(c)) || inside(p, r);
             }
 
-            /** \brief Cluster \e k as a candidate (false when none of its nodes can lie in the host's box). */
-            bool candidate(std::uint32_t k, Candidate &out)
+            /** \brief Cluster \e k as a candidate (false when none of its nodes can lie in the host's box, or be deeper
+                than \e floor). */
+            bool candidate(std::uint32_t k, double floor, Candidate &out)
             {
                 const NodeCluster &cluster = mover_.clusters()[k];
                 out.centre = R_ * cluster.center + t_;
                 if ((root_.local(out.centre).cwiseAbs() - root_.half).cwiseMax(0.0).norm() > cluster.radius)
                     return false;
-                bvhPointDistance(host_.bvh(), out.centre, std::numeric_limits<double>::infinity(), -1.0, out.nearest);
+                // A centre within floor - r of the surface: no node of the cluster is deeper than \e floor (whatever
+                // side the centre is on), and run() would skip it; the point query may stop as soon as it knows.
+                // Dropping such a cluster leaves the others' order as it was.
+                const double stop = floor > 0.0 ? (floor - slack_) / (1.0 + 1e-9) - cluster.radius : -1.0;
+                const double infinity = std::numeric_limits<double>::infinity();
+                bvhPointDistance(host_.bvh(), out.centre, infinity, stop, out.nearest);
                 estimate_.triangleTests += out.nearest.triangleTests;
+                if (out.nearest.distance <= stop)
+                {
+                    if (pad(out.nearest.distance + cluster.radius) <= floor)
+                        return false;
+                    bvhPointDistance(host_.bvh(), out.centre, infinity, -1.0, out.nearest);  // roundoff: never seen
+                    estimate_.triangleTests += out.nearest.triangleTests;
+                }
                 out.cluster = k;
                 out.centreDistance = out.nearest.distance;
                 out.oneSide = out.centreDistance > cluster.radius;
