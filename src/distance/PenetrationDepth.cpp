@@ -116,8 +116,10 @@ namespace meshgap
         class NodeSearch
         {
         public:
+            /** \brief \e nearest: a triangle of the host per position of the mover's clusterOrder(), or null (see
+                PenetrationWarmStart::nearest). */
             NodeSearch(const Body &host, const Body &mover, const Eigen::Isometry3d &X_HM, bool hostIsA,
-                       PenetrationEstimate &estimate)
+                       PenetrationEstimate &estimate, std::uint32_t *nearest)
                 : host_(host),
                   mover_(mover),
                   root_(host.bvh().nodes()[0]),
@@ -126,7 +128,8 @@ namespace meshgap
                   orient_(host.orientation()),
                   slack_(1e-12 * (root_.center.norm() + root_.half.norm()) + 1e-300),
                   hostIsA_(hostIsA),
-                  estimate_(estimate)
+                  estimate_(estimate),
+                  nearest_(nearest)
             {
             }
 
@@ -245,11 +248,25 @@ namespace meshgap
                         return false;
                     upper = std::min(upper, pad(d));
                 }
+                if (nearest_ && nearest_[position] < host_.surface().triangles.size())
+                {
+                    // The triangle nearest to this node at an earlier pose: the same bound, usually much tighter.
+                    const Mesh &m = host_.surface();
+                    const Triangle &f = m.triangles[nearest_[position]];
+                    Eigen::Vector3d on;
+                    ++estimate_.triangleTests;
+                    const double d = pointTriangleDistance(p, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], on);
+                    if (d <= floor)
+                        return false;
+                    upper = std::min(upper, pad(d));
+                }
                 ++estimate_.nodesTested;
                 bvhPointDistance(host_.bvh(), p, upper, floor, r);
                 if (!r.found)
                     bvhPointDistance(host_.bvh(), p, std::numeric_limits<double>::infinity(), floor, r);  // never
                 estimate_.triangleTests += r.triangleTests;
+                if (nearest_)
+                    nearest_[position] = r.triangle;
                 if (!(r.distance > floor))
                     return false;
                 if (c.centreOutside)
@@ -310,6 +327,7 @@ namespace meshgap
             const double orient_, slack_;
             const bool hostIsA_;
             PenetrationEstimate &estimate_;
+            std::uint32_t *const nearest_;
         };
 
         /** \brief A surface triangle holding node \e i of \e body. */
@@ -326,8 +344,19 @@ namespace meshgap
         const bool closedA = a.isClosed() && !a.surface().triangles.empty(),
                    closedB = b.isClosed() && !b.surface().triangles.empty();
         const Eigen::Isometry3d X_BA = X_AB.inverse();
+        // Per node, the host triangle last found nearest to it: B's nodes (inside A) first, then A's.
+        std::uint32_t *nearest = nullptr;
+        if (warm)
+        {
+            if (warm->nearest.size() != std::size_t(a.numNodes()) + b.numNodes())
+                warm->nearest.assign(std::size_t(a.numNodes()) + b.numNodes(), UINT32_MAX);  // first use only
+            nearest = warm->nearest.data();
+        }
         auto search = [&](bool hostIsA)
-        { return hostIsA ? NodeSearch(a, b, X_AB, true, estimate) : NodeSearch(b, a, X_BA, false, estimate); };
+        {
+            return hostIsA ? NodeSearch(a, b, X_AB, true, estimate, nearest)
+                           : NodeSearch(b, a, X_BA, false, estimate, nearest ? nearest + b.numNodes() : nullptr);
+        };
 
         // The last deepest node's depth at this pose, just below it: a lower bound to start from (NodeSearch says
         // why the answer stays the cold one).

@@ -21,7 +21,10 @@ namespace meshgap
         BvhFront collision;                ///< of the last collision test (inCollision() with a warm start)
         PenetrationWarmStart penetration;  ///< the last deepest node, in collision (penetrationDepth())
         /** \brief Bytes held, this object included. */
-        std::size_t memoryBytes() const { return sizeof(*this) + front.memoryBytes() + collision.memoryBytes(); }
+        std::size_t memoryBytes() const
+        {
+            return sizeof(*this) + front.memoryBytes() + collision.memoryBytes() + penetration.memoryBytes();
+        }
     };
 
     /** \brief The exact stage after a node-level search (the paper's future work, Section V): turn \e result's node

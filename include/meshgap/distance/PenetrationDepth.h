@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <vector>
 
 #include "meshgap/distance/DistanceQuery.h"
 #include "meshgap/geometry/Body.h"
@@ -40,6 +41,13 @@ namespace meshgap
         bool hostIsA{false};        ///< the node is B's, inside A (true), or A's, inside B
         std::uint32_t cluster{0};   ///< its cluster, an index in the mover's Body::clusters()
         std::uint32_t position{0};  ///< its index in the mover's Body::clusterOrder()
+        /** \brief Per node (B's, then A's, by position in clusterOrder()), the triangle of the other body found nearest
+            to it at an earlier pose, or none (UINT32_MAX): its distance bounds the node's depth from above, often
+            enough to skip the node's point query. Sized at the first use; reset() need not clear it (any triangle
+            gives a true bound). */
+        std::vector<std::uint32_t> nearest;
+        /** \brief Bytes held beyond the object itself. */
+        std::size_t memoryBytes() const { return nearest.capacity() * sizeof(std::uint32_t); }
     };
 
     /** \brief Penetration depth of two colliding bodies, B placed in A's frame by \e X_AB: the depth of the deepest
