@@ -116,10 +116,10 @@ namespace meshgap
         class NodeSearch
         {
         public:
-            /** \brief \e nearest: a triangle of the host per position of the mover's clusterOrder(), or null (see
-                PenetrationWarmStart::nearest). */
+            /** \brief \e nearest: a triangle of the host per position of the mover's clusterOrder(), and
+                \e clusterNearest one per cluster of the mover, or null (see PenetrationWarmStart::nearest). */
             NodeSearch(const Body &host, const Body &mover, const Eigen::Isometry3d &X_HM, bool hostIsA,
-                       PenetrationEstimate &estimate, std::uint32_t *nearest)
+                       PenetrationEstimate &estimate, std::uint32_t *nearest, std::uint32_t *clusterNearest)
                 : host_(host),
                   mover_(mover),
                   root_(host.bvh().nodes()[0]),
@@ -129,7 +129,8 @@ namespace meshgap
                   slack_(1e-12 * (root_.center.norm() + root_.half.norm()) + 1e-300),
                   hostIsA_(hostIsA),
                   estimate_(estimate),
-                  nearest_(nearest)
+                  nearest_(nearest),
+                  clusterNearest_(clusterNearest)
             {
             }
 
@@ -292,15 +293,38 @@ namespace meshgap
                 // Dropping such a cluster leaves the others' order as it was.
                 const double stop = floor > 0.0 ? (floor - slack_) / (1.0 + 1e-9) - cluster.radius : -1.0;
                 const double infinity = std::numeric_limits<double>::infinity();
-                bvhPointDistance(host_.bvh(), out.centre, infinity, stop, out.nearest);
-                estimate_.triangleTests += out.nearest.triangleTests;
-                if (out.nearest.distance <= stop)
+                double upper = infinity;
+                std::uint32_t *cached = clusterNearest_ ? clusterNearest_ + k : nullptr;
+                if (cached && *cached < host_.surface().triangles.size())
                 {
-                    if (pad(out.nearest.distance + cluster.radius) <= floor)
+                    // The triangle nearest to the centre at an earlier pose: dc is at most its distance (the same
+                    // value the query would give it), which may settle the cluster at once, and bounds the query.
+                    const Mesh &m = host_.surface();
+                    const Triangle &f = m.triangles[*cached];
+                    Eigen::Vector3d on;
+                    ++estimate_.triangleTests;
+                    const double d =
+                        pointTriangleDistance(out.centre, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], on);
+                    if (pad(d + cluster.radius) <= floor)
                         return false;
+                    upper = pad(d);
+                }
+                bvhPointDistance(host_.bvh(), out.centre, upper, stop, out.nearest);
+                estimate_.triangleTests += out.nearest.triangleTests;
+                if (out.nearest.found && out.nearest.distance <= stop &&
+                    pad(out.nearest.distance + cluster.radius) <= floor)
+                {
+                    if (cached)
+                        *cached = out.nearest.triangle;
+                    return false;
+                }
+                if (!out.nearest.found || out.nearest.distance <= stop)
+                {
                     bvhPointDistance(host_.bvh(), out.centre, infinity, -1.0, out.nearest);  // roundoff: never seen
                     estimate_.triangleTests += out.nearest.triangleTests;
                 }
+                if (cached)
+                    *cached = out.nearest.triangle;
                 out.cluster = k;
                 out.centreDistance = out.nearest.distance;
                 out.oneSide = out.centreDistance > cluster.radius;
@@ -327,7 +351,7 @@ namespace meshgap
             const double orient_, slack_;
             const bool hostIsA_;
             PenetrationEstimate &estimate_;
-            std::uint32_t *const nearest_;
+            std::uint32_t *const nearest_, *const clusterNearest_;
         };
 
         /** \brief A surface triangle holding node \e i of \e body. */
@@ -344,18 +368,25 @@ namespace meshgap
         const bool closedA = a.isClosed() && !a.surface().triangles.empty(),
                    closedB = b.isClosed() && !b.surface().triangles.empty();
         const Eigen::Isometry3d X_BA = X_AB.inverse();
-        // Per node, the host triangle last found nearest to it: B's nodes (inside A) first, then A's.
+        // Per node and per cluster centre, the host triangle last found nearest to it: B's nodes (inside A), A's,
+        // then B's clusters, A's.
         std::uint32_t *nearest = nullptr;
+        const std::size_t nodes = std::size_t(a.numNodes()) + b.numNodes(),
+                          slots = nodes + a.clusters().size() + b.clusters().size();
         if (warm)
         {
-            if (warm->nearest.size() != std::size_t(a.numNodes()) + b.numNodes())
-                warm->nearest.assign(std::size_t(a.numNodes()) + b.numNodes(), UINT32_MAX);  // first use only
+            if (warm->nearest.size() != slots)
+                warm->nearest.assign(slots, UINT32_MAX);  // first use only
             nearest = warm->nearest.data();
         }
         auto search = [&](bool hostIsA)
         {
-            return hostIsA ? NodeSearch(a, b, X_AB, true, estimate, nearest)
-                           : NodeSearch(b, a, X_BA, false, estimate, nearest ? nearest + b.numNodes() : nullptr);
+            if (!nearest)
+                return hostIsA ? NodeSearch(a, b, X_AB, true, estimate, nullptr, nullptr)
+                               : NodeSearch(b, a, X_BA, false, estimate, nullptr, nullptr);
+            return hostIsA ? NodeSearch(a, b, X_AB, true, estimate, nearest, nearest + nodes)
+                           : NodeSearch(b, a, X_BA, false, estimate, nearest + b.numNodes(),
+                                        nearest + nodes + b.clusters().size());
         };
 
         // The last deepest node's depth at this pose, just below it: a lower bound to start from (NodeSearch says

@@ -41,10 +41,10 @@ namespace meshgap
         bool hostIsA{false};        ///< the node is B's, inside A (true), or A's, inside B
         std::uint32_t cluster{0};   ///< its cluster, an index in the mover's Body::clusters()
         std::uint32_t position{0};  ///< its index in the mover's Body::clusterOrder()
-        /** \brief Per node (B's, then A's, by position in clusterOrder()), the triangle of the other body found nearest
-            to it at an earlier pose, or none (UINT32_MAX): its distance bounds the node's depth from above, often
-            enough to skip the node's point query. Sized at the first use; reset() need not clear it (any triangle
-            gives a true bound). */
+        /** \brief Per node (B's, then A's, by position in clusterOrder()) and per node cluster (B's, then A's), the
+            triangle of the other body found nearest to it (to the cluster's centre) at an earlier pose, or none
+            (UINT32_MAX): its distance bounds the node's depth, or the cluster's, from above, often enough to skip a
+            point query. Sized at the first use; reset() need not clear it (any triangle gives a true bound). */
         std::vector<std::uint32_t> nearest;
         /** \brief Bytes held beyond the object itself. */
         std::size_t memoryBytes() const { return nearest.capacity() * sizeof(std::uint32_t); }
