@@ -78,18 +78,47 @@ namespace meshgap
         }
     }  // namespace
 
+    namespace
+    {
+        /** \brief The opening of both point-in-body tests: only a closed body has an inside, and it lies in the
+            body's bounding box. */
+        bool mayContain(const Body &body, const Eigen::Vector3d &p)
+        {
+            return body.isClosed() && !body.bvh().nodes()[0].outside(p);
+        }
+
+        /** \brief The generalised winding number of \e body's surface about \e p is above 1/2 (summed solid angles). */
+        bool windingAboveHalf(const Body &body, const Eigen::Vector3d &p)
+        {
+            const Mesh &m = body.surface();
+            double total = 0.0;
+            for (const Triangle &f : m.triangles)
+                total += solidAngle(m.vertices[f[0]] - p, m.vertices[f[1]] - p, m.vertices[f[2]] - p);
+            return std::abs(total) > 2.0 * M_PI;  // winding number |total / 4 pi| > 1/2
+        }
+    }  // namespace
+
     bool containsPoint(const Body &body, const Eigen::Vector3d &p)
     {
-        if (!body.isClosed())
+        return mayContain(body, p) && windingAboveHalf(body, p);
+    }
+
+    bool insideClosedBody(const Body &body, const Eigen::Vector3d &p)
+    {
+        if (!mayContain(body, p))
             return false;
-        const TriangleBvh::Node &root = body.bvh().nodes()[0];
-        if (root.outside(p))
-            return false;  // outside the bounding box
-        const Mesh &m = body.surface();
-        double total = 0.0;
-        for (const Triangle &f : m.triangles)
-            total += solidAngle(m.vertices[f[0]] - p, m.vertices[f[1]] - p, m.vertices[f[2]] - p);
-        return std::abs(total) > 2.0 * M_PI;  // winding number |total / 4 pi| > 1/2
+        // Directions off every axis and diagonal (OMPL.app's walls are axis-aligned: a ray along an axis would graze
+        // their edges).
+        static const Eigen::Vector3d directions[] = {Eigen::Vector3d(0.5773, 0.6532, 0.4898),
+                                                     Eigen::Vector3d(-0.3217, 0.8469, -0.4234),
+                                                     Eigen::Vector3d(0.7071, -0.2764, -0.6508)};
+        for (const Eigen::Vector3d &d : directions)
+        {
+            int winding = 0;
+            if (bvhRayWinding(body.bvh(), p, d, winding))
+                return winding != 0;
+        }
+        return windingAboveHalf(body, p);
     }
 
     namespace
@@ -117,7 +146,7 @@ namespace meshgap
         /** \brief The signed distance once result.inCollision is decided: nothing to add when free; in collision the
             depth (setPenetration()), unless the caller stops early (\e mayStop), who asked for the verdict only. */
         void finishCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, bool mayStop,
-                             DistanceResult &result)
+                             DistanceResult &result, ExactWarmStart *warm)
         {
             result.penetrationDepth = 0.0;
             result.penetration = Penetration::NONE;
@@ -129,7 +158,7 @@ namespace meshgap
                 result.penetration = Penetration::NOT_COMPUTED;
             }
             else
-                setPenetration(a, b, X_AB, result);
+                setPenetration(a, b, X_AB, result, warm ? &warm->penetration : nullptr);
         }
     }  // namespace
 
@@ -184,7 +213,7 @@ namespace meshgap
             result.distance = std::numeric_limits<double>::infinity();
             result.certified = true;
             result.inCollision = oneInsideTheOther(a, b, X_AB);
-            finishCollision(a, b, X_AB, mayStop, result);
+            finishCollision(a, b, X_AB, mayStop, result, warm);
             return;
         }
 
@@ -206,7 +235,7 @@ namespace meshgap
         result.certified = !stoppedEarly;
         if (!result.inCollision && !stoppedEarly)
             result.inCollision = oneInsideTheOther(a, b, X_AB);  // the witnesses stay the closest surface points
-        finishCollision(a, b, X_AB, mayStop, result);
+        finishCollision(a, b, X_AB, mayStop, result, warm);
     }
 
     void ExactSolver::solve(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, const DistanceRequest &request,

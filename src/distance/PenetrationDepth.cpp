@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
 #include <limits>
+#include <vector>
 
 #include "meshgap/ThreadScratch.h"
 #include "meshgap/distance/ExactDistance.h"
@@ -19,21 +19,13 @@ namespace meshgap
             double depth{0.0};
             bool found{false};
             bool hostIsA{false};
-            std::uint32_t node{0};                              ///< node of the other body (the mover)
-            std::uint32_t triangle{0};                          ///< host surface triangle nearest to it
+            std::uint32_t node{0};                             ///< node of the other body (the mover)
+            std::uint32_t position{0};                         ///< its index in the mover's clusterOrder()
+            std::uint32_t cluster{0};                          ///< the mover's cluster holding it
+            std::uint32_t triangle{0};                         ///< host surface triangle nearest to it
             Eigen::Vector3d point{Eigen::Vector3d::Zero()};    ///< the node, host frame
             Eigen::Vector3d closest{Eigen::Vector3d::Zero()};  ///< nearest host surface point, host frame
         };
-
-        /** \brief +1 when \e body's triangles wind outward (positive signed volume), -1 when inward. */
-        double orientation(const Body &body)
-        {
-            const Mesh &m = body.surface();
-            double volume = 0.0;
-            for (const Triangle &f : m.triangles)
-                volume += m.vertices[f[0]].dot(m.vertices[f[1]].cross(m.vertices[f[2]]));
-            return volume >= 0.0 ? 1.0 : -1.0;
-        }
 
         /** \brief Which side of \e host's surface \e p is on, judged at its nearest surface point \e q (on triangle
             \e t): the sign of (p - q) against the angle-weighted pseudonormal of the feature q lies on (face, edge or
@@ -105,94 +97,262 @@ namespace meshgap
             return side * orient < 0.0 ? -1 : 1;
         }
 
-        /** \brief Nodes of \e mover (placed in the host's frame by \e X_HM) inside the closed \e host, deeper than
-            \e best. Branch and bound over the mover's node clusters: a cluster (centre c, radius r) whose centre is
-            at distance d from the host's surface holds no node deeper than d + r, so clusters are visited in
-            decreasing order of that bound until it falls to the deepest node so far; and when d > r no surface
-            crosses the cluster's ball, so all its nodes are on the same side as c: one inside test for them all.
-            Inside tests: localSide() first, a filter; what it calls outside is skipped, anything else is confirmed
-            by insideClosedBody(). So no outside node ever counts; where the filter is wrong (overlapping shells,
-            mixed winding) an inside node may be skipped, which only lowers the estimate. */
-        void deepestNodeIn(const Body &host, const Body &mover, const Eigen::Isometry3d &X_HM, bool hostIsA,
-                           Deepest &best, PenetrationEstimate &estimate)
+        /** \brief The search for the nodes of \e mover (placed in the host's frame by \e X_HM) inside the closed
+            \e host that are deeper than the deepest so far. Branch and bound over the mover's node clusters: a
+            cluster (centre c, radius r) whose centre is at distance d from the host's surface holds no node deeper
+            than d + r, so clusters are visited in decreasing order of that bound until it falls to the deepest node
+            so far; and when d > r no surface crosses the cluster's ball, so all its nodes are on the same side as c:
+            one inside test for them all. Inside tests: localSide() first, a filter; what it calls outside is skipped,
+            anything else is confirmed by insideClosedBody(). So no outside node ever counts; where the filter is wrong
+            (overlapping shells, mixed winding) an inside node may be skipped, which only lowers the estimate.
+
+            What run() returns is a function of the pose and of nothing else: the first node, in the visiting order
+            (clusters by decreasing bound, ties by index; nodes in clusterOrder()), of those it accepts at the largest
+            depth. Every node's depth and verdict are functions of the pose (bvhPointDistance() gives the same
+            nearest triangle whatever bounds it is given, as long as the distance lies between them), and a bound
+            prunes only with a pad above roundoff (pad()), so a node deeper than the deepest so far is never skipped.
+            Hence starting from any depth below the answer's (a warm start's lower bound) gives the same node: it only
+            skips nodes that cannot win. */
+        class NodeSearch
         {
-            const TriangleBvh::Node &root = host.bvh().nodes()[0];
-            const Eigen::Matrix3d R = X_HM.linear();
-            const Eigen::Vector3d t = X_HM.translation();
-            const double infinity = std::numeric_limits<double>::infinity();
-            const double orient = orientation(host);
-            auto inside = [&](const Eigen::Vector3d &p, const BvhPointResult &nearest)
+        public:
+            /** \brief \e nearest: a triangle of the host per position of the mover's clusterOrder(), and
+                \e clusterNearest one per cluster of the mover, or null (see PenetrationWarmStart::nearest). */
+            NodeSearch(const Body &host, const Body &mover, const Eigen::Isometry3d &X_HM, bool hostIsA,
+                       PenetrationEstimate &estimate, std::uint32_t *nearest, std::uint32_t *clusterNearest)
+                : host_(host),
+                  mover_(mover),
+                  root_(host.bvh().nodes()[0]),
+                  R_(X_HM.linear()),
+                  t_(X_HM.translation()),
+                  orient_(host.orientation()),
+                  slack_(1e-12 * (root_.center.norm() + root_.half.norm()) + 1e-300),
+                  hostIsA_(hostIsA),
+                  estimate_(estimate),
+                  nearest_(nearest),
+                  clusterNearest_(clusterNearest)
             {
-                if (localSide(host, p, nearest.triangle, nearest.closest, orient) > 0)
-                    return false;
-                ++estimate.insideTests;
-                return insideClosedBody(host, p);
-            };
-            struct Candidate
-            {
-                double bound, centreDistance;
-                std::uint32_t cluster;
-                BvhPointResult nearest;  ///< of the centre
-            };
-            ThreadScratch<std::vector<Candidate>> scratch;  // a warmed-up thread allocates nothing here
-            std::vector<Candidate> &candidates = scratch.get();
-            candidates.clear();
-            for (std::uint32_t k = 0; k < mover.clusters().size(); ++k)
-            {
-                const NodeCluster &cluster = mover.clusters()[k];
-                const Eigen::Vector3d c = R * cluster.center + t;
-                if ((root.local(c).cwiseAbs() - root.half).cwiseMax(0.0).norm() > cluster.radius)
-                    continue;  // no node of it in the host's box
-                BvhPointResult r;
-                bvhPointDistance(host.bvh(), c, infinity, -1.0, r);
-                estimate.triangleTests += r.triangleTests;
-                candidates.push_back({r.distance + cluster.radius, r.distance, k, r});
             }
-            // Largest bound first; ties by cluster index (a fixed order: the answer is a function of the pose).
-            std::sort(candidates.begin(), candidates.end(), [](const Candidate &x, const Candidate &y)
-                      { return x.bound > y.bound || (x.bound == y.bound && x.cluster < y.cluster); });
-            for (const Candidate &candidate : candidates)
+
+            /** \brief Visit the nodes that may be deeper than \e best (its depth is a lower bound, found or not);
+                \e best becomes the deepest found, if any is deeper. */
+            void run(Deepest &best)
             {
-                if (candidate.bound <= best.depth)
-                    break;  // neither this cluster nor any later one holds a deeper node
-                const NodeCluster &cluster = mover.clusters()[candidate.cluster];
-                // The ball (centre c, radius < distance to the surface) lies wholly inside or wholly outside.
-                const bool oneSide = candidate.centreDistance > cluster.radius;
-                const Eigen::Vector3d centre = R * cluster.center + t;
-                if (oneSide && !inside(centre, candidate.nearest))
-                    continue;
-                for (std::uint32_t k = cluster.begin; k < cluster.end; ++k)
+                ThreadScratch<std::vector<Candidate>> scratch;  // a warmed-up thread allocates nothing here
+                std::vector<Candidate> &candidates = scratch.get();
+                candidates.clear();
+                Candidate next;
+                for (std::uint32_t k = 0; k < mover_.clusters().size(); ++k)
+                    if (candidate(k, best.depth, next))
+                        candidates.push_back(next);
+                // Largest bound first; ties by cluster index (a fixed order: the answer is a function of the pose).
+                std::sort(candidates.begin(), candidates.end(),
+                          [](const Candidate &x, const Candidate &y)
+                          { return x.bound > y.bound || (x.bound == y.bound && x.cluster < y.cluster); });
+                for (Candidate &candidate : candidates)
                 {
-                    const std::uint32_t i = mover.clusterOrder()[k];
-                    const Eigen::Vector3d p = R * mover.node(i) + t;
-                    if (root.outside(p))
-                        continue;
-                    // Nearer to the surface than the deepest so far: cannot be the deepest, inside or not. The
-                    // centre's nearest point is at most |p - c| farther from p: a bound that may settle that at once,
-                    // and otherwise prunes the search (padded so that the nearest triangle is found below it).
-                    const double bound = candidate.centreDistance + (p - centre).norm();
-                    if (bound <= best.depth)
-                        continue;
-                    ++estimate.nodesTested;
-                    BvhPointResult r;
-                    bvhPointDistance(host.bvh(), p, bound * (1.0 + 1e-9) + 1e-300, best.depth, r);
-                    if (!r.found)
-                        bvhPointDistance(host.bvh(), p, infinity, best.depth, r);  // roundoff; never seen
-                    estimate.triangleTests += r.triangleTests;
-                    if (!(r.distance > best.depth))
-                        continue;
-                    if (!oneSide && !inside(p, r))
-                        continue;
-                    best.depth = r.distance;
-                    best.found = true;
-                    best.hostIsA = hostIsA;
-                    best.node = i;
-                    best.triangle = r.triangle;
-                    best.point = p;
-                    best.closest = r.closest;
+                    if (pad(candidate.bound) <= best.depth)
+                        break;  // neither this cluster nor any later one holds a deeper node
+                    if (candidate.oneSide && !centreInside(candidate))
+                        continue;  // a ball wholly outside
+                    const NodeCluster &cluster = mover_.clusters()[candidate.cluster];
+                    for (std::uint32_t k = cluster.begin; k < cluster.end; ++k)
+                    {
+                        Eigen::Vector3d p;
+                        BvhPointResult r;
+                        if (!deeper(candidate, k, best.depth, p, r))
+                            continue;
+                        best.depth = r.distance;
+                        best.found = true;
+                        best.hostIsA = hostIsA_;
+                        best.node = mover_.clusterOrder()[k];
+                        best.position = k;
+                        best.cluster = candidate.cluster;
+                        best.triangle = r.triangle;
+                        best.point = p;
+                        best.closest = r.closest;
+                    }
                 }
             }
-        }
+
+            /** \brief The depth run() gives the node at \e position of the mover's clusterOrder(), in cluster \e k, if
+                it would accept it (the same tests on the same points; the bounds change no result); 0 if it would
+                not. A lower bound on what run() finds, then. */
+            double depthOf(std::uint32_t k, std::uint32_t position)
+            {
+                Candidate c;
+                Eigen::Vector3d p;
+                BvhPointResult r;
+                return candidate(k, 0.0, c) && deeper(c, position, 0.0, p, r) ? r.distance : 0.0;
+            }
+
+        private:
+            /** \brief \e x raised above the roundoff of the distances it bounds (relative, and absolute at the scale
+                of the host's coordinates): a node whose computed depth exceeds a depth d has a padded bound above d. */
+            double pad(double x) const { return x * (1.0 + 1e-9) + slack_; }
+
+            /** \brief A cluster of the mover that may hold nodes inside the host, at this pose. */
+            struct Candidate
+            {
+                /** \brief No node of the cluster inside the host is deeper than this: dc + r with the centre inside;
+                    r - dc with the centre outside (the segment from an inside node to the centre crosses the
+                    surface, at least dc from the centre); negative when the ball is wholly outside. */
+                double bound;
+                double centreDistance;  ///< dc: from the centre to the host's surface
+                std::uint32_t cluster;
+                BvhPointResult nearest;  ///< of the centre
+                Eigen::Vector3d centre;  ///< host frame
+                bool oneSide;            ///< dc > r: the surface does not cross the ball
+                /** \brief The local side test at the centre's nearest point (localSide()) says outside. It decides
+                    which bound applies; the nodes' verdicts then include that bound (deeper()). */
+                bool centreOutside;
+                int inside{-1};  ///< the centre's inside test (insideClosedBody()), made when first needed: 0, 1
+            };
+
+            /** \brief The centre's inside test, made once. */
+            bool centreInside(Candidate &c)
+            {
+                if (c.inside < 0)
+                {
+                    ++estimate_.insideTests;
+                    c.inside = insideClosedBody(host_, c.centre) ? 1 : 0;
+                }
+                return c.inside == 1;
+            }
+
+            /** \brief Whether the node at \e position of the mover's clusterOrder() (in cluster \e c) lies inside the
+                host deeper than \e floor: then \e p is the node and \e r its nearest surface point. Every test that
+                rules it out before the exact distance is a sound bound, so the verdict and \e r do not depend on
+                \e floor, for a node deeper than it. */
+            bool deeper(Candidate &c, std::uint32_t position, double floor, Eigen::Vector3d &p, BvhPointResult &r)
+            {
+                p = R_ * mover_.node(mover_.clusterOrder()[position]) + t_;
+                if (root_.outside(p))
+                    return false;
+                const double dc = c.centreDistance, offset = (p - c.centre).norm();
+                // Depth bounds, as the cluster's (Candidate::bound) with |p - c| for the radius (never above it, so
+                // that the cluster's bound is never below its nodes').
+                const double bound = dc + offset, beyond = std::min(offset, mover_.clusters()[c.cluster].radius) - dc;
+                if (pad(c.centreOutside ? beyond : bound) <= floor)
+                    return false;
+                double upper = pad(bound);
+                if (!c.oneSide)
+                {
+                    // The distance to the centre's nearest triangle: the same value the search would give that
+                    // triangle, so the node's distance is at most that, exactly.
+                    const Mesh &m = host_.surface();
+                    const Triangle &f = m.triangles[c.nearest.triangle];
+                    Eigen::Vector3d on;
+                    ++estimate_.triangleTests;
+                    const double d = pointTriangleDistance(p, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], on);
+                    if (d <= floor)
+                        return false;
+                    upper = std::min(upper, pad(d));
+                }
+                if (nearest_ && nearest_[position] < host_.surface().triangles.size())
+                {
+                    // The triangle nearest to this node at an earlier pose: the same bound, usually much tighter.
+                    const Mesh &m = host_.surface();
+                    const Triangle &f = m.triangles[nearest_[position]];
+                    Eigen::Vector3d on;
+                    ++estimate_.triangleTests;
+                    const double d = pointTriangleDistance(p, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], on);
+                    if (d <= floor)
+                        return false;
+                    upper = std::min(upper, pad(d));
+                }
+                ++estimate_.nodesTested;
+                bvhPointDistance(host_.bvh(), p, upper, floor, r);
+                if (!r.found)
+                    bvhPointDistance(host_.bvh(), p, std::numeric_limits<double>::infinity(), floor, r);  // never
+                estimate_.triangleTests += r.triangleTests;
+                if (nearest_)
+                    nearest_[position] = r.triangle;
+                if (!(r.distance > floor))
+                    return false;
+                if (c.centreOutside)
+                    // Beyond the bound of an outside centre no node counts, whatever its own test says: the bound
+                    // that prunes is then part of the verdict, so a pruned node is never one that would count.
+                    return !(r.distance > pad(beyond)) && (!c.oneSide && inside(p, r));
+                if (c.oneSide)
+                    return centreInside(c);  // the whole ball is on the centre's side
+                // Within dc of an inside centre there is no surface between: inside too.
+                return (pad(offset) < dc && centreInside(c)) || inside(p, r);
+            }
+
+            /** \brief Cluster \e k as a candidate (false when none of its nodes can lie in the host's box, or be deeper
+                than \e floor). */
+            bool candidate(std::uint32_t k, double floor, Candidate &out)
+            {
+                const NodeCluster &cluster = mover_.clusters()[k];
+                out.centre = R_ * cluster.center + t_;
+                if ((root_.local(out.centre).cwiseAbs() - root_.half).cwiseMax(0.0).norm() > cluster.radius)
+                    return false;
+                // A centre within floor - r of the surface: no node of the cluster is deeper than \e floor (whatever
+                // side the centre is on), and run() would skip it; the point query may stop as soon as it knows.
+                // Dropping such a cluster leaves the others' order as it was.
+                const double stop = floor > 0.0 ? (floor - slack_) / (1.0 + 1e-9) - cluster.radius : -1.0;
+                const double infinity = std::numeric_limits<double>::infinity();
+                double upper = infinity;
+                std::uint32_t *cached = clusterNearest_ ? clusterNearest_ + k : nullptr;
+                if (cached && *cached < host_.surface().triangles.size())
+                {
+                    // The triangle nearest to the centre at an earlier pose: dc is at most its distance (the same
+                    // value the query would give it), which may settle the cluster at once, and bounds the query.
+                    const Mesh &m = host_.surface();
+                    const Triangle &f = m.triangles[*cached];
+                    Eigen::Vector3d on;
+                    ++estimate_.triangleTests;
+                    const double d =
+                        pointTriangleDistance(out.centre, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], on);
+                    if (pad(d + cluster.radius) <= floor)
+                        return false;
+                    upper = pad(d);
+                }
+                bvhPointDistance(host_.bvh(), out.centre, upper, stop, out.nearest);
+                estimate_.triangleTests += out.nearest.triangleTests;
+                if (out.nearest.found && out.nearest.distance <= stop &&
+                    pad(out.nearest.distance + cluster.radius) <= floor)
+                {
+                    if (cached)
+                        *cached = out.nearest.triangle;
+                    return false;
+                }
+                if (!out.nearest.found || out.nearest.distance <= stop)
+                {
+                    bvhPointDistance(host_.bvh(), out.centre, infinity, -1.0, out.nearest);  // roundoff: never seen
+                    estimate_.triangleTests += out.nearest.triangleTests;
+                }
+                if (cached)
+                    *cached = out.nearest.triangle;
+                out.cluster = k;
+                out.centreDistance = out.nearest.distance;
+                out.oneSide = out.centreDistance > cluster.radius;
+                out.centreOutside =
+                    localSide(host_, out.centre, out.nearest.triangle, out.nearest.closest, orient_) > 0;
+                out.inside = -1;
+                out.bound =
+                    out.centreOutside ? cluster.radius - out.centreDistance : out.centreDistance + cluster.radius;
+                return true;
+            }
+
+            bool inside(const Eigen::Vector3d &p, const BvhPointResult &nearest)
+            {
+                if (localSide(host_, p, nearest.triangle, nearest.closest, orient_) > 0)
+                    return false;
+                ++estimate_.insideTests;
+                return insideClosedBody(host_, p);
+            }
+
+            const Body &host_, &mover_;
+            const TriangleBvh::Node &root_;
+            const Eigen::Matrix3d R_;
+            const Eigen::Vector3d t_;
+            const double orient_, slack_;
+            const bool hostIsA_;
+            PenetrationEstimate &estimate_;
+            std::uint32_t *const nearest_, *const clusterNearest_;
+        };
 
         /** \brief A surface triangle holding node \e i of \e body. */
         std::uint32_t triangleOfNode(const Body &body, std::uint32_t i)
@@ -201,35 +361,69 @@ namespace meshgap
         }
     }  // namespace
 
-    bool insideClosedBody(const Body &body, const Eigen::Vector3d &p)
-    {
-        if (!body.isClosed())
-            return false;
-        const TriangleBvh::Node &root = body.bvh().nodes()[0];
-        if (root.outside(p))
-            return false;  // outside the bounding box
-        // Directions off every axis and diagonal (OMPL.app's walls are axis-aligned: a ray along an axis would graze
-        // their edges).
-        static const Eigen::Vector3d directions[] = {Eigen::Vector3d(0.5773, 0.6532, 0.4898),
-                                                     Eigen::Vector3d(-0.3217, 0.8469, -0.4234),
-                                                     Eigen::Vector3d(0.7071, -0.2764, -0.6508)};
-        for (const Eigen::Vector3d &d : directions)
-        {
-            int winding = 0;
-            if (bvhRayWinding(body.bvh(), p, d, winding))
-                return winding != 0;
-        }
-        return containsPoint(body, p);
-    }
-
-    PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)
+    PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB,
+                                         PenetrationWarmStart *warm)
     {
         PenetrationEstimate estimate;
+        const bool closedA = a.isClosed() && !a.surface().triangles.empty(),
+                   closedB = b.isClosed() && !b.surface().triangles.empty();
+        const Eigen::Isometry3d X_BA = X_AB.inverse();
+        // Per node and per cluster centre, the host triangle last found nearest to it: B's nodes (inside A), A's,
+        // then B's clusters, A's.
+        std::uint32_t *nearest = nullptr;
+        const std::size_t nodes = std::size_t(a.numNodes()) + b.numNodes(),
+                          slots = nodes + a.clusters().size() + b.clusters().size();
+        if (warm)
+        {
+            if (warm->nearest.size() != slots)
+                warm->nearest.assign(slots, UINT32_MAX);  // first use only
+            nearest = warm->nearest.data();
+        }
+        auto search = [&](bool hostIsA)
+        {
+            if (!nearest)
+                return hostIsA ? NodeSearch(a, b, X_AB, true, estimate, nullptr, nullptr)
+                               : NodeSearch(b, a, X_BA, false, estimate, nullptr, nullptr);
+            return hostIsA ? NodeSearch(a, b, X_AB, true, estimate, nearest, nearest + nodes)
+                           : NodeSearch(b, a, X_BA, false, estimate, nearest + b.numNodes(),
+                                        nearest + nodes + b.clusters().size());
+        };
+
+        // The last deepest node's depth at this pose, just below it: a lower bound to start from (NodeSearch says
+        // why the answer stays the cold one).
         Deepest best;
-        if (a.isClosed() && !a.surface().triangles.empty())
-            deepestNodeIn(a, b, X_AB, true, best, estimate);
-        if (b.isClosed() && !b.surface().triangles.empty())
-            deepestNodeIn(b, a, X_AB.inverse(), false, best, estimate);
+        if (warm && warm->valid && (warm->hostIsA ? closedA : closedB))
+        {
+            const Body &mover = warm->hostIsA ? b : a;
+            if (warm->cluster < mover.clusters().size() && warm->position >= mover.clusters()[warm->cluster].begin &&
+                warm->position < mover.clusters()[warm->cluster].end)
+            {
+                const double seed = search(warm->hostIsA).depthOf(warm->cluster, warm->position);
+                if (seed > 0.0)
+                    best.depth = std::nextafter(seed, 0.0);
+            }
+        }
+        const bool seeded = best.depth > 0.0;
+        if (closedA)
+            search(true).run(best);
+        if (closedB)
+            search(false).run(best);
+        if (seeded && !best.found)
+        {
+            // Cannot happen (the seed itself is found); if it did, the cold search gives the answer.
+            best = Deepest();
+            if (closedA)
+                search(true).run(best);
+            if (closedB)
+                search(false).run(best);
+        }
+        if (warm)
+        {
+            warm->valid = best.found;
+            warm->hostIsA = best.hostIsA;
+            warm->cluster = best.cluster;
+            warm->position = best.position;
+        }
 
         if (best.found)
         {
@@ -271,9 +465,10 @@ namespace meshgap
         return estimate;
     }
 
-    void setPenetration(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result)
+    void setPenetration(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
+                        PenetrationWarmStart *warm)
     {
-        const PenetrationEstimate e = penetrationDepth(a, b, X_AB);
+        const PenetrationEstimate e = penetrationDepth(a, b, X_AB, warm);
         result.inCollision = true;
         result.penetrationDepth = e.depth;
         result.penetration = e.kind;

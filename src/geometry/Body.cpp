@@ -30,6 +30,11 @@ namespace meshgap
         }
         body->surface_ = std::move(mesh);
         body->bvh_ = std::make_unique<TriangleBvh>(body->surface_);
+        const Mesh &surface = body->surface_;
+        double volume = 0.0;  // six times the signed volume
+        for (const Triangle &f : surface.triangles)
+            volume += surface.vertices[f[0]].dot(surface.vertices[f[1]].cross(surface.vertices[f[2]]));
+        body->orientation_ = volume >= 0.0 ? 1.0 : -1.0;
         body->buildSurfaceMaps(parent);
         body->graph_ = std::make_shared<const SurfaceGraph>(body->mesh_);
         body->componentNodes_.assign(body->graph_->numComponents(), UINT32_MAX);

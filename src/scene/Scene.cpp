@@ -251,7 +251,7 @@ namespace meshgap
     }
 
     std::size_t Scene::deepestCollision(const Eigen::Isometry3d &X_WR, std::size_t known, DistanceResult &best,
-                                        std::size_t &pairsChecked) const
+                                        std::size_t &pairsChecked, SceneWarmStart *warm) const
     {
         // Every colliding obstacle has a box overlapping the robot's: test them all, in R-tree order; the order
         // cannot matter, since the most negative value wins and ties go to the smallest index.
@@ -269,7 +269,8 @@ namespace meshgap
                     continue;
             }
             DistanceResult r;
-            setPenetration(obstacle, *robot_, X_WR, r);
+            const bool carried = warm && warm->pairs.size() == obstacles_.size();  // fast mode's may be unbound
+            setPenetration(obstacle, *robot_, X_WR, r, carried ? &warm->pairs[k].penetration : nullptr);
             r.certified = true;
             if (bestK == obstacles_.size() || r.distance < best.distance || (r.distance == best.distance && k < bestK))
             {
@@ -415,7 +416,7 @@ namespace meshgap
         {
             // The signed distance: the deepest penetration over all colliding obstacles, whichever was met first.
             DistanceResult deepest;
-            bestK = deepestCollision(X_WR, bestK, deepest, result.pairsChecked);
+            bestK = deepestCollision(X_WR, bestK, deepest, result.pairsChecked, warm);
             best = deepest;
         }
 
@@ -441,8 +442,9 @@ namespace meshgap
         // The signed distance in collision is the exact mode's (no depth with an early stop).
         const bool mayStop = request.stopBelow >= 0.0;
         DistanceResult deepest;
-        const std::size_t hit =
-            mayStop ? firstCollision(X_WR) : deepestCollision(X_WR, obstacles_.size(), deepest, result.pairsChecked);
+        const std::size_t hit = mayStop
+                                    ? firstCollision(X_WR)
+                                    : deepestCollision(X_WR, obstacles_.size(), deepest, result.pairsChecked, &warm);
         if (hit == obstacles_.size())
             return false;
         if (mayStop)

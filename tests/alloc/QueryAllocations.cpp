@@ -209,6 +209,23 @@ namespace meshgap
             check(*dense_, fast(), false, true);
         }
 
+        TEST_F(QueryAllocations, InCollisionWithDepthAlongAStretch)
+        {
+            // Small steps through one box, in collision at every pose: the warm start carries the pair's deepest node
+            // from pose to pose (PenetrationWarmStart), and allocates nothing once warmed up.
+            std::vector<Eigen::Isometry3d> poses;
+            for (int k = 0; k < 40; ++k)
+            {
+                Eigen::Isometry3d X = test::translation(0.3 - 0.015 * k, 0.02, 0.01);
+                X.linear() =
+                    Eigen::AngleAxisd(0.02 * k, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+                poses.push_back(X);
+            }
+            std::size_t collisions = 0;
+            EXPECT_EQ(allocationsAfterWarmUp(*dense_, poses, exact(), false, collisions), 0u);
+            EXPECT_EQ(collisions, poses.size());
+        }
+
         TEST_F(QueryAllocations, InCollisionVerdict)
         {
             const std::vector<Eigen::Isometry3d> poses = motion(0.1);

@@ -8,13 +8,14 @@
 #include <iostream>
 #include <random>
 
-#include "TestNote.h"
 #include "FclOracle.h"
 #include "TestMeshes.h"
+#include "TestNote.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/PenetrationDepth.h"
 #include "meshgap/geometry/TriangleDistance.h"
 #include "meshgap/mesh/MeshLoader.h"
+#include "meshgap/scene/Pose.h"
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/RobotMesh.h"
 #include "meshgap/scene/Scene.h"
@@ -77,8 +78,8 @@ TEST(PenetrationDepth, PointQueriesEqualBruteForce)
             double brute = std::numeric_limits<double>::infinity();
             Eigen::Vector3d on;
             for (const Triangle &t : m.triangles)
-                brute = std::min(brute, pointTriangleDistance(p, m.vertices[t[0]], m.vertices[t[1]],
-                                                              m.vertices[t[2]], on));
+                brute =
+                    std::min(brute, pointTriangleDistance(p, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], on));
             BvhPointResult r;
             bvhPointDistance(body->bvh(), p, std::numeric_limits<double>::infinity(), -1.0, r);
             ASSERT_TRUE(r.found);
@@ -320,10 +321,218 @@ TEST(PenetrationDepth, OmplAppRandomCollidingPosesAreNegative)
                 << name << " pose " << i;
         }
         test::Note() << "[ depth    ] " << name << ": 150 random poses, " << collisions << " colliding, " << deep
-                  << " with a node inside\n";
+                     << " with a node inside\n";
         EXPECT_GT(collisions, 10u);
     }
     if (problems == 0)
         GTEST_SKIP() << "OMPL.app problems (cubicles, Twistycool) not found under " << dir << "; skipping";
 }
 #endif
+
+namespace
+{
+    /** \brief Every field of two estimates the same, bit for bit (the counters aside: they say what each cost). */
+    void expectSameEstimate(const PenetrationEstimate &warm, const PenetrationEstimate &cold, const std::string &where)
+    {
+        EXPECT_EQ(warm.depth, cold.depth) << where;
+        EXPECT_EQ(warm.kind, cold.kind) << where;
+        EXPECT_TRUE(warm.onA == cold.onA && warm.onB == cold.onB) << where;
+        EXPECT_EQ(warm.triangleA, cold.triangleA) << where;
+        EXPECT_EQ(warm.triangleB, cold.triangleB) << where;
+        EXPECT_EQ(warm.witnessFound, cold.witnessFound) << where;
+    }
+
+    /** \brief Brute force: the largest distance to \e host's surface (minimum over every triangle) of a node of
+        \e mover (placed by \e X_HM) inside it (the winding number over every triangle, containsPoint()); 0 if none. */
+    double bruteDeepest(const Body &host, const Body &mover, const Eigen::Isometry3d &X_HM)
+    {
+        const Mesh &m = host.surface();
+        double deepest = 0.0;
+        Eigen::Vector3d on;
+        for (std::uint32_t i = 0; i < mover.numNodes(); ++i)
+        {
+            const Eigen::Vector3d p = X_HM * mover.node(i);
+            if (!containsPoint(host, p))
+                continue;
+            double d = std::numeric_limits<double>::infinity();
+            for (const Triangle &t : m.triangles)
+                d = std::min(d, pointTriangleDistance(p, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], on));
+            deepest = std::max(deepest, d);
+        }
+        return deepest;
+    }
+
+    /** \brief The warm start naming node \e i of \e mover (its place in the mover's clusters). */
+    PenetrationWarmStart seedAt(const Body &mover, std::uint32_t i, bool hostIsA)
+    {
+        PenetrationWarmStart seed;
+        seed.valid = true;
+        seed.hostIsA = hostIsA;
+        const std::vector<std::uint32_t> &order = mover.clusterOrder();
+        seed.position = static_cast<std::uint32_t>(std::find(order.begin(), order.end(), i) - order.begin());
+        for (std::uint32_t k = 0; k < mover.clusters().size(); ++k)
+            if (mover.clusters()[k].begin <= seed.position && seed.position < mover.clusters()[k].end)
+                seed.cluster = k;
+        return seed;
+    }
+
+    /** \brief \e count poses from \e from to \e to (linear translation, slerp rotation). */
+    std::vector<Eigen::Isometry3d> segment(const Eigen::Isometry3d &from, const Eigen::Isometry3d &to, int count)
+    {
+        std::vector<Eigen::Isometry3d> out;
+        const Eigen::Quaterniond qa(from.linear()), qb(to.linear());
+        for (int k = 0; k < count; ++k)
+        {
+            const double s = count > 1 ? double(k) / (count - 1) : 0.0;
+            Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+            X.linear() = qa.slerp(s, qb).toRotationMatrix();
+            X.translation() = (1.0 - s) * from.translation() + s * to.translation();
+            out.push_back(X);
+        }
+        return out;
+    }
+
+    /** \brief Runs \e poses cold and with one warm start carried along; every estimate must be the cold one bit for
+        bit. Counts, among colliding poses in a row, the deepest node's moves to the other body and to another
+        cluster, and the nodes tested cold and warm. */
+    struct WarmAlongMotion
+    {
+        std::size_t colliding{0}, bodyChanges{0}, clusterJumps{0}, coldNodes{0}, warmNodes{0};
+
+        void run(const Body &a, const Body &b, const std::vector<Eigen::Isometry3d> &poses, const std::string &name)
+        {
+            PenetrationWarmStart warm;
+            for (std::size_t i = 0; i < poses.size(); ++i)
+            {
+                if (!inCollision(a, b, poses[i]))
+                    continue;
+                ++colliding;
+                const PenetrationWarmStart before = warm;
+                const PenetrationEstimate cold = penetrationDepth(a, b, poses[i]);
+                const PenetrationEstimate hot = penetrationDepth(a, b, poses[i], &warm);
+                expectSameEstimate(hot, cold, name + " pose " + std::to_string(i));
+                coldNodes += cold.nodesTested;
+                warmNodes += hot.nodesTested;
+                if (before.valid && warm.valid)
+                {
+                    bodyChanges += before.hostIsA != warm.hostIsA;
+                    clusterJumps += before.hostIsA == warm.hostIsA && before.cluster != warm.cluster;
+                }
+            }
+        }
+    };
+}  // namespace
+
+TEST(PenetrationDepth, WarmStartGivesTheColdEstimateAlongCollidingMotions)
+{
+    // Two refined bars crossing, the second one turning as it slides through the first: the deepest node moves from
+    // one bar to the other and from cluster to cluster. At every colliding pose the estimate with a warm start
+    // carried from pose to pose is the cold one, bit for bit (depth, witness points and triangles); every 8th pose
+    // the depth is also checked against brute force over every node and triangle.
+    const BodyPtr a = Body::build(test::box(1.2, 0.25, 0.3, 2)), b = Body::build(test::box(0.2, 0.9, 0.35, 2));
+    Eigen::Isometry3d from = test::translation(-1.5, 0.1, 0.05), to = test::translation(1.4, -0.1, 0.1);
+    from.linear() = Eigen::AngleAxisd(0.2, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    to.linear() = Eigen::AngleAxisd(2.0, Eigen::Vector3d(3, -1, 2).normalized()).toRotationMatrix();
+    const std::vector<Eigen::Isometry3d> poses = segment(from, to, 240);
+    WarmAlongMotion bars;
+    bars.run(*a, *b, poses, "bars");
+    for (std::size_t i = 0; i < poses.size(); i += 8)
+    {
+        if (!inCollision(*a, *b, poses[i]))
+            continue;
+        const double truth = std::max(bruteDeepest(*a, *b, poses[i]), bruteDeepest(*b, *a, poses[i].inverse()));
+        EXPECT_NEAR(penetrationDepth(*a, *b, poses[i]).depth, truth, 1e-12) << "pose " << i;
+    }
+    EXPECT_GT(bars.colliding, 100u);
+    EXPECT_GT(bars.bodyChanges, 0u);
+    EXPECT_GT(bars.clusterJumps, 0u);
+    EXPECT_LT(bars.warmNodes, bars.coldNodes);  // the seed prunes (a cost, not a timing)
+
+    // A map: slotted_wall's robot through the wall, along its .poses (then the goal), 150 states.
+    const fs::path dir = fs::path(MESHGAP_SOURCE_DIR) / "maps" / "slotted_wall";
+    const ProblemConfig config = readProblemConfig((dir / "slotted_wall.cfg").string());
+    LoadReport report;
+    const Mesh robot = loadRobotMesh(config.robot, &report);
+    const ScenePtr scene = Scene::fromMeshes(robot, loadMesh(config.world));
+    ASSERT_EQ(scene->obstacles().size(), 1u);
+    std::vector<Eigen::Isometry3d> path;
+    for (Eigen::Isometry3d X : readPoses((dir / "slotted_wall.poses").string()))
+        path.push_back(X.translate(report.omplAppCenter));
+    ASSERT_TRUE(config.goal);
+    path.push_back(*config.goal);
+    std::vector<Eigen::Isometry3d> states;
+    for (std::size_t k = 0; k + 1 < path.size(); ++k)
+    {
+        const std::vector<Eigen::Isometry3d> part = segment(path[k], path[k + 1], 150 / int(path.size() - 1) + 1);
+        states.insert(states.end(), part.begin(), part.end() - 1);
+    }
+    WarmAlongMotion wall;
+    wall.run(*scene->obstacles()[0], scene->robot(), states, "slotted_wall");
+    EXPECT_GT(wall.colliding, 50u);
+    // And the scene's answer, warm against cold (the warm start carries each pair's deepest node).
+    SceneWarmStart carried;
+    for (std::size_t i = 0; i < states.size(); ++i)
+    {
+        SceneResult cold, hot;
+        scene->distance(states[i], SceneRequest(), cold);
+        scene->distance(states[i], SceneRequest(), carried, hot);
+        EXPECT_EQ(hot.distance, cold.distance) << i;
+        EXPECT_TRUE(hot.onObstacle == cold.onObstacle && hot.onRobot == cold.onRobot) << i;
+        EXPECT_EQ(hot.penetration, cold.penetration) << i;
+    }
+    test::Note() << "[ warm     ] bars: " << bars.colliding << " colliding poses, deepest node to the other body "
+                 << bars.bodyChanges << " times, to another cluster " << bars.clusterJumps << " times; nodes tested "
+                 << bars.coldNodes << " cold, " << bars.warmNodes << " warm. slotted_wall: " << wall.colliding
+                 << " colliding states of " << states.size() << ", deepest node to the other body " << wall.bodyChanges
+                 << " times, to another cluster " << wall.clusterJumps << " times; nodes tested " << wall.coldNodes
+                 << " cold, " << wall.warmNodes << " warm\n";
+}
+
+TEST(PenetrationDepth, AWarmSeedNeverChangesWhichTiedNodeWins)
+{
+    // B (half 0.5, a 4x4 grid per face) pushed face-first into A (half 1) by 0.25 along x: B's leading face nodes
+    // and A's face nodes inside B all lie exactly 0.25 deep (coordinates in quarters). The cold search's winner
+    // is the first of them in its fixed order. Seeded with any other tied node, of either body, the search must
+    // still return that winner: a seed only raises the bound the search starts from, never wins a tie itself.
+    const BodyPtr a = test::unrefinedBody(test::box(1.0, 1.0, 1.0, 4));
+    const BodyPtr b = test::unrefinedBody(test::box(0.5, 0.5, 0.5, 4));
+    const Eigen::Isometry3d X = test::translation(1.25, 0.25, 0.0);
+    const PenetrationEstimate cold = penetrationDepth(*a, *b, X);
+    ASSERT_EQ(cold.kind, Penetration::DEEPEST_NODE);
+    EXPECT_NEAR(cold.depth, 0.25, 1e-12);
+    // The tied nodes, by brute force over each body's nodes (the same point distance the search uses).
+    std::vector<PenetrationWarmStart> tied;
+    for (const bool hostIsA : {true, false})
+    {
+        const Body &host = hostIsA ? *a : *b, &mover = hostIsA ? *b : *a;
+        const Eigen::Isometry3d X_HM = hostIsA ? X : X.inverse();
+        for (std::uint32_t i = 0; i < mover.numNodes(); ++i)
+        {
+            const Eigen::Vector3d p = X_HM * mover.node(i);
+            BvhPointResult r;
+            bvhPointDistance(host.bvh(), p, std::numeric_limits<double>::infinity(), -1.0, r);
+            if (r.distance == cold.depth && insideClosedBody(host, p))
+                tied.push_back(seedAt(mover, i, hostIsA));
+        }
+    }
+    std::size_t others = 0, ofA = 0;
+    PenetrationWarmStart winner;
+    penetrationDepth(*a, *b, X, &winner);  // names the cold winner
+    for (const PenetrationWarmStart &seed : tied)
+    {
+        PenetrationWarmStart warm = seed;
+        const PenetrationEstimate hot = penetrationDepth(*a, *b, X, &warm);
+        expectSameEstimate(hot, cold, "seed at position " + std::to_string(seed.position));
+        EXPECT_TRUE(warm.hostIsA == winner.hostIsA && warm.position == winner.position);
+        others += seed.hostIsA != winner.hostIsA || seed.position != winner.position;
+        ofA += !seed.hostIsA;
+    }
+    test::Note() << "[ ties     ] " << tied.size() << " nodes tied at depth 0.25 (" << ofA << " of A)\n";
+    EXPECT_GE(others, 10u);
+    EXPECT_GT(ofA, 0u);
+    // A seed that names no node (another body's, or nothing) changes nothing either.
+    PenetrationWarmStart stale;
+    stale.valid = true;
+    stale.cluster = 1000000;
+    expectSameEstimate(penetrationDepth(*a, *b, X, &stale), cold, "stale seed");
+}

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "meshgap/distance/DistanceSolver.h"
+#include "meshgap/distance/PenetrationDepth.h"
 #include "meshgap/geometry/TriangleBvh.h"
 
 namespace meshgap
@@ -16,10 +17,14 @@ namespace meshgap
     {
         bool valid{false};  ///< triangleA / triangleB hold the last closest pair
         std::uint32_t triangleA{0}, triangleB{0};
-        BvhFront front;      ///< of the last distance traversal
-        BvhFront collision;  ///< of the last collision test (inCollision() with a warm start)
+        BvhFront front;                    ///< of the last distance traversal
+        BvhFront collision;                ///< of the last collision test (inCollision() with a warm start)
+        PenetrationWarmStart penetration;  ///< the last deepest node, in collision (penetrationDepth())
         /** \brief Bytes held, this object included. */
-        std::size_t memoryBytes() const { return sizeof(*this) + front.memoryBytes() + collision.memoryBytes(); }
+        std::size_t memoryBytes() const
+        {
+            return sizeof(*this) + front.memoryBytes() + collision.memoryBytes() + penetration.memoryBytes();
+        }
     };
 
     /** \brief The exact stage after a node-level search (the paper's future work, Section V): turn \e result's node
@@ -71,10 +76,16 @@ namespace meshgap
         the same verdict at a fraction of the cost along a run of nearby poses. */
     bool inCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, ExactWarmStart *warm = nullptr);
 
-    /** \brief True when \e p (in the body's frame) is inside the closed body \e body (generalised winding number
-        over its surface triangles > 1/2, summed over all of them: O(n); insideClosedBody() in PenetrationDepth.h
-        gives the same verdict by ray casting through the BVH). Always false for an open body. */
+    /** \brief True when \e p (in the body's frame) is inside the closed body \e body: its generalised winding
+        number, summed over every surface triangle, is above 1/2. O(n): the definition, and the tests' oracle;
+        insideClosedBody() gives the same verdict faster. Always false for an open body or a point outside the
+        body's bounding box. */
     bool containsPoint(const Body &body, const Eigen::Vector3d &p);
+
+    /** \brief containsPoint()'s verdict in O(log n): the winding number by ray casting through the BVH
+        (bvhRayWinding()) along up to three fixed directions, and containsPoint()'s sum when all three are
+        ambiguous. Always false for an open body or a point outside the body's bounding box. */
+    bool insideClosedBody(const Body &body, const Eigen::Vector3d &p);
 
     /**
        @anchor mgExact

@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <vector>
 
 #include "meshgap/distance/DistanceQuery.h"
 #include "meshgap/geometry/Body.h"
@@ -24,9 +25,29 @@ namespace meshgap
         Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};
         std::uint32_t triangleA{0}, triangleB{0};  ///< surface triangles holding onA and onB
         bool witnessFound{false};                  ///< onA/onB/triangleA/triangleB were set
-        std::size_t nodesTested{0};     ///< nodes inside the other body's bounding box (the candidates)
-        std::size_t insideTests{0};     ///< point-in-body tests made (ray casts, with the winding number as fallback)
-        std::size_t triangleTests{0};   ///< point-triangle distances computed
+        std::size_t nodesTested{0};                ///< nodes inside the other body's bounding box (the candidates)
+        std::size_t insideTests{0};    ///< point-in-body tests made (ray casts, with the winding number as fallback)
+        std::size_t triangleTests{0};  ///< point-triangle distances computed
+    };
+
+    /** \brief What penetrationDepth() carries from one pose to the next, nearby one, for one pair of bodies: the
+        deepest node it found last (on which body, and where in that body's node clusters). At the next pose that
+        node's depth, found exactly as the search would find it, starts the branch and bound just below it, so the
+        clusters and nodes that cannot reach it are never visited. It never changes the answer: a node tied with it
+        that comes first in the fixed order still wins (see penetrationDepth()). Belongs to one caller (one thread). */
+    struct PenetrationWarmStart
+    {
+        bool valid{false};          ///< the fields below hold the last deepest node
+        bool hostIsA{false};        ///< the node is B's, inside A (true), or A's, inside B
+        std::uint32_t cluster{0};   ///< its cluster, an index in the mover's Body::clusters()
+        std::uint32_t position{0};  ///< its index in the mover's Body::clusterOrder()
+        /** \brief Per node (B's, then A's, by position in clusterOrder()) and per node cluster (B's, then A's), the
+            triangle of the other body found nearest to it (to the cluster's centre) at an earlier pose, or none
+            (UINT32_MAX): its distance bounds the node's depth, or the cluster's, from above, often enough to skip a
+            point query. Sized at the first use; reset() need not clear it (any triangle gives a true bound). */
+        std::vector<std::uint32_t> nearest;
+        /** \brief Bytes held beyond the object itself. */
+        std::size_t memoryBytes() const { return nearest.capacity() * sizeof(std::uint32_t); }
     };
 
     /** \brief Penetration depth of two colliding bodies, B placed in A's frame by \e X_AB: the depth of the deepest
@@ -59,19 +80,23 @@ namespace meshgap
 
         Call it for colliding bodies only (it does not decide collision: separated bodies get NO_NODE_INSIDE, depth
         0, or a node "inside" a body it does not touch when one contains the other, which is a collision). A pure
-        function of the bodies and the pose (no warm start, deterministic ties: the first node found in a fixed
-        order wins). Thread-safe. */
-    PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB);
+        function of the bodies and the pose, warm start or not (deterministic ties: of the nodes at the largest
+        depth, the first in a fixed order wins: the order of the visit, clusters by decreasing bound then index).
+        Thread-safe.
+
+        Warm start. With \e warm (the caller's, from its last query of this pair), the last deepest node's depth at
+        this pose is a lower bound found first: the search then skips every cluster and node that cannot go deeper.
+        The answer is the same, bit for bit, as without it (the bound starts just below that depth, so a node tied
+        with it and visited first still wins); only the cost falls along a run of nearby colliding poses. \e warm
+        is then set to the node found (or marked invalid when none is inside). */
+    PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB,
+                                         PenetrationWarmStart *warm = nullptr);
 
     /** \brief Fill \e result for a colliding pair from penetrationDepth(): inCollision, distance =
         -depth (CONTACT_DISTANCE when the depth is 0), penetrationDepth, penetration, and the witness points and
-        triangles when it found some; adds to triangleTests. */
-    void setPenetration(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result);
-
-    /** \brief True when \e p (body frame) is inside the closed \e body: bvhRayWinding() along up to three fixed
-        directions, containsPoint() when all three are ambiguous. Always false for an open body. The same verdict
-        as containsPoint() (both compute the winding number), in O(log n) instead of O(n). */
-    bool insideClosedBody(const Body &body, const Eigen::Vector3d &p);
+        triangles when it found some; adds to triangleTests. \e warm: as penetrationDepth()'s. */
+    void setPenetration(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
+                        PenetrationWarmStart *warm = nullptr);
 }  // namespace meshgap
 
 #endif

@@ -92,6 +92,9 @@ namespace meshgap
         /** \brief True when every surface edge is shared by exactly two triangles (a closed surface), so inside and
             outside are defined. */
         bool isClosed() const { return closed_; }
+        /** \brief +1 when the surface's triangles wind outward (positive signed volume), -1 when inward: which side
+            of a triangle is inside, for a closed body. */
+        double orientation() const { return orientation_; }
         const SurfaceGraph &graph() const { return *graph_; }
         /** \brief One node of each connected component of the surface, in component order: a part with no surface
             contact with another body lies wholly inside or wholly outside it, so one point per part decides. */
@@ -131,6 +134,7 @@ namespace meshgap
         std::vector<std::uint32_t> nodeTriangleOffsets_, nodeTriangles_;
         std::vector<std::uint32_t> triangleNeighbourOffsets_, triangleNeighbours_;
         bool closed_{false};
+        double orientation_{1.0};
         RefineReport refinement_;
         double gridSize_{0.0};
         bool adaptive_{false};

@@ -53,6 +53,7 @@ namespace meshgap
                 p.valid = false;
                 p.front.clear();
                 p.collision.clear();
+                p.penetration.valid = false;
             }
         }
 
@@ -141,9 +142,10 @@ namespace meshgap
         /** \brief The most negative signed distance (deepest penetration, setPenetration()) over every obstacle the
             robot at \e X_WR collides with, into \e best (ties: the smallest index); returns that obstacle, or
             obstacles_.size() if none collides. \e known is an obstacle already known to collide (no test made
-            again), or obstacles_.size(); pairs tested are added to \e pairsChecked. */
+            again), or obstacles_.size(); pairs tested are added to \e pairsChecked. \e warm: each pair's deepest node
+            carries over (setPenetration()'s warm start). */
         std::size_t deepestCollision(const Eigen::Isometry3d &X_WR, std::size_t known, DistanceResult &best,
-                                     std::size_t &pairsChecked) const;
+                                     std::size_t &pairsChecked, SceneWarmStart *warm = nullptr) const;
         void query(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart *warm,
                    SceneResult &result) const;
         void exactDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart *warm,
