@@ -359,6 +359,50 @@ namespace meshgap
         {
             return body.beginNodeTriangles(i) != body.endNodeTriangles(i) ? *body.beginNodeTriangles(i) : 0u;
         }
+
+        /** \brief \e estimate from the deepest node found: its depth, and as witnesses the node and its nearest
+            point on the other surface (points of A and of B, in A's frame). */
+        void setDeepest(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, const Deepest &best,
+                        PenetrationEstimate &estimate)
+        {
+            estimate.depth = best.depth;
+            estimate.kind = Penetration::DEEPEST_NODE;
+            estimate.witnessFound = true;
+            if (best.hostIsA)
+            {
+                estimate.onA = best.closest;
+                estimate.onB = best.point;
+                estimate.triangleA = best.triangle;
+                estimate.triangleB = triangleOfNode(b, best.node);
+            }
+            else
+            {
+                estimate.onA = a.node(best.node);
+                estimate.onB = X_AB * best.closest;
+                estimate.triangleA = triangleOfNode(a, best.node);
+                estimate.triangleB = best.triangle;
+            }
+        }
+
+        /** \brief \e estimate when no node lies inside the other body: depth 0, and as witness the touching pair
+            bvhCollide() meets first (a fixed traversal order: a function of the pose). */
+        void setTouching(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, PenetrationEstimate &estimate)
+        {
+            estimate.kind = a.isClosed() || b.isClosed() ? Penetration::NO_NODE_INSIDE : Penetration::OPEN_BODIES;
+            std::uint32_t ta = 0, tb = 0;
+            if (!bvhCollide(a.bvh(), b.bvh(), X_AB, &ta, &tb))
+                return;
+            const Mesh &sa = a.surface(), &sb = b.surface();
+            const Triangle &fa = sa.triangles[ta], &fb = sb.triangles[tb];
+            const Eigen::Matrix3d R = X_AB.linear();
+            const Eigen::Vector3d t = X_AB.translation();
+            triangleDistance(sa.vertices[fa[0]], sa.vertices[fa[1]], sa.vertices[fa[2]], R * sb.vertices[fb[0]] + t,
+                             R * sb.vertices[fb[1]] + t, R * sb.vertices[fb[2]] + t, estimate.onA, estimate.onB);
+            estimate.triangleA = ta;
+            estimate.triangleB = tb;
+            estimate.witnessFound = true;
+            ++estimate.triangleTests;
+        }
     }  // namespace
 
     PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB,
@@ -426,42 +470,9 @@ namespace meshgap
         }
 
         if (best.found)
-        {
-            estimate.depth = best.depth;
-            estimate.kind = Penetration::DEEPEST_NODE;
-            estimate.witnessFound = true;
-            if (best.hostIsA)
-            {
-                estimate.onA = best.closest;
-                estimate.onB = best.point;
-                estimate.triangleA = best.triangle;
-                estimate.triangleB = triangleOfNode(b, best.node);
-            }
-            else
-            {
-                estimate.onA = a.node(best.node);
-                estimate.onB = X_AB * best.closest;
-                estimate.triangleA = triangleOfNode(a, best.node);
-                estimate.triangleB = best.triangle;
-            }
-            return estimate;
-        }
-        estimate.kind = a.isClosed() || b.isClosed() ? Penetration::NO_NODE_INSIDE : Penetration::OPEN_BODIES;
-        // Witness: the touching pair bvhCollide() meets first (a fixed traversal order: a function of the pose).
-        std::uint32_t ta = 0, tb = 0;
-        if (bvhCollide(a.bvh(), b.bvh(), X_AB, &ta, &tb))
-        {
-            const Mesh &sa = a.surface(), &sb = b.surface();
-            const Triangle &fa = sa.triangles[ta], &fb = sb.triangles[tb];
-            const Eigen::Matrix3d R = X_AB.linear();
-            const Eigen::Vector3d t = X_AB.translation();
-            triangleDistance(sa.vertices[fa[0]], sa.vertices[fa[1]], sa.vertices[fa[2]], R * sb.vertices[fb[0]] + t,
-                             R * sb.vertices[fb[1]] + t, R * sb.vertices[fb[2]] + t, estimate.onA, estimate.onB);
-            estimate.triangleA = ta;
-            estimate.triangleB = tb;
-            estimate.witnessFound = true;
-            ++estimate.triangleTests;
-        }
+            setDeepest(a, b, X_AB, best, estimate);
+        else
+            setTouching(a, b, X_AB, estimate);
         return estimate;
     }
 
