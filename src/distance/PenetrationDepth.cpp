@@ -236,31 +236,24 @@ namespace meshgap
                 if (pad(c.centreOutside ? beyond : bound) <= floor)
                     return false;
                 double upper = pad(bound);
-                if (!c.oneSide)
+                // The distance to one host triangle: the same value the search would give that triangle, so the
+                // node's distance is at most that, exactly. False when that rules the node out.
+                auto boundedBy = [&](std::uint32_t triangle)
                 {
-                    // The distance to the centre's nearest triangle: the same value the search would give that
-                    // triangle, so the node's distance is at most that, exactly.
                     const Mesh &m = host_.surface();
-                    const Triangle &f = m.triangles[c.nearest.triangle];
+                    const Triangle &f = m.triangles[triangle];
                     Eigen::Vector3d on;
                     ++estimate_.triangleTests;
                     const double d = pointTriangleDistance(p, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], on);
-                    if (d <= floor)
-                        return false;
                     upper = std::min(upper, pad(d));
-                }
-                if (nearest_ && nearest_[position] < host_.surface().triangles.size())
-                {
-                    // The triangle nearest to this node at an earlier pose: the same bound, usually much tighter.
-                    const Mesh &m = host_.surface();
-                    const Triangle &f = m.triangles[nearest_[position]];
-                    Eigen::Vector3d on;
-                    ++estimate_.triangleTests;
-                    const double d = pointTriangleDistance(p, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], on);
-                    if (d <= floor)
-                        return false;
-                    upper = std::min(upper, pad(d));
-                }
+                    return d > floor;
+                };
+                // The centre's nearest triangle, then the one nearest to this node at an earlier pose (usually
+                // much tighter).
+                if (!c.oneSide && !boundedBy(c.nearest.triangle))
+                    return false;
+                if (nearest_ && nearest_[position] < host_.surface().triangles.size() && !boundedBy(nearest_[position]))
+                    return false;
                 ++estimate_.nodesTested;
                 bvhPointDistance(host_.bvh(), p, upper, floor, r);
                 if (!r.found)
