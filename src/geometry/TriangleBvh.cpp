@@ -819,6 +819,22 @@ namespace meshgap
         }
     }  // namespace
 
+    namespace
+    {
+        /** \brief After \e front answered a query: whether it stays valid (\e lasts); when fronts keep failing
+            within two queries (motions as large as the gaps they hold), the next traversals from the roots write
+            none for a while (BvhFront::backoff). */
+        void afterUse(BvhFront &front, bool lasts)
+        {
+            front.valid = lasts;
+            ++front.uses;
+            if (!lasts && front.uses <= 2)
+                front.wait = front.backoff = std::min(2 * front.backoff + 1, 64u);  // it did not pay: wait
+            else if (front.uses > 2)
+                front.backoff = 0;
+        }
+    }  // namespace
+
     void bvhDistance(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, double upperBound,
                      double stopBelow, BvhDistanceResult &result, std::uint32_t seedA, std::uint32_t seedB,
                      BvhFront *front, const Eigen::Vector3d *seedAxis)
@@ -849,8 +865,10 @@ namespace meshgap
         // unrelated samples): no certificate carries over, and none is worth writing; a traversal from the roots.
         const double step = front->started ? motionBound(b, front->poses[(stamp - 1) % BvhFront::POSES], X_AB) : 0.0;
         front->started = true;
-        if (step > upperBound)
+        if (step > upperBound || (!front->valid && front->wait > 0))
         {
+            if (!front->valid && front->wait > 0)
+                --front->wait;
             ++front->incoherent;
             front->valid = false;
             front->poses[stamp % BvhFront::POSES] = X_AB;
@@ -875,10 +893,11 @@ namespace meshgap
             front->motions[stamp % BvhFront::POSES] = motion;
             // Rebuild next time when the front has grown well past a fresh one (a cut refined for motions that have
             // passed), or this motion made more full re-tests than half a fresh front: the front does not pay.
-            front->valid = front->entries.size() <= BvhFront::FRONT_GROWTH * front->freshSize + 16 &&
-                           retested <= front->freshSize / 2 + 16;
+            afterUse(*front, front->entries.size() <= BvhFront::FRONT_GROWTH * front->freshSize + 16 &&
+                                 retested <= front->freshSize / 2 + 16);
             return;
         }
+        front->uses = 0;
         ++front->rebuilds;
         front->entries.clear();
         DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, &front->entries, 0.0, stamp);
@@ -1159,13 +1178,8 @@ namespace meshgap
             front.entries.insert(front.entries.end(), front.next.begin(), front.next.end());
             front.motion = motion;
             front.motions[stamp % BvhFront::POSES] = motion;
-            front.valid = front.entries.size() <= BvhFront::FRONT_GROWTH * front.freshSize + 16 &&
-                          retested <= front.freshSize / 2 + 16;
-            ++front.uses;
-            if (!front.valid && front.uses <= 2)
-                front.wait = front.backoff = std::min(2 * front.backoff + 1, 64u);  // it did not pay: wait
-            else if (front.uses > 2)
-                front.backoff = 0;
+            afterUse(front, front.entries.size() <= BvhFront::FRONT_GROWTH * front.freshSize + 16 &&
+                                retested <= front.freshSize / 2 + 16);
             return false;
         }
         // From the roots. A fresh front is written after a small step (a run of nearby poses, as along a path or a

@@ -90,7 +90,8 @@ namespace meshgap
         rebuilt from the roots when it has grown past FRONT_GROWTH times the size of a fresh one, or when a
         traversal had to re-test more entries than half a fresh front (a motion too large to pay); and a query whose
         pose lies further from the last one than the distance it seeks (B's displacement above the upper bound, as
-        between a planner's unrelated samples) runs from the roots and writes no front at all.
+        between a planner's unrelated samples) runs from the roots and writes no front at all. When fronts keep
+        failing within two queries, writing backs off (uses, backoff, wait).
         Belongs to one caller; not thread-safe. */
     struct BvhFront
     {
@@ -121,9 +122,9 @@ namespace meshgap
         std::size_t axisKept{0};    ///< entries kept by their separating axis
         std::size_t rebuilds{0};    ///< traversals from the roots that wrote a front
         std::size_t incoherent{0};  ///< traversals from the roots for a pose too far from the last one
-        /** \brief Collision fronts (bvhCollide()): queries the current front has answered; and, when fronts keep
-            failing within two queries (motions as large as the gaps), how many tests run from the roots without
-            writing one (doubled at each such failure, up to 64; back to 0 once a front lasts). */
+        /** \brief Queries the current front has answered; and, when fronts keep failing within two queries
+            (motions as large as the gaps), how many queries run from the roots without writing one (doubled at each
+            such failure, up to 64; back to 0 once a front lasts). */
         std::uint32_t uses{0}, backoff{0}, wait{0};
 
         /** \brief Heap bytes held (both buffers' capacity). */
