@@ -244,8 +244,8 @@ namespace meshgap
 
         /** \brief Lower bound on the distance between anything in box \e a and anything in box \e b (B's frame),
             from the sphere gap (cheapest, and rotation-free), then the face-axis gaps of each box (gapOnAxes());
-            <= 0 means the boxes may touch. Once a partial bound exceeds \e enough (the caller prunes above it) that one is returned: still a
-            lower bound, just not the best of the three. */
+            <= 0 means the boxes may touch. Once a partial bound exceeds \e enough (the caller prunes above it) that
+            one is returned: still a lower bound, just not the best of the three. */
         double lowerBound(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X,
                           double enough = std::numeric_limits<double>::infinity())
         {
