@@ -5,6 +5,7 @@
 // tests comes from analytic geometry or a brute-force oracle, never from meshgap itself.
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
@@ -175,6 +176,39 @@ namespace meshgap
             X.linear() = q.toRotationMatrix();
             X.translation() = Eigen::Vector3d(uni(rng), uni(rng), uni(rng));
             return X;
+        }
+
+        /** \brief Total area of the mesh's triangles. */
+        inline double area(const Mesh &m)
+        {
+            double s = 0.0;
+            for (const Triangle &t : m.triangles)
+                s += 0.5 * (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
+            return s;
+        }
+
+        /** \brief Every undirected edge and the number of triangles using it. */
+        inline std::map<std::pair<std::uint32_t, std::uint32_t>, int> edgeUse(const Mesh &m)
+        {
+            std::map<std::pair<std::uint32_t, std::uint32_t>, int> use;
+            for (const Triangle &t : m.triangles)
+                for (int k = 0; k < 3; ++k)
+                    ++use[std::minmax(t[k], t[(k + 1) % 3])];
+            return use;
+        }
+
+        /** \brief The smallest corner angle of any triangle (radians). */
+        inline double minimumAngle(const Mesh &m)
+        {
+            double least = M_PI;
+            for (const Triangle &t : m.triangles)
+                for (int k = 0; k < 3; ++k)
+                {
+                    const Eigen::Vector3d u = m.vertices[t[(k + 1) % 3]] - m.vertices[t[k]];
+                    const Eigen::Vector3d w = m.vertices[t[(k + 2) % 3]] - m.vertices[t[k]];
+                    least = std::min(least, std::acos(u.normalized().dot(w.normalized())));
+                }
+            return least;
         }
     }  // namespace test
 }  // namespace meshgap

@@ -38,23 +38,6 @@ namespace
         return wa * size[f[0]] + wb * size[f[1]] + wc * size[f[2]];
     }
 
-    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edgeUse(const Mesh &m)
-    {
-        std::map<std::pair<std::uint32_t, std::uint32_t>, int> use;
-        for (const Triangle &t : m.triangles)
-            for (int k = 0; k < 3; ++k)
-                ++use[std::minmax(t[k], t[(k + 1) % 3])];
-        return use;
-    }
-
-    double area(const Mesh &m)
-    {
-        double s = 0.0;
-        for (const Triangle &t : m.triangles)
-            s += 0.5 * (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
-        return s;
-    }
-
     // A thick box and a thin plate (two components, 10 apart): feature sizes 4 and 0.25.
     Mesh blockAndPlate()
     {
@@ -199,10 +182,10 @@ TEST(AdaptiveRefine, ConformingOnTheSurfaceAndEveryEdgeWithinTheField)
     ASSERT_EQ(parent.size(), fine.triangles.size());
     EXPECT_EQ(report.nodesAfter, fine.vertices.size());
     // Closed surfaces stay closed (no hanging node: each edge in exactly two triangles), same two components.
-    for (const auto &e : edgeUse(fine))
+    for (const auto &e : test::edgeUse(fine))
         ASSERT_EQ(e.second, 2) << e.first.first << "-" << e.first.second;
     EXPECT_EQ(countComponents(fine), 2u);
-    EXPECT_NEAR(area(fine), area(mesh), 1e-12 * area(mesh));
+    EXPECT_NEAR(test::area(fine), test::area(mesh), 1e-12 * test::area(mesh));
     // Input nodes kept first; every node on its parent's plane.
     for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
         EXPECT_EQ(fine.vertices[i], mesh.vertices[i]);
@@ -247,22 +230,6 @@ TEST(AdaptiveRefine, BodyUsesTheAdaptiveNodesAndKeepsTheSurface)
     EXPECT_LE(longestEdge(body->mesh()), body->gridSize() * (1.0 + 1e-12));
 }
 
-namespace
-{
-    double minimumAngle(const Mesh &m)
-    {
-        double minAngle = M_PI;
-        for (const Triangle &t : m.triangles)
-            for (int k = 0; k < 3; ++k)
-            {
-                const Eigen::Vector3d u = m.vertices[t[(k + 1) % 3]] - m.vertices[t[k]];
-                const Eigen::Vector3d w = m.vertices[t[(k + 2) % 3]] - m.vertices[t[k]];
-                minAngle = std::min(minAngle, std::acos(u.normalized().dot(w.normalized())));
-            }
-        return minAngle;
-    }
-}  // namespace
-
 TEST(AdaptiveRefine, AFineRegionBesideACoarseOneKeepsTheInputAnglesBounded)
 {
     // Right triangles (45 degrees) of 0.5; a size of 0.1 left of x = 5 and 1 right of it. Rivara's rule (a
@@ -272,10 +239,10 @@ TEST(AdaptiveRefine, AFineRegionBesideACoarseOneKeepsTheInputAnglesBounded)
     for (std::size_t v = 0; v < size.size(); ++v)
         size[v] = square.vertices[v].x() < 5.0 - 1e-9 ? 0.1 : 1.0;
     const Mesh fine = refineMesh(square, size);
-    EXPECT_GE(minimumAngle(fine), 0.5 * M_PI / 4.0);
-    for (const auto &e : edgeUse(fine))
+    EXPECT_GE(test::minimumAngle(fine), 0.5 * M_PI / 4.0);
+    for (const auto &e : test::edgeUse(fine))
         EXPECT_LE(e.second, 2);
-    EXPECT_NEAR(area(fine), 100.0, 1e-9);
+    EXPECT_NEAR(test::area(fine), 100.0, 1e-9);
 }
 
 TEST(AdaptiveRefine, SizesVaryingAlongASliverKeepBoundedAngles)
@@ -288,17 +255,10 @@ TEST(AdaptiveRefine, SizesVaryingAlongASliverKeepBoundedAngles)
         size[v] = wall.vertices[v].x() < 50.0 ? 0.05 : 5.0;
     std::vector<std::uint32_t> parent;
     const Mesh fine = refineMesh(wall, size, nullptr, &parent);
-    double minAngle = M_PI;
-    for (const Triangle &t : fine.triangles)
-        for (int k = 0; k < 3; ++k)
-        {
-            const Eigen::Vector3d u = fine.vertices[t[(k + 1) % 3]] - fine.vertices[t[k]];
-            const Eigen::Vector3d w = fine.vertices[t[(k + 2) % 3]] - fine.vertices[t[k]];
-            minAngle = std::min(minAngle, std::acos(u.normalized().dot(w.normalized())));
-        }
+    const double minAngle = test::minimumAngle(fine);
     EXPECT_GE(minAngle, 0.5 * std::atan(0.01));
-    EXPECT_NEAR(area(fine), 100.0, 1e-9);
-    for (const auto &e : edgeUse(fine))
+    EXPECT_NEAR(test::area(fine), 100.0, 1e-9);
+    for (const auto &e : test::edgeUse(fine))
         EXPECT_LE(e.second, 2);
     for (std::size_t t = 0; t < fine.triangles.size(); ++t)
         for (int k = 0; k < 3; ++k)

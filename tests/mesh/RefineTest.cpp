@@ -1,41 +1,10 @@
 #include <gtest/gtest.h>
 
-#include <map>
-
 #include "TestMeshes.h"
+#include "meshgap/mesh/MeshOperations.h"
 #include "meshgap/mesh/Refine.h"
 
 using namespace meshgap;
-
-namespace
-{
-    double area(const Mesh &m)
-    {
-        double a = 0.0;
-        for (const Triangle &t : m.triangles)
-            a += 0.5 * (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]).norm();
-        return a;
-    }
-
-    // Signed volume (divergence theorem): tells orientation survived.
-    double volume(const Mesh &m)
-    {
-        double v = 0.0;
-        for (const Triangle &t : m.triangles)
-            v += m.vertices[t[0]].dot(m.vertices[t[1]].cross(m.vertices[t[2]])) / 6.0;
-        return v;
-    }
-
-    // Every undirected edge and the number of triangles using it.
-    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edgeUse(const Mesh &m)
-    {
-        std::map<std::pair<std::uint32_t, std::uint32_t>, int> use;
-        for (const Triangle &t : m.triangles)
-            for (int k = 0; k < 3; ++k)
-                ++use[std::minmax(t[k], t[(k + 1) % 3])];
-        return use;
-    }
-}  // namespace
 
 TEST(Refine, ClosedBoxStaysClosedOrientedAndOnItsSurface)
 {
@@ -67,12 +36,12 @@ TEST(Refine, ClosedBoxStaysClosedOrientedAndOnItsSurface)
         EXPECT_EQ(report.nodesAfter, fine.vertices.size());
         EXPECT_GT(fine.vertices.size(), box.vertices.size());
         // Conforming: a closed surface stays closed (each edge in exactly two triangles) and connected.
-        for (const auto &e : edgeUse(fine))
+        for (const auto &e : test::edgeUse(fine))
             ASSERT_EQ(e.second, 2) << "edge " << e.first.first << "-" << e.first.second << " at h=" << h;
         EXPECT_EQ(countComponents(fine), 1u);
         // Same surface: the area and the enclosed volume are unchanged, and every node lies on the box.
-        EXPECT_NEAR(area(fine), area(box), 1e-12 * area(box));
-        EXPECT_NEAR(volume(fine), 48.0, 1e-12 * 48.0);
+        EXPECT_NEAR(test::area(fine), test::area(box), 1e-12 * test::area(box));
+        EXPECT_NEAR(signedVolume(fine), 48.0, 1e-12 * 48.0);
         for (const Eigen::Vector3d &v : fine.vertices)
             EXPECT_NEAR(std::max({std::abs(v.x()) / 1.0, std::abs(v.y()) / 2.0, std::abs(v.z()) / 3.0}), 1.0, 1e-15);
         // The original nodes are kept, first and unchanged.
@@ -98,19 +67,12 @@ TEST(Refine, LongSliverBecomesBoundedTriangles)
     Mesh wall = test::grid(100.0, 1.0, 1, 1);
     const Mesh fine = refineMesh(wall, 1.0);
     EXPECT_LE(longestEdge(fine), 1.0);
-    double minAngle = M_PI;
-    for (const Triangle &t : fine.triangles)
-        for (int k = 0; k < 3; ++k)
-        {
-            const Eigen::Vector3d u = fine.vertices[t[(k + 1) % 3]] - fine.vertices[t[k]];
-            const Eigen::Vector3d w = fine.vertices[t[(k + 2) % 3]] - fine.vertices[t[k]];
-            minAngle = std::min(minAngle, std::acos(u.normalized().dot(w.normalized())));
-        }
+    const double minAngle = test::minimumAngle(fine);
     // Longest-edge bisection keeps angles above half the smallest input angle (Rivara); input min is atan(1/100).
     EXPECT_GE(minAngle, 0.5 * std::atan(0.01));
-    EXPECT_NEAR(area(fine), 100.0, 1e-9);
+    EXPECT_NEAR(test::area(fine), 100.0, 1e-9);
     // Boundary edges (used once) lie on the rectangle's border; interior edges are used twice.
-    for (const auto &e : edgeUse(fine))
+    for (const auto &e : test::edgeUse(fine))
         EXPECT_LE(e.second, 2);
 }
 
@@ -124,7 +86,7 @@ TEST(Refine, NonManifoldEdgeIsSplitInAllItsTriangles)
     EXPECT_LE(longestEdge(fine), 6.0);
     EXPECT_EQ(countComponents(fine), 1u);
     int finEdges = 0;
-    for (const auto &e : edgeUse(fine))
+    for (const auto &e : test::edgeUse(fine))
         finEdges += e.second == 3;
     EXPECT_EQ(finEdges, 2);  // (0,m) and (m,1), each still shared by three triangles
 }

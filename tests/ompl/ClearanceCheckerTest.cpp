@@ -13,6 +13,7 @@
 #include "TestNote.h"
 #include "FclOracle.h"
 #include "TestMeshes.h"
+#include "TestSpaces.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/ompl/ClearanceChecker.h"
 
@@ -35,11 +36,7 @@ namespace
                                  test::transformed(test::box(4, 0.3, 2, 3), test::translation(0, -3, 0)));
             robot = test::merged(test::box(0.8, 0.2, 0.2, 2), test::transformed(test::box(0.2, 0.6, 0.2, 2), test::translation(-0.6, 0.4, 0)));
             scene = Scene::fromMeshes(robot, world);
-            auto space = std::make_shared<ob::SE3StateSpace>();
-            ob::RealVectorBounds bounds(3);
-            bounds.setLow(-5);
-            bounds.setHigh(5);
-            space->setBounds(bounds);
+            auto space = test::se3Space(5);
             si = std::make_shared<ob::SpaceInformation>(space);
         }
 

@@ -12,6 +12,7 @@
 #include <filesystem>
 
 #include "TestMeshes.h"
+#include "TestSpaces.h"
 #include "meshgap/Exception.h"
 #include "meshgap/ompl/ClearanceGradient.h"
 #include "meshgap/ompl/ProblemSetup.h"
@@ -211,11 +212,7 @@ namespace
 
 TEST(ClearanceGradient, TieGivesTheMinimumNormSubgradient)
 {
-    auto space = std::make_shared<ob::SE3StateSpace>();
-    ob::RealVectorBounds bounds(3);
-    bounds.setLow(-4);
-    bounds.setHigh(4);
-    space->setBounds(bounds);
+    auto space = test::se3Space(4);
     const auto [si, checker] = cornerChecker(space);
     ASSERT_EQ(checker->scene().obstacles().size(), 2u);
     ob::ScopedState<ob::SE3StateSpace> s(space), t(space);
@@ -310,11 +307,7 @@ TEST(ClearanceGradient, TieInSe2AndBetweenEqualWalls)
 
 TEST(ClearanceGradient, RefusesFastModeAndOtherSpaces)
 {
-    auto space = std::make_shared<ob::SE3StateSpace>();
-    ob::RealVectorBounds bounds(3);
-    bounds.setLow(-4);
-    bounds.setHigh(4);
-    space->setBounds(bounds);
+    auto space = test::se3Space(4);
     auto si = std::make_shared<ob::SpaceInformation>(space);
     auto fast = std::make_shared<ClearanceChecker>(si, Scene::fromMeshes(octahedron(0.5), test::box(0.5, 0.5, 0.5, 1)),
                                                    ClearanceChecker::Mode::FAST);
@@ -332,11 +325,7 @@ TEST(ClearanceGradient, ProbesFindATieWithinOneObstacle)
 {
     // The two equal walls (faces at x = -1 and x = 1) as ONE obstacle: the per-obstacle tie test cannot see the
     // second pair, the exact query returns one of the two; a probe along its ascent direction meets the other wall.
-    auto space = std::make_shared<ob::SE3StateSpace>();
-    ob::RealVectorBounds bounds(3);
-    bounds.setLow(-4);
-    bounds.setHigh(4);
-    space->setBounds(bounds);
+    auto space = test::se3Space(4);
     const Mesh walls = test::merged(test::transformed(test::box(0.5, 2.0, 2.0, 1), test::translation(-1.5, 0, 0)),
                                     test::transformed(test::box(0.5, 2.0, 2.0, 1), test::translation(1.5, 0, 0)));
     auto si = std::make_shared<ob::SpaceInformation>(space);

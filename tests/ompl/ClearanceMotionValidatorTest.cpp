@@ -10,6 +10,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "TestMeshes.h"
+#include "TestSpaces.h"
 #include "meshgap/ompl/ClearanceMotionValidator.h"
 
 using namespace meshgap;
@@ -23,11 +24,7 @@ TEST(ClearanceMotionValidator, NeverAcceptsAMotionThatCollides)
                                     test::transformed(test::box(2.0, 0.05, 2.0, 2), test::translation(0, -2.5, 0)));
     const Mesh robot = test::merged(test::box(0.5, 0.1, 0.1, 1), test::transformed(test::box(0.1, 0.4, 0.1, 1), test::translation(-0.4, 0.3, 0)));
     const ScenePtr scene = Scene::fromMeshes(robot, world);
-    auto space = std::make_shared<ob::SE3StateSpace>();
-    ob::RealVectorBounds bounds(3);
-    bounds.setLow(-4);
-    bounds.setHigh(4);
-    space->setBounds(bounds);
+    auto space = test::se3Space(4);
     auto si = std::make_shared<ob::SpaceInformation>(space);
     auto checker = std::make_shared<ClearanceChecker>(si, scene);
     si->setStateValidityChecker(checker);
@@ -91,11 +88,7 @@ TEST(ClearanceMotionValidator, NeverAcceptsAMotionThatCollides)
 
 TEST(ClearanceMotionValidator, NeedsACertifiedChecker)
 {
-    auto space = std::make_shared<ob::SE3StateSpace>();
-    ob::RealVectorBounds bounds(3);
-    bounds.setLow(-1);
-    bounds.setHigh(1);
-    space->setBounds(bounds);
+    auto space = test::se3Space(1);
     auto si = std::make_shared<ob::SpaceInformation>(space);
     const ScenePtr scene = Scene::fromMeshes(test::box(0.1, 0.1, 0.1, 1), test::transformed(test::box(0.1, 0.1, 0.1, 1), test::translation(1, 0, 0)));
     auto fast = std::make_shared<ClearanceChecker>(si, scene, ClearanceChecker::Mode::FAST);

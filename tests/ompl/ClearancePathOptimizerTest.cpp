@@ -15,6 +15,7 @@
 #include <tuple>
 
 #include "TestMeshes.h"
+#include "TestSpaces.h"
 #include "meshgap/Exception.h"
 #include "meshgap/ompl/ClearanceOptimizingPlanner.h"
 #include "meshgap/ompl/ClearancePathOptimizer.h"
@@ -37,11 +38,7 @@ namespace
 
     Problem makeProblem(const ScenePtr &scene, double extent = 4.0)
     {
-        auto space = std::make_shared<ob::SE3StateSpace>();
-        ob::RealVectorBounds bounds(3);
-        bounds.setLow(-extent);
-        bounds.setHigh(extent);
-        space->setBounds(bounds);
+        auto space = test::se3Space(extent);
         Problem p;
         p.setup = std::make_shared<og::SimpleSetup>(space);
         const ob::SpaceInformationPtr si = p.setup->getSpaceInformation();

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "TestMeshes.h"
+#include "TestSpaces.h"
 #include "meshgap/Exception.h"
 #include "meshgap/ompl/NarrowPassageSampler.h"
 #include "meshgap/ompl/ProblemSetup.h"
@@ -27,11 +28,7 @@ namespace
         const Mesh world =
             test::merged(test::transformed(test::box(0.5, 1.85, 3.0, 2), test::translation(0, halfGap + 1.85, 0)),
                          test::transformed(test::box(0.5, 1.85, 3.0, 2), test::translation(0, -halfGap - 1.85, 0)));
-        auto space = std::make_shared<ob::SE3StateSpace>();
-        ob::RealVectorBounds bounds(3);
-        bounds.setLow(-2);
-        bounds.setHigh(2);
-        space->setBounds(bounds);
+        auto space = test::se3Space(2);
         auto si = std::make_shared<ob::SpaceInformation>(space);
         si->setStateValidityChecker(
             std::make_shared<ClearanceChecker>(si, Scene::fromMeshes(test::box(0.2, 0.1, 0.1, 1), world)));

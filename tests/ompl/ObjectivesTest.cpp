@@ -11,6 +11,7 @@
 
 #include "TestNote.h"
 #include "TestMeshes.h"
+#include "TestSpaces.h"
 #include "meshgap/ompl/ClearanceChecker.h"
 #include "meshgap/ompl/Objectives.h"
 
@@ -34,11 +35,7 @@ namespace
             world = test::merged(world, test::transformed(test::box(0.3, 3, 3, 3), test::translation(0, 2.5, 1)));
             const Mesh robot = test::merged(test::box(0.8, 0.2, 0.2, 2),
                                             test::transformed(test::box(0.2, 0.6, 0.2, 2), test::translation(-0.6, 0.4, 0)));
-            auto space = std::make_shared<ob::SE3StateSpace>();
-            ob::RealVectorBounds bounds(3);
-            bounds.setLow(-6);
-            bounds.setHigh(6);
-            space->setBounds(bounds);
+            auto space = test::se3Space(6);
             si = std::make_shared<ob::SpaceInformation>(space);
             scene = Scene::fromMeshes(robot, world);
             checker = std::make_shared<ClearanceChecker>(si, scene);

@@ -7,6 +7,7 @@
 #include <ompl/base/spaces/SE3StateSpace.h>
 
 #include "TestMeshes.h"
+#include "TestSpaces.h"
 #include "meshgap/ompl/RetractionSampler.h"
 #include "meshgap/ompl/SamplerFactory.h"
 #include "meshgap/ompl/WorkspaceMedialSampler.h"
@@ -31,11 +32,7 @@ namespace
         world = test::merged(world, test::transformed(test::box(HALF_LENGTH, t, w, 2), test::translation(0, w + t, 0)));
         world =
             test::merged(world, test::transformed(test::box(HALF_LENGTH, t, w, 2), test::translation(0, -w - t, 0)));
-        auto space = std::make_shared<ob::SE3StateSpace>();
-        ob::RealVectorBounds bounds(3);
-        bounds.setLow(-2);
-        bounds.setHigh(2);
-        space->setBounds(bounds);
+        auto space = test::se3Space(2);
         auto si = std::make_shared<ob::SpaceInformation>(space);
         si->setStateValidityChecker(
             std::make_shared<ClearanceChecker>(si, Scene::fromMeshes(test::box(0.5, 0.1, 0.1, 2), world)));
