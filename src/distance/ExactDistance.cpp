@@ -144,15 +144,16 @@ namespace meshgap
         }
 
         /** \brief The signed distance once result.inCollision is decided: nothing to add when free; in collision the
-            depth (setPenetration()), unless the caller stops early (\e mayStop), who asked for the verdict only. */
-        void finishCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, bool mayStop,
+            depth (setPenetration()), unless the caller asked for the verdict only (\e verdictOnly: an early stop, or
+            DistanceRequest::computeDepth false). */
+        void finishCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, bool verdictOnly,
                              DistanceResult &result, ExactWarmStart *warm)
         {
             result.penetrationDepth = 0.0;
             result.penetration = Penetration::NONE;
             if (!result.inCollision)
                 return;
-            if (mayStop)
+            if (verdictOnly)
             {
                 result.distance = CONTACT_DISTANCE;
                 result.penetration = Penetration::NOT_COMPUTED;
@@ -189,6 +190,7 @@ namespace meshgap
         // With an early stop, a seed at or below stopBelow is already the answer. Otherwise the traversal stops at
         // the first pair at or below max(stopBelow, 0) (0: a touching pair, nothing can be closer).
         const bool mayStop = stopBelow >= 0.0;
+        const bool verdictOnly = mayStop || !request.computeDepth;  // a collision gets no depth
         if (!(mayStop && best.d <= stopBelow))
         {
             BvhDistanceResult traversal;
@@ -213,7 +215,7 @@ namespace meshgap
             result.distance = std::numeric_limits<double>::infinity();
             result.certified = true;
             result.inCollision = oneInsideTheOther(a, b, X_AB);
-            finishCollision(a, b, X_AB, mayStop, result, warm);
+            finishCollision(a, b, X_AB, verdictOnly, result, warm);
             return;
         }
 
@@ -235,7 +237,7 @@ namespace meshgap
         result.certified = !stoppedEarly;
         if (!result.inCollision && !stoppedEarly)
             result.inCollision = oneInsideTheOther(a, b, X_AB);  // the witnesses stay the closest surface points
-        finishCollision(a, b, X_AB, mayStop, result, warm);
+        finishCollision(a, b, X_AB, verdictOnly, result, warm);
     }
 
     void ExactSolver::solve(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, const DistanceRequest &request,

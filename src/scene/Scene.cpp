@@ -358,6 +358,8 @@ namespace meshgap
     // - stopBelow: the query ends once the best distance is at or below it (an upper bound then, not certified; in
     //   exact mode, inCollision is then set only if a touching pair was met). A collision then gets no depth:
     //   distance CONTACT_DISTANCE, penetration NOT_COMPUTED, and the first collision met ends the query.
+    // - computeDepth false: the same answer in collision (the verdict, CONTACT_DISTANCE, NOT_COMPUTED, from the first
+    //   collision met); a free answer is unchanged.
     // - The warm start is updated to the closest obstacle (and, in exact mode, the pair and front of every obstacle
     //   visited; in fast mode, the node pair). Ties between triangle pairs are broken canonically (bvhDistance()),
     //   so a complete exact answer, its pair and witness points are the cold query's bit for bit.
@@ -412,7 +414,7 @@ namespace meshgap
             result.certified = complete;
             return;  // the warm start stays as it was
         }
-        if (best.inCollision && !mayStop)
+        if (best.inCollision && !mayStop && request.computeDepth)
         {
             // The signed distance: the deepest penetration over all colliding obstacles, whichever was met first.
             DistanceResult deepest;
@@ -439,15 +441,15 @@ namespace meshgap
     bool Scene::fastCollision(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
                               bool warmValid, SceneResult &result) const
     {
-        // The signed distance in collision is the exact mode's (no depth with an early stop).
-        const bool mayStop = request.stopBelow >= 0.0;
+        // The signed distance in collision is the exact mode's (no depth with an early stop or computeDepth false).
+        const bool verdictOnly = request.stopBelow >= 0.0 || !request.computeDepth;
         DistanceResult deepest;
-        const std::size_t hit = mayStop
+        const std::size_t hit = verdictOnly
                                     ? firstCollision(X_WR)
                                     : deepestCollision(X_WR, obstacles_.size(), deepest, result.pairsChecked, &warm);
         if (hit == obstacles_.size())
             return false;
-        if (mayStop)
+        if (verdictOnly)
         {
             result.distance = CONTACT_DISTANCE;
             result.penetration = Penetration::NOT_COMPUTED;

@@ -38,6 +38,12 @@ namespace meshgap
             (refineExact(): distance infinity; Scene: SceneResult::atLeast) and is proven. The collision verdict
             is exact whatever the bound. Infinity (the default): no bound. Node-level solvers ignore it. */
         double upperBound{std::numeric_limits<double>::infinity()};
+        /** \brief Exact stage and scene: in collision, find the penetration depth behind the signed distance (true,
+            the default), or answer the verdict alone (false: distance CONTACT_DISTANCE, a zero that is negative,
+            penetration NOT_COMPUTED, as FCL's distance answers 0 in collision). A free answer is the same either
+            way; a caller that needs only the verdict and the clearance of free poses saves the depth's cost.
+            Node-level solvers ignore it. */
+        bool computeDepth{true};
     };
 
     /** \brief What a colliding pair's (negative) distance is: how its penetration depth was found. */
@@ -47,7 +53,7 @@ namespace meshgap
         DEEPEST_NODE,   ///< depth of the deepest node of one body inside the other, closed, one (PenetrationDepth.h)
         NO_NODE_INSIDE,  ///< in collision, no node inside the other body (crossing or touching surfaces): depth 0
         OPEN_BODIES,    ///< in collision, both bodies open (no inside, so no depth): depth 0
-        NOT_COMPUTED    ///< in collision, depth not asked for (an early stop, stopBelow >= 0): depth 0
+        NOT_COMPUTED    ///< in collision, depth not asked for (stopBelow >= 0, or computeDepth false): depth 0
     };
 
     /** \brief The distance reported for a collision whose depth is 0 or not known (Penetration other than

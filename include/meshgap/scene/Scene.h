@@ -119,7 +119,9 @@ namespace meshgap
         /** \brief Minimum distance from the robot at \e X_WR to the obstacles, as \e request asks: exact and
             certified, or fast mode's upper bound (request.exact); only below request.upperBound (else atLeast);
             ended at request.stopBelow (then an upper bound, not certified). In collision the distance is signed,
-            negative: the deepest penetration over every colliding obstacle, a pure function of the pose. \e warm
+            negative: the deepest penetration over every colliding obstacle, a pure function of the pose; with
+            request.computeDepth false, CONTACT_DISTANCE (the verdict alone, as FCL's 0) and the first colliding
+            obstacle met, which may depend on the visiting order. \e warm
             carries what the caller's last query found (SceneWarmStart) and changes the cost, never the answer: a
             complete exact answer is the cold one bit for bit. Thread-safe given a warm start per caller; allocates
             nothing once the calling thread has warmed up (tests/alloc). How: Scene.cpp, exactDistance(). */
