@@ -134,7 +134,9 @@ namespace meshgap
             dist = 0.0;
             return false;
         }
-        const SceneResult r = query(state, true);
+        SceneRequest request;
+        request.computeDepth = false;  // the verdict, and the clearance of a valid state
+        const SceneResult r = query(state, true, request);
         dist = r.distance;
         return !r.inCollision;
     }
@@ -218,6 +220,7 @@ namespace meshgap
         const Eigen::Isometry3d X = poseFromState(*si_->getStateSpace(), state);
         request.exact = mode_ == Mode::CERTIFIED;
         request.solver = fastSolver_;
+        request.computeDepth = request.computeDepth && computeDepth_;
         SceneResult result;
         if (request.exact || fastSolver_ == "warm-fast")  // warm-fast: the paper's warm start along this thread's run
             scene_->distance(X, request, warmStartFor(id_), result);

@@ -102,6 +102,14 @@ namespace meshgap
             kept; an SE(2) state moves in its plane. */
         bool validStateAway(const ompl::base::State *state, const SceneResult &r, ompl::base::State *out) const;
 
+        /** \brief Whether clearance() of a state in collision finds its penetration depth (true, the default: a
+            negative signed distance) or gives the verdict alone (false: CONTACT_DISTANCE, a zero below zero, as
+            FCL's distance answers 0 in collision; free states are answered as before, at lower cost in collision).
+            isValid(state, dist), clearanceOrContact() and clearanceBelow() never find a depth. Set it before
+            planning (not while other threads query). */
+        void setComputeDepth(bool computeDepth) { computeDepth_ = computeDepth; }
+        bool computeDepth() const { return computeDepth_; }
+
         Mode mode() const { return mode_; }
         /** \brief Unique per checker, never reused (a later checker may reuse this one's address, never its id). */
         std::uint64_t id() const { return id_; }
@@ -122,6 +130,7 @@ namespace meshgap
         SceneConstPtr scene_;
         Mode mode_;
         std::string fastSolver_;
+        bool computeDepth_{true};
         std::uint64_t id_;  ///< unique per checker: keys this checker's per-thread warm starts
         mutable std::atomic<std::uint64_t> validityCalls_{0}, clearanceCalls_{0}, evaluations_{0}, warmHits_{0};
         mutable std::atomic<std::uint64_t> nanoseconds_{0};
