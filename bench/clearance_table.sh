@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Issue 5's two planning tables, from meshgap_benchmark runs (OMPL .log files) summarised by clearance_summary.py:
+# The two planning tables of bench/README.md, from meshgap_benchmark runs (OMPL .log files) summarised by
+# clearance_summary.py:
 #
 #   solve:     RRTConnect on every OMPL.app problem in ../shared/data/omplapp and every map in maps/, RUNS runs each
 #              within the cfg's own time_limit, SOLVE_CHECKERS (default certified): runs, exact solutions,

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 14's table: RRTConnect + the ClearancePathOptimizer (planner rrtconnect+opt: RRTConnect with the clearance
+# The optimiser's table: RRTConnect + the ClearancePathOptimizer (planner rrtconnect+opt: RRTConnect with the clearance
 # motion validator, then the optimiser for the rest of the run's time) against RRT* with max-min clearance and
 # RRTConnect alone, from meshgap_benchmark runs (OMPL .log files) summarised by clearance_summary.py: median minimum
 # clearance by FCL over the densely interpolated path, median length, and whether every path is FCL-free.
@@ -9,7 +9,7 @@
 # Settings (environment): RUNS (5), SEED (1), MAPS (the four maps, TIME_MAPS s a run, default 10), PROBLEMS (cubicles
 # Easy, TIME_PROBLEMS s, default 5), TWISTY (Twistycool runs, default 3, TIME_TWISTY s, default 60; 0 skips it),
 # BASELINES (1: also RRT* max-min and RRTConnect on PROBLEMS and Twistycool in the same run; default 1). The maps'
-# baselines are issue 5's table (bench/README.md). Paths are not simplified (--no-simplify): the planners' own.
+# baselines are clearance_table.sh's (bench/README.md). Paths are not simplified (--no-simplify): the planners' own.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${1:-$here/../build}"

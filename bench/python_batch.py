@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The Python module's batched queries on OMPL.app's cubicles (issue 16): its .path interpolated to 10,000 states in
+"""The Python module's batched queries on OMPL.app's cubicles: its .path interpolated to 10,000 states in
 numpy (linear translation, slerp rotation, by arc length with rotation counted in radians, as meshgap_bench_queries
 interpolates), then in interleaved rounds so machine load hits both alike:
   1. scene.distance(poses) warm certified, threads=1: wall time per query, against the C++ loop over the same poses

@@ -1,4 +1,4 @@
-// Reliability of the paper's global searches across geometry (issue 15): for every paper scene-pose in maps/
+// Reliability of the paper's global searches across geometry: for every paper scene-pose in maps/
 // (battery_fixture positions 1 and 2, hand_bowl, handshake) and for --poses poses of every OMPL.app problem in
 // --data (the world as one body, the robot shifted by its OMPL.app centre, as `meshgap_distance --cfg` does; poses
 // interpolated along the problem's .path, or from start to goal without one), run enumeration (the node-level

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 14's sampler table: one planner that uses a valid-state sampler (default PRM) with every sampler side by
+# The sampler table: one planner that uses a valid-state sampler (default PRM) with every sampler side by
 # side (meshgap_benchmark --sampler, a dimension of the experiment), meshgap-certified checker, summarised by
 # clearance_summary.py solve: runs, exact solutions, FCL-free paths, median and largest time per sampler.
 #

@@ -15,13 +15,13 @@
 // pass, and the allocations per query are reported; --trace-alloc lists each distinct allocating call chain (five
 // frames, names by addr2line) and how often it allocated per query.
 //
-// Also times issue 15's warm-fast solver (WarmFast.h) on the same body pair and motion, in a table of its own.
+// Also times the warm-fast solver (WarmFast.h) on the same body pair and motion, in a table of its own.
 //
 // Fast mode beyond the dense budget answers mesh distances by Dijkstra on demand and takes seconds per query at 256k
 // triangles, so there it is timed on the first --fast-on-demand poses only (the table says so). About 4 minutes.
 //
 // --map DIR (a maps/ folder: NAME_a.obj, NAME_b.obj, NAME.poses) scales a scene instead, such as maps/twisted, the
-// stress scene of issue 13: its B is the part refined to each size (the robot, and the preprocessing table's body),
+// exact layer's stress scene: its B is the part refined to each size (the robot, and the preprocessing table's body),
 // its A the obstacle, refined to the same multiple of its own size, and its .poses, evenly subsampled to --poses,
 // the motion.
 //
@@ -369,7 +369,7 @@ static int run(int argc, char **argv)
         SceneRequest certified, fast;
         fast.exact = false;
         std::vector<double> tCold, tWarm, tFast, tColl, tFclD, tFclC, tWarmFast;
-        const WarmFast warmFast;  // issue 15's warm-started fast solver, the same pair as the scene's
+        const WarmFast warmFast;  // the warm-started fast solver, the same pair as the scene's
         WarmFastState warmFastState;
         std::size_t warmFastBelow = 0;
         SceneWarmStart warm, fastWarm;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The test suite under the sanitizers (issue 7), as CI runs it after the Release suite:
+# The test suite under the sanitizers, as CI runs it after the Release suite:
 #   1. AddressSanitizer + UndefinedBehaviorSanitizer: every test, the executables the CLI tests run included;
 #   2. ThreadSanitizer: the tests that query one checker or scene from several threads.
 # Each has its own build directory beside `build`. No Python module there (an instrumented .so cannot be loaded by

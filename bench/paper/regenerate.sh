@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerate everything in bench/paper with one command (issue 15):
+# Regenerate everything in bench/paper with one command:
 #   1. the reproduction of Section IV (meshgap_bench_paper_reproduction: results.csv, history_*.csv; the maps as
 #      generated, Table I's parameters, RUNS runs per algorithm),
 #   2. the time-history figures and the table beside the paper's Tables III, V and VI (plot_paper.py, stdout saved

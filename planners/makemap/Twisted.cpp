@@ -15,7 +15,7 @@ namespace meshgap
 {
     namespace makemap
     {
-        // Twisted, in its own units: a stress scene for the exact layer (issue 13), not from the paper. A long, thin
+        // Twisted, in its own units: a stress scene for the exact layer, not from the paper. A long, thin
         // flat strip (section 1.5 x 0.4) wound as a helix, three turns (a coil spring of flat wire), screws through a
         // helical channel of the same pitch (five turns, a hollow coil whose bore is the strip's section grown by the
         // play on every side). Both are concave, twisted everywhere and made of long thin triangles (slivers, 15 degrees

@@ -602,7 +602,7 @@ TEST(CombSolvers, EvolutionBeatsItsInitialPopulationAndMultistartHillClimbing)
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// Our variants of comb-GA (issue 15), off by default: cluster seeding and restarts of a stalled population.
+// Our variants of comb-GA, off by default: cluster seeding and restarts of a stalled population.
 
 // Seeding::CLUSTERS with two members and no generations (-nl: no climb) answers a node pair of one of the two
 // cluster pairs of least signed sphere gap, found here by brute force over Body::clusters(); every variant is never

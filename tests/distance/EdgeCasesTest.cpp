@@ -1,4 +1,4 @@
-// Geometry edge cases (issue 7): touching bodies, coplanar faces, one body inside another, identical bodies at the
+// Geometry edge cases: touching bodies, coplanar faces, one body inside another, identical bodies at the
 // identity, very thin and very large meshes, and the odd-but-legal meshes users hand us (a single triangle,
 // non-manifold edges, inverted normals). Oracles: the analytic value, and FCL. The verdict is never "free" where
 // FCL says collision.

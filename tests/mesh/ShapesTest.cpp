@@ -552,7 +552,7 @@ TEST(Maps, GeneratedScenesAreClosedAndSeparatedAtTheirPoses)
 
 TEST(Maps, TwistedPathIsFreeAndCloseToTheChannel)
 {
-    // maps/twisted (the stress scene of issue 13): a thin helical strip screwed through a helical channel. Checked
+    // maps/twisted (the exact layer's stress scene): a thin helical strip screwed through a helical channel. Checked
     // here, independently of the generator: both meshes closed and outward, the strip made of hundreds of long thin
     // triangles, the cfg's start and goal the first and last of the .poses (OMPL.app's centre shift undone), and
     // with FCL as the oracle every pose of the path, and the midpoint of each step between two poses (linear

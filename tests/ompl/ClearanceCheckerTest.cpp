@@ -165,7 +165,7 @@ TEST(ClearanceChecker, ThreadsGiveTheSingleThreadedAnswers)
 {
     // One checker per mode, queried from 8 threads at once, each visiting the states in its own interleaved order
     // (strides coprime to the state count), validity and clearance mixed: every answer equals the single-threaded
-    // one bit for bit (issue 7). Warm starts are per thread, so a thread's history never leaks into another's answer.
+    // one bit for bit. Warm starts are per thread, so a thread's history never leaks into another's answer.
     constexpr int THREADS = 8, ROUNDS = 2;
     Fixture f;
     const auto states = f.randomStates(101);

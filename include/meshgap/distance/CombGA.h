@@ -35,7 +35,7 @@ namespace meshgap
        k-th nearest cluster pair; the search from there is the paper's. It costs the clusters' pair count in sphere
        gaps (not node evaluations, and not counted as such). Seeding::MIXED draws half the population that way and
        half at random. setRestartStall() re-draws a stalled population at random, keeping the best (a restart with
-       the remaining generations). Both measured in bench/paper/README.md (issue 15); both off by default.
+       the remaining generations). Both measured in bench/paper/README.md ("Variants"); both off by default.
 
        "comb-GA-wl" hill-climbs (hillClimb(), III-E) every new trial point before it enters the population, and the
        improved pair replaces it (Lamarckian evolution: the paper's memetic variant); "comb-GA-nl" does not.

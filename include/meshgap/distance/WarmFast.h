@@ -37,8 +37,8 @@ namespace meshgap
        least (global distance - drift) if that search was right. The global search is a bounded multistart of hill
        climbs (random starts, \e global_evaluations d^2 in all), which needs no mesh distances, so no query costs
        seconds; with \e global_search "comb-GA-wl" it is comb-GA-wl (Table I, capped at \e global_evaluations too)
-       when both bodies' mesh distances are dense tables. The multistart is the default since the profile of
-       issue 15: global searches were 98% of warm-fast's instructions along cubicles' path, a third of comb-GA-wl's
+       when both bodies' mesh distances are dense tables. The multistart is the default, from a profile of
+       warm-fast: global searches were 98% of its instructions along cubicles' path, a third of comb-GA-wl's
        in its mesh operators (mating, paths), and the multistart's mean query was 0.27-0.77 of comb-GA-wl's on every
        path of meshgap_bench_warm_fast, with the same median error (0).
 
@@ -91,7 +91,7 @@ namespace meshgap
         void setGlobalEvaluations(unsigned int n);
         unsigned int getGlobalEvaluations() const { return globalEvaluations_; }
         /** \brief The global search (parameter "global_search"): a bounded multistart of hill climbs (false, the
-            default: cheaper per evaluation, measured in bench/paper/README.md, issue 15) or, when both bodies' mesh
+            default: cheaper per evaluation, measured in bench/paper/README.md, "Warm-fast") or, when both bodies' mesh
             distances are dense tables, comb-GA-wl (true). */
         void setGlobalGa(bool ga) { globalGa_ = ga; }
         bool getGlobalGa() const { return globalGa_; }

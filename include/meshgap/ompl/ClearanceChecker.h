@@ -49,7 +49,7 @@ namespace meshgap
        depends on the thread's history (one state asked twice may get two answers, both at or above the exact
        one). Any other SolverFactory name (e.g. "comb-GA-wl", the paper's solver) runs from scratch per state,
        seeded from the state's coordinates: a pure function of the state, at several times the certified query's
-       cost. Which to use when (measured in bench/paper/README.md, issue 15): CERTIFIED by default and wherever the
+       cost. Which to use when (measured in bench/paper/README.md, "Warm-fast"): CERTIFIED by default and wherever the
        clearance is a guarantee (ClearanceMotionValidator, a clearance constraint, a proven path clearance), and
        wherever queries jump between unrelated states (RRT*'s costs: warm-fast's global searches made its mean query
        7-20 times the certified one there) or the certified query is already a few microseconds (the OMPL.app
