@@ -139,15 +139,16 @@ namespace
 
     /** \brief The checker's answer (ClearanceChecker, certified mode) at each pose: Scene::distance() on the world
         split into its parts, exact and certified, one SceneWarmStart carried from pose to pose (none with \e cold:
-        a cold query per pose). */
+        a cold query per pose); in collision without the depth unless \e depth. */
     int answerWithScene(const Mesh &robot, const Mesh &world, const BodyOptions &options,
-                        const std::vector<Eigen::Isometry3d> &poses, bool many, bool asJson, bool cold)
+                        const std::vector<Eigen::Isometry3d> &poses, bool many, bool asJson, bool cold, bool depth)
     {
         const ScenePtr scene = Scene::fromMeshes(robot, world, options);
         OMPL_INFORM("scene: robot %zu triangles, world %zu triangles in %zu parts (obstacles); %s",
                     robot.triangles.size(), world.triangles.size(), scene->obstacles().size(),
                     cold ? "no warm start, a cold query per pose (--cold)" : "one warm start carried from pose to pose");
-        const SceneRequest request;  // exact and certified, no bound: the checker's clearance()
+        SceneRequest request;  // exact and certified, no bound: the checker's clearance()
+        request.computeDepth = depth;
         SceneWarmStart warm;
         std::vector<double> micros;
         if (many)
@@ -207,7 +208,7 @@ namespace
         std::vector<std::string> meshes, settings;
         std::uint64_t seed = 1;
         double budgetMiB = 512;
-        bool algorithmGiven = false, cold = false, json = false, exact = false;
+        bool algorithmGiven = false, cold = false, json = false, exact = false, noDepth = false;
 
         /** \brief With --cfg and no --algorithm: the checker's answer (the scene), not a node-level solver. */
         bool scene() const { return !cfg.empty() && !algorithmGiven; }
@@ -233,6 +234,7 @@ namespace
             ("memory-budget", po::value(&o.budgetMiB), "largest all-pairs mesh-distance table, MiB (default 512)")
             ("exact", "refine the answer to the exact, certified surface distance (triangles + BVH)")
             ("cold", "with --cfg and no --algorithm: a cold query at every pose, no warm start (default: one carried along)")
+            ("no-depth", "with --cfg and no --algorithm: in collision the verdict alone (distance -2.2e-308, a zero below zero, as FCL answers 0), no penetration depth")
             ("json", "print JSON instead of text or CSV")
             ("quiet,q", "print warnings and errors only");
         po::options_description hidden;
@@ -247,6 +249,7 @@ namespace
             return false;
         o.algorithmGiven = vm.count("algorithm") > 0;
         o.cold = vm.count("cold") > 0;
+        o.noDepth = vm.count("no-depth") > 0;
         o.json = vm.count("json") > 0;
         o.exact = vm.count("exact") > 0;
         return true;
@@ -257,6 +260,8 @@ namespace
     {
         if (o.cold && !o.scene())
             throw Exception("--cold", "applies to the scene's answer only (--cfg without --algorithm)");
+        if (o.noDepth && !o.scene())
+            throw Exception("--no-depth", "applies to the scene's answer only (--cfg without --algorithm)");
         if (o.scene() && !o.settings.empty())
             throw Exception("--param", "solver parameters need --algorithm (with --cfg alone the answer is the scene's)");
         DistanceSolverPtr solver = allocSolver(o.algorithm);
@@ -405,7 +410,7 @@ namespace
             BodyOptions options;  // exact answers use each surface as given, whatever the grid
             options.gridSize = hA;
             options.distances = distances;
-            return answerWithScene(in.b, in.a, options, in.poses, o.many(), o.json, o.cold);
+            return answerWithScene(in.b, in.a, options, in.poses, o.many(), o.json, o.cold, !o.noDepth);
         }
         const BodyPtr a = makeBody(in.a, in.reportA, hA, o.sizing == "adaptive", distances, "A");
         const BodyPtr b = makeBody(in.b, in.reportB, hB, o.sizing == "adaptive", distances, "B");

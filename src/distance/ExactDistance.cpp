@@ -203,6 +203,7 @@ namespace meshgap
                         seeded ? best.ta : UINT32_MAX, seeded ? best.tb : UINT32_MAX, warm ? &warm->front : nullptr,
                         known ? &seedAxis : nullptr);
             result.triangleTests += traversal.triangleTests;
+            result.boxTests += traversal.boxTests;
             if (traversal.found)
                 best = {traversal.distance, traversal.triangleA, traversal.triangleB, traversal.onA, traversal.onB};
         }

@@ -74,6 +74,9 @@ namespace meshgap
             megabytes on large meshes), and a benchmark makes a checker per run, so the oldest (the smallest id, a
             checker made earlier) goes when a new one arrives. A checker whose warm start went starts cold again. */
         constexpr std::size_t WARM_STARTS_PER_THREAD = 8;
+        /** \brief Certificates each of them keeps (SceneWarmStart): a planner's queries return to a few regions in
+            turn (the two trees of RRTConnect, the motions out of a tree node), each carried from its own. */
+        constexpr std::size_t CERTIFICATES_PER_WARM_START = 4;
 
         /** \brief This thread's warm starts, one per checker (keyed by the checker's unique id, never its address,
             which a later checker could reuse). */
@@ -86,7 +89,7 @@ namespace meshgap
             if (warm.size() >= WARM_STARTS_PER_THREAD)
                 warm.erase(std::min_element(warm.begin(), warm.end(),
                                             [](const auto &p, const auto &q) { return p.first < q.first; }));
-            return warm[id];
+            return warm.try_emplace(id, CERTIFICATES_PER_WARM_START).first->second;
         }
 
         /** \brief A seed from the pose's bits: the same state always gets the same node-level answer. */

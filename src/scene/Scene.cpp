@@ -199,6 +199,62 @@ namespace meshgap
         }
     };
 
+    SceneWarmStart::Use SceneWarmStart::choose(const Eigen::Isometry3d &X_WR, const Eigen::Vector3d &center,
+                                               double radius)
+    {
+        ++queries;
+        const double limit = COHERENCE * radius;
+        auto motion = [&](const Eigen::Isometry3d &from) { return nodeMotionBound(center, radius, from, X_WR); };
+        // The nearest certificate by the motion bound: the one in use, or a recent one swapped into use.
+        double nearest = posed ? motion(pose) : std::numeric_limits<double>::infinity();
+        std::size_t chosen = recent.size();
+        for (std::size_t i = 0; i < recent.size(); ++i)
+            if (recent[i].posed)
+            {
+                const double m = motion(recent[i].pose);
+                if (m < nearest)
+                {
+                    nearest = m;
+                    chosen = i;
+                }
+            }
+        if (lastPoses.size() != capacity_)
+            lastPoses.resize(capacity_);  // once: a warm start that never chooses allocates nothing
+        bool nearRecent = false;  // near one of the last capacity() queries' poses
+        for (std::size_t i = 0; i < posesSeen && i < lastPoses.size(); ++i)
+            nearRecent = nearRecent || motion(lastPoses[i]) <= limit;
+        lastPoses[posesSeen++ % lastPoses.size()] = X_WR;
+        if (nearest <= limit)
+        {
+            if (chosen < recent.size())
+                std::swap(static_cast<SceneCertificate &>(*this), recent[chosen]);
+            ++carried;
+            return Use::CARRY;
+        }
+        if (!nearRecent)
+        {
+            ++cold;
+            return Use::COLD;
+        }
+        // A run of nearby poses starts here: write a certificate in place of the least recently used one.
+        if (posed && capacity_ > 1)
+        {
+            if (recent.size() + 1 < capacity_)
+            {
+                recent.reserve(capacity_ - 1);
+                recent.emplace_back();
+            }
+            std::size_t oldest = 0;
+            for (std::size_t i = 1; i < recent.size(); ++i)
+                if (recent[oldest].posed && (!recent[i].posed || recent[i].lastUse < recent[oldest].lastUse))
+                    oldest = i;
+            std::swap(static_cast<SceneCertificate &>(*this), recent[oldest]);
+        }
+        SceneCertificate::reset();
+        ++written;
+        return Use::WRITE;
+    }
+
     Scene::Scene(BodyConstPtr robot, std::vector<BodyConstPtr> obstacles)
         : robot_(std::move(robot)), obstacles_(std::move(obstacles)), id_(nextSceneId++)
     {
@@ -243,10 +299,16 @@ namespace meshgap
         if (warm.scene == id_ && warm.pairs.size() == obstacles_.size())
             return;
         // First query with this warm start, or one made with another scene: nothing carries over.
-        warm.valid = false;
+        warm.reset();
         warm.pairs.clear();
         warm.pairs.resize(obstacles_.size());
         warm.fast.clear();
+        for (SceneCertificate &c : warm.recent)
+        {
+            c.pairs.clear();
+            c.pairs.resize(obstacles_.size());
+            c.fast.clear();
+        }
         warm.scene = id_;
     }
 
@@ -257,7 +319,7 @@ namespace meshgap
         // cannot matter, since the most negative value wins and ties go to the smallest index.
         ThreadScratch<std::vector<Entry>> hits;
         impl_->intersecting(impl_->robotBox(*robot_, X_WR), hits.get());
-        std::size_t bestK = obstacles_.size();
+        std::size_t bestK = obstacles_.size(), tests = 0;
         for (const Entry &e : hits.get())
         {
             const std::size_t k = e.second;
@@ -272,13 +334,37 @@ namespace meshgap
             const bool carried = warm && warm->pairs.size() == obstacles_.size();  // fast mode's may be unbound
             setPenetration(obstacle, *robot_, X_WR, r, carried ? &warm->pairs[k].penetration : nullptr);
             r.certified = true;
+            tests += r.triangleTests;
             if (bestK == obstacles_.size() || r.distance < best.distance || (r.distance == best.distance && k < bestK))
             {
                 best = r;
                 bestK = k;
             }
         }
+        best.triangleTests = tests;  // the work of every depth found, not only the deepest's
         return bestK;
+    }
+
+    SceneWarmStart *Scene::choose(const Eigen::Isometry3d &X_WR, SceneWarmStart &warm) const
+    {
+        bind(warm);
+        const TriangleBvh::Node &root = robot_->bvh().nodes()[0];
+        switch (warm.choose(X_WR, root.center, root.radius))
+        {
+            case SceneWarmStart::Use::COLD:
+                return nullptr;
+            case SceneWarmStart::Use::WRITE:
+                // The fresh certificate needs its per-obstacle warm starts (sized once; no allocation after).
+                if (warm.pairs.size() != obstacles_.size())
+                {
+                    warm.pairs.clear();
+                    warm.pairs.resize(obstacles_.size());
+                }
+                return &warm;
+            case SceneWarmStart::Use::CARRY:
+                return &warm;
+        }
+        return nullptr;
     }
 
     bool Scene::inCollision(const Eigen::Isometry3d &X_WR) const
@@ -288,8 +374,11 @@ namespace meshgap
 
     bool Scene::inCollision(const Eigen::Isometry3d &X_WR, SceneWarmStart &warm) const
     {
-        bind(warm);
-        return firstCollision(X_WR, &warm) < obstacles_.size();
+        SceneWarmStart *carried = choose(X_WR, warm);
+        const bool hit = firstCollision(X_WR, carried) < obstacles_.size();
+        if (carried)
+            carried->stamp(X_WR);
+        return hit;
     }
 
     void Scene::distance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
@@ -367,7 +456,7 @@ namespace meshgap
                               SceneResult &result) const
     {
         if (warm)
-            bind(*warm);
+            warm = choose(X_WR, *warm);  // null: a cold query
         const bool warmValid = warm && warm->valid && warm->obstacle < obstacles_.size();
         const bool mayStop = request.stopBelow >= 0.0;
         DistanceResult best;
@@ -388,6 +477,8 @@ namespace meshgap
             pairRequest.upperBound = bound();
             refineExact(obstacle, *robot_, X_WR, r, pairRequest, warm ? &warm->pairs[k] : nullptr);
             ++result.pairsChecked;
+            result.triangleTests += r.triangleTests;
+            result.boxTests += r.boxTests;
             complete = complete && r.certified;
             if (r.distance < bound())  // else nothing on this obstacle is below the bound (refineExact's infinity)
             {
@@ -412,7 +503,9 @@ namespace meshgap
             result.obstacle = obstacles_.size();
             result.atLeast = true;
             result.certified = complete;
-            return;  // the warm start stays as it was
+            if (warm)
+                warm->stamp(X_WR);  // its fronts are this pose's; its obstacle stays as it was
+            return;
         }
         if (best.inCollision && !mayStop && request.computeDepth)
         {
@@ -420,6 +513,7 @@ namespace meshgap
             DistanceResult deepest;
             bestK = deepestCollision(X_WR, bestK, deepest, result.pairsChecked, warm);
             best = deepest;
+            result.triangleTests += deepest.triangleTests;
         }
 
         result.distance = best.distance;
@@ -435,6 +529,7 @@ namespace meshgap
         {
             warm->valid = true;
             warm->obstacle = bestK;
+            warm->stamp(X_WR);
         }
     }
 

@@ -56,9 +56,10 @@ namespace meshgap
         results.assign(poses.size(), SceneResult());
         const std::size_t n = poses.size(), blocks = (n + SCENE_BATCH_BLOCK - 1) / SCENE_BATCH_BLOCK;
         // A complete exact answer does not depend on the warm start (canonical ties: bit for bit the cold one), so a
-        // thread carries its warm start from block to block; any other answer (fast mode, an early stop) starts
+        // thread carries its warm start from block to block; any other answer (fast mode, an early stop, no depth:
+        // which colliding obstacle is met first) starts
         // each block afresh, so that it depends on the block alone, never on which thread took which block.
-        const bool carry = request.exact && request.stopBelow < 0.0;
+        const bool carry = request.exact && request.stopBelow < 0.0 && request.computeDepth;
         std::vector<SceneWarmStart> starts(std::max(1u, threads));
         forEachBlock(blocks, threads,
                      [&](std::size_t b, std::size_t run)

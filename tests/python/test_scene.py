@@ -143,6 +143,19 @@ def test_fast_mode_is_an_upper_bound_with_exact_verdicts(hand_bowl):
     assert not fast["certified"].any() and exact["certified"].all()
 
 
+def test_depth_skipped_gives_the_verdict_and_the_same_free_answers(hand_bowl):
+    poses = path_poses(hand_bowl, 300, seed=7)
+    full, verdict = hand_bowl.distance(poses), hand_bowl.distance(poses, depth=False)
+    collide = full["in_collision"]
+    assert collide.any() and not collide.all()
+    assert np.array_equal(verdict["in_collision"], collide) and verdict["certified"].all()
+    assert np.array_equal(verdict["distance"][~collide], full["distance"][~collide])
+    # In collision: a zero below zero (the verdict alone, as FCL's 0), where the full answer has a depth.
+    assert np.all(verdict["distance"][collide] == -np.finfo(float).tiny)
+    assert np.all(full["distance"][collide] < 0)
+    assert np.array_equal(verdict["distance"], hand_bowl.distance(poses, depth=False, threads=2)["distance"])
+
+
 def write_path(path, poses):
     with open(path, "w") as out:
         for p in poses:

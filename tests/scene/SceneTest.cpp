@@ -183,8 +183,8 @@ TEST(Scene, DistanceIsTheMinimumOverAllObstaclesAtRandomPoses)
         ASSERT_EQ(r.inCollision, oracle.inCollision);
         EXPECT_EQ(scene->inCollision(X), oracle.inCollision);
         EXPECT_TRUE(r.certified);
-        EXPECT_TRUE(cold.valid);
-        EXPECT_EQ(cold.obstacle, r.obstacle);
+        EXPECT_EQ(cold.cold, 1u);  // a fresh warm start answers cold, and keeps no certificate yet
+        EXPECT_FALSE(cold.valid);
         ASSERT_LT(r.obstacle, scene->obstacles().size());
         if (r.inCollision)
         {
@@ -654,3 +654,60 @@ TEST(Scene, OmplAppProblemsMatchFclAtPathStatesAndRandomPoses)
                      << "; skipping";
 }
 #endif
+
+TEST(Scene, DepthSkippedGivesTheVerdictAndTheSameFreeAnswers)
+{
+    const ScenePtr scene = Scene::fromMeshes(uRobot(), scatteredWorld(), coarse());
+    std::vector<Eigen::Isometry3d> poses;
+    for (const auto &[from, to] :
+         {std::make_pair(pose(-7, -1, 0.3, 0.2), pose(7, 1.5, -0.2, 1.5, Eigen::Vector3d(1, 1, 0))),
+          std::make_pair(pose(-5, 5, 4, -0.5, Eigen::Vector3d::UnitX()), pose(5, -5, -4, 0.6))})
+    {
+        const auto segment = straightLine(from, to, 300);
+        poses.insert(poses.end(), segment.begin(), segment.end());
+    }
+    std::size_t collisions = 0, workFull = 0, workVerdict = 0;
+    for (bool exact : {true, false})
+    {
+        SceneRequest full, verdict;
+        full.exact = verdict.exact = exact;
+        verdict.computeDepth = false;
+        SceneWarmStart warm;
+        for (std::size_t i = 0; i < poses.size(); ++i)
+        {
+            SceneResult f, v, vw;
+            scene->distance(poses[i], full, f);
+            scene->distance(poses[i], verdict, v);
+            scene->distance(poses[i], verdict, warm, vw);
+            for (const SceneResult *r : {&v, &vw})
+            {
+                ASSERT_EQ(r->inCollision, f.inCollision) << "pose " << i;
+                if (!f.inCollision)
+                {
+                    // Fast mode's warm answer follows its history (an upper bound); the others are the same.
+                    if (exact || r == &v)
+                    {
+                        EXPECT_EQ(r->distance, f.distance) << "pose " << i;
+                        EXPECT_EQ(r->onRobot, f.onRobot) << "pose " << i;
+                    }
+                    continue;
+                }
+                EXPECT_EQ(r->distance, CONTACT_DISTANCE) << "pose " << i;
+                EXPECT_EQ(r->penetration, Penetration::NOT_COMPUTED) << "pose " << i;
+                EXPECT_EQ(r->penetrationDepth, 0.0) << "pose " << i;
+                EXPECT_EQ(r->certified, exact) << "pose " << i;
+            }
+            if (f.inCollision && exact)
+            {
+                EXPECT_NE(f.penetration, Penetration::NOT_COMPUTED) << "pose " << i;
+                ++collisions;
+                workFull += f.boxTests + f.triangleTests;
+                workVerdict += v.boxTests + v.triangleTests;
+            }
+        }
+    }
+    test::Note() << "[ scene    ] " << collisions << " colliding poses: work with the depth " << workFull
+                 << ", verdict alone " << workVerdict << "\n";
+    EXPECT_GT(collisions, 10u);
+    EXPECT_LT(workVerdict, workFull);  // the depth is what a colliding query pays for
+}

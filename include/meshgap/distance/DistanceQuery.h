@@ -98,7 +98,8 @@ namespace meshgap
         double penetrationDepth{0.0};
         Penetration penetration{Penetration::NONE};
         std::uint32_t triangleA{0}, triangleB{0};  ///< closest surface triangles (Body::surface() indices)
-        std::size_t triangleTests{0};              ///< exact triangle-pair tests made
+        std::size_t triangleTests{0};              ///< exact triangle-pair (and point-triangle) tests made
+        std::size_t boxTests{0};                   ///< bounding-volume pairs tested by the distance traversal
         /** \brief Best value after each iteration, when DistanceRequest::recordHistory is set. */
         std::vector<double> history;
 

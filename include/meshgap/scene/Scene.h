@@ -2,6 +2,7 @@
 #define MESHGAP_SCENE_SCENE_H
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <limits>
 #include <string>
 #include <vector>
@@ -27,25 +28,35 @@ namespace meshgap
         std::string solver{"comb-GA-wl"};
     };
 
-    /** \brief What one caller (one thread) carries from one query to the next, nearby pose (paper III-D): the
-        obstacle of the last minimum, visited first; in exact mode, per obstacle, the closest triangle pair and the
-        certificate of the last traversal (ExactWarmStart); in fast mode, the last node pair. Changes the cost of a
-        query, never its answer. Never shared between threads; bound to the scene it was last used with (another
-        scene starts it afresh). */
-    struct SceneWarmStart
+    /** \brief One certificate: what a query left for the next one near its pose (paper III-D): the obstacle of its
+        minimum, visited first; in exact mode, per obstacle, the closest triangle pair and the certificate of the last
+        traversal (ExactWarmStart); in fast mode, the last node pair. */
+    struct SceneCertificate
     {
         bool valid{false};
         std::size_t obstacle{0};            ///< obstacle of the last minimum
         NodePair nodes;                     ///< fast mode: its node pair
         std::vector<ExactWarmStart> pairs;  ///< exact mode: one per obstacle, sized by the first exact query
         std::vector<WarmFastState> fast;    ///< fast mode with the warm-fast solver: one per obstacle
-        std::uint64_t scene{0};             ///< Scene::id() of the scene pairs belongs to
+        /** \brief The robot's pose at the last query that carried or wrote this certificate (exact mode), and
+            whether there was one (its fronts are that pose's). */
+        Eigen::Isometry3d pose{Eigen::Isometry3d::Identity()};
+        bool posed{false};
+        std::uint64_t lastUse{0};  ///< SceneWarmStart::queries at that query (the least recent goes first)
 
-        /** \brief Forget the history (the next query is answered as a cold one would be) but keep the memory, so
-            that a caller who resets allocates nothing. */
+        /** \brief Record that the query at \e X_WR (the \e use'th) carried or wrote this certificate. */
+        void stamp(const Eigen::Isometry3d &X_WR, std::uint64_t use)
+        {
+            pose = X_WR;
+            posed = true;
+            lastUse = use;
+        }
+
+        /** \brief Forget the history but keep the memory, so that a caller who resets allocates nothing. */
         void reset()
         {
             valid = false;
+            posed = false;
             for (WarmFastState &f : fast)
                 f.valid = false;
             for (ExactWarmStart &p : pairs)
@@ -68,6 +79,83 @@ namespace meshgap
         }
     };
 
+    /** \brief What one caller (one thread) carries from one query to the next: up to capacity() certificates of
+        recent answers (SceneCertificate), the one in use (this object's own fields) and the others. Changes the cost
+        of a query, never its answer. Never shared between threads; bound to the scene it was last used with (another
+        scene starts it afresh).
+
+        Which certificate an exact query (or a collision test) starts from is decided here, in one place
+        (Scene::distance() asks choose()): the one whose pose is nearest to the query's by the motion bound (how far
+        any robot point moved, its bounding sphere's displacement), if that motion is within COHERENCE times the
+        robot's radius; a pose further from every certificate is unrelated to them (a planner's new sample) and is
+        answered cold, without paying for a certificate that cannot help. A new certificate is written only when
+        the stream shows it is local: the query lies within that motion of one of the last capacity() queries' poses
+        (the start of a run of nearby poses, or of a region the stream returns to in turn); it replaces the least
+        recently used one. So a stream of unrelated
+        poses costs what cold queries cost, a path costs what one certificate carried along it costs, and a stream
+        that alternates between a few regions (RRTConnect's two trees, a sampler returning to a region) keeps one
+        certificate per region. Fast mode always carries the certificate in use (the paper's warm start, III-D). */
+    struct SceneWarmStart : SceneCertificate
+    {
+        /** \brief A pose is near a certificate when the robot moved at most this many radii since it. */
+        static constexpr double COHERENCE = 0.5;
+
+        /** \brief How a query uses the warm start (choose()). */
+        enum class Use
+        {
+            CARRY,  ///< near the certificate in use (chosen among the recent ones): carried from there
+            WRITE,  ///< near a recent query's pose only: a fresh certificate is written, the least recent one goes
+            COLD    ///< unrelated to every certificate and to the last pose: a cold query, no certificate written
+        };
+
+        /** \brief Keep up to \e capacity certificates (at least 1; the default keeps one, carried along a run of
+            poses). Each holds up to SceneCertificate::memoryBytes() (the fronts of every obstacle near its pose). */
+        explicit SceneWarmStart(std::size_t capacity = 1) : capacity_(std::max<std::size_t>(capacity, 1)) {}
+
+        std::size_t capacity() const { return capacity_; }
+        /** \brief Forget the history (the next query is answered as a cold one would be) but keep the memory, so
+            that a caller who resets allocates nothing. */
+        void reset()
+        {
+            SceneCertificate::reset();
+            for (SceneCertificate &c : recent)
+                c.reset();
+            posesSeen = 0;
+        }
+
+        /** \brief Bytes held, this object included. */
+        std::size_t memoryBytes() const
+        {
+            std::size_t bytes = SceneCertificate::memoryBytes() + sizeof(*this) - sizeof(SceneCertificate) +
+                                (recent.capacity() - recent.size()) * sizeof(SceneCertificate) +
+                                lastPoses.capacity() * sizeof(Eigen::Isometry3d);
+            for (const SceneCertificate &c : recent)
+                bytes += c.memoryBytes();
+            return bytes;
+        }
+
+        /** \brief Decide how the query at robot pose \e X_WR uses this warm start (see the class), for a robot whose
+            bounding sphere has centre \e center (robot frame) and \e radius; the chosen certificate becomes the one
+            in use (CARRY), or the least recent one is emptied to be written (WRITE). Records \e X_WR among the
+            recent poses. Allocates only when a certificate is first kept. */
+        Use choose(const Eigen::Isometry3d &X_WR, const Eigen::Vector3d &center, double radius);
+        /** \brief Record that the query at \e X_WR carried or wrote the certificate in use. */
+        void stamp(const Eigen::Isometry3d &X_WR) { SceneCertificate::stamp(X_WR, queries); }
+
+        std::vector<SceneCertificate> recent;  ///< the other certificates kept (up to capacity() - 1)
+        std::uint64_t scene{0};                ///< Scene::id() of the scene the certificates belong to
+        std::uint64_t queries{0};              ///< queries that chose (the clock of lastUse)
+        /** \brief The poses of the last capacity() queries (a ring, sized by the first choose(); posesSeen of them
+            written so far). */
+        std::vector<Eigen::Isometry3d> lastPoses;
+        std::size_t posesSeen{0};
+        /** \brief Statistics: queries carried from a certificate, that wrote a fresh one, answered cold. */
+        std::uint64_t carried{0}, written{0}, cold{0};
+
+    private:
+        std::size_t capacity_;
+    };
+
     /** \brief The answer for one robot pose. */
     struct SceneResult
     {
@@ -85,6 +173,9 @@ namespace meshgap
         bool certified{false};        ///< exact and proven (every pair that survived the broad phase completed)
         std::size_t pairsChecked{0};  ///< robot/obstacle pairs that survived the broad phase
         std::size_t evaluations{0};   ///< node-pair evaluations (fast mode)
+        /** \brief The work of an exact query, summed over the pairs it visited (DistanceResult's counts): a cost
+            that does not depend on the machine's load. */
+        std::size_t triangleTests{0}, boxTests{0};
         bool warmStartHit{false};     ///< the minimum was at the warm start's obstacle
         /** \brief The distance is at least SceneRequest::upperBound, which distance then holds (certified; no
             witnesses, obstacle = obstacles().size()). */
@@ -141,11 +232,15 @@ namespace meshgap
         /** \brief Bind \e warm to this scene (one pair warm start per obstacle), starting it afresh if it was made
             with another scene. */
         void bind(SceneWarmStart &warm) const;
+        /** \brief Bind \e warm, and decide how the query at \e X_WR uses it (SceneWarmStart::choose()): the warm
+            start to carry from (its certificate in use, made ready), or null for a cold query. */
+        SceneWarmStart *choose(const Eigen::Isometry3d &X_WR, SceneWarmStart &warm) const;
         /** \brief The most negative signed distance (deepest penetration, setPenetration()) over every obstacle the
             robot at \e X_WR collides with, into \e best (ties: the smallest index); returns that obstacle, or
             obstacles_.size() if none collides. \e known is an obstacle already known to collide (no test made
-            again), or obstacles_.size(); pairs tested are added to \e pairsChecked. \e warm: each pair's deepest node
-            carries over (setPenetration()'s warm start). */
+            again), or obstacles_.size(); pairs tested are added to \e pairsChecked, and best.triangleTests counts
+            the tests of every depth found. \e warm: each pair's deepest node carries over (setPenetration()'s warm
+            start). */
         std::size_t deepestCollision(const Eigen::Isometry3d &X_WR, std::size_t known, DistanceResult &best,
                                      std::size_t &pairsChecked, SceneWarmStart *warm = nullptr) const;
         void query(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart *warm,

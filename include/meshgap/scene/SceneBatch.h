@@ -15,7 +15,7 @@ namespace meshgap
     /** \brief Scene::distance() at every pose of \e poses, in order, into \e results (resized to poses.size()).
 
         With \e warm, a SceneWarmStart is carried from pose to pose (a path's states are nearby, so it pays): for
-        complete exact answers (request.exact, no stopBelow), which are bit for bit the cold ones, each thread
+        complete exact answers (request.exact, no stopBelow, computeDepth), which are bit for bit the cold ones, each thread
         carries its own across the blocks it takes; otherwise one starts afresh at each block of SCENE_BATCH_BLOCK
         consecutive poses. Without \e warm every query starts cold. Up to \e threads threads
         (at least 1; the caller's thread is one) each take the next block not yet taken until none is left, so they
