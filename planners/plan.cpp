@@ -45,7 +45,7 @@ namespace
             {
                 using T = std::remove_reference_t<decltype(o.*field)>;
                 if constexpr (std::is_same_v<T, bool>)
-                    options.add_options()(flag.c_str(), po::bool_switch(&(o.*field)), row.help.c_str());
+                    options.add_options()(flag.c_str(), row.help.c_str());  // a switch: set by parseOptions()
                 else
                     options.add_options()(flag.c_str(), po::value<T>(&(o.*field)), row.help.c_str());
             },
@@ -66,8 +66,12 @@ namespace
         if (!parseCommandLine(argc, argv, all, vm, nullptr, &options))
             return false;
         for (const PlanOption &row : planOptionTable())
-            if (vm.count(row.name) && !vm[row.name].defaulted())
+        {
+            if (vm.count(row.name))
                 o.given.insert(row.name);
+            if (const auto *field = std::get_if<bool PlanOptions::*>(&row.field))
+                o.*(*field) = vm.count(row.name) > 0;
+        }
         checkPlanOptions(o);
         return true;
     }
