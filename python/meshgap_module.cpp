@@ -408,22 +408,20 @@ namespace
         for (const auto &[key, value] : kwargs)
         {
             const std::string keyword = py::str(key).cast<std::string>();
-            if (keyword == "mode")  // the old spelling, as meshgap_plan refuses --mode
-                throw Exception("mode", "renamed: use checker='certified' or checker='fast'");
-            if (value.is_none())
-                continue;
-            if (keyword == "params")
-            {
-                o.plannerParams = paramTexts(value);
-                continue;
-            }
             const auto &table = planOptionTable();
             const auto row = std::find_if(table.begin(), table.end(), [&keyword](const PlanOption &r)
                                           { return planKeyword(r.name) == keyword; });
-            if (row == table.end())
+            if (row == table.end() && keyword != "params" && keyword != "mode")
                 throw py::type_error("plan() got an unexpected keyword argument '" + keyword +
                                      "'; valid: " + joinNames(planKeywords()));
-            setKeyword(o, *row, value);
+            if (value.is_none())
+                continue;
+            if (keyword == "mode")  // the old spelling, as meshgap_plan refuses --mode
+                throw Exception("mode", "renamed: use checker='certified' or checker='fast'");
+            if (keyword == "params")
+                o.plannerParams = paramTexts(value);
+            else
+                setKeyword(o, *row, value);
         }
     }
 
