@@ -156,21 +156,24 @@ def without_times(text):
 ])
 def test_cli_and_plan_give_the_same_run(tmp_path, flags):
     """The same flags and seed: meshgap_plan and plan() print the same summary (the times aside) and write the same
-    path and clearance CSV, byte for byte."""
+    path, clearance CSV and scene (.glb), byte for byte."""
     args = [executable("plan"), "--cfg", str(SLOTTED_WALL), "--time", str(PLAN_TIME), "-q"]
     for keyword, value in flags.items():
         args += ["--" + keyword.replace("_", "-"), str(value)]
     cli = subprocess.run(args + ["--out", str(tmp_path / "cli.path"), "--clearance-csv", str(tmp_path / "cli.csv"),
-                                 "--summary", str(tmp_path / "cli.txt")], capture_output=True, text=True, timeout=600)
+                                 "--summary", str(tmp_path / "cli.txt"), "--export-glb", str(tmp_path / "cli.glb"),
+                                 "--export-states", "3"], capture_output=True, text=True, timeout=600)
     assert cli.returncode == 0, cli.stderr
     path, summary = meshgap.plan(SLOTTED_WALL, time=PLAN_TIME, out=tmp_path / "py.path",
-                                 clearance_csv=str(tmp_path / "py.csv"), summary=tmp_path / "py.txt", **flags)
+                                 clearance_csv=str(tmp_path / "py.csv"), summary=tmp_path / "py.txt",
+                                 export_glb=tmp_path / "py.glb", export_states=3, **flags)
     assert summary["solved"] and summary["exact"]
     assert (tmp_path / "py.txt").read_text() == summary["text"]
     assert without_times(summary["text"]) == without_times((tmp_path / "cli.txt").read_text())
     assert ("optimizer" in summary["text"]) == ("optimize" in flags)
     assert (tmp_path / "py.path").read_bytes() == (tmp_path / "cli.path").read_bytes()
     assert (tmp_path / "py.csv").read_bytes() == (tmp_path / "cli.csv").read_bytes()
+    assert (tmp_path / "py.glb").read_bytes() == (tmp_path / "cli.glb").read_bytes()
     assert len(path) == summary["states"] == len(
         [line for line in (tmp_path / "cli.path").read_text().splitlines() if line.strip()])
 
