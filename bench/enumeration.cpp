@@ -29,7 +29,8 @@ static int run(int argc, char **argv)
     int repeats = 15;
     namespace po = boost::program_options;
     po::options_description cli("meshgap_bench_enumeration");
-    cli.add_options()("data", po::value(&data), "folder with OMPL.app .cfg files")(
+    cli.add_options()("help,h", "print this help")("data", po::value(&data),
+                                                   ("folder with OMPL.app .cfg files (default: " + data + ")").c_str())(
         "repeats", po::value(&repeats), "timed runs per problem (median reported)");
     po::variables_map vm;
     if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))

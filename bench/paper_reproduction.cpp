@@ -252,8 +252,7 @@ namespace
 
 static int run(int argc, char **argv)
 {
-    // The repository's maps/, found from this source file's path (CMake compiles it by its absolute path).
-    std::string maps = (fs::path(__FILE__).parent_path().parent_path() / "maps").string();
+    std::string maps = std::string(MESHGAP_SOURCE_DIR) + "/maps";  // the repository's, set when configured
     std::string out = "paper_results";
     std::string scenesText = "battery_fixture,hand_bowl,handshake";
     std::string algorithmsText = "comb-GA-wl,comb-GA-nl,comb-SA-wl,comb-SA-nl";
@@ -262,7 +261,8 @@ static int run(int argc, char **argv)
     std::uint64_t seed = 1;
     namespace po = boost::program_options;
     po::options_description cli("meshgap_bench_paper_reproduction");
-    cli.add_options()("help,h", "this help")("maps", po::value(&maps), "folder with the scenes (the repo's maps/)")(
+    cli.add_options()("help,h", "this help")(
+        "maps", po::value(&maps), ("folder with the scenes (default: " + maps + ")").c_str())(
         "runs", po::value(&runsCount), "independent runs per algorithm and pose")(
         "climbs", po::value(&climbs), "hill climbs from random starts per pose, to map the local minima (0: none)")(
         "seed", po::value(&seed), "seed of the first run; run i uses seed + i")(

@@ -2,7 +2,7 @@
 // .path file, in order, with one warm start carried from pose to pose (the "warm certified" column of
 // meshgap_bench_queries), repeated; prints the wall time per query of each pass in microseconds, then the median.
 //
-//   build/bench/meshgap_bench_path_loop --cfg problem.cfg --poses poses.path [--repeat 5] [--exact 1]
+//   build/bench/meshgap_bench_path_loop [--cfg problem.cfg --poses poses.path] [--repeat 5] [--exact 1]
 
 #include <algorithm>
 #include <boost/program_options.hpp>
@@ -24,12 +24,17 @@ namespace po = boost::program_options;
 
 static int run(int argc, char **argv)
 {
-    std::string cfg, posesFile;
+    // The defaults: the repository's hand_bowl map and its poses (set when configured).
+    std::string cfg = std::string(MESHGAP_SOURCE_DIR) + "/maps/hand_bowl/hand_bowl.cfg",
+                posesFile = std::string(MESHGAP_SOURCE_DIR) + "/maps/hand_bowl/hand_bowl.poses";
     unsigned repeat = 5;
     bool exact = true;
-    po::options_description options("meshgap_bench_path_loop --cfg FILE --poses FILE [options]");
-    options.add_options()("cfg", po::value(&cfg))("poses", po::value(&posesFile))("repeat", po::value(&repeat))(
-        "exact", po::value(&exact));
+    po::options_description options("meshgap_bench_path_loop [--cfg FILE --poses FILE] [options]");
+    options.add_options()("help,h", "print this help")(
+        "cfg", po::value(&cfg), ("OMPL.app problem file (default: " + cfg + ")").c_str())(
+        "poses", po::value(&posesFile), ("poses, one a line as in a .path file (default: " + posesFile + ")").c_str())(
+        "repeat", po::value(&repeat), "timed passes (default 5)")(
+        "exact", po::value(&exact), "1: certified distance, 0: the fast one (default 1)");
     po::variables_map vm;
     if (!meshgap::cli::parseCommandLine(argc, argv, options, vm))
         return 0;

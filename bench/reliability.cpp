@@ -78,7 +78,7 @@ namespace
 
 static int run(int argc, char **argv)
 {
-    std::string maps = "maps";
+    std::string maps = std::string(MESHGAP_SOURCE_DIR) + "/maps";  // the repository's, set when configured
     std::string data = std::string(MESHGAP_SHARED_DATA_DIR) + "/omplapp", sizing = "none", csvFile;
     std::string algorithmsText = "comb-GA-wl,comb-SA-wl", problemsText, scenesText = "battery_fixture,hand_bowl,handshake";
     int runs = 20, posesPerProblem = 20;
@@ -88,7 +88,8 @@ static int run(int argc, char **argv)
     std::uint64_t seed = 1;
     namespace po = boost::program_options;
     po::options_description cli("meshgap_bench_reliability");
-    cli.add_options()("help,h", "print this help")("maps", po::value(&maps), "maps folder")(
+    cli.add_options()("help,h", "print this help")(
+        "maps", po::value(&maps), ("maps folder (default: " + maps + ")").c_str())(
         "data", po::value(&data), "OMPL.app problems folder (skipped when absent)")(
         "runs", po::value(&runs), "seeds per scene-pose and algorithm")("seed", po::value(&seed), "first seed")(
         "poses", po::value(&posesPerProblem), "poses per OMPL.app problem")(

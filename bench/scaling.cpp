@@ -231,13 +231,13 @@ static int run(int argc, char **argv)
     std::fprintf(stderr, "built without FCL\n");
     return 1;
 #else
-    std::string meshFile =
-        (fs::path(__FILE__).parent_path().parent_path() / "maps" / "slotted_wall" / "slotted_wall_b.obj").string();
+    std::string meshFile = std::string(MESHGAP_SOURCE_DIR) + "/maps/slotted_wall/slotted_wall_b.obj";
     std::string csvFile, mapDir;
     std::size_t maxTriangles = 262144, numPoses = 100, fastOnDemand = 10;
     namespace po = boost::program_options;
     po::options_description cli("meshgap_bench_scaling");
-    cli.add_options()("help,h", "print this help")("mesh", po::value(&meshFile), "the part to refine")(
+    cli.add_options()("help,h", "print this help")(
+        "mesh", po::value(&meshFile), ("the part to refine (default: " + meshFile + ")").c_str())(
         "map", po::value(&mapDir), "a maps/ folder (e.g. maps/twisted): B refined, A the obstacle, .poses the motion")(
         "max", po::value(&maxTriangles), "largest size (triangles): 1024, 4096, ... up to this (default 262144)")(
         "poses", po::value(&numPoses), "poses along the motion")(

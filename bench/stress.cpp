@@ -54,7 +54,7 @@ static int run(int argc, char **argv)
     int threads = 2;
     double maxGrowth = 1024.0;
     po::options_description options("meshgap_bench_stress");
-    options.add_options()("help", "this text")("queries", po::value(&queries), "queries in all")(
+    options.add_options()("help,h", "this text")("queries", po::value(&queries), "queries in all")(
         "threads", po::value(&threads), "threads sharing one checker")(
         "fast-every", po::value(&fastEvery), "one query in this many is a fast (comb-GA-wl) clearance; 0: none")(
         "max-growth-kib", po::value(&maxGrowth), "exit 1 if the resident set grows more after the first tenth");

@@ -108,7 +108,7 @@ static int run(int argc, char **argv)
     std::uint32_t seed = 1;
     namespace po = boost::program_options;
     po::options_description cli("meshgap_bench_triangle_distance");
-    cli.add_options()("pairs", po::value(&n), "random triangle pairs per set")(
+    cli.add_options()("help,h", "print this help")("pairs", po::value(&n), "random triangle pairs per set")(
         "repeats", po::value(&repeats), "timed passes (median reported)")("seed", po::value(&seed), "random seed");
     po::variables_map vm;
     if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))

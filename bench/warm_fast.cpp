@@ -84,7 +84,9 @@ namespace
 
 static int run(int argc, char **argv)
 {
-    std::string data = std::string(MESHGAP_SHARED_DATA_DIR) + "/omplapp", maps = "maps", csvFile, sizing = "uniform", problemsText,
+    // The defaults are the shared OMPL.app problems and the repository's maps, set when configured.
+    std::string data = std::string(MESHGAP_SHARED_DATA_DIR) + "/omplapp",
+                maps = std::string(MESHGAP_SOURCE_DIR) + "/maps", csvFile, sizing = "uniform", problemsText,
                 globalSeeding = "random", globalSearch = "multistart";
     std::size_t states = 1000;
     unsigned int globalEvery = WarmFast::DEFAULT_GLOBAL_EVERY, globalEvaluations = WarmFast::DEFAULT_GLOBAL_EVALUATIONS;
@@ -93,7 +95,8 @@ static int run(int argc, char **argv)
     namespace po = boost::program_options;
     po::options_description cli("meshgap_bench_warm_fast");
     cli.add_options()("help,h", "print this help")("data", po::value(&data), "folder with OMPL.app problems")(
-        "maps", po::value(&maps), "folder with meshgap's maps")("states", po::value(&states), "states per path")(
+        "maps", po::value(&maps), ("folder with meshgap's maps (default: " + maps + ")").c_str())(
+        "states", po::value(&states), "states per path")(
         "global-every", po::value(&globalEvery), "warm-fast global_every")(
         "global-evaluations", po::value(&globalEvaluations), "warm-fast global_evaluations")(
         "global-seeding", po::value(&globalSeeding), "warm-fast global_seeding: random or clusters")(

@@ -1,35 +1,51 @@
 // The Python module `meshgap`: a thin pybind11 layer over meshgap's public C++ API (DESIGN.md, "Second wave"):
 // scenes from OMPL.app .cfg problems or meshes (files or (V, F) numpy arrays), batched distance and collision
-// queries over (N, 7) SE(3) or (N, 3) SE(2) pose arrays (distanceBatch(), the GIL released), and planning
-// (setupProblem(), the planner factory, the dense clearance meshgap_plan prints). meshgap::Exception becomes
-// FileNotFoundError for a missing file and ValueError otherwise, with the CLI's one-line message.
+// queries over (N, 7) SE(3) or (N, 3) SE(2) pose arrays (distanceBatch(), the GIL released), and planning: plan()
+// makes meshgap_plan's run (support/PlanRun.h), its keywords the flags of support/PlanOptions.h's table, so the two
+// cannot drift apart. meshgap::Exception becomes FileNotFoundError for a missing file and ValueError otherwise, with
+// the CLI's one-line message.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 #include <optional>
 #include <sstream>
+#include <type_traits>
+#include <variant>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/mesh/MeshLoader.h"
-#include "meshgap/ompl/ClearanceMotionValidator.h"
-#include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/ProblemSetup.h"
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/RobotMesh.h"
 #include "meshgap/scene/SceneBatch.h"
 #include "support/DenseClearance.h"
+#include "support/PlanOptions.h"
 #include "support/PlanReport.h"
+#include "support/PlanRun.h"
 
 namespace py = pybind11;
 using namespace meshgap;
+using meshgap::cli::PlanOption;
+using meshgap::cli::PlanOptionKind;
+using meshgap::cli::PlanOptions;
+using meshgap::cli::PlanRun;
+using meshgap::cli::checkPlanOptions;
+using meshgap::cli::planKeyword;
+using meshgap::cli::planOptionTable;
+using meshgap::cli::setUpPlan;
+using meshgap::cli::solvePlan;
+using meshgap::cli::writePlanFiles;
 
 namespace
 {
@@ -46,6 +62,11 @@ namespace
         for (py::ssize_t k = 0; k < a.ndim(); ++k)
             s += (k ? ", " : "") + std::to_string(a.shape(k));
         return s + (a.ndim() == 1 ? ",)" : ")");
+    }
+
+    std::string typeName(const py::handle &h)
+    {
+        return py::str(py::type::handle_of(h).attr("__name__"));
     }
 
     std::string pathArg(const py::handle &h, const std::string &what)
@@ -288,24 +309,6 @@ namespace
         return py::make_tuple(V, F);
     }
 
-    /** \brief plan()'s arguments checked as meshgap_plan checks its flags (the old mode= refused). */
-    void checkPlanArguments(const std::string &checker, const std::string &motion, double time, unsigned dense,
-                            const py::object &modeObject)
-    {
-        if (!modeObject.is_none())  // the old spelling, as meshgap_plan refuses --mode
-            throw Exception("mode", "renamed: use checker='certified' or checker='fast'");
-        if (checker != "certified" && checker != "fast")
-            throw Exception("checker", "'" + checker + "' is not certified or fast");
-        if (motion != "discrete" && motion != "clearance")
-            throw Exception("motion", "'" + motion + "' is not discrete or clearance");
-        if (motion == "clearance" && checker != "certified")
-            throw Exception("motion", "clearance needs checker certified (it steps by exact clearance)");
-        if (!(time > 0.0) || !std::isfinite(time))
-            throw Exception("time", "must be positive and finite");
-        if (dense < 1)
-            throw Exception("dense", "must be at least 1");
-    }
-
     /** \brief The dense path of plan()'s summary: poses, arc_length, clearance, in_collision. */
     py::dict denseDict(const DenseClearance &d, const std::vector<Eigen::Isometry3d> &denseStates, bool planar)
     {
@@ -321,14 +324,107 @@ namespace
     }
 
     /** \brief plan()'s planner parameters as text, as --param NAME=VALUE gives them (a bool as 1 or 0). */
-    std::vector<std::pair<std::string, std::string>> paramTexts(const py::dict &paramsObject)
+    std::vector<std::pair<std::string, std::string>> paramTexts(const py::handle &paramsObject)
     {
+        if (!py::isinstance<py::dict>(paramsObject))
+            throw Exception("params", "expected a dict of the planner's parameters, got " + typeName(paramsObject));
         std::vector<std::pair<std::string, std::string>> params;
-        for (const auto &[name, value] : paramsObject)
+        for (const auto &[name, value] : py::reinterpret_borrow<py::dict>(paramsObject))
             params.emplace_back(py::str(name).cast<std::string>(),
                                 py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "1" : "0") :
                                                                     py::str(value).cast<std::string>());
         return params;
+    }
+
+    /** \brief A non-negative integer keyword that fits 32 bits. */
+    unsigned countArg(const py::handle &h, const std::string &keyword)
+    {
+        if (py::isinstance<py::bool_>(h) || !PyIndex_Check(h.ptr()))
+            throw Exception(keyword, "expected an int, got " + typeName(h));
+        const py::int_ value = py::reinterpret_steal<py::int_>(PyNumber_Index(h.ptr()));
+        if (value < py::int_(0) || value > py::int_(std::numeric_limits<std::uint32_t>::max()))
+            throw Exception(keyword, py::str(py::handle(value)).cast<std::string>() + " is out of range [0, 2^32)");
+        return value.cast<unsigned>();
+    }
+
+    /** \brief The value of one keyword of plan(), as support/PlanOptions.h's table row \e row says, into \e o. */
+    void setKeyword(PlanOptions &o, const PlanOption &row, const py::handle &value)
+    {
+        const std::string keyword = planKeyword(row.name);
+        std::visit(
+            [&](auto field)
+            {
+                using T = std::remove_reference_t<decltype(o.*field)>;
+                if constexpr (std::is_same_v<T, std::string>)
+                {
+                    if (row.kind == PlanOptionKind::FILE)
+                        o.*field = pathArg(value, keyword);
+                    else if (py::isinstance<py::str>(value))
+                        o.*field = value.cast<std::string>();
+                    else
+                        throw Exception(keyword, "expected a str, got " + typeName(value));
+                }
+                else if constexpr (std::is_same_v<T, double>)
+                {
+                    if (py::isinstance<py::bool_>(value) || !(PyFloat_Check(value.ptr()) || PyIndex_Check(value.ptr())))
+                        throw Exception(keyword, "expected a number, got " + typeName(value));
+                    o.*field = value.cast<double>();
+                }
+                else if constexpr (std::is_same_v<T, unsigned>)
+                    o.*field = countArg(value, keyword);
+                else if constexpr (std::is_same_v<T, bool>)
+                {
+                    if (!py::isinstance<py::bool_>(value))
+                        throw Exception(keyword, "expected a bool, got " + typeName(value));
+                    o.*field = value.cast<bool>();
+                }
+                else
+                {
+                    const bool list = py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value);
+                    const py::sequence items = list ? py::reinterpret_borrow<py::sequence>(value) :
+                                                      py::sequence(py::make_tuple(value));
+                    for (const py::handle item : items)
+                        if (!py::isinstance<py::str>(item))
+                            throw Exception(keyword, "expected a str or a list of str, got " + typeName(item));
+                    o.*field = items.cast<T>();
+                }
+            },
+            row.field);
+        o.given.insert(row.name);
+    }
+
+    /** \brief plan()'s keywords: meshgap_plan's flags (dashes as underscores), then those of Python only. */
+    std::vector<std::string> planKeywords()
+    {
+        std::vector<std::string> keywords;
+        for (const PlanOption &row : planOptionTable())
+            keywords.push_back(planKeyword(row.name));
+        keywords.push_back("params");
+        return keywords;
+    }
+
+    /** \brief plan()'s keyword arguments into \e o: each checked against the table (an unknown one is a
+        TypeError listing the valid ones), None leaving the default. */
+    void planOptionsFromKeywords(PlanOptions &o, const py::kwargs &kwargs)
+    {
+        for (const auto &[key, value] : kwargs)
+        {
+            const std::string keyword = py::str(key).cast<std::string>();
+            const auto &table = planOptionTable();
+            const auto row = std::find_if(table.begin(), table.end(), [&keyword](const PlanOption &r)
+                                          { return planKeyword(r.name) == keyword; });
+            if (row == table.end() && keyword != "params" && keyword != "mode")
+                throw py::type_error("plan() got an unexpected keyword argument '" + keyword +
+                                     "'; valid: " + joinNames(planKeywords()));
+            if (value.is_none())
+                continue;
+            if (keyword == "mode")  // the old spelling, as meshgap_plan refuses --mode
+                throw Exception("mode", "renamed: use checker='certified' or checker='fast'");
+            if (keyword == "params")
+                o.plannerParams = paramTexts(value);
+            else
+                setKeyword(o, *row, value);
+        }
     }
 
     /** \brief OMPL's seed: OMPL logs an error when the seed is set again in one process, yet it does restart its
@@ -341,96 +437,105 @@ namespace
         ompl::msg::setLogLevel(level);
     }
 
-    /** \brief plan()'s HTML report with meshgap_plan's rows, and the dense path \e d when there is one. */
-    void writeReport(const std::string &file, const OmplProblem &problem, const ProblemConfig &config,
-                     const DenseClearance *d, const std::string &planner, const std::string &clearanceMode,
-                     const std::string &status)
+    /** \brief OMPL's log level for a while (plan(quiet=False) shows OMPL's messages, as meshgap_plan does). */
+    class LogLevelScope
     {
-        const std::vector<std::pair<std::string, std::string>> rows = {
-            {"problem", config.name + (config.planar ? " (SE(2))" : " (SE(3))")},
-            {"planner", planner},
-            {"objective", problem.objective},
-            {"clearance mode", clearanceMode},
-            {"status", status},
-            {"planning time", std::to_string(problem.setup->getLastPlanComputationTime()) + " s"}};
-        writePlanReport(*problem.scene, d ? reportFromDense(*d, rows) : reportWithoutPath(config, rows), file);
-    }
-
-    /** \brief meshgap_plan's steps through the same library calls: the problem, the planner with its parameters,
-        solve, then the dense clearance (support/DenseClearance.h); the summary with meshgap_plan's fields. */
-    py::tuple plan(const py::handle &cfgObject, const std::string &planner, const std::string &objective, double time,
-                   std::uint32_t seed, const std::string &checker, const std::string &motion, unsigned dense,
-                   const py::dict &paramsObject, const py::object &reportObject, const py::object &modeObject)
-    {
-        namespace ob = ompl::base;
-        const std::string cfg = pathArg(cfgObject, "cfg");
-        const std::string reportFile = reportObject.is_none() ? std::string() : pathArg(reportObject, "report");
-        checkPlanArguments(checker, motion, time, dense, modeObject);
-        const std::vector<std::pair<std::string, std::string>> params = paramTexts(paramsObject);
-
-        py::gil_scoped_release release;
-        setSeedQuietly(seed);
-        const ProblemConfig config = readProblemConfig(cfg);
-        OmplProblem problem = setupProblem(
-            config, checker == "certified" ? ClearanceChecker::Mode::CERTIFIED : ClearanceChecker::Mode::FAST,
-            objective);
-        const ob::SpaceInformationPtr si = problem.setup->getSpaceInformation();
-        if (motion == "clearance")
-            si->setMotionValidator(std::make_shared<ClearanceMotionValidator>(si, problem.checker));
-        const ob::PlannerPtr plannerPtr = allocPlanner(planner, si);
-        for (const auto &[name, value] : params)
-            setPlannerParam(*plannerPtr, name, value, "params");
-        problem.setup->setPlanner(plannerPtr);
-        problem.setup->setup();
-        const ob::PlannerStatus status = problem.setup->solve(time);
-        const bool exact = status == ob::PlannerStatus::EXACT_SOLUTION;
-        const bool havePath = problem.setup->haveSolutionPath() &&
-                              (exact || status == ob::PlannerStatus::APPROXIMATE_SOLUTION);
-        const CheckerStats stats = problem.checker->stats();
-        std::unique_ptr<DenseClearance> d;
-        std::vector<Eigen::Isometry3d> states, denseStates;
-        double length = 0.0, cost = 0.0;
-        if (havePath)
+    public:
+        explicit LogLevelScope(bool quiet) : level_(ompl::msg::getLogLevel())
         {
-            ompl::geometric::PathGeometric &path = problem.setup->getSolutionPath();
-            d = std::make_unique<DenseClearance>(denseClearance(path, *problem.scene, dense));
-            for (const ob::State *s : path.getStates())
-                states.push_back(poseFromState(*si->getStateSpace(), s));
-            for (const ob::State *s : d->path.getStates())
-                denseStates.push_back(poseFromState(*si->getStateSpace(), s));
-            length = path.length();
-            cost = path.cost(problem.setup->getOptimizationObjective()).value();
+            if (!quiet)
+                ompl::msg::setLogLevel(ompl::msg::LOG_INFO);
         }
-        if (!reportFile.empty())
-            writeReport(reportFile, problem, config, d.get(), planner, checker + ", motion " + motion,
-                        status.asString());
+        ~LogLevelScope() { ompl::msg::setLogLevel(level_); }
 
-        py::gil_scoped_acquire acquire;
+    private:
+        ompl::msg::LogLevel level_;
+    };
+
+    /** \brief plan()'s summary dict: meshgap_plan's fields, its summary text, and the dense path. */
+    py::dict summaryDict(const PlanRun &p, const PlanOptions &o)
+    {
+        const CheckerStats stats = p.problem.checker->stats();
         py::dict summary;
-        summary["problem"] = config.name;
-        summary["planar"] = config.planar;
-        summary["planner"] = planner;
-        summary["objective"] = problem.objective;
-        summary["checker"] = checker;
-        summary["motion"] = motion;
-        summary["status"] = status.asString();
-        summary["solved"] = havePath;
-        summary["exact"] = exact;
-        summary["planning_time"] = problem.setup->getLastPlanComputationTime();
+        summary["problem"] = p.config.name;
+        summary["planar"] = p.config.planar;
+        summary["planner"] = o.planner;
+        summary["objective"] = p.problem.objective;
+        summary["checker"] = o.checker;
+        summary["motion"] = o.motion;
+        summary["status"] = p.status.asString();
+        summary["solved"] = p.havePath;
+        summary["exact"] = p.exact;
+        summary["planning_time"] = p.problem.setup->getLastPlanComputationTime();
         summary["validity_calls"] = stats.validityCalls;
         summary["clearance_calls"] = stats.clearanceCalls;
         summary["query_time"] = stats.seconds;
-        if (d)
+        summary["text"] = p.summary;
+        if (p.dense)
         {
-            summary["states"] = states.size();
-            summary["length"] = length;
-            summary["cost"] = cost;
-            summary["min_clearance"] = d->minClearance;
-            summary["min_clearance_arc_length"] = d->arcLength[d->argmin];
-            summary["dense_path_free"] = d->collisions == 0;
-            summary["dense"] = denseDict(*d, denseStates, config.planar);
+            const ompl::base::StateSpace &space = *p.problem.setup->getStateSpace();
+            ompl::geometric::PathGeometric &path = p.problem.setup->getSolutionPath();
+            std::vector<Eigen::Isometry3d> denseStates;
+            for (const ompl::base::State *s : p.dense->path.getStates())
+                denseStates.push_back(poseFromState(space, s));
+            summary["states"] = path.getStateCount();
+            summary["length"] = path.length();
+            summary["cost"] = path.cost(p.problem.setup->getOptimizationObjective()).value();
+            summary["min_clearance"] = p.dense->minClearance;
+            summary["min_clearance_arc_length"] = p.dense->arcLength[p.dense->argmin];
+            summary["dense_path_free"] = p.dense->collisions == 0;
+            summary["dense"] = denseDict(*p.dense, denseStates, p.config.planar);
         }
-        return py::make_tuple(poseArray(states, config.planar), summary);
+        return summary;
+    }
+
+    /** \brief meshgap_plan's run (support/PlanRun.h) with the keywords as its flags; returns the path's states and
+        the summary dict. */
+    py::tuple plan(const py::handle &cfgObject, const py::kwargs &kwargs)
+    {
+        PlanOptions o;
+        o.keywords = true;
+        o.quiet = true;  // plan() returns its summary: no progress line unless quiet=False
+        o.cfg = pathArg(cfgObject, "cfg");
+        planOptionsFromKeywords(o, kwargs);
+        std::unique_ptr<PlanRun> p;
+        {
+            py::gil_scoped_release release;
+            const LogLevelScope logLevel(o.quiet);
+            checkPlanOptions(o);
+            setSeedQuietly(o.seed);
+            p = setUpPlan(o);
+            solvePlan(*p, o);
+            std::ostringstream log;  // meshgap_plan's "path written ..." lines: the caller knows what it asked for
+            writePlanFiles(*p, o, log);
+        }
+        std::vector<Eigen::Isometry3d> states;
+        if (p->havePath)
+            for (const ompl::base::State *s : p->problem.setup->getSolutionPath().getStates())
+                states.push_back(poseFromState(*p->problem.setup->getStateSpace(), s));
+        return py::make_tuple(poseArray(states, p->config.planar), summaryDict(*p, o));
+    }
+
+    /** \brief plan()'s docstring: what it returns, then every keyword with its flag's help. */
+    std::string planDoc()
+    {
+        std::string doc =
+            "plan(cfg, **keywords): plan for an OMPL.app .cfg problem as meshgap_plan does, the same run. Returns "
+            "(path, summary): the solution's states as an (M, 7) or (M, 3) array (empty when none was found) and a "
+            "dict (problem, planner, objective, status, solved, exact, planning_time, length, cost, min_clearance "
+            "over the dense path, dense_path_free, 'text': meshgap_plan's summary, and 'dense': the dense path's "
+            "poses, arc_length, clearance, in_collision).\n\nKeywords: meshgap_plan's flags, '-' written '_' "
+            "(None keeps the default; files as str or os.PathLike; param a list of str):\n";
+        for (const PlanOption &row : planOptionTable())
+            if (row.name != "cfg")
+                doc += "  " + planKeyword(row.name) + ": " + row.help +
+                       (row.name == "quiet" ? "; True by default here (False: the progress line and OMPL's messages "
+                                              "on stderr)\n" :
+                                              "\n");
+        doc += "  params: a dict NAME: VALUE of the planner's parameters (a bool as 1 or 0), as param "
+               "PLANNER.NAME=VALUE\n"
+               "The old mode= is refused (checker=).";
+        return doc;
     }
 }  // namespace
 
@@ -533,15 +638,8 @@ PYBIND11_MODULE(meshgap, m)
 
     m.def("load_mesh", [](const py::handle &path) { return meshArrays(meshArg(path, "path")); }, py::arg("path"),
           "Load a mesh file as meshgap does (welded, cleaned): a (V, F) pair of numpy arrays.");
-    m.def("plan", &plan, py::arg("cfg"), py::kw_only(), py::arg("planner") = "rrtconnect", py::arg("objective") = "",
-          py::arg("time") = 10.0, py::arg("seed") = 1, py::arg("checker") = "certified", py::arg("motion") = "discrete",
-          py::arg("dense") = 4, py::arg("params") = py::dict(), py::arg("report") = py::none(),
-          py::arg("mode") = py::none(),
-          "Plan for an OMPL.app .cfg problem as meshgap_plan does. Returns (path, summary): the solution's states "
-          "as an (M, 7) or (M, 3) array (empty when none was found) and a dict (problem, planner, objective, status, "
-          "solved, exact, planning_time, length, cost, min_clearance over the dense path, dense_path_free, and "
-          "'dense': the dense path's poses, arc_length, clearance, in_collision). checker: certified or fast, as "
-          "meshgap_plan's --checker (the old mode= is refused). report: also write the HTML plan report there.");
+    m.def("plan", &plan, py::arg("cfg"), planDoc().c_str());
+    m.attr("PLAN_KEYWORDS") = py::tuple(py::cast(planKeywords()));  // plan()'s keywords, cfg first
     m.attr("SCENE_BATCH_BLOCK") = SCENE_BATCH_BLOCK;
     m.attr("REPORT_AVAILABLE") = planReportAvailable();  // three.js was found at build time: plan(report=...) works
 }

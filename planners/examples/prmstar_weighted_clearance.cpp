@@ -1,14 +1,16 @@
 // Example: PRM* with a weighted objective, path length plus w times the integral of 1/clearance.
 //
-//   meshgap_example_prmstar_weighted_clearance problem.cfg [seconds] [weight]
+//   meshgap_example_prmstar_weighted_clearance problem.cfg [seconds] [weight] [give-up seconds]
 //
-// It optimises for `seconds` (default 5), longer if it has no solution by then (at most ten times as long).
+// It optimises for `seconds` (default 5), longer if it has no solution by then (until `give-up seconds`, by default
+// ten times as long).
 //
 // The clearance term (OMPL's integral of 1/clearance along the path) makes paths that pass close to obstacles
 // expensive; the weight w, a length, sets the trade: at clearance w a piece of path costs twice its length. With no
 // weight given, meshgap uses a tenth of the robot's radius. The two terms are also printed apart, so you can see the
 // trade PRM* made.
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ompl/base/PlannerTerminationCondition.h>
@@ -22,10 +24,11 @@ int main(int argc, char **argv)
 {
     if (argc < 2)
     {
-        std::fprintf(stderr, "usage: %s problem.cfg [seconds] [weight]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s problem.cfg [seconds] [weight (0: the default)] [give-up seconds]\n", argv[0]);
         return 1;
     }
     const double seconds = argc > 2 ? std::atof(argv[2]) : 5.0;
+    const double giveUp = argc > 4 ? std::atof(argv[4]) : 10.0 * seconds;
     try
     {
         meshgap::ObjectiveOptions objective;
@@ -35,18 +38,22 @@ int main(int argc, char **argv)
                                                              meshgap::ClearanceChecker::Mode::CERTIFIED, "weighted",
                                                              meshgap::BodyOptions(), objective);
         ompl::base::SpaceInformationPtr si = problem.setup->getSpaceInformation();
-        problem.setup->setPlanner(std::make_shared<ompl::geometric::PRMstar>(si));
-        // Optimise for `seconds`, but do not give up before a first solution (up to ten times as long).
+        auto prmstar = std::make_shared<ompl::geometric::PRMstar>(si);
+        problem.setup->setPlanner(prmstar);
+        // Optimise for `seconds`, but do not give up before a first solution (up to `giveUp` seconds). PRM* hands its
+        // problem definition a solution only when it returns, but reports its best cost as it runs (NaN before the
+        // first solution; read as OMPL's Benchmark reads it).
         namespace ob = ompl::base;
+        const auto bestCost = prmstar->getPlannerProgressProperties().at("best cost REAL");
         const ob::PlannerTerminationCondition stop = ob::plannerOrTerminationCondition(
-            ob::plannerAndTerminationCondition(ob::timedPlannerTerminationCondition(seconds),
-                                               ob::exactSolnPlannerTerminationCondition(
-                                                   problem.setup->getProblemDefinition())),
-            ob::timedPlannerTerminationCondition(10.0 * seconds));
+            ob::plannerAndTerminationCondition(
+                ob::timedPlannerTerminationCondition(seconds),
+                ob::PlannerTerminationCondition([bestCost] { return std::isfinite(std::atof(bestCost().c_str())); })),
+            ob::timedPlannerTerminationCondition(giveUp));
         const ompl::base::PlannerStatus status = problem.setup->solve(stop);
         if (status != ompl::base::PlannerStatus::EXACT_SOLUTION)
         {
-            std::printf("not solved within %g s (%s)\n", 10.0 * seconds, status.asString().c_str());
+            std::printf("not solved within %g s (%s)\n", giveUp, status.asString().c_str());
             return 2;
         }
 

@@ -1,8 +1,9 @@
 // Example: RRT* maximising the smallest clearance along the path, on an OMPL.app-format problem.
 //
-//   meshgap_example_rrtstar_max_min_clearance problem.cfg [seconds]
+//   meshgap_example_rrtstar_max_min_clearance problem.cfg [seconds] [give-up seconds]
 //
-// It optimises for `seconds` (default 5), longer if it has no solution by then (at most ten times as long).
+// It optimises for `seconds` (default 5), longer if it has no solution by then (until `give-up seconds`, by default
+// ten times as long).
 //
 // meshgap builds the OMPL problem from the .cfg (space, bounds, robot and world meshes, start and goal) with a
 // ClearanceChecker whose clearance() is the exact distance to the nearest obstacle. The objective "max_min_clearance"
@@ -25,10 +26,11 @@ int main(int argc, char **argv)
 {
     if (argc < 2)
     {
-        std::fprintf(stderr, "usage: %s problem.cfg [seconds]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s problem.cfg [seconds] [give-up seconds]\n", argv[0]);
         return 1;
     }
     const double seconds = argc > 2 ? std::atof(argv[2]) : 5.0;
+    const double giveUp = argc > 3 ? std::atof(argv[3]) : 10.0 * seconds;
     try
     {
         // 1. The problem: exact (certified) clearance, objective by name.
@@ -46,7 +48,7 @@ int main(int argc, char **argv)
         auto rrtstar = std::make_shared<ompl::geometric::RRTstar>(si);
         rrtstar->setGoalBias(0.2);
         problem.setup->setPlanner(rrtstar);
-        // Optimise for `seconds`, but do not give up before a first solution (up to ten times as long). RRT* hands
+        // Optimise for `seconds`, but do not give up before a first solution (up to `giveUp` seconds). RRT* hands
         // its problem definition a solution only when it returns, but reports each better one as it finds it.
         namespace ob = ompl::base;
         std::atomic<bool> found{false};
@@ -55,11 +57,11 @@ int main(int argc, char **argv)
         const ob::PlannerTerminationCondition stop = ob::plannerOrTerminationCondition(
             ob::plannerAndTerminationCondition(ob::timedPlannerTerminationCondition(seconds),
                                                ob::PlannerTerminationCondition([&found] { return found.load(); })),
-            ob::timedPlannerTerminationCondition(10.0 * seconds));
+            ob::timedPlannerTerminationCondition(giveUp));
         const ompl::base::PlannerStatus status = problem.setup->solve(stop);
         if (status != ompl::base::PlannerStatus::EXACT_SOLUTION)
         {
-            std::printf("not solved within %g s (%s)\n", 10.0 * seconds, status.asString().c_str());
+            std::printf("not solved within %g s (%s)\n", giveUp, status.asString().c_str());
             return 2;
         }
 

@@ -45,8 +45,8 @@ namespace meshgap
         slider's state (orbit controls; it starts at the state of least clearance), the closest-point segment
         there coloured by clearance (red at contact, green at the largest clearance), a plot of clearance against
         arc length linked to the slider with its minimum marked, and the summary as a table; it sets
-        `<div id="status">` to "loaded T triangles, S states, drew K frames" (or "error: ..." on any script error)
-        for a headless browser to read back. Written under a temporary name and renamed over \e file once complete.
+        `<div id="status">` to "ready: loaded T triangles, S states" once the scene is loaded and its first frame
+        drawn (or "error: ..." on any script error) for a headless browser to wait for and read back. Written under a temporary name and renamed over \e file once complete.
         Throws meshgap::Exception naming the file when it cannot be written, or if three.js was not found when
         meshgap was built. */
     void writePlanReport(const Scene &scene, const PlanReportData &data, const std::string &file);

@@ -122,7 +122,9 @@ namespace
         return log;
     }
 
-    /** \brief Two shards of one small grid (rrtconnect x two checkers x 2 runs), run once for all tests here. */
+    /** \brief Two shards of one small grid (rrtconnect x two checkers x 2 runs), run once for all tests here.
+        RRTConnect ends each run at its first solution (well under a second here): the time limit only ends a run
+        that fails anyway, so a busy machine cannot change what is solved. */
     class BenchmarkCli : public ::testing::Test
     {
     protected:
@@ -132,7 +134,7 @@ namespace
             fs::remove_all(dir_);
             for (const char *shard : {"1/2", "2/2"})
                 shards_.push_back(benchmark("--cfg " + CFG + " --planner rrtconnect --checker certified,fcl"
-                                            " --runs 2 --time 10 --seed 7 --out " + dir_.string() + " --shard " +
+                                            " --runs 2 --time 120 --seed 7 --out " + dir_.string() + " --shard " +
                                             shard));
             for (const auto &entry : fs::directory_iterator(dir_))
                 if (entry.path().extension() == ".log")
@@ -238,7 +240,7 @@ TEST_F(BenchmarkCli, RunsCarryCheckerCountersAndFclVerdicts)
             EXPECT_EQ(run.at("correct solution BOOLEAN"), "1") << path;
         }
     }
-    EXPECT_GE(solved, 2u) << "slotted_wall is solved by rrtconnect in well under a second";
+    EXPECT_GE(solved, 2u) << "slotted_wall is solved by rrtconnect in well under a second (limit: 120 s a run)";
 }
 
 TEST_F(BenchmarkCli, StatisticsScriptLoadsEveryRunIntoOneDatabase)

@@ -53,7 +53,7 @@ TEST(PlanOptimizeCli, OptimisedPathIsFreeAndAsClearAsSaid)
     const std::string out =
         (fs::temp_directory_path() / ("meshgap_plan_opt_" + std::to_string(::getpid()) + ".path")).string();
     const test::CliRun r = plan("--cfg " + SLOTTED +
-                                " --motion clearance --time 30 --seed 2 --optimize clearance "
+                                " --motion clearance --time 300 --seed 2 --optimize clearance "
                                 "--optimize-time 1 --out " +
                                 out);
     ASSERT_EQ(r.status, 0) << r.out << r.err;

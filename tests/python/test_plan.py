@@ -1,5 +1,10 @@
 """meshgap.plan(): a valid path (its states free, start and goal at its ends, the dense clearance the scene's), the
-same bad-input messages as meshgap_plan, an SE(2) problem, and the report it can write."""
+same bad-input messages as meshgap_plan, an SE(2) problem, and the report it can write; every meshgap_plan flag is a
+keyword of plan(), the same seed gives the same summary and files from both, and optimize="clearance" raises the
+path's clearance."""
+import re
+import subprocess
+
 import numpy as np
 import pytest
 
@@ -7,6 +12,10 @@ import meshgap
 from conftest import MAPS, RESOURCES, box, cli_error, executable, merged, write_obj
 
 HAND_BOWL = MAPS / "hand_bowl" / "hand_bowl.cfg"
+SLOTTED_WALL = MAPS / "slotted_wall" / "slotted_wall.cfg"
+# RRTConnect returns at its first exact solution (well under a second on these maps): the limit only ends a search
+# that fails anyway, so a busy machine cannot change a verdict.
+PLAN_TIME = 300.0
 
 
 def same_pose(a, b):
@@ -18,7 +27,7 @@ def same_pose(a, b):
 
 def test_plan_returns_a_valid_path(tmp_path):
     report = tmp_path / "plan.html" if meshgap.REPORT_AVAILABLE else None
-    path, summary = meshgap.plan(HAND_BOWL, planner="rrtconnect", time=20.0, seed=3, report=report)
+    path, summary = meshgap.plan(HAND_BOWL, planner="rrtconnect", time=PLAN_TIME, seed=3, report=report)
     assert summary["solved"] and summary["exact"] and summary["problem"] == "hand_bowl" and not summary["planar"]
     assert summary["checker"] == "certified"
     assert path.ndim == 2 and path.shape[1] == 7 and len(path) == summary["states"] >= 2
@@ -36,14 +45,14 @@ def test_plan_returns_a_valid_path(tmp_path):
 
 
 def test_same_seed_same_path():
-    first, _ = meshgap.plan(HAND_BOWL, seed=11, time=20.0)
-    again, _ = meshgap.plan(HAND_BOWL, seed=11, time=20.0)
+    first, _ = meshgap.plan(HAND_BOWL, seed=11, time=PLAN_TIME)
+    again, _ = meshgap.plan(HAND_BOWL, seed=11, time=PLAN_TIME)
     assert np.array_equal(first, again)
 
 
 def test_fast_checker_plans_a_free_path():
     """checker="fast", as meshgap_plan --checker fast: validity is still exact, so every state is free."""
-    path, summary = meshgap.plan(HAND_BOWL, checker="fast", time=20.0, seed=3)
+    path, summary = meshgap.plan(HAND_BOWL, checker="fast", time=PLAN_TIME, seed=3)
     assert summary["checker"] == "fast" and summary["solved"]
     assert not meshgap.Scene.from_cfg(HAND_BOWL).in_collision(path).any()
 
@@ -64,7 +73,7 @@ def test_planar_problem(tmp_path):
         "[problem]\nname = gap\nrobot = bar.obj\nworld = wall.obj\nstart.x = -3\nstart.y = 0.5\n"
         "start.theta = 1.5707963267948966\ngoal.x = 3\ngoal.y = -0.5\ngoal.theta = -1.5707963267948966\n"
         "volume.min.x = -5\nvolume.min.y = -5\nvolume.max.x = 5\nvolume.max.y = 5\n")
-    path, summary = meshgap.plan(tmp_path / "gap.cfg", time=10.0)
+    path, summary = meshgap.plan(tmp_path / "gap.cfg", time=PLAN_TIME)
     assert summary["solved"] and summary["planar"] and path.shape[1] == 3
     scene = meshgap.Scene.from_cfg(tmp_path / "gap.cfg")
     assert scene.planar and scene.start.shape == (3,)
@@ -97,3 +106,90 @@ def test_bad_cfg_gives_the_cli_message(cfg, error):
     with pytest.raises(error) as raised:
         meshgap.plan(path, time=0.1)
     assert str(raised.value) == cli_error([executable("plan"), "--cfg", path, "-q", "--time", "0.1"])
+
+
+def help_flags():
+    """meshgap_plan's flags as its --help lists them: {name: whether it takes a value}."""
+    run = subprocess.run([executable("plan"), "--help"], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    flags = {}
+    for line in run.stdout.splitlines():
+        m = re.match(r"^  (?:-\w \[ )?--([a-z][\w-]*)(?: \])?( arg)?", line)
+        if m:
+            flags[m.group(1)] = m.group(2) is not None
+    assert len(flags) > 15, run.stdout
+    return flags
+
+
+def test_every_flag_is_a_keyword():
+    """Each flag of meshgap_plan --help is a keyword of plan() (dashes as underscores) taking the same kind of value,
+    and plan() has no other keyword but params (Python's dict of planner parameters); --help is the CLI's own."""
+    flags = help_flags()
+    keywords = {name.replace("-", "_"): takes_value for name, takes_value in flags.items() if name != "help"}
+    assert set(meshgap.PLAN_KEYWORDS) == set(keywords) | {"params"}
+    # An unknown keyword is refused, naming it and listing the valid ones.
+    with pytest.raises(TypeError) as raised:
+        meshgap.plan(HAND_BOWL, optimise=None)
+    message = str(raised.value)
+    assert message.startswith("plan() got an unexpected keyword argument 'optimise'; valid: ")
+    assert set(message.split("valid: ")[1].split(", ")) == set(keywords) | {"params"}
+    # Each one is taken (a value of the wrong type is refused with the keyword's name, not as unknown); a flag
+    # without a value is a bool.
+    for keyword, takes_value in keywords.items():
+        if keyword == "cfg":
+            continue
+        with pytest.raises(ValueError) as raised:
+            meshgap.plan(HAND_BOWL, **{keyword: object()})
+        assert str(raised.value).startswith(keyword + ": expected "), str(raised.value)
+        assert ("expected a bool" in str(raised.value)) == (not takes_value), (keyword, str(raised.value))
+
+
+def without_times(text):
+    """The summary without what the clock decides: the planning, query and optimiser times."""
+    lines = [line for line in text.splitlines() if not line.startswith(("planning time", "query time"))]
+    return "\n".join(re.sub(r"^(optimizer +clearance), [0-9.e+-]+ s,", r"\1,", line) for line in lines)
+
+
+@pytest.mark.parametrize("flags", [
+    {"seed": 7},
+    {"seed": 2, "motion": "clearance", "optimize": "clearance", "optimize_time": 300.0, "dense": 2},
+])
+def test_cli_and_plan_give_the_same_run(tmp_path, flags):
+    """The same flags and seed: meshgap_plan and plan() print the same summary (the times aside) and write the same
+    path, clearance CSV and scene (.glb), byte for byte."""
+    args = [executable("plan"), "--cfg", str(SLOTTED_WALL), "--time", str(PLAN_TIME), "-q"]
+    for keyword, value in flags.items():
+        args += ["--" + keyword.replace("_", "-"), str(value)]
+    cli = subprocess.run(args + ["--out", str(tmp_path / "cli.path"), "--clearance-csv", str(tmp_path / "cli.csv"),
+                                 "--summary", str(tmp_path / "cli.txt"), "--export-glb", str(tmp_path / "cli.glb"),
+                                 "--export-states", "3"], capture_output=True, text=True, timeout=600)
+    assert cli.returncode == 0, cli.stderr
+    path, summary = meshgap.plan(SLOTTED_WALL, time=PLAN_TIME, out=tmp_path / "py.path",
+                                 clearance_csv=str(tmp_path / "py.csv"), summary=tmp_path / "py.txt",
+                                 export_glb=tmp_path / "py.glb", export_states=3, **flags)
+    assert summary["solved"] and summary["exact"]
+    assert (tmp_path / "py.txt").read_text() == summary["text"]
+    assert without_times(summary["text"]) == without_times((tmp_path / "cli.txt").read_text())
+    assert ("optimizer" in summary["text"]) == ("optimize" in flags)
+    assert (tmp_path / "py.path").read_bytes() == (tmp_path / "cli.path").read_bytes()
+    assert (tmp_path / "py.csv").read_bytes() == (tmp_path / "cli.csv").read_bytes()
+    assert (tmp_path / "py.glb").read_bytes() == (tmp_path / "cli.glb").read_bytes()
+    assert len(path) == summary["states"] == len(
+        [line for line in (tmp_path / "cli.path").read_text().splitlines() if line.strip()])
+
+
+def test_optimize_clearance_raises_the_minimum_clearance():
+    """optimize="clearance" (certified motions): the optimised path is free at every dense state, still joins start
+    and goal, and its least clearance (the scene's exact distance) is above the planner's path's, same seed."""
+    scene = meshgap.Scene.from_cfg(SLOTTED_WALL)
+    plain_path, plain = meshgap.plan(SLOTTED_WALL, seed=2, motion="clearance", time=PLAN_TIME)
+    path, summary = meshgap.plan(SLOTTED_WALL, seed=2, motion="clearance", time=PLAN_TIME, optimize="clearance",
+                                 optimize_time=300.0)
+    assert plain["solved"] and summary["solved"]
+    assert same_pose(path[0], scene.start) and same_pose(path[-1], scene.goal)
+    dense = summary["dense"]["poses"]
+    assert not scene.in_collision(dense).any()
+    exact = scene.distance(dense)["distance"]
+    assert summary["min_clearance"] == pytest.approx(exact.min(), rel=1e-9)
+    assert exact.min() > 1.5 * scene.distance(plain["dense"]["poses"])["distance"].min()
+    assert re.search(r"^opt clearance +[0-9.e+-]+ -> [0-9.e+-]+", summary["text"], re.M)

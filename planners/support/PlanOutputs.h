@@ -1,5 +1,5 @@
-#ifndef MESHGAP_PLANNERS_PLAN_PLAN_OUTPUTS_H
-#define MESHGAP_PLANNERS_PLAN_PLAN_OUTPUTS_H
+#ifndef MESHGAP_PLANNERS_SUPPORT_PLAN_OUTPUTS_H
+#define MESHGAP_PLANNERS_SUPPORT_PLAN_OUTPUTS_H
 
 // The files meshgap_plan writes besides its summary on stdout; each written whole or not at all (AtomicFile.h).
 

@@ -1,4 +1,4 @@
-#include "plan/PlanOutputs.h"
+#include "support/PlanOutputs.h"
 
 #include <algorithm>
 #include <ompl/base/spaces/SE2StateSpace.h>
