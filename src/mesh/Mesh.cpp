@@ -5,6 +5,7 @@
 #include <cstring>
 #include <numeric>
 #include <unordered_map>
+#include <utility>
 
 #include "meshgap/Exception.h"
 
@@ -141,6 +142,27 @@ namespace meshgap
         for (Triangle &t : mesh.triangles)
             for (std::uint32_t &index : t)
                 index = newIndex[index];
+        return report;
+    }
+
+    EdgeReport countEdges(const Mesh &mesh)
+    {
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+        edges.reserve(3 * mesh.triangles.size());
+        for (const Triangle &f : mesh.triangles)
+            for (int k = 0; k < 3; ++k)
+                edges.push_back(std::minmax(f[k], f[(k + 1) % 3]));
+        std::sort(edges.begin(), edges.end());
+        EdgeReport report;
+        for (std::size_t i = 0; i < edges.size();)
+        {
+            std::size_t j = i + 1;
+            while (j < edges.size() && edges[j] == edges[i])
+                ++j;
+            report.boundaryEdges += j - i == 1;
+            report.nonManifoldEdges += j - i >= 3;
+            i = j;
+        }
         return report;
     }
 

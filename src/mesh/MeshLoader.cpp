@@ -97,6 +97,15 @@ namespace meshgap
         }
     }  // namespace
 
+    void warnIfNotClosed(const std::string &name, const EdgeReport &edges)
+    {
+        if (!edges.closed())
+            OMPL_WARN("%s: not a closed surface: %zu boundary edges (used by one triangle), %zu non-manifold edges "
+                      "(used by three or more); no inside: nothing counts as inside it (no containment, no "
+                      "penetration depth into it)",
+                      name.c_str(), edges.boundaryEdges, edges.nonManifoldEdges);
+    }
+
     Mesh loadMesh(const std::string &path, LoadReport *reportOut)
     {
         namespace fs = std::filesystem;
@@ -153,6 +162,8 @@ namespace meshgap
             OMPL_INFORM("%s: dropped %zu duplicated triangles (same three vertices)", path.c_str(),
                         report.clean.duplicates);
         report.components = countComponents(mesh);
+        report.edges = countEdges(mesh);
+        warnIfNotClosed(path, report.edges);
         if (reportOut)
             *reportOut = report;
         return mesh;
