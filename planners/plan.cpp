@@ -42,6 +42,7 @@
 #include "support/MeshWriter.h"
 #include "support/PlanReport.h"
 #include "support/SceneExport.h"
+#include "support/SurfaceText.h"
 
 namespace po = boost::program_options;
 namespace ob = ompl::base;
@@ -294,6 +295,7 @@ namespace
 
         Summary summary;
         summary.line("problem", p.config.name + (p.config.planar ? " (SE(2))" : " (SE(3))"));
+        summary.line("surfaces", sceneSurfacesText(*p.problem.scene));
         summary.line("planner", o.planner);
         summary.line("objective", p.problem.objective);
         summary.line("clearance mode", o.checker + ", motion " + o.motion);
