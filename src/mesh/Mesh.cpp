@@ -5,7 +5,6 @@
 #include <cstring>
 #include <numeric>
 #include <unordered_map>
-#include <utility>
 
 #include "meshgap/Exception.h"
 
@@ -147,11 +146,15 @@ namespace meshgap
 
     EdgeReport countEdges(const Mesh &mesh)
     {
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+        // Each undirected edge as one 64-bit key (smaller index high), sorted: equal edges are then adjacent.
+        std::vector<std::uint64_t> edges;
         edges.reserve(3 * mesh.triangles.size());
         for (const Triangle &f : mesh.triangles)
             for (int k = 0; k < 3; ++k)
-                edges.push_back(std::minmax(f[k], f[(k + 1) % 3]));
+            {
+                const auto [lo, hi] = std::minmax(f[k], f[(k + 1) % 3]);
+                edges.push_back(std::uint64_t(lo) << 32 | hi);
+            }
         std::sort(edges.begin(), edges.end());
         EdgeReport report;
         for (std::size_t i = 0; i < edges.size();)
