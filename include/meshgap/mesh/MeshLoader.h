@@ -35,15 +35,16 @@ namespace meshgap
         repeat each vertex per face stay one connected surface), and degenerate and duplicated triangles are
         dropped (counted in the report, with a warning). A surface that is not closed (boundary edges, used by one
         triangle, or non-manifold edges, used by three or more) is loaded as it is, with one warning naming the
-        file and both counts (LoadReport::edges): it has no inside, so nothing is found to lie inside it (no
-        containment, no penetration depth into it; README.md, "Open meshes").
+        file and both counts (LoadReport::edges; once per process, warnIfNotClosed()): it has no inside, so nothing
+        is found to lie inside it (no containment, no penetration depth into it; README.md, "Open meshes").
 
         Throws meshgap::Exception naming \e path for: a missing or unreadable file, a file assimp cannot parse,
         no triangles, a NaN or infinite coordinate, an index out of range. */
     Mesh loadMesh(const std::string &path, LoadReport *report = nullptr);
 
     /** \brief The one warning (OMPL_WARN) loadMesh() gives for a surface that is not closed, naming \e name (a file,
-        or what a mesh built in memory is) and both counts of \e edges; nothing when edges.closed(). */
+        or what a mesh built in memory is) and both counts of \e edges; nothing when edges.closed(), nor when this
+        process has warned about the same name with the same counts already (a file loaded again). Thread-safe. */
     void warnIfNotClosed(const std::string &name, const EdgeReport &edges);
 }  // namespace meshgap
 
