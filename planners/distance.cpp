@@ -35,6 +35,7 @@
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/RobotMesh.h"
 #include "meshgap/scene/Scene.h"
+#include "support/SurfaceText.h"
 
 namespace po = boost::program_options;
 using namespace meshgap;
@@ -61,9 +62,10 @@ namespace
         options.distances = distances;
         BodyPtr body = Body::build(mesh, options);
         const Eigen::AlignedBox3d box = mesh.bounds();
-        OMPL_INFORM("%s: %s: %zu vertices, %zu triangles, components: %zu, box [%g %g %g]..[%g %g %g]", label,
+        OMPL_INFORM("%s: %s: %zu vertices, %zu triangles, components: %zu, %s, box [%g %g %g]..[%g %g %g]", label,
                     mesh.source.c_str(), mesh.vertices.size(), mesh.triangles.size(), report.components,
-                    box.min().x(), box.min().y(), box.min().z(), box.max().x(), box.max().y(), box.max().z());
+                    surfaceText(body->edges()).c_str(), box.min().x(), box.min().y(), box.min().z(), box.max().x(),
+                    box.max().y(), box.max().z());
         if (body->adaptiveSizing())
             OMPL_INFORM("%s: adaptive node sizing (largest size %g): %zu nodes, %zu triangles, longest edge %g", label,
                         body->gridSize(), body->refinement().nodesAfter, body->refinement().trianglesAfter,
@@ -81,6 +83,10 @@ namespace
         std::snprintf(buffer, sizeof buffer, "%.10g%s%.10g%s%.10g", v.x(), sep, v.y(), sep, v.z());
         return buffer;
     }
+
+    /** \brief The text answer's last line when a body of the answer is not closed. */
+    const char *const OPEN_BODY_LINE =
+        "open body      yes (not a closed surface: nothing counts as inside it; README, \"Open meshes\")\n";
 
     const char *penetrationText(Penetration kind)
     {
@@ -106,7 +112,8 @@ namespace
             << vec(r.onB, ", ") << "], \"evaluations\": " << r.evaluations << ", \"time_us\": " << r.seconds * 1e6
             << ", \"node_optimal\": " << (r.nodeOptimal ? "true" : "false") << ", \"in_collision\": "
             << (r.inCollision ? "true" : "false") << ", \"certified\": " << (r.certified ? "true" : "false")
-            << ", \"node_distance\": " << (std::isfinite(r.nodeDistance) ? r.nodeDistance : r.distance) << "}";
+            << ", \"node_distance\": " << (std::isfinite(r.nodeDistance) ? r.nodeDistance : r.distance)
+            << ", \"open_body\": " << (r.openBody ? "true" : "false") << "}";
         return out.str();
     }
 
@@ -133,7 +140,8 @@ namespace
             << vec(r.onObstacle, ", ") << "], \"witness_b\": [" << vec(r.onRobot, ", ") << "], \"time_us\": " << micros
             << ", \"in_collision\": " << (r.inCollision ? "true" : "false")
             << ", \"certified\": " << (r.certified ? "true" : "false") << ", \"pairs_checked\": " << r.pairsChecked
-            << ", \"warm_start_hit\": " << (r.warmStartHit ? "true" : "false") << "}";
+            << ", \"warm_start_hit\": " << (r.warmStartHit ? "true" : "false")
+            << ", \"open_body\": " << (r.openBody ? "true" : "false") << "}";
         return out.str();
     }
 
@@ -147,6 +155,7 @@ namespace
         OMPL_INFORM("scene: robot %zu triangles, world %zu triangles in %zu parts (obstacles); %s",
                     robot.triangles.size(), world.triangles.size(), scene->obstacles().size(),
                     cold ? "no warm start, a cold query per pose (--cold)" : "one warm start carried from pose to pose");
+        OMPL_INFORM("scene: %s", sceneSurfacesText(*scene).c_str());
         SceneRequest request;  // exact and certified, no bound: the checker's clearance()
         request.computeDepth = depth;
         SceneWarmStart warm;
@@ -186,6 +195,8 @@ namespace
                                   : "exact, not certified",
                     r.inCollision ? "yes" : "no", r.obstacle, vec(r.onObstacle, " ").c_str(),
                     vec(r.onRobot, " ").c_str(), us * 1e-3);
+            if (!asJson && !many && r.openBody)
+                std::printf("%s", OPEN_BODY_LINE);
             const auto now = std::chrono::steady_clock::now();
             if (now - lastReport > std::chrono::seconds(2))
             {
@@ -328,6 +339,8 @@ namespace
                     "evaluations    %zu\ntime           %.3f ms\n",
                     result.inCollision ? "yes" : "no", result.nodes.a, result.nodes.b, vec(result.onA, " ").c_str(),
                     vec(result.onB, " ").c_str(), result.evaluations, result.seconds * 1e3);
+        if (result.openBody)
+            std::printf("%s", OPEN_BODY_LINE);
     }
 
     /** \brief One solver answer as a CSV row or a JSON array entry (--poses). */
@@ -360,6 +373,7 @@ namespace
             DistanceResult result;
             const auto queryStart = std::chrono::steady_clock::now();
             solver.solve(a, b, poses[i], request, result);
+            result.openBody = !a.isClosed() || !b.isClosed();  // refineExact() sets it too
             if (o.exact && !result.certified)
                 refineExact(a, b, poses[i], result);
             else if (!result.certified && inCollision(a, b, poses[i]))  // collision is always decided exactly

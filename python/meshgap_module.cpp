@@ -139,6 +139,7 @@ namespace
         cleanMesh(mesh);
         if (mesh.triangles.empty())
             throw Exception(what, "no triangles left once degenerate ones are dropped");
+        warnIfNotClosed(what, countEdges(mesh));
         return mesh;
     }
 
@@ -228,13 +229,14 @@ namespace
         py::array_t<double> distance(n), onRobot({n, py::ssize_t(3)}), onObstacle({n, py::ssize_t(3)}),
             depth(n);
         py::array_t<std::int64_t> obstacle(n);
-        py::array_t<bool> inCollision(n), certified(n);
+        py::array_t<bool> inCollision(n), certified(n), openBody(n);
         auto d = distance.mutable_unchecked<1>();
         auto r = onRobot.mutable_unchecked<2>();
         auto o = onObstacle.mutable_unchecked<2>();
         auto ob = obstacle.mutable_unchecked<1>();
         auto c = inCollision.mutable_unchecked<1>();
         auto cert = certified.mutable_unchecked<1>();
+        auto open = openBody.mutable_unchecked<1>();
         for (py::ssize_t i = 0; i < n; ++i)
         {
             const SceneResult &s = results[static_cast<std::size_t>(i)];
@@ -247,6 +249,7 @@ namespace
             ob(i) = static_cast<std::int64_t>(s.obstacle);
             c(i) = s.inCollision;
             cert(i) = s.certified;
+            open(i) = s.openBody;
         }
         py::dict out;
         out["distance"] = distance;
@@ -255,6 +258,7 @@ namespace
         out["obstacle"] = obstacle;
         out["in_collision"] = inCollision;
         out["certified"] = certified;
+        out["open_body"] = openBody;
         return out;
     }
 
@@ -307,6 +311,15 @@ namespace
             for (int k = 0; k < 3; ++k)
                 f(i, k) = mesh.triangles[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)];
         return py::make_tuple(V, F);
+    }
+
+    /** \brief A surface's EdgeReport as {"boundary_edges": ..., "non_manifold_edges": ...}. */
+    py::dict edgesDict(const EdgeReport &edges)
+    {
+        py::dict d;
+        d["boundary_edges"] = edges.boundaryEdges;
+        d["non_manifold_edges"] = edges.nonManifoldEdges;
+        return d;
     }
 
     /** \brief The dense path of plan()'s summary: poses, arc_length, clearance, in_collision. */
@@ -581,7 +594,9 @@ PYBIND11_MODULE(meshgap, m)
              py::arg("warm") = true, py::arg("threads") = 1, py::arg("depth") = true,
              "Minimum distance at every pose of an (N, 7) (x y z qx qy qz qw) or (N, 3) (x y theta) float64 array. "
              "Returns a dict of arrays: distance (N,) (signed: negative in collision), on_robot and on_obstacle "
-             "(N, 3) witness points (world frame), obstacle (N,), in_collision (N,), certified (N,). exact: the "
+             "(N, 3) witness points (world frame), obstacle (N,), in_collision (N,), certified (N,), open_body (N,) "
+             "(the robot or that obstacle is not a closed surface: it has no inside, so nothing counts as inside "
+             "it; see open_obstacles). exact: the "
              "certified surface distance (else the paper's node distance; collision still exact). warm: carry a warm "
              "start from pose to pose (exact: each thread across its blocks of 256 poses, the answers being the cold "
              "ones bit for bit; fast: afresh at each block). threads: split the blocks over this many threads "
@@ -610,6 +625,29 @@ PYBIND11_MODULE(meshgap, m)
                                        n += b->surface().triangles.size();
                                    return n;
                                })
+        .def_property_readonly("robot_edges", [](const PyScene &s) { return edgesDict(s.scene->robot().edges()); },
+                               "the robot's boundary_edges (used by one triangle) and non_manifold_edges (by three "
+                               "or more), a dict; both 0 for a closed surface")
+        .def_property_readonly("world_edges",
+                               [](const PyScene &s) {
+                                   EdgeReport total;
+                                   for (const BodyConstPtr &b : s.scene->obstacles())
+                                   {
+                                       total.boundaryEdges += b->edges().boundaryEdges;
+                                       total.nonManifoldEdges += b->edges().nonManifoldEdges;
+                                   }
+                                   return edgesDict(total);
+                               },
+                               "robot_edges summed over the world's parts (obstacles)")
+        .def_property_readonly("open_obstacles",
+                               [](const PyScene &s) {
+                                   std::vector<std::size_t> open;
+                                   for (std::size_t i = 0; i < s.scene->obstacles().size(); ++i)
+                                       if (!s.scene->obstacles()[i]->isClosed())
+                                           open.push_back(i);
+                                   return open;
+                               },
+                               "indices of the obstacles that are not closed surfaces (no inside)")
         .def_property_readonly("robot_mesh", [](const PyScene &s) { return meshArrays(s.scene->robot().surface()); },
                                "(V, F) of the robot's surface in its own frame")
         .def("obstacle_mesh",

@@ -16,6 +16,7 @@
 #include "support/PlanReport.h"
 #include "support/Progress.h"
 #include "support/SceneExport.h"
+#include "support/SurfaceText.h"
 
 namespace ob = ompl::base;
 
@@ -171,6 +172,7 @@ namespace meshgap
                          (p.exact || p.status == ob::PlannerStatus::APPROXIMATE_SOLUTION);
             Summary summary;
             summary.line("problem", p.config.name + (p.config.planar ? " (SE(2))" : " (SE(3))"));
+            summary.line("surfaces", sceneSurfacesText(*p.problem.scene));
             summary.line("planner", o.planner);
             summary.line("objective", p.problem.objective);
             summary.line("clearance mode", o.checker + ", motion " + o.motion);

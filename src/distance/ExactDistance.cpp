@@ -175,6 +175,7 @@ namespace meshgap
     {
         const double stopBelow = request.stopBelow, upperBound = request.upperBound;
         result.nodeDistance = result.distance;
+        result.openBody = !a.isClosed() || !b.isClosed();
         TriangleCandidate best;
         if (warm && warm->valid && warm->triangleA < a.surface().triangles.size() &&
             warm->triangleB < b.surface().triangles.size())

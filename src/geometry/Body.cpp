@@ -103,14 +103,8 @@ namespace meshgap
         toRows(pairs, surface_.triangles.size(), triangleNeighbourOffsets_, triangleNeighbours_);
 
         // Closed: every undirected edge in exactly two triangles.
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
-        for (const Triangle &f : surface_.triangles)
-            for (int k = 0; k < 3; ++k)
-                edges.push_back(std::minmax(f[k], f[(k + 1) % 3]));
-        std::sort(edges.begin(), edges.end());
-        closed_ = !edges.empty();
-        for (std::size_t i = 0; i < edges.size() && closed_; i += 2)
-            closed_ = i + 1 < edges.size() && edges[i] == edges[i + 1] && (i + 2 >= edges.size() || edges[i + 2] != edges[i]);
+        edges_ = countEdges(surface_);
+        closed_ = !surface_.triangles.empty() && edges_.closed();
     }
 
     void Body::buildClusters()

@@ -144,6 +144,31 @@ namespace meshgap
         return report;
     }
 
+    EdgeReport countEdges(const Mesh &mesh)
+    {
+        // Each undirected edge as one 64-bit key (smaller index high), sorted: equal edges are then adjacent.
+        std::vector<std::uint64_t> edges;
+        edges.reserve(3 * mesh.triangles.size());
+        for (const Triangle &f : mesh.triangles)
+            for (int k = 0; k < 3; ++k)
+            {
+                const auto [lo, hi] = std::minmax(f[k], f[(k + 1) % 3]);
+                edges.push_back(std::uint64_t(lo) << 32 | hi);
+            }
+        std::sort(edges.begin(), edges.end());
+        EdgeReport report;
+        for (std::size_t i = 0; i < edges.size();)
+        {
+            std::size_t j = i + 1;
+            while (j < edges.size() && edges[j] == edges[i])
+                ++j;
+            report.boundaryEdges += j - i == 1;
+            report.nonManifoldEdges += j - i >= 3;
+            i = j;
+        }
+        return report;
+    }
+
     std::vector<std::uint32_t> labelComponents(const Mesh &mesh, std::uint32_t &count)
     {
         // Union-find over the vertices, joined along triangle edges.

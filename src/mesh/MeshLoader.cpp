@@ -6,7 +6,10 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <ompl/util/Console.h>
+#include <set>
+#include <tuple>
 
 #include "meshgap/Exception.h"
 
@@ -97,6 +100,25 @@ namespace meshgap
         }
     }  // namespace
 
+    void warnIfNotClosed(const std::string &name, const EdgeReport &edges)
+    {
+        if (edges.closed())
+            return;
+        // Once per process for a name and its counts: a tool or a notebook that loads the same file again (one
+        // checker after another, one scene after another) is not told twice.
+        static std::mutex mutex;
+        static std::set<std::tuple<std::string, std::size_t, std::size_t>> warned;
+        {
+            const std::lock_guard<std::mutex> lock(mutex);
+            if (!warned.emplace(name, edges.boundaryEdges, edges.nonManifoldEdges).second)
+                return;
+        }
+        OMPL_WARN("%s: not a closed surface: %zu boundary edges (used by one triangle), %zu non-manifold edges "
+                      "(used by three or more); no inside: nothing counts as inside it (no containment, no "
+                      "penetration depth into it)",
+                      name.c_str(), edges.boundaryEdges, edges.nonManifoldEdges);
+    }
+
     Mesh loadMesh(const std::string &path, LoadReport *reportOut)
     {
         namespace fs = std::filesystem;
@@ -153,6 +175,8 @@ namespace meshgap
             OMPL_INFORM("%s: dropped %zu duplicated triangles (same three vertices)", path.c_str(),
                         report.clean.duplicates);
         report.components = countComponents(mesh);
+        report.edges = countEdges(mesh);
+        warnIfNotClosed(path, report.edges);
         if (reportOut)
             *reportOut = report;
         return mesh;

@@ -412,6 +412,8 @@ namespace meshgap
             SceneWarmStart none;  // a node pair and no more: allocates nothing
             fastDistance(X_WR, request, warm ? *warm : none, warm != nullptr, result);
         }
+        result.openBody = !robot_->isClosed() ||
+                          (result.obstacle < obstacles_.size() && !obstacles_[result.obstacle]->isClosed());
     }
 
     // Both modes share the visiting order: the warm start's obstacle first, then increasing box distance (ties in

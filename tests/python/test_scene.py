@@ -47,7 +47,8 @@ def random_box_poses(rng, count, planar=False):
 
 def check_against_boxes(scene, poses, t, turns):
     r = scene.distance(poses)
-    assert set(r) == {"distance", "on_robot", "on_obstacle", "obstacle", "in_collision", "certified"}
+    assert set(r) == {"distance", "on_robot", "on_obstacle", "obstacle", "in_collision", "certified", "open_body"}
+    assert not r["open_body"].any()  # closed boxes
     assert r["on_robot"].shape == (len(poses), 3) and r["distance"].dtype == np.float64
     free = 0
     for i in range(len(poses)):
@@ -182,6 +183,30 @@ def test_distance_matches_the_cli(tmp_path, cfg):
     free = ~r["in_collision"]
     assert free.sum() > len(poses) // 4
     np.testing.assert_allclose(r["distance"][free], rows["distance"][free], rtol=1e-9, atol=1e-9)
+
+
+def test_open_meshes_are_counted_warned_and_flagged(capfd):
+    """A world of a box without its lid (4 boundary edges, by hand) and a closed box: counted, warned about once,
+    and every answer whose obstacle is the open box flagged; nothing is inside the open box (analytic gaps)."""
+    V, F = box(1.0, 1.0, 1.0)
+    lid = np.all(np.isin(F, [1, 3, 5, 7]), axis=1)  # the two triangles of the face z = +1
+    assert lid.sum() == 2
+    capfd.readouterr()
+    scene = meshgap.Scene(box(0.25, 0.25, 0.25), merged((V, F[~lid]), box(1.0, 1.0, 1.0, center=(5.0, 0.0, 0.0))))
+    err = capfd.readouterr().err
+    assert err.count("not a closed surface") == 1, err
+    assert "world: not a closed surface: 4 boundary edges" in err and "0 non-manifold edges" in err, err
+    assert scene.robot_edges == {"boundary_edges": 0, "non_manifold_edges": 0}
+    assert scene.world_edges == {"boundary_edges": 4, "non_manifold_edges": 0}
+    assert scene.open_obstacles == [0]
+    q = [0.0, 0.0, 0.0, 1.0]
+    r = scene.distance(np.array([[0.1, -0.2, 0.05] + q, [5.1, 0.0, 0.0] + q, [6.5, 0.0, 0.0] + q, [0, 0, 1.0] + q]))
+    # Inside the open box: free, 0.55 from the wall y = -1; poking out of its open top: free, 0.75 from the walls.
+    assert list(r["in_collision"]) == [False, True, False, False]
+    assert list(r["open_body"]) == [True, False, False, True]
+    assert r["distance"][0] == pytest.approx(0.55, abs=1e-12)
+    assert r["distance"][2] == pytest.approx(0.25, abs=1e-12)
+    assert r["distance"][3] == pytest.approx(0.75, abs=1e-12)
 
 
 def test_empty_batch(boxes):

@@ -51,7 +51,8 @@ namespace meshgap
     {
         NONE,           ///< not in collision (or collision not decided): distance is a distance, >= 0
         DEEPEST_NODE,   ///< depth of the deepest node of one body inside the other, closed, one (PenetrationDepth.h)
-        NO_NODE_INSIDE,  ///< in collision, no node inside the other body (crossing or touching surfaces): depth 0
+        /** \brief in collision, no node inside the other, closed, body (crossing or touching surfaces): depth 0 */
+        NO_NODE_INSIDE,
         OPEN_BODIES,    ///< in collision, both bodies open (no inside, so no depth): depth 0
         NOT_COMPUTED    ///< in collision, depth not asked for (stopBelow >= 0, or computeDepth false): depth 0
     };
@@ -97,6 +98,16 @@ namespace meshgap
             depth, see penetrationDepth() in PenetrationDepth.h) and how it was found. Outside collision: 0, None. */
         double penetrationDepth{0.0};
         Penetration penetration{Penetration::NONE};
+        /** \brief Set by the exact stage when either body is not closed (Body::isClosed() false: boundary or
+            non-manifold edges), whatever the verdict. Such an "open" body has no inside, so the answer means less
+            than between closed bodies, though it is exact for what it means: inCollision is surface contact (an
+            intersecting or touching triangle pair), or a part of either body wholly inside the other when that
+            one is closed, never a part "inside" the open one (a closed box inside a box without a lid is free, its
+            distance the gap to the nearest wall); the depth counts nodes of either body inside the other, closed,
+            one only (an open sheet through a closed box has a depth: its deepest node's, as for closed bodies),
+            and is 0 when there is none (distance CONTACT_DISTANCE; penetration NO_NODE_INSIDE, or OPEN_BODIES when
+            both are open). Between two closed bodies it is false and nothing above applies. */
+        bool openBody{false};
         std::uint32_t triangleA{0}, triangleB{0};  ///< closest surface triangles (Body::surface() indices)
         std::size_t triangleTests{0};              ///< exact triangle-pair (and point-triangle) tests made
         std::size_t boxTests{0};                   ///< bounding-volume pairs tested by the distance traversal

@@ -46,8 +46,10 @@ namespace meshgap
            witness points are then the deepest node and its nearest point on the other surface (onA - onB moves
            B by the depth to bring that node out), or a touching point. The signed distance does not depend on the
            seed (a pure function of the pose).
+        4. Open bodies: openBody is set when either body is not closed (DistanceResult::openBody says what the
+           answer then means).
 
-        Overwrites distance, onA/onB, triangleA/B, certified, inCollision, penetrationDepth, penetration,
+        Overwrites distance, onA/onB, triangleA/B, certified, inCollision, penetrationDepth, penetration, openBody,
         nodeDistance and adds to triangleTests; keeps nodes and the node-level counters.
 
         \param request Its stopBelow and upperBound (the rest is the node search's):

@@ -75,8 +75,12 @@ namespace meshgap
         between two node spacings): a finer grid finds such nodes. Nodes of an open body count when they lie inside
         a closed one (an open sheet through a closed body has points inside it, which is a collision too).
 
-        Open bodies. An open surface has no inside, so there is no depth to estimate: with both bodies open the
-        result is depth 0, kind OPEN_BODIES, and the witness is a touching triangle pair.
+        Open bodies. An open surface (Body::isClosed() false: boundary or non-manifold edges) has no inside, so no
+        node is ever taken to lie inside it; a node of an open body inside a closed one counts as any node does
+        (the closed body's inside is defined, and the bound above holds: a translation shorter than that node's
+        depth leaves it inside). With one body open the depth is thus the deepest node of the open body inside the
+        closed one, or 0 with kind NO_NODE_INSIDE; with both bodies open the result is depth 0, kind OPEN_BODIES,
+        and the witness is a touching triangle pair. The caller sees DistanceResult::openBody.
 
         Call it for colliding bodies only (it does not decide collision: separated bodies get NO_NODE_INSIDE, depth
         0, or a node "inside" a body it does not touch when one contains the other, which is a collision). A pure

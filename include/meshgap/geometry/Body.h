@@ -89,9 +89,14 @@ namespace meshgap
         {
             return triangleNeighbours_.data() + triangleNeighbourOffsets_[t + 1];
         }
-        /** \brief True when every surface edge is shared by exactly two triangles (a closed surface), so inside and
-            outside are defined. */
+        /** \brief True when every surface edge is shared by exactly two triangles (a closed surface: edges() counts
+            no boundary and no non-manifold edge), so inside and outside are defined. Only a closed body has an
+            inside: containment is tested, and penetration depth measured, inside closed bodies only; a body that
+            is not closed ("open") still collides by surface contact, and its nodes count when they lie inside a
+            closed body (penetrationDepth(), DistanceResult::openBody). */
         bool isClosed() const { return closed_; }
+        /** \brief Boundary and non-manifold edges of surface() (both 0 for a closed body). */
+        const EdgeReport &edges() const { return edges_; }
         /** \brief +1 when the surface's triangles wind outward (positive signed volume), -1 when inward: which side
             of a triangle is inside, for a closed body. */
         double orientation() const { return orientation_; }
@@ -134,6 +139,7 @@ namespace meshgap
         std::vector<std::uint32_t> nodeTriangleOffsets_, nodeTriangles_;
         std::vector<std::uint32_t> triangleNeighbourOffsets_, triangleNeighbours_;
         bool closed_{false};
+        EdgeReport edges_;
         double orientation_{1.0};
         RefineReport refinement_;
         double gridSize_{0.0};

@@ -40,6 +40,20 @@ namespace meshgap
         std::size_t unused{0};      ///< vertices no triangle uses
     };
 
+    /** \brief How a surface's edges are shared, counted over undirected edges (pairs of vertex indices, so a mesh
+        should be welded first: cleanMesh()). A surface is closed (a solid's boundary: inside and outside are
+        defined) when it has triangles and every edge is used by exactly two of them: both counts 0. */
+    struct EdgeReport
+    {
+        std::size_t boundaryEdges{0};     ///< edges used by one triangle only (a hole's rim, a sheet's border)
+        std::size_t nonManifoldEdges{0};  ///< edges used by three or more triangles (fins, shells meeting on an edge)
+        /** \brief Neither boundary nor non-manifold edges (true for no triangles too: see Body::isClosed()). */
+        bool closed() const { return boundaryEdges == 0 && nonManifoldEdges == 0; }
+    };
+
+    /** \brief Count the boundary and non-manifold edges of \e mesh (indices must be in range). */
+    EdgeReport countEdges(const Mesh &mesh);
+
     /** \brief Weld vertices at identical positions, drop degenerate and duplicated triangles and unused vertices.
         Welding is by exact position (normals, UVs and colours play no part), so flat-shaded files that repeat a
         vertex per face become one connected surface. Triangle order and winding are kept. */

@@ -16,6 +16,9 @@ namespace meshgap
         std::size_t skippedPrimitives{0};  ///< points and lines (e.g. SketchUp edge lines), not surfaces
         CleanReport clean;                 ///< degenerate and duplicated triangles dropped
         std::size_t components{0};         ///< connected components of the welded surface
+        /** \brief Boundary and non-manifold edges of the welded surface, all parts together (an open or
+            non-manifold file is warned about once, with these counts). */
+        EdgeReport edges;
         /** \brief OMPL.app's robot centre: the mean of every vertex assimp returned (duplicates and line-mesh
             vertices included) after node transforms, accumulated in single precision exactly as OMPL.app's
             scene::sceneCenter does. OMPL.app shifts a robot mesh by this point. */
@@ -30,11 +33,19 @@ namespace meshgap
         arithmetic, as OMPL.app does) and all sub-meshes are merged; only three-index faces are kept. Then vertices
         at identical positions are welded regardless of normals or texture coordinates (so flat-shaded files that
         repeat each vertex per face stay one connected surface), and degenerate and duplicated triangles are
-        dropped (counted in the report, with a warning).
+        dropped (counted in the report, with a warning). A surface that is not closed (boundary edges, used by one
+        triangle, or non-manifold edges, used by three or more) is loaded as it is, with one warning naming the
+        file and both counts (LoadReport::edges; once per process, warnIfNotClosed()): it has no inside, so nothing
+        is found to lie inside it (no containment, no penetration depth into it; README.md, "Open meshes").
 
         Throws meshgap::Exception naming \e path for: a missing or unreadable file, a file assimp cannot parse,
         no triangles, a NaN or infinite coordinate, an index out of range. */
     Mesh loadMesh(const std::string &path, LoadReport *report = nullptr);
+
+    /** \brief The one warning (OMPL_WARN) loadMesh() gives for a surface that is not closed, naming \e name (a file,
+        or what a mesh built in memory is) and both counts of \e edges; nothing when edges.closed(), nor when this
+        process has warned about the same name with the same counts already (a file loaded again). Thread-safe. */
+    void warnIfNotClosed(const std::string &name, const EdgeReport &edges);
 }  // namespace meshgap
 
 #endif

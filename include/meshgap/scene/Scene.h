@@ -170,6 +170,9 @@ namespace meshgap
         /** \brief In collision: the penetration depth estimate behind distance (>= 0) and how it was found. */
         double penetrationDepth{0.0};
         Penetration penetration{Penetration::NONE};
+        /** \brief The robot, or the obstacle of the answer (none when atLeast), is not closed (Body::isClosed()):
+            the answer is exact, but an open body has no inside (DistanceResult::openBody says what it means). */
+        bool openBody{false};
         bool certified{false};        ///< exact and proven (every pair that survived the broad phase completed)
         std::size_t pairsChecked{0};  ///< robot/obstacle pairs that survived the broad phase
         std::size_t evaluations{0};   ///< node-pair evaluations (fast mode)
