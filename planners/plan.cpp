@@ -12,8 +12,9 @@
 // .path format (one state per line: x y z qx qy qz qw, or x y theta), which meshgap_distance --poses and OMPL.app
 // read, the exact clearance along the dense path as CSV, and the scene (world, the robot at N states along the path,
 // the closest-point segment at each) as a glTF 2.0 binary file for any 3D viewer. Exit status: 0 exact solution,
-// 2 approximate or none, 1 bad input (including a start or goal in collision: the message says which, the obstacle
-// and the distance). --optimize clearance runs the ClearancePathOptimizer on the planner's path before any of this
+// 2 approximate or none (or --optimize could not certify the path), 1 bad input (including a start or goal in
+// collision: the message says which, the obstacle and the distance). --optimize clearance runs the
+// ClearancePathOptimizer on the planner's path before any of this
 //
 // The parts: plan/Progress.h (the progress line), plan/PlanOutputs.h (the files it writes), OptimizeOption.h.
 
@@ -301,8 +302,10 @@ namespace
         summary.line("solved", !havePath ? "no" : exact ? "yes (exact)" : "approximate");
         summary.line("exact solution", exact ? "yes" : "no");
         summary.line("planning time", std::to_string(p.problem.setup->getLastPlanComputationTime()) + " s");
+        bool optimizeFailed = false;
         if (havePath && !o.optimize.empty())
-            summary.stream() << optimizeSolution(*p.problem.setup, p.problem.checker, o.optimizeTime, o.seed);
+            summary.stream() << optimizeSolution(*p.problem.setup, p.problem.checker, o.optimizeTime, o.seed,
+                                                 optimizeFailed);
         std::unique_ptr<DenseClearance> d;
         if (havePath)
         {
@@ -330,7 +333,7 @@ namespace
             writeClearanceCsv(*d, o.csv);
             std::printf("clearance CSV   %s\n", o.csv.c_str());
         }
-        return exact ? 0 : 2;
+        return exact && !optimizeFailed ? 0 : 2;
     }
 }  // namespace
 
