@@ -1,11 +1,13 @@
 // meshgap_plan --optimize clearance: bad options refused with one error, and a run whose optimised path FCL finds
 // free at every state of its dense interpolation, no less clear than the optimiser says; with the default sampled
 // motion validator on a planar problem of thin barriers, the planner's path has motions the certified validator
-// refuses, and the optimised path has none.
+// refuses, and the optimised path has none; a goal no certified motion reaches gives one error naming the motion.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -204,4 +206,45 @@ TEST_F(BarriersProblem, DefaultMotionSettingsGiveACertifiedClearerPath)
         }
     si->freeState(s);
     EXPECT_GE(least, after - 0.01 * after) << r.out;
+}
+
+TEST(PlanOptimizeCli, NamesTheMotionItCannotCertify)
+{
+    // The goal inside a closed square ring of walls 0.02 thick, a robot 0.1 wide: the sampled validator's states
+    // step over a wall, the certified validator never does, so no certified path reaches the goal.
+    const fs::path dir = fs::temp_directory_path() / ("meshgap_ring_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    Mesh world;
+    for (const auto &[x, y, hx, hy] : {std::array<double, 4>{3, 3.51, 0.53, 0.01},
+                                       {3, 2.49, 0.53, 0.01},
+                                       {3.51, 3, 0.01, 0.53},
+                                       {2.49, 3, 0.01, 0.53}})
+        world = test::merged(world, test::transformed(test::box(hx, hy, 0.5), test::translation(x, y, 0.5)));
+    writeObj(world, (dir / "ring_env.obj").string());
+    writeObj(test::transformed(test::box(0.05, 0.05, 0.25), test::translation(0, 0, 0.5)),
+             (dir / "ring_robot.obj").string());
+    const std::string cfg = (dir / "ring.cfg").string(), raw = (dir / "raw.path").string();
+    std::ofstream(cfg) << "[problem]\nname = ring\nrobot = ring_robot.obj\nworld = ring_env.obj\n"
+                          "start.x = -3\nstart.y = -3\nstart.theta = 0\ngoal.x = 3\ngoal.y = 3\ngoal.theta = 0\n"
+                          "volume.min.x = -5\nvolume.min.y = -5\nvolume.max.x = 5\nvolume.max.y = 5\n";
+    const test::CliRun r0 = plan("--cfg " + cfg + " --seed 1 --quiet --out " + raw);
+    ASSERT_EQ(r0.status, 0) << r0.out << r0.err;
+    const test::CliRun r = plan("--cfg " + cfg + " --seed 1 --quiet --optimize clearance --optimize-time 1");
+    EXPECT_EQ(r.status, 2) << r.out << r.err;
+    EXPECT_EQ(test::countLines(r.err, "error: --optimize clearance: "), 1) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+    EXPECT_NE(r.out.find("optimizer       failed: "), std::string::npos) << r.out;
+    std::smatch m;
+    const std::string err = r.err;
+    ASSERT_TRUE(std::regex_search(err, m, std::regex("motion ([0-9]+)→([0-9]+) "))) << r.err;
+    const std::size_t i = std::stoul(m[1]), j = std::stoul(m[2]);
+    EXPECT_EQ(j, i + 1);
+    // The motion named is one of the planner's path (the same seed) that the certified validator refuses.
+    OmplProblem problem = setupProblem(readProblemConfig(cfg), ClearanceChecker::Mode::CERTIFIED);
+    const auto si = problem.setup->getSpaceInformation();
+    si->setup();
+    const ompl::geometric::PathGeometric path = readPathFile(raw, si);
+    ASSERT_LT(j, path.getStateCount());
+    EXPECT_FALSE(ClearanceMotionValidator(si, problem.checker).checkMotion(path.getState(i), path.getState(j)));
+    fs::remove_all(dir);
 }
