@@ -95,6 +95,14 @@ namespace meshgap::cli
         line("opt length", v.str());
         return out.str();
     }
+
+    /** \brief optimizeSolution() for a caller that reads a failure from the summary lines only. */
+    inline std::string optimizeSolution(ompl::geometric::SimpleSetup &setup, const ClearanceCheckerPtr &checker,
+                                        double seconds, unsigned long seed)
+    {
+        bool failed = false;
+        return optimizeSolution(setup, checker, seconds, seed, failed);
+    }
 }  // namespace meshgap::cli
 
 #endif
