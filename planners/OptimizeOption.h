@@ -37,10 +37,12 @@ namespace meshgap::cli
     }
 
     /** \brief Optimise the setup's solution path in place for at most \e seconds; returns the summary lines
-        ("optimizer ..."), each key padded as meshgap_plan pads its summary. A path the certified validator refuses
-        is left as it is, and the line says why (and a warning goes to stderr). */
+        ("optimizer ...", "opt repair ..."), each key padded as meshgap_plan pads its summary. Motions of the
+        planner's path the certified validator refuses are repaired first (CertifiedPathRepair, within the same
+        time); if one cannot be, the path is left as it is, \e failed is set, the "optimizer" line says why and one
+        line "error: ..." naming the motion goes to stderr. */
     inline std::string optimizeSolution(ompl::geometric::SimpleSetup &setup, const ClearanceCheckerPtr &checker,
-                                        double seconds, unsigned long seed)
+                                        double seconds, unsigned long seed, bool &failed)
     {
         std::ostringstream out;
         out.precision(6);
@@ -53,14 +55,19 @@ namespace meshgap::cli
         ClearancePathOptimizer optimizer(setup.getSpaceInformation(), checker);
         optimizer.setTimeLimit(seconds);
         optimizer.setSeed(seed);
+        failed = false;
         try
         {
             optimizer.optimize(setup.getSolutionPath());
         }
         catch (const Exception &e)
         {
-            std::fprintf(stderr, "warning: --optimize: %s; the path is not optimised\n", e.what());
-            line("optimizer", std::string("not run: ") + e.what());
+            std::fprintf(stderr,
+                         "error: --optimize clearance: %s (within --optimize-time %g s); the planner's path "
+                         "is kept, not optimised\n",
+                         e.what(), seconds);
+            line("optimizer", std::string("failed: ") + e.what());
+            failed = true;
             return out.str();
         }
         const ClearancePathOptimizer::Stats &s = optimizer.lastStats();
@@ -69,6 +76,15 @@ namespace meshgap::cli
         v << "clearance, " << s.seconds << " s, " << s.rounds << " rounds (" << s.moves << " moves, " << s.inserted
           << " states inserted, " << s.removed << " removed)" << (s.restored ? "; input kept (no gain)" : "");
         line("optimizer", v.str());
+        const CertifiedPathRepair::Stats &r = s.repair;
+        v.str("");
+        if (r.refused == 0)
+            v << "none (every motion of the planner's path certified)";
+        else
+            v << r.refused << " motions refused by the certified validator repaired (" << r.bisected
+              << " by bisection, " << r.replanned << " replanned), " << r.inserted << " states inserted, " << r.seconds
+              << " s";
+        line("opt repair", v.str());
         v.str("");
         v << s.minClearanceBefore << " -> " << s.minClearanceAfter << " (the optimiser's measure: branch and bound "
           << "along each motion)";

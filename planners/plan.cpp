@@ -12,8 +12,9 @@
 // .path format (one state per line: x y z qx qy qz qw, or x y theta), which meshgap_distance --poses and OMPL.app
 // read, the exact clearance along the dense path as CSV, and the scene (world, the robot at N states along the path,
 // the closest-point segment at each) as a glTF 2.0 binary file for any 3D viewer. Exit status: 0 exact solution,
-// 2 approximate or none, 1 bad input (including a start or goal in collision: the message says which, the obstacle
-// and the distance). --optimize clearance runs the ClearancePathOptimizer on the planner's path before any of this.
+// 2 approximate or none (or --optimize could not certify the path), 1 bad input (including a start or goal in
+// collision: the message says which, the obstacle and the distance). --optimize clearance runs the
+// ClearancePathOptimizer on the planner's path (its uncertified motions repaired first) before any of this.
 //
 // Its options are support/PlanOptions.h's table (the Python module's plan() takes the same ones as keywords), and a
 // run is support/PlanRun.h's (plan() makes the same one): the progress line, --optimize (OptimizeOption.h), the
@@ -94,7 +95,7 @@ namespace
             std::fprintf(stderr, "no path found within %g s\n", o.time);
             return 2;
         }
-        return p->exact ? 0 : 2;
+        return p->exact && !p->optimizeFailed ? 0 : 2;
     }
 }  // namespace
 

@@ -181,7 +181,8 @@ namespace meshgap
             summary.line("exact solution", p.exact ? "yes" : "no");
             summary.line("planning time", std::to_string(p.problem.setup->getLastPlanComputationTime()) + " s");
             if (p.havePath && !o.optimize.empty())
-                summary.stream() << optimizeSolution(*p.problem.setup, p.problem.checker, o.optimizeTime, o.seed);
+                summary.stream() << optimizeSolution(*p.problem.setup, p.problem.checker, o.optimizeTime, o.seed,
+                                                     p.optimizeFailed);
             if (p.havePath)
             {
                 p.dense = std::make_unique<DenseClearance>(

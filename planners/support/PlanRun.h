@@ -29,6 +29,7 @@ namespace meshgap
             std::shared_ptr<ClearanceMotionValidator> cmv;
             ompl::base::PlannerStatus status;
             bool exact = false, havePath = false;
+            bool optimizeFailed = false;  ///< --optimize could not certify the planner's path (left as it was)
             /** \brief The dense path and its clearance; null without a path. */
             std::unique_ptr<DenseClearance> dense;
             /** \brief meshgap_plan's summary: "key" padded to 16 columns, then the value, one per line. */

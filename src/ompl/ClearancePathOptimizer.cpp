@@ -43,6 +43,9 @@ namespace meshgap
         params_["shortcut"].setRangeSuggestion("0,1");
         params_.declareParam<double>(
             "tolerance", [this](double v) { setTolerance(v); }, [this] { return getTolerance(); });
+        params_.declareParam<bool>(
+            "repair", [this](bool v) { setRepair(v); }, [this] { return getRepair(); });
+        params_["repair"].setRangeSuggestion("0,1");
     }
 
     ClearancePathOptimizer::MotionBound ClearancePathOptimizer::motionBound(const ob::State *s1, const ob::State *s2,
@@ -476,7 +479,14 @@ namespace meshgap
             throw Exception("ClearancePathOptimizer", "the path belongs to another space information");
         if (!(maxLengthFactor_ >= 1.0))
             throw Exception("ClearancePathOptimizer", "max_length_factor must be at least 1");
-        validateInput(path);
+        if (repair_)
+        {
+            CertifiedPathRepair repair(si_, checker_);
+            repair.repair(path, ptc);  // throws naming a motion it cannot repair in time
+            stats_.repair = repair.lastStats();
+        }
+        else
+            validateInput(path);
         const std::size_t n0 = path.getStateCount();
         stats_.statesBefore = stats_.statesAfter = static_cast<unsigned>(n0);
         stats_.lengthBefore = stats_.lengthAfter = path.length();

@@ -7,6 +7,7 @@
 
 #include <functional>
 
+#include "meshgap/ompl/CertifiedPathRepair.h"
 #include "meshgap/ompl/ClearanceMotionValidator.h"
 
 namespace meshgap
@@ -42,10 +43,18 @@ namespace meshgap
        the minimum reaches it; default infinity), max_length_factor (the path may grow to this times its input
        length; default 3), seed (of the shortcuts' random pairs; default 1), max_rounds (default 1000), shortcut
        (default true), tolerance (of minClearance(); 0, the default: 1e-3 times the input's smallest state
-       clearance, at least 1e-9 times the robot's radius). The result depends only on the input, the parameters and
-       the seed when no time limit cuts it short (max_rounds reached, or converged: a round accepted no change).
-       Needs a ClearanceChecker in CERTIFIED mode; an input path with a state out of bounds or in collision, or a
-       motion the certified validator refuses, throws meshgap::Exception naming it. Not thread-safe (one path at a
+       clearance, at least 1e-9 times the robot's radius), repair (default true). The result depends only on the
+       input, the parameters and the seed when no time limit cuts it short (max_rounds reached, or converged: a
+       round accepted no change), and the input needs no replanning (CertifiedPathRepair's RRTConnect draws from
+       OMPL's global random seed).
+       Needs a ClearanceChecker in CERTIFIED mode; an input path with a state out of bounds or in collision throws
+       meshgap::Exception naming it. A motion of the input the certified validator refuses (a planner with OMPL's
+       sampled validator may pass one that cuts a thin obstacle or grazes one between two checked states) is first
+       repaired by CertifiedPathRepair (bisection with the new states pushed up the clearance gradient, else
+       RRTConnect with the certified validator), within the same time limit; the optimiser then starts from the
+       repaired path, and every "before" figure of lastStats() is of it (Stats::repair says what was repaired). A
+       motion that cannot be repaired in time throws meshgap::Exception naming it ("motion i→j"), the path left as
+       it was; with repair (parameter "repair") off, any refused motion throws. Not thread-safe (one path at a
        time); the checker it shares is.
     */
     class ClearancePathOptimizer
@@ -63,6 +72,8 @@ namespace meshgap
             double lowerBoundAfter{0.0};
             /** \brief The result measured less clear than the input (roundoff): the input was returned. */
             bool restored{false};
+            /** \brief What was done to the input's motions the certified validator refused before optimising. */
+            CertifiedPathRepair::Stats repair;
             double seconds{0.0};
         };
 
@@ -103,6 +114,9 @@ namespace meshgap
         bool getShortcut() const { return shortcut_; }
         void setTolerance(double t) { tolerance_ = t; }
         double getTolerance() const { return tolerance_; }
+        /** \brief Repair the input's motions the certified validator refuses (default true) rather than throw. */
+        void setRepair(bool on) { repair_ = on; }
+        bool getRepair() const { return repair_; }
 
     private:
         struct Work;
@@ -150,6 +164,7 @@ namespace meshgap
         unsigned maxRounds_{1000};
         bool shortcut_{true};
         double tolerance_{0.0};
+        bool repair_{true};
     };
 }  // namespace meshgap
 
