@@ -435,15 +435,17 @@ namespace
         return out;
     }
 
-    /** \brief One closed body holds a vertex of the other (so, with no surface contact, wholly inside it). */
+    /** \brief One closed body holds a vertex of the other (so, with no surface contact, wholly inside it), by the
+        winding number summed over every triangle (containsPoint(), the definition, not the BVH's ray casting that
+        the queries use). */
     bool contained(const Scene &scene, const Eigen::Isometry3d &X_WR)
     {
         const Body &robot = scene.robot();
         const Eigen::Vector3d onRobot = X_WR * robot.surface().vertices[robot.surface().triangles[0][0]];
         const Eigen::Isometry3d X_RW = X_WR.inverse();
         for (const BodyConstPtr &o : scene.obstacles())
-            if (insideClosedBody(*o, onRobot) ||
-                insideClosedBody(robot, X_RW * o->surface().vertices[o->surface().triangles[0][0]]))
+            if (containsPoint(*o, onRobot) ||
+                containsPoint(robot, X_RW * o->surface().vertices[o->surface().triangles[0][0]]))
                 return true;
         return false;
     }
@@ -495,6 +497,7 @@ namespace
         if (active[WARM])
             tally.warmBytes = std::max(tally.warmBytes, k.warm.memoryBytes());
         bool poseContained = false, poseOther = false;
+        int holds = -1;  // contained(), asked once per pose and only on a verdict difference
         for (int col = COLD; col < ENUM; ++col)
         {
             if (!active[col])
@@ -504,7 +507,9 @@ namespace
             if (verdict[col] != cF)
             {
                 // Only a collision FCL does not see can be a containment (FCL tests surfaces only).
-                const bool inside = verdict[col] && contained(scene, X);
+                if (verdict[col] && holds < 0)
+                    holds = contained(scene, X);
+                const bool inside = verdict[col] && holds > 0;
                 ++(inside ? tally.containment : tally.other)[col];
                 (inside ? poseContained : poseOther) = true;
             }
