@@ -623,9 +623,9 @@ namespace
                 if (!options.active[col])
                     continue;
                 const Stats &ref = collisionColumn(col) ? s[FCL_C] : s[FCL_D];
-                *csv << c.name << "," << stream.name << "," << stream.poses.size() << "," << colliding << ","
+                *csv << '"' << c.name << "\"," << stream.name << "," << stream.poses.size() << "," << colliding << ","
                      << c.world.triangles.size() << "," << c.robot.triangles.size() << ","
-                     << c.scene->obstacles().size() << "," << VERDICTS[v] << "," << COLUMNS[col] << "," << s[col].n
+                     << c.scene->obstacles().size() << "," << VERDICTS[v] << ",\"" << COLUMNS[col] << "\"," << s[col].n
                      << "," << s[col].p50 << "," << s[col].p99 << "," << (s[col].n ? s[col].p50 / ref.p50 : 0.0) << ","
                      << (s[col].n ? s[col].p99 / ref.p99 : 0.0) << ",";
                 if (col == WARM && warmOverCold)
