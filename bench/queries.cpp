@@ -24,12 +24,12 @@
 //     first and second halves (the start's side and the goal's).
 // Per state, interleaved so machine load hits every column alike: FCL distance, FCL collision, meshgap cold
 // certified (Scene::distance without a warm start), warm certified (one warm start carried from state to state),
-// warm with the depth skipped (SceneRequest::computeDepth false, its own warm start: the verdict alone in collision,
-// as FCL's 0), fast (SceneRequest::exact = false with --fast-solver, its own carried warm start), collision-only
-// (Scene::inCollision), collision-only warm (Scene::inCollision with its own warm start), and enumeration (the exact
-// node-level minimum over every obstacle, on every --enum-every'th state). --skip leaves columns (cold, warm,
-// warm-nodepth, fast, collision, collision-warm, enumeration) or streams out; the two FCL columns are the reference
-// and always run. Mesh pairs leave fast and enumeration out by default (their node-level data costs seconds to build
+// cold and warm with the depth skipped (SceneRequest::computeDepth false, the warm one with its own warm start: the
+// verdict alone in collision, as FCL's 0), fast (SceneRequest::exact = false with --fast-solver, its own carried warm
+// start), collision-only (Scene::inCollision), collision-only warm (Scene::inCollision with its own warm start), and
+// enumeration (the exact node-level minimum over every obstacle, on every --enum-every'th state). --skip leaves
+// columns (cold, warm, cold-nodepth, warm-nodepth, fast, collision, collision-warm, enumeration) or streams out; the
+// two FCL columns are the reference and always run. Mesh pairs leave fast and enumeration out by default (their node-level data costs seconds to build
 // on large meshes): --columns fast,enumeration brings them back.
 //
 // Reported per stream, for all queries and split by FCL's verdict (free, colliding): the median (p50) and 99th
@@ -346,19 +346,20 @@ namespace
                std::abs(a.distance - b.distance) <= 1e-12 * std::max(std::abs(a.distance), std::abs(b.distance));
     }
 
-    const char *const COLUMNS[] = {"FCL distance",   "FCL collision", "cold certified", "warm certified",
-                                   "warm, no depth", "fast",          "collision-only", "collision-only, warm",
-                                   "enumeration"};
+    const char *const COLUMNS[] = {"FCL distance",   "FCL collision",  "cold certified", "warm certified",
+                                   "cold, no depth", "warm, no depth", "fast",           "collision-only",
+                                   "collision-only, warm", "enumeration"};
     /** \brief --skip / --columns names of the columns, in COLUMNS' order (the FCL columns are the reference: never
         skipped). */
-    const char *const SKIP_NAMES[] = {"",     "",          "cold",           "warm",       "warm-nodepth",
-                                      "fast", "collision", "collision-warm", "enumeration"};
+    const char *const SKIP_NAMES[] = {"",          "",          "cold",          "warm",           "cold-nodepth",
+                                      "warm-nodepth", "fast",     "collision",     "collision-warm", "enumeration"};
     enum Column
     {
         FCL_D,
         FCL_C,
         COLD,
         WARM,
+        COLD_ND,
         WARM_ND,
         FAST,
         COLL,
@@ -484,6 +485,8 @@ namespace
             tally.t[COLD].push_back(timed([&] { scene.distance(X, k.certified, r[COLD]); }));
         if (active[WARM])
             tally.t[WARM].push_back(timed([&] { scene.distance(X, k.certified, k.warm, r[WARM]); }));
+        if (active[COLD_ND])
+            tally.t[COLD_ND].push_back(timed([&] { scene.distance(X, k.noDepth, r[COLD_ND]); }));
         if (active[WARM_ND])
             tally.t[WARM_ND].push_back(timed([&] { scene.distance(X, k.noDepth, k.noDepthWarm, r[WARM_ND]); }));
         if (active[FAST])
@@ -522,6 +525,8 @@ namespace
             tally.warmCold += !sameAnswer(r[WARM], r[COLD]);
         if (active[COLD] && active[WARM_ND])
             tally.noDepthCold += !sameAnswer(r[WARM_ND], r[COLD], false);
+        if (active[COLD] && active[COLD_ND])
+            tally.noDepthCold += !sameAnswer(r[COLD_ND], r[COLD], false);
         if (active[FAST] && active[COLD] && !r[COLD].inCollision && !r[FAST].inCollision)
             tally.fastBelowExact += r[FAST].distance < r[COLD].distance - 1e-9 * (1 + r[COLD].distance);
         if (active[ENUM] && i % options.enumEvery == 0)
@@ -563,7 +568,7 @@ namespace
                           std::to_string(t.posesOther) + "; distances " + std::to_string(distances);
         if (t.t[COLD].size() && t.t[WARM].size())
             out += ", warm≠cold " + std::to_string(t.warmCold);
-        if (t.t[COLD].size() && t.t[WARM_ND].size())
+        if (t.t[COLD].size() && (t.t[WARM_ND].size() || t.t[COLD_ND].size()))
             out += ", no-depth≠cold " + std::to_string(t.noDepthCold);
         if (t.fclSelf)
             out += ", FCL distance vs collide " + std::to_string(t.fclSelf);
@@ -638,7 +643,7 @@ namespace
                 *csv << ",";
                 if (v == 0 && col == WARM)
                     *csv << tally.warmCold;
-                if (v == 0 && col == WARM_ND)
+                if (v == 0 && (col == WARM_ND || col == COLD_ND))
                     *csv << tally.noDepthCold;
                 *csv << ",";
                 if (v == 0 && col == WARM && tally.warmBytes)
@@ -769,7 +774,8 @@ namespace
         std::fill(options.active, options.active + NUM_COLUMNS, true);
         if (pairs)
             options.active[FAST] = options.active[ENUM] = false;
-        const std::string valid = "cold, warm, warm-nodepth, fast, collision, collision-warm, enumeration";
+        const std::string valid =
+            "cold, warm, cold-nodepth, warm-nodepth, fast, collision, collision-warm, enumeration";
         auto column = [&](const std::string &option, const std::string &name)
         {
             for (int c = COLD; c < NUM_COLUMNS; ++c)
@@ -910,7 +916,8 @@ int main(int argc, char **argv)
             "streams", po::value(&streamList),
             "comma-separated streams: path, random, mixed, alternating (default: path,random for problems, all "
             "four for --robot)")("skip", po::value(&skipList),
-                                 "comma-separated columns or streams to leave out: cold, warm, warm-nodepth, fast, "
+                                 "comma-separated columns or streams to leave out: cold, warm, cold-nodepth, "
+                                 "warm-nodepth, fast, "
                                  "collision, collision-warm, enumeration, path, random, mixed, alternating")(
             "columns", po::value(&columnList), "comma-separated columns to run that are off by default (fast, "
                                                "enumeration with --robot)")(
