@@ -105,31 +105,52 @@ namespace meshgap
     bool RobotScene::answerPair(std::size_t k, const RobotRequest &request, double bound, RobotWarmStart &warm,
                                 RobotPairAnswer &answer, RobotResult &best, bool &complete) const
     {
-        DistanceResult r;  // the pair's answer, witnesses in the world frame
-        if (k < links_.size())
+        if (!(bound > 0.0))
         {
-            SceneRequest sceneRequest;
-            sceneRequest.stopBelow = request.stopBelow;
-            sceneRequest.upperBound = bound;
-            SceneResult s;
-            scenes_[k]->distance(warm.poses[k], sceneRequest, warm.links[k], s);
-            best.pairsChecked += s.pairsChecked > 0 ? 1 : 0;
-            complete = complete && s.certified;
-            answer = {s.distance, s.atLeast ? RobotPairAnswer::Status::AT_LEAST : RobotPairAnswer::Status::EXACT,
-                      s.obstacle};
-            if (s.atLeast || !(s.distance < best.distance))
+            // In collision, only a deeper collision can change the answer: the exact collision test first (a
+            // bound near zero would prune nothing the test does not), then the signed distance of a colliding pair.
+            const bool collides = k < links_.size() ? scenes_[k]->inCollision(warm.poses[k], warm.links[k])
+                                                    : selfCollides(k - links_.size(), warm);
+            if (!collides)
+            {
+                ++best.pairsChecked;
+                answer = {0.0, RobotPairAnswer::Status::AT_LEAST, 0};
                 return false;
-            best.selfPair = false;
-            best.link = k;
-            best.other = s.obstacle;
-            best.onLink = s.onRobot;
-            best.onOther = s.onObstacle;
-            best.inCollision = s.inCollision;
-            best.penetrationDepth = s.penetrationDepth;
-            best.distance = s.distance;
-            return true;
+            }
+            bound = request.upperBound;
         }
-        const std::size_t p = k - links_.size();
+        return k < links_.size() ? answerLink(k, request, bound, warm, answer, best, complete)
+                                 : answerSelf(k - links_.size(), request, bound, warm, answer, best, complete);
+    }
+
+    bool RobotScene::answerLink(std::size_t i, const RobotRequest &request, double bound, RobotWarmStart &warm,
+                                RobotPairAnswer &answer, RobotResult &best, bool &complete) const
+    {
+        SceneRequest sceneRequest;
+        sceneRequest.stopBelow = request.stopBelow;
+        sceneRequest.upperBound = bound;
+        SceneResult s;
+        scenes_[i]->distance(warm.poses[i], sceneRequest, warm.links[i], s);
+        best.pairsChecked += s.pairsChecked > 0 ? 1 : 0;
+        complete = complete && s.certified;
+        answer = {s.distance, s.atLeast ? RobotPairAnswer::Status::AT_LEAST : RobotPairAnswer::Status::EXACT,
+                  s.obstacle};
+        if (s.atLeast || !(s.distance < best.distance))
+            return false;
+        best.selfPair = false;
+        best.link = i;
+        best.other = s.obstacle;
+        best.onLink = s.onRobot;
+        best.onOther = s.onObstacle;
+        best.inCollision = s.inCollision;
+        best.penetrationDepth = s.penetrationDepth;
+        best.distance = s.distance;
+        return true;
+    }
+
+    bool RobotScene::answerSelf(std::size_t p, const RobotRequest &request, double bound, RobotWarmStart &warm,
+                                RobotPairAnswer &answer, RobotResult &best, bool &complete) const
+    {
         const auto [a, b] = selfPairs_[p];
         double gap;
         if (spheresApart(p, warm, bound, gap))
@@ -140,6 +161,7 @@ namespace meshgap
         DistanceRequest pairRequest;
         pairRequest.stopBelow = request.stopBelow;
         pairRequest.upperBound = bound;
+        DistanceResult r;
         refineExact(*links_[a].body, *links_[b].body, warm.poses[a].inverse() * warm.poses[b], r, pairRequest,
                     &warm.self[p]);
         ++best.pairsChecked;
@@ -155,7 +177,7 @@ namespace meshgap
         best.selfPair = true;
         best.link = a;
         best.other = b;
-        best.onLink = warm.poses[a] * r.onA;
+        best.onLink = warm.poses[a] * r.onA;  // refineExact's witnesses are in a's frame
         best.onOther = warm.poses[a] * r.onB;
         best.inCollision = r.inCollision;
         best.penetrationDepth = r.penetrationDepth;
@@ -184,9 +206,8 @@ namespace meshgap
         {
             if (request.everyPair || !found)
                 return request.upperBound;
-            // In collision, only a deeper collision can change the answer: any positive bound keeps them all.
-            return result.distance > 0.0 ? std::min(result.distance, request.upperBound)
-                                         : std::numeric_limits<double>::min();
+            // In collision, only a deeper collision can change the answer (answerPair(): bound 0).
+            return result.distance > 0.0 ? std::min(result.distance, request.upperBound) : 0.0;
         };
         for (std::size_t step = 0; step < count && !stopped; ++step)
         {

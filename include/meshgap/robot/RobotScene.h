@@ -130,8 +130,16 @@ namespace meshgap
             into \e gap. */
         bool spheresApart(std::size_t p, const RobotWarmStart &warm, double bound, double &gap) const;
         bool selfCollides(std::size_t p, RobotWarmStart &warm) const;
-        /** \brief Answer pair \e k against \e bound into \e answer; true (with \e exact filled) when below it. */
+        /** \brief Answer pair \e k (RobotResult::pairs order) below \e bound into \e answer (bound 0: only a
+            collision matters); true when it is the best so far, then copied into \e best. \e complete turns false
+            when the pair's answer is not certified. */
         bool answerPair(std::size_t k, const RobotRequest &request, double bound, RobotWarmStart &warm,
+                        RobotPairAnswer &answer, RobotResult &best, bool &complete) const;
+        /** \brief answerPair() for link \e i against the obstacles (its scene). */
+        bool answerLink(std::size_t i, const RobotRequest &request, double bound, RobotWarmStart &warm,
+                        RobotPairAnswer &answer, RobotResult &best, bool &complete) const;
+        /** \brief answerPair() for self pair \e p (bounding spheres, then refineExact()). */
+        bool answerSelf(std::size_t p, const RobotRequest &request, double bound, RobotWarmStart &warm,
                         RobotPairAnswer &answer, RobotResult &best, bool &complete) const;
         void finish(RobotResult &result) const;
 
