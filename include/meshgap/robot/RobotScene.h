@@ -86,6 +86,21 @@ namespace meshgap
         bool valid{false};
         std::size_t pair{0};  ///< the last minimum's pair (RobotResult::pairs order)
         std::uint64_t scene{0};
+
+        /** \brief Forget the history (the next query is answered as a cold one would be) but keep the memory. */
+        void reset()
+        {
+            valid = false;
+            for (SceneWarmStart &w : links)
+                w.reset();
+            for (ExactWarmStart &p : self)
+            {
+                p.valid = false;
+                p.front.clear();
+                p.collision.clear();
+                p.penetration.valid = false;
+            }
+        }
     };
 
     /** \brief A robot (RobotModel) among obstacles (bodies fixed in the world frame): whole-robot collision and
