@@ -13,6 +13,7 @@
 #include <random>
 
 #include "meshgap/ompl/RobotChecker.h"
+#include "meshgap/ompl/RobotMotionValidator.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 #include "meshgap/robot/MultiBodyRobot.h"
 #include "meshgap/robot/UrdfRobot.h"
@@ -113,7 +114,9 @@ namespace meshgap
         EXPECT_LT(invalid, 290u);
     }
 
-    TEST(RobotOmpl, RrtConnectPlansTheTreeAroundTheBoxes)
+    /** \brief RRTConnect on the tree among boxes; with \e certified, RobotMotionValidator validates the motions
+        and the whole path is checked densely. */
+    static void planTreeAroundTheBoxes(bool certified)
     {
         ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
         const UrdfRobotPtr robot = UrdfRobot::load(TREE);
@@ -121,6 +124,9 @@ namespace meshgap
         const auto scene = std::make_shared<RobotScene>(robot, obstacles(0.45));
         og::SimpleSetup setup(robotStateSpace(*robot, cube(1.0)));
         setup.setStateValidityChecker(std::make_shared<RobotChecker>(setup.getSpaceInformation(), scene));
+        if (certified)
+            setup.getSpaceInformation()->setMotionValidator(
+                std::make_shared<RobotMotionValidator>(setup.getSpaceInformation(), scene, *robot));
         // Free states with the shoulder on either side of the boxes, found by a fixed-seed search.
         std::mt19937 rng(2);
         std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -147,8 +153,11 @@ namespace meshgap
         ASSERT_EQ(setup.solve(30.0), ob::PlannerStatus::EXACT_SOLUTION);
         og::PathGeometric path = setup.getSolutionPath();
         EXPECT_TRUE(path.check());
-        // Every waypoint is free, by a whole-robot query of its own. (Between waypoints OMPL's discrete motion
-        // validator only samples at its resolution: a dense check needs a certified motion validator for chains.)
+        if (certified)
+            path.interpolate(static_cast<unsigned int>(std::ceil(path.length() / 1e-3)) + 1);
+        // Every waypoint is free, by a whole-robot query of its own; with the certified validator, every state of
+        // the path at steps of 1e-3 (OMPL's discrete validator only samples at its resolution: it may miss a
+        // collision between samples, so its path is checked at its waypoints only).
         std::vector<double> q;
         for (ob::State *s : path.getStates())
         {
@@ -157,5 +166,15 @@ namespace meshgap
             scene->distance(q, RobotRequest(), r);
             EXPECT_GE(r.distance, 0.0);
         }
+    }
+
+    TEST(RobotOmpl, RrtConnectPlansTheTreeAroundTheBoxes)
+    {
+        planTreeAroundTheBoxes(false);
+    }
+
+    TEST(RobotOmpl, RrtConnectWithCertifiedMotionsGivesADenselyFreePath)
+    {
+        planTreeAroundTheBoxes(true);
     }
 }  // namespace meshgap
