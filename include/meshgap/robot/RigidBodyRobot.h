@@ -1,0 +1,42 @@
+#ifndef MESHGAP_ROBOT_RIGID_BODY_ROBOT_H
+#define MESHGAP_ROBOT_RIGID_BODY_ROBOT_H
+
+#include <string>
+
+#include "meshgap/robot/RobotModel.h"
+
+namespace meshgap
+{
+    MESHGAP_CLASS_FORWARD(RigidBodyRobot);
+
+    /** \brief The space a rigid body moves in, and its state's numbers. */
+    enum class RigidSpace
+    {
+        SE2,  ///< "x y theta": in the plane z = 0, turning about z (OMPL.app's SE(2) problems)
+        SE3   ///< "x y z qx qy qz qw" (OMPL's SE(3) order, quaternion scalar last; normalised)
+    };
+
+    /** \brief Numbers in a state of \e space (3 or 7). */
+    std::size_t rigidSpaceDimension(RigidSpace space);
+
+    /** \brief The pose a state of \e space gives (poseFromSE2(), poseFromSE3()). */
+    Eigen::Isometry3d rigidPose(RigidSpace space, const double *state);
+
+    /** \brief One rigid body flying free in SE(2) or SE(3): the robot of OMPL.app's rigid-body problems, a robot
+        model with one frame and one link (both named \e name), whose pose is the state. */
+    class RigidBodyRobot : public RobotModel
+    {
+    public:
+        RigidBodyRobot(BodyConstPtr body, RigidSpace space, const std::string &name = "robot");
+
+        RigidSpace space() const { return space_; }
+
+    protected:
+        void computeFrames(const double *state, Eigen::Isometry3d *frames) const override;
+
+    private:
+        RigidSpace space_;
+    };
+}  // namespace meshgap
+
+#endif

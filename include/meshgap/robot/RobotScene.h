@@ -1,0 +1,170 @@
+#ifndef MESHGAP_ROBOT_ROBOT_SCENE_H
+#define MESHGAP_ROBOT_ROBOT_SCENE_H
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "meshgap/ClassForward.h"
+#include "meshgap/distance/ExactDistance.h"
+#include "meshgap/robot/RobotModel.h"
+#include "meshgap/scene/Scene.h"
+
+namespace meshgap
+{
+    MESHGAP_CLASS_FORWARD(RobotScene);
+
+    /** \brief What one whole-robot query should do (exact, certified answers). */
+    struct RobotRequest
+    {
+        /** \brief Stop as soon as a pair at or below this is known (a validity check needs no more): the answer
+            is then an upper bound, not certified, and a collision gets no depth. Negative: never stop early. */
+        double stopBelow{-1.0};
+        /** \brief Only a distance below this matters: pairs at or above it are pruned; when none is below, the
+            answer says so (RobotResult::atLeast). Must be positive. */
+        double upperBound{std::numeric_limits<double>::infinity()};
+        /** \brief Answer every pair exactly (the clearance of every link and every pair, RobotResult::pairs),
+            rather than pruning each pair at the best distance found so far (cheaper; the minimum is the same). */
+        bool everyPair{false};
+        /** \brief Check link against link (the pairs RobotModel::selfPairs() gives), not only against the world. */
+        bool selfCollision{true};
+    };
+
+    /** \brief What one query found about one pair: a link against the obstacles, or two links. */
+    struct RobotPairAnswer
+    {
+        /** \brief How far the query went with the pair. */
+        enum class Status
+        {
+            EXACT,        ///< distance is the pair's signed distance (certified when the query is)
+            AT_LEAST,     ///< pruned: the pair's distance is at least distance
+            NOT_CHECKED   ///< not looked at (an early stop, or self pairs not asked for); distance is +infinity
+        };
+        double distance{std::numeric_limits<double>::infinity()};
+        Status status{Status::NOT_CHECKED};
+        /** \brief For a link against the obstacles: the closest (or deepest) obstacle, when EXACT. */
+        std::size_t obstacle{0};
+    };
+
+    /** \brief The answer for one robot state. */
+    struct RobotResult
+    {
+        /** \brief Minimum signed distance over every pair checked; negative in collision (the deepest penetration
+            over every colliding pair, each pair's signed distance as Scene::distance() and refineExact() give it). */
+        double distance{std::numeric_limits<double>::infinity()};
+        /** \brief The pair that attains it: link against obstacle \e other (selfPair false), or link \e link
+            against link \e other (selfPair true, link < other). Indices in RobotScene::links(), obstacles(). */
+        bool selfPair{false};
+        std::size_t link{0}, other{0};
+        Eigen::Vector3d onLink{Eigen::Vector3d::Zero()};   ///< witness points, world frame
+        Eigen::Vector3d onOther{Eigen::Vector3d::Zero()};
+        bool inCollision{false};
+        double penetrationDepth{0.0};  ///< in collision: the depth estimate behind distance (>= 0)
+        bool certified{false};         ///< every pair completed (or a collision, proven)
+        /** \brief No pair is below RobotRequest::upperBound, which distance then holds (certified; no pair, no
+            witnesses). */
+        bool atLeast{false};
+        std::size_t pairsChecked{0};  ///< pairs answered by the exact layer (not pruned by the broad phase)
+        /** \brief Per pair: links().size() link-against-obstacles pairs (index = link), then the self pairs in
+            RobotScene::selfPairs() order. */
+        std::vector<RobotPairAnswer> pairs;
+        /** \brief Per link: the least of its pairs' distances (a lower bound where a pair is AT_LEAST), its
+            clearance from everything it is checked against. */
+        std::vector<double> linkClearance;
+    };
+
+    /** \brief What one caller (one thread) carries from one query to the next, nearby state: per link its scene's
+        warm start, per self pair an exact warm start, the pair of the last minimum (visited first), and the
+        pose buffers. Changes the cost of a query, never its answer (ties between pairs aside). Never shared
+        between threads; bound to the robot scene it was last used with. */
+    struct RobotWarmStart
+    {
+        std::vector<SceneWarmStart> links;
+        std::vector<ExactWarmStart> self;
+        std::vector<Eigen::Isometry3d> frames, poses;
+        bool valid{false};
+        std::size_t pair{0};  ///< the last minimum's pair (RobotResult::pairs order)
+        std::uint64_t scene{0};
+
+        /** \brief Forget the history (the next query is answered as a cold one would be) but keep the memory. */
+        void reset()
+        {
+            valid = false;
+            for (SceneWarmStart &w : links)
+                w.reset();
+            for (ExactWarmStart &p : self)
+            {
+                p.valid = false;
+                p.front.clear();
+                p.collision.clear();
+                p.penetration.valid = false;
+            }
+        }
+    };
+
+    /** \brief A robot (RobotModel) among obstacles (bodies fixed in the world frame): whole-robot collision and
+        distance. Each link is answered against the obstacles by a Scene of its own (its broad phase, an R-tree of
+        the obstacles' boxes, and its warm start); each self pair by the exact layer (refineExact(), inCollision())
+        after a bounding-sphere test, one exact warm start per pair. Immutable once built, shared between threads;
+        per-caller state lives in RobotWarmStart; no allocation once a caller has warmed up. */
+    class RobotScene
+    {
+    public:
+        /** \brief \e robot as it is now (its links and pairs are copied: later attach() calls are not seen); the
+            obstacles in the world frame. */
+        RobotScene(RobotModelConstPtr robot, std::vector<BodyConstPtr> obstacles);
+
+        const RobotModel &robot() const { return *robot_; }
+        const std::vector<RobotLink> &links() const { return links_; }
+        const std::vector<LinkPair> &selfPairs() const { return selfPairs_; }
+        const std::vector<BodyConstPtr> &obstacles() const { return obstacles_; }
+        /** \brief Link \e i's scene (the link as the robot, the obstacles as the world). */
+        const Scene &linkScene(std::size_t i) const { return *scenes_[i]; }
+        /** \brief Number of pairs: one per link (against the obstacles), then one per self pair. */
+        std::size_t numPairs() const { return links_.size() + selfPairs_.size(); }
+        /** \brief Unique per robot scene (keys the warm starts made with it). */
+        std::uint64_t id() const { return id_; }
+
+        /** \brief Exact collision verdict at \e state (a link against an obstacle, or two links not allowed to
+            touch; containment included); stops at the first collision. Throws meshgap::Exception for a state of
+            the wrong dimension. */
+        bool inCollision(const double *state, std::size_t size, RobotWarmStart &warm,
+                         bool selfCollision = true) const;
+        /** \brief Minimum signed distance over the pairs at \e state, as \e request asks. Throws
+            meshgap::Exception for a state of the wrong dimension or a bound not positive. */
+        void distance(const double *state, std::size_t size, const RobotRequest &request, RobotWarmStart &warm,
+                      RobotResult &result) const;
+        /** \brief The same, cold (no warm start). */
+        void distance(const std::vector<double> &state, const RobotRequest &request, RobotResult &result) const;
+
+    private:
+        /** \brief Size \e warm for this scene (afresh if it was made with another) and fill its poses. */
+        void prepare(const double *state, std::size_t size, RobotWarmStart &warm) const;
+        /** \brief True when the bounding spheres of self pair \e p's links are at least \e bound apart; their gap
+            into \e gap. */
+        bool spheresApart(std::size_t p, const RobotWarmStart &warm, double bound, double &gap) const;
+        bool selfCollides(std::size_t p, RobotWarmStart &warm) const;
+        /** \brief Answer pair \e k (RobotResult::pairs order) below \e bound into \e answer (bound 0: only a
+            collision matters); true when it is the best so far, then copied into \e best. \e complete turns false
+            when the pair's answer is not certified. */
+        bool answerPair(std::size_t k, const RobotRequest &request, double bound, RobotWarmStart &warm,
+                        RobotPairAnswer &answer, RobotResult &best, bool &complete) const;
+        /** \brief answerPair() for link \e i against the obstacles (its scene). */
+        bool answerLink(std::size_t i, const RobotRequest &request, double bound, RobotWarmStart &warm,
+                        RobotPairAnswer &answer, RobotResult &best, bool &complete) const;
+        /** \brief answerPair() for self pair \e p (bounding spheres, then refineExact()). */
+        bool answerSelf(std::size_t p, const RobotRequest &request, double bound, RobotWarmStart &warm,
+                        RobotPairAnswer &answer, RobotResult &best, bool &complete) const;
+        void finish(RobotResult &result) const;
+
+        RobotModelConstPtr robot_;
+        std::vector<RobotLink> links_;
+        std::vector<LinkPair> selfPairs_;
+        std::vector<BodyConstPtr> obstacles_;
+        std::vector<ScenePtr> scenes_;
+        std::uint64_t id_;
+    };
+}  // namespace meshgap
+
+#endif

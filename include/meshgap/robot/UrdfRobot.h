@@ -1,0 +1,97 @@
+#ifndef MESHGAP_ROBOT_URDF_ROBOT_H
+#define MESHGAP_ROBOT_URDF_ROBOT_H
+
+#include <string>
+#include <vector>
+
+#include "meshgap/robot/RobotModel.h"
+
+namespace meshgap
+{
+    MESHGAP_CLASS_FORWARD(UrdfRobot);
+
+    /** \brief How to read a URDF. */
+    struct UrdfOptions
+    {
+        /** \brief Folders that hold the packages "package://" URIs name (resolveRobotUri()); empty: the folders of
+            ROS_PACKAGE_PATH. The URDF's own folder and its parents are searched after them in either case. */
+        std::vector<std::string> packagePath;
+        /** \brief The root link moves free in SE(3), its pose the state's first seven numbers ("x y z qx qy qz
+            qw"); else it is fixed at the world origin. */
+        bool floatingBase{false};
+        /** \brief Facets around a cylinder and a sphere (cylinderMesh(), sphereMesh()). */
+        unsigned int segments{32};
+        /** \brief How each link's mesh becomes a body. */
+        BodyOptions body;
+    };
+
+    /** \brief The kinds of URDF joint a UrdfRobot moves. */
+    enum class JointType
+    {
+        REVOLUTE,    ///< about its axis, between its limits
+        CONTINUOUS,  ///< about its axis, unbounded (an angle)
+        PRISMATIC,   ///< along its axis, between its limits
+        FIXED        ///< no motion
+    };
+
+    /** \brief One joint of a UrdfRobot, as the forward kinematics uses it: the child frame's pose is the parent
+        frame's pose, then origin, then the joint's motion (a rotation by the joint value about axis, or a
+        translation of the value along it). */
+    struct UrdfJoint
+    {
+        std::string name;
+        JointType type;
+        std::size_t parent, child;  ///< frames (RobotModel::frames())
+        Eigen::Isometry3d origin;   ///< the joint frame in the parent frame
+        Eigen::Vector3d axis;       ///< unit, in the joint frame
+        double lower, upper;        ///< limits (revolute, prismatic); -inf, +inf otherwise
+        /** \brief Where its value is in a state (a movable joint's), or RobotModel::NONE (a fixed or mimic joint). */
+        std::size_t variable;
+        /** \brief A mimic joint: the value is multiplier * (the value of joint \e mimics) + offset, \e mimics a
+            movable joint's index in joints() (chains of mimic joints resolved); RobotModel::NONE otherwise. */
+        std::size_t mimics;
+        double multiplier, offset;
+    };
+
+    /** \brief A kinematic tree read from a URDF (urdfdom): one frame per URDF link, one link body per URDF link with
+        geometry (its collision elements merged; its visual elements when it has no collision element), meshes
+        and boxes, cylinders and spheres alike. The state: a floating base's pose first (UrdfOptions::floatingBase),
+        then the value of every movable joint (revolute, continuous, prismatic; not fixed, not mimic) in the order
+        the URDF lists them. Forward kinematics is a walk down the tree, parent before child. Links joined by a
+        joint are allowed to touch (a link with no geometry is skipped: its children are adjacent to its nearest
+        ancestor with geometry); readSrdf() allows more. */
+    class UrdfRobot : public RobotModel
+    {
+    public:
+        /** \brief Read \e path. Throws meshgap::Exception naming the file and the problem: unreadable XML, a joint
+            type other than revolute, continuous, prismatic or fixed (floating and planar joints included), joints
+            that do not form one tree (a cycle, a link with two parent joints, several roots, an unknown link), a
+            mimic joint of an unknown or fixed joint, a zero axis, a mesh that cannot be found or read, a bad
+            primitive, and whatever else urdfdom rejects. */
+        static UrdfRobotPtr load(const std::string &path, const UrdfOptions &options = UrdfOptions());
+
+        /** \brief Every joint, parent before child (the order of the forward kinematics). */
+        const std::vector<UrdfJoint> &joints() const { return joints_; }
+        /** \brief The joint (index in joints()) behind each joint value of a state, in state order. */
+        const std::vector<std::size_t> &variables() const { return variables_; }
+        /** \brief Where the joint values start in a state: 7 with a floating base, else 0. */
+        std::size_t jointOffset() const { return floatingBase_ ? 7 : 0; }
+        bool floatingBase() const { return floatingBase_; }
+        /** \brief The URDF's robot name. */
+        const std::string &name() const { return name_; }
+
+    protected:
+        void computeFrames(const double *state, Eigen::Isometry3d *frames) const override;
+
+    private:
+        UrdfRobot() = default;
+        friend struct UrdfBuilder;
+
+        std::string name_;
+        bool floatingBase_{false};
+        std::vector<UrdfJoint> joints_;
+        std::vector<std::size_t> variables_;
+    };
+}  // namespace meshgap
+
+#endif

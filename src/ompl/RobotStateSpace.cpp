@@ -1,0 +1,196 @@
+#include "meshgap/ompl/RobotStateSpace.h"
+
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+#include <ompl/base/spaces/SO2StateSpace.h>
+
+#include "meshgap/Exception.h"
+#include "meshgap/robot/MultiBodyRobot.h"
+#include "meshgap/robot/UrdfRobot.h"
+
+namespace ob = ompl::base;
+
+namespace meshgap
+{
+    namespace
+    {
+        ob::StateSpacePtr rigidSpace(RigidSpace kind, const ob::RealVectorBounds &bounds)
+        {
+            if (kind == RigidSpace::SE3)
+            {
+                if (bounds.low.size() != 3)
+                    throw Exception("robot state space", "an SE(3) body needs 3-dimensional position bounds");
+                auto space = std::make_shared<ob::SE3StateSpace>();
+                space->setBounds(bounds);
+                return space;
+            }
+            if (bounds.low.size() < 2)
+                throw Exception("robot state space", "an SE(2) body needs position bounds in x and y");
+            ob::RealVectorBounds planar(2);
+            for (int k = 0; k < 2; ++k)
+            {
+                planar.low[k] = bounds.low[k];
+                planar.high[k] = bounds.high[k];
+            }
+            auto space = std::make_shared<ob::SE2StateSpace>();
+            space->setBounds(planar);
+            return space;
+        }
+
+        void addJointSpaces(const UrdfRobot &robot, ob::CompoundStateSpace &space)
+        {
+            std::vector<const UrdfJoint *> run;  // consecutive bounded joints, one real-vector space
+            auto flush = [&]
+            {
+                if (run.empty())
+                    return;
+                auto vector = std::make_shared<ob::RealVectorStateSpace>(static_cast<unsigned int>(run.size()));
+                ob::RealVectorBounds limits(static_cast<unsigned int>(run.size()));
+                for (std::size_t k = 0; k < run.size(); ++k)
+                {
+                    limits.low[k] = run[k]->lower;
+                    limits.high[k] = run[k]->upper;
+                    vector->setDimensionName(static_cast<unsigned int>(k), run[k]->name);
+                }
+                vector->setBounds(limits);
+                space.addSubspace(vector, 1.0);
+                run.clear();
+            };
+            for (std::size_t k : robot.variables())
+            {
+                const UrdfJoint &j = robot.joints()[k];
+                if (j.type == JointType::CONTINUOUS)
+                {
+                    flush();
+                    space.addSubspace(std::make_shared<ob::SO2StateSpace>(), 1.0);
+                }
+                else
+                    run.push_back(&j);
+            }
+            flush();
+        }
+
+        /** \brief Walk \e space's leaves in order, copying numbers out (\e out non-null) or in. */
+        std::size_t walk(const ob::StateSpace &space, ob::State *state, double *out, const double *in)
+        {
+            auto copy = [&](double &value, std::size_t k)
+            {
+                if (out)
+                    out[k] = value;
+                else
+                    value = in[k];
+            };
+            if (dynamic_cast<const ob::SE3StateSpace *>(&space))
+            {
+                auto *s = state->as<ob::SE3StateSpace::StateType>();
+                double *v[7] = {&s->as<ob::RealVectorStateSpace::StateType>(0)->values[0],
+                                &s->as<ob::RealVectorStateSpace::StateType>(0)->values[1],
+                                &s->as<ob::RealVectorStateSpace::StateType>(0)->values[2],
+                                &s->rotation().x, &s->rotation().y, &s->rotation().z, &s->rotation().w};
+                for (std::size_t k = 0; k < 7; ++k)
+                    copy(*v[k], k);
+                return 7;
+            }
+            if (dynamic_cast<const ob::SE2StateSpace *>(&space))
+            {
+                auto *s = state->as<ob::SE2StateSpace::StateType>();
+                if (out)
+                {
+                    out[0] = s->getX();
+                    out[1] = s->getY();
+                    out[2] = s->getYaw();
+                }
+                else
+                {
+                    s->setXY(in[0], in[1]);
+                    s->setYaw(in[2]);
+                }
+                return 3;
+            }
+            if (dynamic_cast<const ob::SO2StateSpace *>(&space))
+            {
+                copy(state->as<ob::SO2StateSpace::StateType>()->value, 0);
+                return 1;
+            }
+            if (const auto *vector = dynamic_cast<const ob::RealVectorStateSpace *>(&space))
+            {
+                double *values = state->as<ob::RealVectorStateSpace::StateType>()->values;
+                for (unsigned int k = 0; k < vector->getDimension(); ++k)
+                    copy(values[k], k);
+                return vector->getDimension();
+            }
+            if (const auto *compound = dynamic_cast<const ob::CompoundStateSpace *>(&space))
+            {
+                std::size_t count = 0;
+                for (unsigned int i = 0; i < compound->getSubspaceCount(); ++i)
+                    count += walk(*compound->getSubspace(i), state->as<ob::CompoundState>()->components[i],
+                                  out ? out + count : nullptr, in ? in + count : nullptr);
+                return count;
+            }
+            throw Exception("robot state space", "space '" + space.getName() +
+                                                     "' is none of SE(3), SE(2), SO(2), real vector or a compound");
+        }
+
+        /** \brief Numbers in a state of \e space (walk()'s count, without a state). */
+        std::size_t countOf(const ob::StateSpace &space)
+        {
+            if (dynamic_cast<const ob::SE3StateSpace *>(&space))
+                return 7;
+            if (dynamic_cast<const ob::SE2StateSpace *>(&space))
+                return 3;
+            if (dynamic_cast<const ob::SO2StateSpace *>(&space))
+                return 1;
+            if (const auto *vector = dynamic_cast<const ob::RealVectorStateSpace *>(&space))
+                return vector->getDimension();
+            if (const auto *compound = dynamic_cast<const ob::CompoundStateSpace *>(&space))
+            {
+                std::size_t count = 0;
+                for (unsigned int i = 0; i < compound->getSubspaceCount(); ++i)
+                    count += countOf(*compound->getSubspace(i));
+                return count;
+            }
+            throw Exception("robot state space", "space '" + space.getName() +
+                                                     "' is none of SE(3), SE(2), SO(2), real vector or a compound");
+        }
+    }  // namespace
+
+    ob::StateSpacePtr robotStateSpace(const RobotModel &robot, const ob::RealVectorBounds &bounds)
+    {
+        auto space = std::make_shared<ob::CompoundStateSpace>();
+        if (const auto *urdf = dynamic_cast<const UrdfRobot *>(&robot))
+        {
+            if (urdf->floatingBase())
+                space->addSubspace(rigidSpace(RigidSpace::SE3, bounds), 1.0);
+            addJointSpaces(*urdf, *space);
+        }
+        else if (const auto *rigid = dynamic_cast<const RigidBodyRobot *>(&robot))
+            space->addSubspace(rigidSpace(rigid->space(), bounds), 1.0);
+        else if (const auto *multi = dynamic_cast<const MultiBodyRobot *>(&robot))
+            for (std::size_t i = 0; i < multi->links().size(); ++i)
+                space->addSubspace(rigidSpace(multi->space(i), bounds), 1.0);
+        else
+            throw Exception("robot state space", "a robot model of unknown kind");
+        if (space->getSubspaceCount() == 0)
+            throw Exception("robot state space", "the robot has no state (no movable joint)");
+        if (countOf(*space) != robot.dimension())
+            throw Exception("robot state space", "the space's numbers do not match the robot's state");
+        space->lock();
+        return space;
+    }
+
+    void robotStateToVector(const ob::StateSpace &space, const ob::State *state, std::vector<double> &out)
+    {
+        out.resize(countOf(space));
+        walk(space, const_cast<ob::State *>(state), out.data(), nullptr);
+    }
+
+    void robotStateFromVector(const ob::StateSpace &space, const std::vector<double> &values, ob::State *state)
+    {
+        const std::size_t count = countOf(space);
+        if (values.size() != count)
+            throw Exception("robot state space", std::to_string(values.size()) + " numbers for a state of " +
+                                                     std::to_string(count));
+        walk(space, state, nullptr, values.data());
+    }
+}  // namespace meshgap

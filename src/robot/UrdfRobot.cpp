@@ -1,0 +1,409 @@
+#include "meshgap/robot/UrdfRobot.h"
+
+#include <console_bridge/console.h>
+#include <tinyxml2.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+#include "meshgap/Exception.h"
+#include "meshgap/mesh/MeshLoader.h"
+#include "meshgap/mesh/MeshOperations.h"
+#include "meshgap/robot/PackagePath.h"
+#include "meshgap/robot/Primitives.h"
+
+namespace meshgap
+{
+    namespace
+    {
+        /** \brief urdfdom's messages (console_bridge) while it parses, kept for the error rather than printed. The
+            handler is process-wide, so parses take turns. */
+        class ConsoleCapture : public console_bridge::OutputHandler
+        {
+        public:
+            ConsoleCapture() : lock_(mutex())
+            {
+                previous_ = console_bridge::getOutputHandler();
+                console_bridge::useOutputHandler(this);
+            }
+            ~ConsoleCapture() override { console_bridge::useOutputHandler(previous_); }
+            ConsoleCapture(const ConsoleCapture &) = delete;
+            ConsoleCapture &operator=(const ConsoleCapture &) = delete;
+
+            void log(const std::string &text, console_bridge::LogLevel level, const char *, int) override
+            {
+                if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR)
+                    errors_ += (errors_.empty() ? "" : "; ") + text;
+            }
+            const std::string &errors() const { return errors_; }
+
+        private:
+            static std::mutex &mutex()
+            {
+                static std::mutex m;
+                return m;
+            }
+            std::lock_guard<std::mutex> lock_;
+            console_bridge::OutputHandler *previous_{nullptr};
+            std::string errors_;
+        };
+
+        /** \brief A joint element as the file writes it, for the checks urdfdom does not make (or makes silently). */
+        struct XmlJoint
+        {
+            std::string name, type, parent, child;
+            int line;
+        };
+
+        /** \brief The link names and joint elements of \e document, in document order. */
+        void readElements(const tinyxml2::XMLDocument &document, const std::string &path,
+                          std::vector<std::string> &links, std::vector<XmlJoint> &joints)
+        {
+            const tinyxml2::XMLElement *robot = document.RootElement();
+            if (!robot || std::string(robot->Name()) != "robot")
+                throw Exception(path, "not a URDF: its root element is not <robot>");
+            for (const tinyxml2::XMLElement *e = robot->FirstChildElement("link"); e; e = e->NextSiblingElement("link"))
+                links.push_back(e->Attribute("name") ? e->Attribute("name") : "");
+            for (const tinyxml2::XMLElement *e = robot->FirstChildElement("joint"); e;
+                 e = e->NextSiblingElement("joint"))
+            {
+                const std::string where = path + ":" + std::to_string(e->GetLineNum());
+                auto attribute = [&](const tinyxml2::XMLElement *element, const char *name, const char *what)
+                {
+                    if (!element || !element->Attribute(name))
+                        throw Exception(where, std::string("joint without ") + what);
+                    return std::string(element->Attribute(name));
+                };
+                XmlJoint j{attribute(e, "name", "a name"), attribute(e, "type", "a type"),
+                           attribute(e->FirstChildElement("parent"), "link", "a parent link"),
+                           attribute(e->FirstChildElement("child"), "link", "a child link"), e->GetLineNum()};
+                if (j.type == "floating" || j.type == "planar")
+                    throw Exception(where, "joint '" + j.name + "' is of type '" + j.type +
+                                               "', which is not supported (revolute, continuous, prismatic, fixed)");
+                if (j.type != "revolute" && j.type != "continuous" && j.type != "prismatic" && j.type != "fixed")
+                    throw Exception(where, "joint '" + j.name + "' has an unknown type '" + j.type +
+                                               "' (revolute, continuous, prismatic, fixed)");
+                joints.push_back(j);
+            }
+        }
+
+        /** \brief Throws unless \e joints join \e links into one tree: known links, at most one parent joint per
+            link, no cycle, one root. */
+        void checkTree(const std::string &path, const std::vector<std::string> &links,
+                       const std::vector<XmlJoint> &joints)
+        {
+            std::map<std::string, const XmlJoint *> parentJoint;
+            for (const std::string &l : links)
+                parentJoint[l] = nullptr;
+            for (const XmlJoint &j : joints)
+            {
+                const std::string where = path + ":" + std::to_string(j.line);
+                for (const std::string &l : {j.parent, j.child})
+                    if (parentJoint.count(l) == 0)
+                        throw Exception(where, "joint '" + j.name + "' names link '" + l + "', which is not defined");
+                if (const XmlJoint *other = parentJoint[j.child])
+                    throw Exception(where, "link '" + j.child + "' is the child of two joints, '" + other->name +
+                                               "' and '" + j.name + "': the joints do not form a tree");
+                parentJoint[j.child] = &j;
+            }
+            std::vector<std::string> roots;
+            for (const auto &[link, joint] : parentJoint)
+            {
+                if (!joint)
+                {
+                    roots.push_back(link);
+                    continue;
+                }
+                // Follow the parents up: a tree reaches a root within links.size() steps, a cycle never does.
+                std::string at = link, cycle = link;
+                for (std::size_t steps = 0; parentJoint[at]; ++steps)
+                {
+                    at = parentJoint[at]->parent;
+                    if (steps > links.size())
+                        throw Exception(path, "the joints form a cycle through link '" + at + "' (joint '" +
+                                                  parentJoint[at]->name + "'): a URDF must be a tree");
+                }
+            }
+            if (roots.size() != 1)
+            {
+                std::string names;
+                for (const std::string &r : roots)
+                    names += (names.empty() ? "'" : ", '") + r + "'";
+                throw Exception(path, roots.empty() ? "no root link: the joints form a cycle"
+                                                    : "several root links (" + names +
+                                                          "): the joints must join every link into one tree");
+            }
+        }
+
+        Eigen::Isometry3d toIsometry(const urdf::Pose &pose)
+        {
+            Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+            X.linear() = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
+                             .normalized()
+                             .toRotationMatrix();
+            X.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+            return X;
+        }
+
+        /** \brief One geometry element's mesh in its own frame. */
+        Mesh geometryMesh(const urdf::Geometry &geometry, const UrdfOptions &options, const std::string &folder)
+        {
+            switch (geometry.type)
+            {
+                case urdf::Geometry::BOX:
+                {
+                    const auto &box = static_cast<const urdf::Box &>(geometry);
+                    return boxMesh(Eigen::Vector3d(box.dim.x, box.dim.y, box.dim.z));
+                }
+                case urdf::Geometry::CYLINDER:
+                {
+                    const auto &cylinder = static_cast<const urdf::Cylinder &>(geometry);
+                    return cylinderMesh(cylinder.radius, cylinder.length, options.segments);
+                }
+                case urdf::Geometry::SPHERE:
+                    return sphereMesh(static_cast<const urdf::Sphere &>(geometry).radius, options.segments);
+                case urdf::Geometry::MESH:
+                {
+                    const auto &mesh = static_cast<const urdf::Mesh &>(geometry);
+                    const std::vector<std::string> path =
+                        options.packagePath.empty() ? rosPackagePath() : options.packagePath;
+                    Mesh m = loadMesh(resolveRobotUri(mesh.filename, path, folder));
+                    const Eigen::Vector3d scale(mesh.scale.x, mesh.scale.y, mesh.scale.z);
+                    if (!scale.allFinite() || scale.prod() == 0.0)
+                        throw Exception(mesh.filename, "the scale is zero or not finite");
+                    for (Eigen::Vector3d &v : m.vertices)
+                        v = v.cwiseProduct(scale);
+                    if (scale.prod() < 0.0)  // a mirror turns the triangles inside out
+                        for (Triangle &t : m.triangles)
+                            std::swap(t[1], t[2]);
+                    return m;
+                }
+            }
+            throw Exception("URDF", "a geometry of unknown kind");
+        }
+
+        /** \brief The link's collision geometry (its visual geometry when it has no collision element) merged into
+            one mesh in the link frame; no triangles when it has neither. */
+        Mesh linkMesh(const urdf::Link &link, const UrdfOptions &options, const std::string &folder)
+        {
+            std::vector<std::pair<urdf::GeometrySharedPtr, urdf::Pose>> elements;
+            for (const urdf::CollisionSharedPtr &c : link.collision_array)
+                if (c && c->geometry)
+                    elements.emplace_back(c->geometry, c->origin);
+            if (elements.empty())
+                for (const urdf::VisualSharedPtr &v : link.visual_array)
+                    if (v && v->geometry)
+                        elements.emplace_back(v->geometry, v->origin);
+            std::vector<Mesh> parts;
+            for (const auto &[geometry, origin] : elements)
+            {
+                parts.push_back(geometryMesh(*geometry, options, folder));
+                transformMesh(parts.back(), toIsometry(origin));
+            }
+            return parts.empty() ? Mesh() : mergeMeshes(parts, link.name);
+        }
+
+        std::string readFile(const std::string &path)
+        {
+            std::ifstream in(path, std::ios::binary);
+            if (!in)
+                throw Exception(path, "cannot open the URDF");
+            std::ostringstream text;
+            text << in.rdbuf();
+            return text.str();
+        }
+    }  // namespace
+
+    /** \brief Builds a UrdfRobot, step by step. */
+    struct UrdfBuilder
+    {
+        static void addFrames(UrdfRobot &robot, const std::string &root, const std::vector<XmlJoint> &order);
+        static void addJoints(UrdfRobot &robot, const urdf::ModelInterface &model, const std::vector<XmlJoint> &order,
+                              const std::string &path);
+        static void resolveMimics(UrdfRobot &robot, const urdf::ModelInterface &model, const std::string &path);
+        static void addLinks(UrdfRobot &robot, const urdf::ModelInterface &model, const UrdfOptions &options,
+                             const std::string &path);
+    };
+
+    void UrdfBuilder::addFrames(UrdfRobot &robot, const std::string &root, const std::vector<XmlJoint> &order)
+    {
+        robot.addFrame(root, RobotModel::NONE);
+        // Parent before child: place a joint's child once its parent is placed (the tree was checked).
+        std::vector<bool> placed(order.size(), false);
+        for (std::size_t count = 0; count < order.size();)
+            for (std::size_t i = 0; i < order.size(); ++i)
+            {
+                const std::size_t parent = robot.findFrame(order[i].parent);
+                if (placed[i] || parent == RobotModel::NONE)
+                    continue;
+                robot.addFrame(order[i].child, parent);
+                placed[i] = true;
+                ++count;
+            }
+    }
+
+    void UrdfBuilder::addJoints(UrdfRobot &robot, const urdf::ModelInterface &model,
+                                const std::vector<XmlJoint> &order, const std::string &path)
+    {
+        // Frames 1.. are the joints' children in forward-kinematics order.
+        for (std::size_t f = 1; f < robot.frames().size(); ++f)
+        {
+            const urdf::JointConstSharedPtr joint = model.getLink(robot.frames()[f].name)->parent_joint;
+            UrdfJoint j;
+            j.name = joint->name;
+            j.type = joint->type == urdf::Joint::REVOLUTE     ? JointType::REVOLUTE
+                     : joint->type == urdf::Joint::CONTINUOUS ? JointType::CONTINUOUS
+                     : joint->type == urdf::Joint::PRISMATIC  ? JointType::PRISMATIC
+                                                              : JointType::FIXED;
+            j.parent = robot.frames()[f].parent;
+            j.child = f;
+            j.origin = toIsometry(joint->parent_to_joint_origin_transform);
+            j.axis = Eigen::Vector3d(joint->axis.x, joint->axis.y, joint->axis.z);
+            if (j.type != JointType::FIXED && !(j.axis.norm() > 0.0 && j.axis.allFinite()))
+                throw Exception(path, "joint '" + j.name + "' has a zero or non-finite axis");
+            j.axis = j.type == JointType::FIXED ? Eigen::Vector3d::UnitX() : j.axis.normalized();
+            const bool bounded = j.type == JointType::REVOLUTE || j.type == JointType::PRISMATIC;
+            j.lower = bounded && joint->limits ? joint->limits->lower : -std::numeric_limits<double>::infinity();
+            j.upper = bounded && joint->limits ? joint->limits->upper : std::numeric_limits<double>::infinity();
+            if (bounded && !(j.lower <= j.upper))
+                throw Exception(path, "joint '" + j.name + "': its lower limit is above its upper limit");
+            j.variable = RobotModel::NONE;
+            j.mimics = RobotModel::NONE;
+            j.multiplier = 1.0;
+            j.offset = 0.0;
+            robot.joints_.push_back(j);
+        }
+        // State order: the file's order of the movable joints that mimic none.
+        for (const XmlJoint &x : order)
+        {
+            const urdf::JointConstSharedPtr joint = model.getJoint(x.name);
+            if (joint->type == urdf::Joint::FIXED || joint->mimic)
+                continue;
+            for (std::size_t k = 0; k < robot.joints_.size(); ++k)
+                if (robot.joints_[k].name == x.name)
+                {
+                    robot.joints_[k].variable = robot.jointOffset() + robot.variables_.size();
+                    robot.variables_.push_back(k);
+                }
+        }
+    }
+
+    void UrdfBuilder::resolveMimics(UrdfRobot &robot, const urdf::ModelInterface &model, const std::string &path)
+    {
+        auto indexOf = [&](const std::string &name)
+        {
+            for (std::size_t k = 0; k < robot.joints_.size(); ++k)
+                if (robot.joints_[k].name == name)
+                    return k;
+            return RobotModel::NONE;
+        };
+        for (UrdfJoint &j : robot.joints_)
+        {
+            const urdf::JointConstSharedPtr joint = model.getJoint(j.name);
+            if (!joint->mimic || j.type == JointType::FIXED)
+                continue;
+            // Follow a chain of mimic joints to the movable joint at its end, composing the affine maps.
+            double multiplier = 1.0, offset = 0.0;
+            urdf::JointConstSharedPtr at = joint;
+            for (std::size_t steps = 0; at->mimic; ++steps)
+            {
+                const std::size_t k = indexOf(at->mimic->joint_name);
+                if (k == RobotModel::NONE || robot.joints_[k].type == JointType::FIXED || steps > robot.joints_.size())
+                    throw Exception(path, "joint '" + j.name + "' mimics '" + at->mimic->joint_name +
+                                              (k == RobotModel::NONE ? "', which is not defined"
+                                               : steps > robot.joints_.size() ? "', in a cycle of mimic joints"
+                                                                               : "', a fixed joint"));
+                offset = multiplier * at->mimic->offset + offset;
+                multiplier *= at->mimic->multiplier;
+                at = model.getJoint(at->mimic->joint_name);
+                j.mimics = k;
+            }
+            j.multiplier = multiplier;
+            j.offset = offset;
+        }
+    }
+
+    void UrdfBuilder::addLinks(UrdfRobot &robot, const urdf::ModelInterface &model, const UrdfOptions &options,
+                               const std::string &path)
+    {
+        const std::string folder = std::filesystem::path(path).parent_path().string();
+        for (std::size_t f = 0; f < robot.frames().size(); ++f)
+        {
+            const std::string &name = robot.frames()[f].name;
+            Mesh mesh;
+            try
+            {
+                mesh = linkMesh(*model.getLink(name), options, folder.empty() ? "." : folder);
+            }
+            catch (const Exception &e)
+            {
+                throw Exception(path, "link '" + name + "': " + e.what());
+            }
+            if (mesh.triangles.empty())
+                continue;  // a frame only
+            // Adjacent links touch by design: a new link is allowed with its nearest ancestor that has geometry.
+            const std::size_t owner = f == 0 ? RobotModel::NONE : robot.ownerLink(robot.frames()[f].parent);
+            const std::size_t link =
+                robot.addLink(name, Body::build(std::move(mesh), options.body), f, Eigen::Isometry3d::Identity(), false);
+            if (owner != RobotModel::NONE)
+                robot.allowCollision(owner, link);
+        }
+    }
+
+    UrdfRobotPtr UrdfRobot::load(const std::string &path, const UrdfOptions &options)
+    {
+        const std::string xml = readFile(path);
+        tinyxml2::XMLDocument document;
+        if (document.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
+            throw Exception(path + ":" + std::to_string(document.ErrorLineNum()),
+                            std::string("cannot read the URDF: ") + document.ErrorStr());
+        std::vector<std::string> linkNames;
+        std::vector<XmlJoint> order;
+        readElements(document, path, linkNames, order);
+        checkTree(path, linkNames, order);
+
+        urdf::ModelInterfaceSharedPtr model;
+        {
+            ConsoleCapture capture;
+            model = urdf::parseURDF(xml);
+            if (!model)
+                throw Exception(path, "urdfdom rejects the URDF: " +
+                                          (capture.errors().empty() ? std::string("(no reason given)")
+                                                                    : capture.errors()));
+        }
+        UrdfRobotPtr robot(new UrdfRobot());
+        robot->where_ = path;
+        robot->name_ = model->getName();
+        robot->floatingBase_ = options.floatingBase;
+        UrdfBuilder::addFrames(*robot, model->getRoot()->name, order);
+        UrdfBuilder::addJoints(*robot, *model, order, path);
+        UrdfBuilder::resolveMimics(*robot, *model, path);
+        UrdfBuilder::addLinks(*robot, *model, options, path);
+        robot->setDimension(robot->jointOffset() + robot->variables_.size());
+        return robot;
+    }
+
+    void UrdfRobot::computeFrames(const double *state, Eigen::Isometry3d *frames) const
+    {
+        frames[0] = floatingBase_ ? poseFromSE3(state) : Eigen::Isometry3d::Identity();
+        for (const UrdfJoint &j : joints_)
+        {
+            Eigen::Isometry3d X = frames[j.parent] * j.origin;
+            if (j.type != JointType::FIXED)
+            {
+                const double q = j.mimics != NONE ? j.multiplier * state[joints_[j.mimics].variable] + j.offset
+                                                  : state[j.variable];
+                if (j.type == JointType::PRISMATIC)
+                    X.translate(q * j.axis);
+                else
+                    X.rotate(Eigen::AngleAxisd(q, j.axis));
+            }
+            frames[j.child] = X;
+        }
+    }
+}  // namespace meshgap

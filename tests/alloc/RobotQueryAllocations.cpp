@@ -1,0 +1,145 @@
+// No whole-robot query allocates once warmed up on a thread: RobotScene::distance() (pruned, every pair, with an
+// early stop, in collision) and RobotScene::inCollision(), for a kinematic tree carrying a payload among obstacles,
+// along a joint-space path. The global allocation functions are replaced and counted per thread (as
+// QueryAllocations.cpp does); each mode runs the path once to warm up, then once more counted, and the second pass
+// must allocate nothing and give the same answers. Not built under sanitizers.
+
+#include <gtest/gtest.h>
+#include <ompl/util/Console.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "TestMeshes.h"
+#include "alloc/CountingAllocator.h"
+#include "meshgap/robot/RobotScene.h"
+#include "meshgap/robot/UrdfRobot.h"
+
+namespace
+{
+    thread_local std::size_t allocationCount = 0;
+}  // namespace
+
+void meshgapNoteAllocation()
+{
+    ++allocationCount;
+}
+
+namespace meshgap
+{
+    namespace
+    {
+        class RobotQueryAllocations : public ::testing::Test
+        {
+        protected:
+            static void SetUpTestSuite()
+            {
+                const UrdfRobotPtr robot = UrdfRobot::load(std::string(MESHGAP_TEST_RESOURCES_DIR) +
+                                                           "/robot/meshgap_test_description/urdf/tree.urdf");
+                robot->attach("payload", test::box(0.03, 0.02, 0.01), "tool", test::translation(0.0, 0.0, 0.04));
+                // Boxes around the arm's sweep: the path passes near and through them.
+                std::vector<BodyConstPtr> obstacles;
+                for (int k = 0; k < 6; ++k)
+                {
+                    const double a = k * M_PI / 3;
+                    obstacles.push_back(Body::build(test::transformed(
+                        test::box(0.05, 0.05, 0.3), test::translation(0.35 * std::cos(a), 0.35 * std::sin(a), 0.3))));
+                }
+                scene_ = std::make_shared<RobotScene>(robot, obstacles);
+            }
+            static void TearDownTestSuite() { scene_.reset(); }
+
+            /** \brief A joint-space path of small steps: the shoulder sweeps a full turn, the others swing. */
+            static std::vector<std::vector<double>> path()
+            {
+                std::vector<std::vector<double>> states;
+                for (int k = 0; k < 120; ++k)
+                {
+                    const double t = k / 120.0;
+                    states.push_back({3 * t, -2.5 + 5 * t, 0.3 * std::sin(6 * t), 4 * t, std::sin(9 * t)});
+                }
+                return states;
+            }
+
+            /** \brief Allocations of the second pass of \e request along path(); the passes' answers must agree, and
+                the path must meet collisions and free states both. */
+            static std::size_t allocationsAfterWarmUp(const RobotRequest &request)
+            {
+                const std::vector<std::vector<double>> states = path();
+                std::vector<double> first, second;
+                first.reserve(states.size());
+                second.reserve(states.size());
+                RobotWarmStart warm;
+                RobotResult result;
+                std::size_t counted = 0, collisions = 0;
+                for (int pass = 0; pass < 2; ++pass)
+                {
+                    warm.reset();
+                    for (const std::vector<double> &q : states)
+                    {
+                        const std::size_t before = allocationCount;
+                        scene_->distance(q.data(), q.size(), request, warm, result);
+                        counted += pass == 1 ? allocationCount - before : 0;
+                        (pass == 0 ? first : second).push_back(result.distance);
+                        collisions += pass == 1 && result.inCollision;
+                    }
+                }
+                EXPECT_EQ(std::memcmp(first.data(), second.data(), first.size() * sizeof(double)), 0);
+                EXPECT_GT(collisions, 0u);
+                EXPECT_LT(collisions, states.size());
+                return counted;
+            }
+
+            static RobotScenePtr scene_;
+        };
+
+        RobotScenePtr RobotQueryAllocations::scene_;
+
+        TEST_F(RobotQueryAllocations, Pruned)
+        {
+            EXPECT_EQ(allocationsAfterWarmUp(RobotRequest()), 0u);
+        }
+
+        TEST_F(RobotQueryAllocations, EveryPair)
+        {
+            RobotRequest request;
+            request.everyPair = true;
+            EXPECT_EQ(allocationsAfterWarmUp(request), 0u);
+        }
+
+        TEST_F(RobotQueryAllocations, EarlyStop)
+        {
+            RobotRequest request;
+            request.stopBelow = 0.01;
+            EXPECT_EQ(allocationsAfterWarmUp(request), 0u);
+        }
+
+        TEST_F(RobotQueryAllocations, CollisionVerdict)
+        {
+            const std::vector<std::vector<double>> states = path();
+            RobotWarmStart warm;
+            std::size_t counted = 0, collisions = 0;
+            for (int pass = 0; pass < 2; ++pass)
+            {
+                warm.reset();  // each pass starts afresh, with the memory the first one grew
+                for (const std::vector<double> &q : states)
+                {
+                    const std::size_t before = allocationCount;
+                    const bool hit = scene_->inCollision(q.data(), q.size(), warm);
+                    counted += pass == 1 ? allocationCount - before : 0;
+                    collisions += pass == 1 && hit;
+                }
+            }
+            EXPECT_EQ(counted, 0u);
+            EXPECT_GT(collisions, 0u);
+        }
+    }  // namespace
+}  // namespace meshgap
+
+int main(int argc, char **argv)
+{
+    ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+    ::testing::InitGoogleTest(&argc, argv);
+    return RUN_ALL_TESTS();
+}

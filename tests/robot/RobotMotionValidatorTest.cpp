@@ -1,0 +1,122 @@
+// The certified motion validator for chains: the displacement bound against the vertices' real motion (dense
+// forward kinematics), and certified motions checked densely against the exact collision test.
+#include <gtest/gtest.h>
+
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <random>
+
+#include "meshgap/ompl/RobotMotionValidator.h"
+#include "meshgap/ompl/RobotStateSpace.h"
+#include "TestMeshes.h"
+#include "TestNote.h"
+
+namespace ob = ompl::base;
+
+namespace meshgap
+{
+    namespace
+    {
+        UrdfRobotPtr treeWithPayload()
+        {
+            const UrdfRobotPtr robot =
+                UrdfRobot::load(std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/meshgap_test_description/urdf/tree.urdf");
+            robot->attach("payload", test::box(0.03, 0.02, 0.01), "tool", test::translation(0.0, 0.0, 0.04));
+            return robot;
+        }
+    }  // namespace
+
+    TEST(RobotMotionValidator, DisplacementBoundHoldsForEveryVertex)
+    {
+        const UrdfRobotPtr robot = treeWithPayload();
+        const MotionBound bound(*robot);
+        std::mt19937 rng(4);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        double tightest = 0.0;  // the largest ratio of a real displacement to its bound
+        std::vector<double> moves;
+        for (int trial = 0; trial < 100; ++trial)
+        {
+            // Joint values within the limits (continuous ones in [-pi, pi): the shorter arc is the straight line).
+            const std::vector<double> a = {1.5 * u(rng), 2.5 * u(rng), 0.1 + 0.2 * u(rng), 1.5 * u(rng), u(rng)};
+            const std::vector<double> b = {1.5 * u(rng), 2.5 * u(rng), 0.1 + 0.2 * u(rng), 1.5 * u(rng), u(rng)};
+            bound.linkDisplacements(a, b, moves);
+            const std::vector<Eigen::Isometry3d> start = robot->linkPoses(a);
+            for (int step = 1; step <= 50; ++step)
+            {
+                std::vector<double> q(a.size());
+                for (std::size_t k = 0; k < q.size(); ++k)
+                    q[k] = a[k] + (b[k] - a[k]) * step / 50.0;
+                const std::vector<Eigen::Isometry3d> poses = robot->linkPoses(q);
+                for (std::size_t i = 0; i < poses.size(); ++i)
+                    for (const Eigen::Vector3d &v : robot->links()[i].body->surface().vertices)
+                    {
+                        const double moved = (poses[i] * v - start[i] * v).norm();
+                        ASSERT_LE(moved, moves[i] + 1e-12) << robot->links()[i].name;
+                        tightest = std::max(tightest, moved / moves[i]);
+                    }
+            }
+        }
+        test::Note() << "largest displacement / bound " << tightest;
+        EXPECT_GT(tightest, 0.2);  // a bound, not a wild one
+    }
+
+    TEST(RobotMotionValidator, CertifiedMotionsAreFreeWhenCheckedDensely)
+    {
+        const UrdfRobotPtr robot = treeWithPayload();
+        std::vector<BodyConstPtr> obstacles;
+        for (int k = 0; k < 6; ++k)
+        {
+            const double a = k * M_PI / 3;
+            obstacles.push_back(Body::build(test::transformed(
+                test::box(0.05, 0.05, 0.3), test::translation(0.35 * std::cos(a), 0.35 * std::sin(a), 0.3))));
+        }
+        const auto scene = std::make_shared<RobotScene>(robot, obstacles);
+        ob::RealVectorBounds bounds(3);
+        bounds.setLow(-1);
+        bounds.setHigh(1);
+        auto si = std::make_shared<ob::SpaceInformation>(robotStateSpace(*robot, bounds));
+        si->setStateValidityChecker(std::make_shared<RobotChecker>(si, scene));
+        const auto validator = std::make_shared<RobotMotionValidator>(si, scene, *robot);
+        si->setMotionValidator(validator);
+        si->setup();
+        ompl::RNG::setSeed(13);
+        ob::StateSamplerPtr sampler = si->allocStateSampler();
+        ob::State *a = si->allocState(), *b = si->allocState(), *s = si->allocState();
+        std::size_t certified = 0, rejected = 0, dense = 0;
+        std::vector<double> q;
+        RobotWarmStart warm;
+        // MESHGAP_ROBOT_MOTIONS raises the count of motions tried.
+        const char *count = std::getenv("MESHGAP_ROBOT_MOTIONS");
+        const int motions = count ? std::atoi(count) : 300;
+        for (int m = 0; m < motions; ++m)
+        {
+            do
+                sampler->sampleUniform(a);
+            while (!si->isValid(a));
+            sampler->sampleUniformNear(b, a, 0.6);
+            if (!validator->checkMotion(a, b))
+            {
+                ++rejected;
+                continue;
+            }
+            ++certified;
+            // Dense: no joint changes by more than 1e-3 between checked states.
+            const int steps = static_cast<int>(std::ceil(si->distance(a, b) / 1e-3)) + 1;
+            for (int i = 0; i <= steps; ++i)
+            {
+                si->getStateSpace()->interpolate(a, b, double(i) / steps, s);
+                robotStateToVector(*si->getStateSpace(), s, q);
+                ++dense;
+                ASSERT_FALSE(scene->inCollision(q.data(), q.size(), warm)) << "motion " << m << " at " << i;
+            }
+        }
+        si->freeState(a);
+        si->freeState(b);
+        si->freeState(s);
+        test::Note() << certified << " certified motions (" << dense << " states checked densely), " << rejected
+                     << " rejected";
+        EXPECT_GT(certified, 50u);
+        EXPECT_GT(rejected, 10u);
+    }
+}  // namespace meshgap
