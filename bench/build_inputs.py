@@ -57,7 +57,7 @@ def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else "/tmp/meshgap_build_inputs"
     os.makedirs(folder, exist_ok=True)
     rng = random.Random(1)
-    part, faces = torus(48, 12, 1.0, 0.25, 1.5, 3)  # within a ball of radius 1.5
+    part, faces = torus(48, 12, 1.0, 0.25, 1, 3)  # within a ball of radius 1.5
     vertices, triangles = [], []
     for k in range(100):
         R = rotation(rng)
@@ -68,7 +68,7 @@ def main():
             vertices.append(tuple(sum(R[r][c] * p[c] for c in range(3)) + centre[r] for r in range(3)))
         triangles.extend((a + offset, b + offset, c + offset) for a, b, c in faces)
     write_obj(os.path.join(folder, "world100.obj"), vertices, triangles)
-    vertices, triangles = torus(640, 195, 1.0, 0.25, 2.5, 7)
+    vertices, triangles = torus(640, 195, 1.0, 0.25, 2, 7)
     write_obj(os.path.join(folder, "dense.obj"), vertices, triangles)
     print("wrote %s/world100.obj and %s/dense.obj" % (folder, folder))
 
