@@ -60,21 +60,34 @@ namespace meshgap
 
     namespace
     {
-        /** \brief Compressed rows from (row, value) pairs, values sorted and unique per row. */
-        void toRows(std::vector<std::pair<std::uint32_t, std::uint32_t>> &pairs, std::size_t rows,
+        /** \brief Compressed rows from (row, value) pairs, values sorted and unique per row: the pairs bucketed by
+            row (a counting sort, O(n)), then each short row sorted on its own. */
+        void toRows(const std::vector<std::pair<std::uint32_t, std::uint32_t>> &pairs, std::size_t rows,
                     std::vector<std::uint32_t> &offsets, std::vector<std::uint32_t> &values)
         {
-            std::sort(pairs.begin(), pairs.end());
-            pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
             offsets.assign(rows + 1, 0);
-            values.resize(pairs.size());
-            for (std::size_t k = 0; k < pairs.size(); ++k)
-            {
-                ++offsets[pairs[k].first + 1];
-                values[k] = pairs[k].second;
-            }
+            for (const auto &p : pairs)
+                ++offsets[p.first + 1];
             for (std::size_t i = 0; i < rows; ++i)
                 offsets[i + 1] += offsets[i];
+            values.resize(pairs.size());
+            std::vector<std::uint32_t> fill(offsets.begin(), offsets.end() - 1);
+            for (const auto &p : pairs)
+                values[fill[p.first]++] = p.second;
+            // Each row sorted, duplicates dropped, and moved down over the gaps the dropped ones leave.
+            std::uint32_t begin = 0, out = 0;
+            for (std::size_t i = 0; i < rows; ++i)
+            {
+                const std::uint32_t end = offsets[i + 1];
+                std::sort(values.begin() + begin, values.begin() + end);
+                const auto last = std::unique(values.begin() + begin, values.begin() + end);
+                out = static_cast<std::uint32_t>(std::move(values.begin() + begin, last, values.begin() + out) -
+                                                 values.begin());
+                offsets[i + 1] = out;
+                begin = end;
+            }
+            values.resize(out);
+            values.shrink_to_fit();
         }
     }  // namespace
 

@@ -1,5 +1,6 @@
 #include "meshgap/mesh/Refine.h"
 
+#include <boost/container/small_vector.hpp>
 #include <cmath>
 #include <queue>
 #include <string>
@@ -21,6 +22,9 @@ namespace meshgap
                 std::swap(a, b);
             return (EdgeKey(a) << 32) | b;
         }
+
+        /** \brief The triangles on an edge: two on a closed manifold surface, held without an allocation. */
+        using Incident = boost::container::small_vector<std::uint32_t, 2>;
 
         /** \brief Longest-edge bisection of \e mesh while some edge ab is longer than (size[a] + size[b]) / 2;
             \e size grows with the mesh (a midpoint gets its edge's mean). */
@@ -51,7 +55,7 @@ namespace meshgap
                         continue;
                     }
                     forced_.erase(e);
-                    const std::vector<std::uint32_t> incident = std::move(found->second);
+                    const Incident incident = std::move(found->second);
                     edgeTriangles_.erase(found);
                     split(static_cast<std::uint32_t>(e >> 32), static_cast<std::uint32_t>(e & 0xffffffffu), incident);
                 }
@@ -85,7 +89,7 @@ namespace meshgap
 
             /** \brief Rivara: a longer edge of a triangle sharing the edge (of length \e len) goes first (then the
                 edge comes back); true if there is one. */
-            bool deferForLonger(const std::vector<std::uint32_t> &triangles, double len)
+            bool deferForLonger(const Incident &triangles, double len)
             {
                 bool deferred = false;
                 for (std::uint32_t t : triangles)
@@ -106,7 +110,7 @@ namespace meshgap
 
             /** \brief Split edge ab at its midpoint m: each incident triangle (p, q, r) becomes (p, m, r) and a new
                 (m, q, r). */
-            void split(std::uint32_t a, std::uint32_t b, const std::vector<std::uint32_t> &incident)
+            void split(std::uint32_t a, std::uint32_t b, const Incident &incident)
             {
                 const auto m = static_cast<std::uint32_t>(mesh_.vertices.size());
                 mesh_.vertices.push_back(0.5 * (mesh_.vertices[a] + mesh_.vertices[b]));
@@ -136,10 +140,24 @@ namespace meshgap
             std::vector<double> &size_;
             std::vector<std::uint32_t> &parent_;
             /** \brief Edge -> triangles that use it; a max-heap of edges to split (entries may be stale). */
-            std::unordered_map<EdgeKey, std::vector<std::uint32_t>> edgeTriangles_;
+            std::unordered_map<EdgeKey, Incident> edgeTriangles_;
             std::priority_queue<std::pair<double, EdgeKey>> longest_;
             std::unordered_set<EdgeKey> forced_;  ///< not over their size, but longest in a triangle of one that is
         };
+
+        /** \brief Whether some edge ab of \e mesh is longer than (size[a] + size[b]) / 2 (else there is nothing to
+            split, and the bisection's edge map need not be built). */
+        bool anyEdgeOver(const Mesh &mesh, const std::vector<double> &size)
+        {
+            for (const Triangle &t : mesh.triangles)
+                for (int k = 0; k < 3; ++k)
+                {
+                    const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+                    if ((mesh.vertices[a] - mesh.vertices[b]).norm() > 0.5 * (size[a] + size[b]))
+                        return true;
+                }
+            return false;
+        }
 
         Mesh refine(const Mesh &input, std::vector<double> size, RefineReport *report,
                     std::vector<std::uint32_t> *parentOut)
@@ -153,7 +171,7 @@ namespace meshgap
                 report->nodesBefore = input.vertices.size();
                 report->trianglesBefore = input.triangles.size();
             }
-            if (!size.empty())
+            if (!size.empty() && anyEdgeOver(mesh, size))
                 Bisection(mesh, size, parent).run();
             if (parentOut)
                 parentOut->swap(parent);

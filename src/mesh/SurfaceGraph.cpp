@@ -8,31 +8,40 @@ namespace meshgap
     SurfaceGraph::SurfaceGraph(const Mesh &mesh)
     {
         const auto n = static_cast<std::uint32_t>(mesh.vertices.size());
-        // Directed half-edges (both directions of every triangle edge), sorted and made unique.
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> half;
-        half.reserve(mesh.triangles.size() * 6);
+        // Directed half-edges (both directions of every triangle edge), bucketed by their first vertex (a counting
+        // sort), then each vertex's neighbours sorted and made unique.
+        offsets_.assign(n + 1, 0);
+        for (const Triangle &t : mesh.triangles)
+            for (std::uint32_t v : t)
+                offsets_[v + 1] += 2;
+        for (std::uint32_t i = 0; i < n; ++i)
+            offsets_[i + 1] += offsets_[i];
+        neighbours_.resize(offsets_[n]);
+        std::vector<std::uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
         for (const Triangle &t : mesh.triangles)
             for (int k = 0; k < 3; ++k)
             {
                 const std::uint32_t a = t[k], b = t[(k + 1) % 3];
-                half.emplace_back(a, b);
-                half.emplace_back(b, a);
+                neighbours_[fill[a]++] = b;
+                neighbours_[fill[b]++] = a;
             }
-        std::sort(half.begin(), half.end());
-        half.erase(std::unique(half.begin(), half.end()), half.end());
-
-        offsets_.assign(n + 1, 0);
-        for (const auto &e : half)
-            ++offsets_[e.first + 1];
+        std::uint32_t begin = 0, out = 0;
         for (std::uint32_t i = 0; i < n; ++i)
-            offsets_[i + 1] += offsets_[i];
-        neighbours_.resize(half.size());
-        lengths_.resize(half.size());
-        for (std::size_t k = 0; k < half.size(); ++k)
         {
-            neighbours_[k] = half[k].second;
-            lengths_[k] = (mesh.vertices[half[k].first] - mesh.vertices[half[k].second]).norm();
+            const std::uint32_t end = offsets_[i + 1];
+            std::sort(neighbours_.begin() + begin, neighbours_.begin() + end);
+            const auto last = std::unique(neighbours_.begin() + begin, neighbours_.begin() + end);
+            out = static_cast<std::uint32_t>(
+                std::move(neighbours_.begin() + begin, last, neighbours_.begin() + out) - neighbours_.begin());
+            offsets_[i + 1] = out;
+            begin = end;
         }
+        neighbours_.resize(out);
+        neighbours_.shrink_to_fit();
+        lengths_.resize(out);
+        for (std::uint32_t i = 0; i < n; ++i)
+            for (std::uint32_t k = offsets_[i]; k < offsets_[i + 1]; ++k)
+                lengths_[k] = (mesh.vertices[i] - mesh.vertices[neighbours_[k]]).norm();
 
         component_ = labelComponents(mesh, numComponents_);
     }

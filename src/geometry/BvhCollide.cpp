@@ -1,0 +1,368 @@
+#include "meshgap/geometry/BvhCollide.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "BvhDetail.h"
+#include "meshgap/geometry/TriangleDistance.h"
+
+namespace meshgap
+{
+    using bvh::afterUse;
+    using bvh::BoxPair;
+    using bvh::lowerBound;
+    using bvh::PairEntry;
+    using bvh::RelativePose;
+    using bvh::Separation;
+    using bvh::splitA;
+    using bvh::StepMotion;
+    using bvh::threadStack;
+    using bvh::triangleSeparation;
+
+    namespace
+    {
+        /** \brief Full separating-axis test of the two oriented boxes (15 axes): true if they are disjoint. */
+        bool separated(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X)
+        {
+            const Eigen::Vector3d offset = X.R * b.center + X.t - a.center;
+            if (offset.norm() > a.radius + b.radius)
+                return true;
+            const BoxPair P(a, b, X, offset);
+            const Eigen::Vector3d &T = *P.T;
+            const Eigen::Matrix3d &C = *P.C, &absC = *P.absC;
+            if (((T.cwiseAbs() - a.half - absC * b.half).array() > 0.0).any())
+                return true;
+            if ((((C.transpose() * T).cwiseAbs() - absC.transpose() * a.half - b.half).array() > 0.0).any())
+                return true;
+            const Eigen::Vector3d &ea = a.half, &eb = b.half;
+            for (int i = 0; i < 3; ++i)
+            {
+                const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+                for (int j = 0; j < 3; ++j)
+                {
+                    const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+                    const double ra = ea[i1] * absC(i2, j) + ea[i2] * absC(i1, j);
+                    const double rb = eb[j1] * absC(i, j2) + eb[j2] * absC(i, j1);
+                    if (std::abs(T[i2] * C(i1, j) - T[i1] * C(i2, j)) > ra + rb)
+                        return true;
+                }
+            }
+            return false;
+        }
+
+        /** \brief Push the two children of pair \e e (nodes \e na, \e nb) split as splitA() says. */
+        void pushChildren(std::vector<PairEntry> &stack, const PairEntry &e, const TriangleBvh::Node &na,
+                          const TriangleBvh::Node &nb)
+        {
+            if (splitA(na, nb))
+            {
+                stack.push_back({na.first, e.b});
+                stack.push_back({na.first + 1, e.b});
+            }
+            else
+            {
+                stack.push_back({e.a, nb.first});
+                stack.push_back({e.a, nb.first + 1});
+            }
+        }
+
+        /** \brief Whether a triangle of leaf \e na and one of leaf \e nb (placed by \e X) intersect; the first such
+            pair goes to \e hitA / \e hitB. */
+        bool leavesIntersect(const TriangleBvh &a, const TriangleBvh &b, const RelativePose &X,
+                             const TriangleBvh::Node &na, const TriangleBvh::Node &nb, std::uint32_t &hitA,
+                             std::uint32_t &hitB)
+        {
+            const Mesh &ma = a.mesh(), &mb = b.mesh();
+            Eigen::Vector3d pb[3];
+            for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
+            {
+                const std::uint32_t tb = b.order()[j];
+                for (int k = 0; k < 3; ++k)
+                    pb[k] = X.R * mb.vertices[mb.triangles[tb][k]] + X.t;
+                for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
+                {
+                    const Triangle &fa = ma.triangles[a.order()[i]];
+                    if (trianglesIntersect(ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]], pb[0], pb[1],
+                                           pb[2]))
+                    {
+                        hitA = a.order()[i];
+                        hitB = tb;
+                        return true;
+                    }
+                }
+            }
+            return false;
+        }
+    }  // namespace
+
+    bool bvhCollide(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, std::uint32_t *hitA,
+                    std::uint32_t *hitB)
+    {
+        if (a.nodes().empty() || b.nodes().empty())
+            return false;
+        const RelativePose X(X_AB);
+        std::vector<PairEntry> &stack = threadStack<PairEntry, 3>();
+        stack.push_back({0u, 0u});
+        while (!stack.empty())
+        {
+            const PairEntry e = stack.back();
+            stack.pop_back();
+            const TriangleBvh::Node &na = a.nodes()[e.a], &nb = b.nodes()[e.b];
+            if (separated(na, nb, X))
+                continue;
+            if (na.isLeaf() && nb.isLeaf())
+            {
+                std::uint32_t ta, tb;
+                if (leavesIntersect(a, b, X, na, nb, ta, tb))
+                {
+                    if (hitA)
+                        *hitA = ta;
+                    if (hitB)
+                        *hitB = tb;
+                    return true;
+                }
+                continue;
+            }
+            pushChildren(stack, e, na, nb);
+        }
+        return false;
+    }
+
+    namespace
+    {
+        /** \brief One collision test below a pair of nodes, depth first, writing a collision front: box pairs
+            proven apart by more than \e margin + twice the motion of B's node by \e lookahead (the last step), and
+            triangle pairs apart by more than \e margin, go to \e record with their gap (key = gap + motion), so that
+            most of the front stays proven after a similar step; a pair of triangles apart by less is kept with gap 0
+            (re-tested at the next pose). Pairs of triangles that might touch are decided by trianglesIntersect(). */
+        class CollisionTraversal
+        {
+        public:
+            CollisionTraversal(const TriangleBvh &a, const TriangleBvh &b, const RelativePose &X, double margin,
+                               const StepMotion &lookahead, std::vector<BvhFront::Entry> *record, double motion,
+                               std::uint32_t stamp)
+                : a_(a),
+                  b_(b),
+                  X_(X),
+                  margin_(margin),
+                  lookahead_(lookahead),
+                  record_(record),
+                  motion_(motion),
+                  stamp_(stamp),
+                  stack_(threadStack<PairEntry, 6>())
+            {
+            }
+
+            /** \brief True at the first intersecting pair of triangles below \e start (hitA / hitB name it). */
+            bool run(const PairEntry &start)
+            {
+                stack_.clear();
+                stack_.push_back(start);
+                while (!stack_.empty())
+                {
+                    const PairEntry e = stack_.back();
+                    stack_.pop_back();
+                    const TriangleBvh::Node &na = a_.nodes()[e.a], &nb = b_.nodes()[e.b];
+                    if (na.isLeaf() && nb.isLeaf())
+                    {
+                        if (leaves(e, na, nb))
+                            return true;
+                        continue;
+                    }
+                    const double bound = lowerBound(na, nb, X_);
+                    // Kept when apart by the margin plus twice the last step's motion of B's node, so that it stays
+                    // proven at the next pose or two.
+                    if (bound > margin_ + 2.0 * lookahead_.displacement(nb))
+                    {
+                        keep(e, bound);
+                        continue;
+                    }
+                    pushChildren(stack_, e, na, nb);
+                }
+                return false;
+            }
+
+            std::uint32_t hitA{0}, hitB{0};
+
+        private:
+            void keep(const PairEntry &e, double gap)
+            {
+                if (record_)
+                    record_->push_back({e.a, e.b, stamp_, {0.0f, 0.0f, 0.0f}, gap + motion_});
+            }
+
+            /** \brief Every triangle pair of two leaves: the least separating-axis gap goes to the front when all are
+                apart by more than the margin; true at an intersecting pair. */
+            bool leaves(const PairEntry &e, const TriangleBvh::Node &na, const TriangleBvh::Node &nb)
+            {
+                const Mesh &ma = a_.mesh(), &mb = b_.mesh();
+                double least = std::numeric_limits<double>::infinity();
+                Eigen::Vector3d pb[3];
+                for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
+                {
+                    const std::uint32_t tb = b_.order()[j];
+                    for (int k = 0; k < 3; ++k)
+                        pb[k] = X_.R * mb.vertices[mb.triangles[tb][k]] + X_.t;
+                    const Eigen::Vector3d normalB = X_.R * b_.normals()[tb];
+                    for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
+                    {
+                        const std::uint32_t ta = a_.order()[i];
+                        const Triangle &fa = ma.triangles[ta];
+                        const Eigen::Vector3d pa[3] = {ma.vertices[fa[0]], ma.vertices[fa[1]], ma.vertices[fa[2]]};
+                        const Separation s = triangleSeparation(a_.normals()[ta], normalB, pa, pb, margin_);
+                        if (!(s.gap > margin_))
+                        {
+                            if (trianglesIntersect(pa[0], pa[1], pa[2], pb[0], pb[1], pb[2]))
+                            {
+                                hitA = ta;
+                                hitB = tb;
+                                return true;
+                            }
+                            least = 0.0;  // apart, but not by the margin: decided again at the next pose
+                        }
+                        least = std::min(least, s.gap > margin_ ? s.gap : 0.0);
+                    }
+                }
+                keep(e, least);
+                return false;
+            }
+
+            const TriangleBvh &a_, &b_;
+            const RelativePose &X_;
+            const double margin_;
+            const StepMotion &lookahead_;
+            std::vector<BvhFront::Entry> *record_;
+            const double motion_;
+            const std::uint32_t stamp_;
+            std::vector<PairEntry> &stack_;
+        };
+
+    }  // namespace
+
+    namespace
+    {
+        /** \brief Re-test the entries of a valid collision front at the pose \e X_AB, \e motion (B's displacement
+            summed since the front was written) later: an entry is kept while key - motion stays above the margin,
+            else while its gap lowered by its own node's displacement since then does (re-based on this pose); else
+            the traversal runs below it and its sub-front (in traversal's record) replaces it. True at the first
+            intersecting pair (the front is then left as it is). \e retested counts the entries re-tested. */
+        bool retestCollisionFront(BvhFront &front, CollisionTraversal &traversal, const TriangleBvh &b,
+                                  const Eigen::Isometry3d &X_AB, double margin, double motion, std::uint32_t stamp,
+                                  std::size_t &retested)
+        {
+            const double pad = 1e-12 * motion;  // the roundoff of the summed motion
+            std::array<std::optional<StepMotion>, BvhFront::POSES> slots;
+            const std::size_t count = front.entries.size();
+            for (std::size_t i = 0; i < count; ++i)
+            {
+                // Still apart by the margin after every motion since its gap was found (key - motion > margin).
+                while (i < count && front.entries[i].key > margin + motion + pad)
+                    ++i;
+                if (i == count)
+                    break;
+                BvhFront::Entry &e = front.entries[i];
+                // Its own node's displacement since then, if that pose is still known; kept re-based on this pose.
+                const std::uint32_t age = stamp - e.stamp;
+                if (age < BvhFront::POSES && age > 0)
+                {
+                    const std::uint32_t slot = e.stamp % BvhFront::POSES;
+                    if (!slots[slot])
+                        slots[slot].emplace(front.poses[slot], X_AB, b.nodes()[0]);
+                    const double now = e.key - front.motions[slot] - slots[slot]->displacement(b.nodes()[e.b]) - pad -
+                                       1e-15 * std::abs(e.key);
+                    if (now > margin)
+                    {
+                        e.key = now + motion;
+                        e.stamp = stamp;
+                        continue;
+                    }
+                }
+                ++retested;
+                if (traversal.run({e.a, e.b}))
+                    return true;
+                front.entries[i] = front.next.back();  // its sub-front replaces it (at least one entry)
+                front.next.pop_back();
+            }
+            return false;
+        }
+    }  // namespace
+
+    bool bvhCollide(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, BvhFront &front,
+                    std::uint32_t *hitA, std::uint32_t *hitB)
+    {
+        if (a.nodes().empty() || b.nodes().empty())
+        {
+            front.valid = false;
+            return false;
+        }
+        const RelativePose X(X_AB);
+        const TriangleBvh::Node &rootA = a.nodes()[0], &rootB = b.nodes()[0];
+        // Ten times trianglesIntersect()'s contact tolerance at the largest coordinate scale of any pair: a pair
+        // kept apart by more than this is apart for trianglesIntersect() too.
+        const double margin = 10.0 * TRIANGLE_CONTACT_TOLERANCE *
+                              (rootA.center.norm() + rootA.radius + rootB.center.norm() + rootB.radius + X.t.norm());
+        const std::uint32_t stamp = ++front.stamp;
+        const double step = front.started ? motionBound(b, front.poses[(stamp - 1) % BvhFront::POSES], X_AB)
+                                          : std::numeric_limits<double>::infinity();
+        front.started = true;
+        front.poses[stamp % BvhFront::POSES] = X_AB;
+        auto report = [&](const CollisionTraversal &t)
+        {
+            front.valid = false;
+            if (hitA)
+                *hitA = t.hitA;
+            if (hitB)
+                *hitB = t.hitB;
+            return true;
+        };
+        // The last step's motion, node by node: the lookahead of the pairs written now.
+        const bool small = step <= 0.1 * rootB.radius;
+        std::optional<StepMotion> last;
+        if (small)
+            last.emplace(front.poses[(stamp - 1) % BvhFront::POSES], X_AB, rootB);
+        if (front.valid && small)
+        {
+            const double motion = front.motion + step;
+            front.next.clear();
+            CollisionTraversal traversal(a, b, X, margin, *last, &front.next, motion, stamp);
+            std::size_t retested = 0;
+            if (retestCollisionFront(front, traversal, b, X_AB, margin, motion, stamp, retested))
+                return report(traversal);
+            front.reused += front.entries.size() - retested;
+            front.retested += retested;
+            front.entries.insert(front.entries.end(), front.next.begin(), front.next.end());
+            front.motion = motion;
+            front.motions[stamp % BvhFront::POSES] = motion;
+            afterUse(front, front.entries.size() <= BvhFront::FRONT_GROWTH * front.freshSize + 16 &&
+                                retested <= front.freshSize / 2 + 16);
+            return false;
+        }
+        // From the roots. A fresh front is written after a small step (a run of nearby poses, as along a path or a
+        // motion: at most a tenth of B's size) unless fronts did not pay lately; between unrelated poses (a
+        // planner's samples) none is.
+        front.valid = false;
+        const bool write = small && front.wait == 0;
+        if (small && front.wait > 0)
+            --front.wait;
+        if (!write)
+        {
+            ++front.incoherent;
+            return bvhCollide(a, b, X_AB, hitA, hitB);
+        }
+        front.uses = 0;
+        ++front.rebuilds;
+        front.entries.clear();
+        CollisionTraversal traversal(a, b, X, margin, *last, &front.entries, 0.0, stamp);
+        if (traversal.run({0u, 0u}))
+            return report(traversal);
+        front.motion = 0.0;
+        front.motions[stamp % BvhFront::POSES] = 0.0;
+        front.freshSize = front.entries.size();
+        front.valid = true;
+        return false;
+    }
+}  // namespace meshgap
