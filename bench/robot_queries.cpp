@@ -117,10 +117,15 @@ static int run(int argc, char **argv)
     unsigned paths = 20, repeat = 3, seed = 1;
     double step = 0.01;
     po::options_description options("meshgap_bench_robot_queries [options]");
-    options.add_options()("urdf", po::value(&urdf))("srdf", po::value(&srdf))("package-path",
-                                                                              po::value(&packagePath))(
-        "paths", po::value(&paths))("step", po::value(&step))("repeat", po::value(&repeat))("seed", po::value(&seed))(
-        "attach", po::value(&attachTo));
+    options.add_options()("help,h", "print this help")(
+        "urdf", po::value(&urdf), ("the robot (default: " + urdf + ")").c_str())(
+        "srdf", po::value(&srdf), "its allowed pairs (default: the fanuc's SRDF; empty: none)")(
+        "package-path", po::value(&packagePath), ("package:// search folder (default: " + data + ")").c_str())(
+        "paths", po::value(&paths), "joint-space paths between random states (default 20)")(
+        "step", po::value(&step), "largest joint change between states, radians (default 0.01)")(
+        "repeat", po::value(&repeat), "passes; the best is kept (default 3)")(
+        "seed", po::value(&seed), "seed of the random states (default 1)")(
+        "attach", po::value(&attachTo), "link carrying the C-shaped payload (default tool0)");
     po::variables_map vm;
     if (!meshgap::cli::parseCommandLine(argc, argv, options, vm))
         return 0;

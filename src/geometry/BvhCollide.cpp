@@ -313,6 +313,7 @@ namespace meshgap
         auto report = [&](const CollisionTraversal &t)
         {
             front.valid = false;
+            front.collided = true;
             if (hitA)
                 *hitA = t.hitA;
             if (hitB)
@@ -345,13 +346,16 @@ namespace meshgap
         // motion: at most a tenth of B's size) unless fronts did not pay lately; between unrelated poses (a
         // planner's samples) none is.
         front.valid = false;
-        const bool write = small && front.wait == 0;
+        // Nor while the bodies collide: a front written then ends at the first hit, and the next colliding test
+        // would pay for writing it again. The first free test after a collision runs stateless too.
+        const bool write = small && front.wait == 0 && !front.collided;
         if (small && front.wait > 0)
             --front.wait;
         if (!write)
         {
             ++front.incoherent;
-            return bvhCollide(a, b, X_AB, hitA, hitB);
+            front.collided = bvhCollide(a, b, X_AB, hitA, hitB);
+            return front.collided;
         }
         front.uses = 0;
         ++front.rebuilds;

@@ -28,7 +28,9 @@ namespace meshgap
         motion, not a planner's unrelated samples), its box pairs kept apart by twice their node's motion in that
         step, so that they outlast the next one; it is rebuilt when it has grown past FRONT_GROWTH times a fresh
         one or a test re-tested more than half of it; when fronts keep failing within two tests (motions as large
-        as the gaps), writing backs off (BvhFront::backoff). A collision leaves no front. Belongs to one caller. */
+        as the gaps), writing backs off (BvhFront::backoff). A collision leaves no front, and none is
+        written until a test has found the bodies apart (a colliding run costs the stateless tests). Belongs to one
+        caller. */
     bool bvhCollide(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, BvhFront &front,
                     std::uint32_t *hitA = nullptr, std::uint32_t *hitB = nullptr);
 

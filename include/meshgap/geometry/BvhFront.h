@@ -57,6 +57,7 @@ namespace meshgap
         std::size_t freshSize{0};                    ///< size of the front the last traversal from the roots wrote
         bool valid{false};          ///< entries cover the whole pair tree (false: start from the roots)
         bool started{false};        ///< a traversal has run (poses holds its pose)
+        bool collided{false};       ///< collision fronts: the last test found a collision (no front is written)
         std::size_t reused{0};      ///< statistics: entries kept without a test, over the front's lifetime
         std::size_t retested{0};    ///< entries re-tested in full
         std::size_t axisKept{0};    ///< entries kept by their separating axis
@@ -74,6 +75,7 @@ namespace meshgap
         {
             valid = false;
             started = false;
+            collided = false;
             uses = backoff = wait = 0;
         }
     };
