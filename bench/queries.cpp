@@ -394,6 +394,7 @@ namespace
         std::set<std::string> streams;
         std::size_t states{1000}, random{1000}, enumEvery{10}, loadRepeats{3};
         std::uint32_t seed{1};
+        std::size_t certificates{4};  ///< per warm start, as ClearanceChecker keeps them
         std::string fastSolver{"comb-GA-wl"};
     };
 
@@ -464,6 +465,10 @@ namespace
     /** \brief The warm starts and requests carried along one stream. */
     struct Carried
     {
+        explicit Carried(std::size_t certificates)
+          : warm(certificates), noDepthWarm(certificates), fastWarm(certificates), collisionWarm(certificates)
+        {
+        }
         SceneWarmStart warm, noDepthWarm, fastWarm, collisionWarm;
         SceneRequest certified, noDepth, fast;
     };
@@ -670,7 +675,7 @@ namespace
             if (stream.poses.empty())
                 continue;
             Tally tally;
-            Carried k;
+            Carried k(options.certificates);
             k.noDepth.computeDepth = false;
             k.fast.exact = false;
             k.fast.solver = options.fastSolver;
@@ -925,6 +930,8 @@ int main(int argc, char **argv)
             "random", po::value(&options.random), "random poses per problem")(
             "enum-every", po::value(&options.enumEvery), "run enumeration on every N-th state (0: never)")(
             "seed", po::value(&options.seed), "seed of the random poses and waypoints")(
+            "certificates", po::value(&options.certificates),
+            "certificates each warm start keeps (SceneWarmStart; default 4, as ClearanceChecker's)")(
             "csv", po::value(&csvFile), "also write every row as CSV here")(
             "load-csv", po::value(&loadCsvFile), "with --robot: also write the load and build rows as CSV here")(
             "load-repeats", po::value(&options.loadRepeats), "with --robot: load and build runs (median reported)")(
