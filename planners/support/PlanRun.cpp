@@ -94,6 +94,10 @@ namespace meshgap
                 }
                 summary.line("validity calls", stats.validityCalls);
                 summary.line("clearance calls", stats.clearanceCalls);
+                if (stats.carried + stats.written + stats.cold > 0)
+                    summary.line("warm starts", std::to_string(stats.carried) + " carried, " +
+                                                    std::to_string(stats.written) + " written, " +
+                                                    std::to_string(stats.cold) + " cold (certified queries)");
                 if (const auto *maxMin = dynamic_cast<const MaxMinClearanceObjective *>(
                         p.problem.setup->getOptimizationObjective().get()))
                     summary.line("cost queries", std::to_string(maxMin->queriedStates()) + " states queried for " +

@@ -226,7 +226,13 @@ namespace meshgap
         request.computeDepth = request.computeDepth && computeDepth_;
         SceneResult result;
         if (request.exact || fastSolver_ == "warm-fast")  // warm-fast: the paper's warm start along this thread's run
+        {
             scene_->distance(X, request, warmStartFor(id_), result);
+            if (request.exact)
+                ++(result.warmStartUse == SceneWarmStart::Use::CARRY   ? carried_
+                   : result.warmStartUse == SceneWarmStart::Use::WRITE ? written_
+                                                                        : cold_);
+        }
         else
         {
             request.seed = seedOf(X);
@@ -245,6 +251,9 @@ namespace meshgap
         s.clearanceCalls = clearanceCalls_;
         s.evaluations = evaluations_;
         s.warmStartHits = warmHits_;
+        s.carried = carried_;
+        s.written = written_;
+        s.cold = cold_;
         s.seconds = 1e-9 * static_cast<double>(nanoseconds_.load());
         return s;
     }

@@ -345,11 +345,14 @@ namespace meshgap
         return bestK;
     }
 
-    SceneWarmStart *Scene::choose(const Eigen::Isometry3d &X_WR, SceneWarmStart &warm) const
+    SceneWarmStart *Scene::choose(const Eigen::Isometry3d &X_WR, SceneWarmStart &warm, SceneWarmStart::Use *use) const
     {
         bind(warm);
         const TriangleBvh::Node &root = robot_->bvh().nodes()[0];
-        switch (warm.choose(X_WR, root.center, root.radius))
+        const SceneWarmStart::Use chosen = warm.choose(X_WR, root.center, root.radius);
+        if (use)
+            *use = chosen;
+        switch (chosen)
         {
             case SceneWarmStart::Use::COLD:
                 return nullptr;
@@ -458,7 +461,7 @@ namespace meshgap
                               SceneResult &result) const
     {
         if (warm)
-            warm = choose(X_WR, *warm);  // null: a cold query
+            warm = choose(X_WR, *warm, &result.warmStartUse);  // null: a cold query
         const bool warmValid = warm && warm->valid && warm->obstacle < obstacles_.size();
         const bool mayStop = request.stopBelow >= 0.0;
         DistanceResult best;

@@ -32,6 +32,9 @@ namespace meshgap
     struct CheckerStats
     {
         std::uint64_t validityCalls{0}, clearanceCalls{0}, evaluations{0}, warmStartHits{0};
+        /** \brief Certified queries by what their warm start did (SceneResult::warmStartUse): carried from a
+            recent certificate, wrote a fresh one, or answered cold (a pose unrelated to the recent ones). */
+        std::uint64_t carried{0}, written{0}, cold{0};
         double seconds{0.0};  ///< time spent in queries, summed over threads
     };
 
@@ -133,6 +136,7 @@ namespace meshgap
         bool computeDepth_{true};
         std::uint64_t id_;  ///< unique per checker: keys this checker's per-thread warm starts
         mutable std::atomic<std::uint64_t> validityCalls_{0}, clearanceCalls_{0}, evaluations_{0}, warmHits_{0};
+        mutable std::atomic<std::uint64_t> carried_{0}, written_{0}, cold_{0};
         mutable std::atomic<std::uint64_t> nanoseconds_{0};
     };
 }  // namespace meshgap

@@ -180,6 +180,9 @@ namespace meshgap
             that does not depend on the machine's load. */
         std::size_t triangleTests{0}, boxTests{0};
         bool warmStartHit{false};     ///< the minimum was at the warm start's obstacle
+        /** \brief Exact mode with a warm start: whether it carried a certificate, wrote a fresh one, or the query
+            was answered cold (SceneWarmStart::choose()); COLD without a warm start. */
+        SceneWarmStart::Use warmStartUse{SceneWarmStart::Use::COLD};
         /** \brief The distance is at least SceneRequest::upperBound, which distance then holds (certified; no
             witnesses, obstacle = obstacles().size()). */
         bool atLeast{false};
@@ -236,8 +239,9 @@ namespace meshgap
             with another scene. */
         void bind(SceneWarmStart &warm) const;
         /** \brief Bind \e warm, and decide how the query at \e X_WR uses it (SceneWarmStart::choose()): the warm
-            start to carry from (its certificate in use, made ready), or null for a cold query. */
-        SceneWarmStart *choose(const Eigen::Isometry3d &X_WR, SceneWarmStart &warm) const;
+            start to carry from (its certificate in use, made ready), or null for a cold query; how, into \e use. */
+        SceneWarmStart *choose(const Eigen::Isometry3d &X_WR, SceneWarmStart &warm,
+                               SceneWarmStart::Use *use = nullptr) const;
         /** \brief The most negative signed distance (deepest penetration, setPenetration()) over every obstacle the
             robot at \e X_WR collides with, into \e best (ties: the smallest index); returns that obstacle, or
             obstacles_.size() if none collides. \e known is an obstacle already known to collide (no test made
