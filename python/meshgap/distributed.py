@@ -291,6 +291,16 @@ def _store(out, params, p):
     return zarr.open_group(out, mode="r+")
 
 
+def _around(p):
+    """The volume of a problem without one: the world's bounding box grown by the robot's reach from its origin."""
+    if p.kind == "cfg":
+        raise ValueError("volume: %s gives none (volume.min.* and volume.max.*); pass volume=((min...), (max...))"
+                         % p.files[0])
+    robot, world = (_meshgap.load_mesh(path)[0] for path in p.files)
+    reach = float(np.linalg.norm(robot, axis=1).max()) if len(robot) else 0.0
+    return world.min(axis=0) - reach, world.max(axis=0) + reach
+
+
 def _current_client(client):
     if client is False:
         return None
@@ -305,7 +315,8 @@ def _current_client(client):
 
 def label(source, n, out="labels.zarr", sampler="uniform", chunk=DEFAULT_CHUNK, seed=0, volume=None, client=None,
           progress=True):
-    """Draw n poses (sampler "uniform": uniform in volume, default the cfg's volume; required for a pair of meshes)
+    """Draw n poses (sampler "uniform": uniform in volume, default the cfg's volume, or for a pair of meshes the
+    world's bounding box grown by the robot's reach)
     and write them with their exact clearance and witness points (Scene.distance's fields, exact=True, depth=True)
     to the Zarr group out, one task per chunk of rows, each writing its rows then its mark in done. A rerun with the
     same arguments computes only the chunks not marked done, so a killed run resumes. Runs on the current
@@ -318,9 +329,7 @@ def label(source, n, out="labels.zarr", sampler="uniform", chunk=DEFAULT_CHUNK, 
         raise ValueError("sampler: %r is not known (uniform)" % (sampler,))
     if not (isinstance(n, (int, np.integer)) and n > 0) or not (isinstance(chunk, (int, np.integer)) and chunk > 0):
         raise ValueError("n and chunk: expected positive integers, got n=%r, chunk=%r" % (n, chunk))
-    volume = volume if volume is not None else p.volume
-    if volume is None:
-        raise ValueError("volume: %s gives none; pass volume=((min...), (max...))" % (", ".join(p.files),))
+    volume = volume if volume is not None else p.volume if p.volume is not None else _around(p)
     planar = bool(p.planar)
     volume = [[float(v) for v in volume[0]], [float(v) for v in volume[1]]]
     if len(volume[0]) != (2 if planar else 3) or len(volume[1]) != len(volume[0]) or any(

@@ -147,6 +147,13 @@ def test_label_matches_and_resumes(client, tmp_path):
     assert md.label(cfg, 2300, out=local, chunk=250, client=False, progress=False)["computed"] == 10
     for name, values in reference.items():
         assert np.array_equal(zarr.open_group(str(local))[name][:], values), name
+    # A pair of meshes: 3D poses in the wall's box grown by the bar's reach from its origin (its corner 0.85 0.3 1),
+    # the files' coordinates read in float32.
+    pair = (str(tmp_path / "problem" / "bar.obj"), str(tmp_path / "problem" / "wall.obj"))
+    md.label(pair, 600, out=tmp_path / "pair.zarr", chunk=200, progress=False)
+    reach = np.linalg.norm(np.float32([0.85, 0.3, 1.0]).astype(np.float64))
+    wall = np.float32([[-0.3, -6, 0], [0.3, 6, 1]]).astype(np.float64)
+    check_store(tmp_path / "pair.zarr", 600, 200, meshgap.Scene(*pair), (wall[0] - reach, wall[1] + reach), False)
 
 
 def test_bad_input(client, tmp_path):
@@ -181,8 +188,10 @@ def test_bad_input(client, tmp_path):
     out = tmp_path / "labels.zarr"
     with pytest.raises(FileNotFoundError, match="none.cfg: no such file"):
         md.label(tmp_path / "none.cfg", 10, out=out)
-    with pytest.raises(ValueError, match="volume: .* gives none"):
-        md.label((str(tmp_path / "a" / "bar.obj"), str(tmp_path / "a" / "wall.obj")), 10, out=out)
+    with pytest.raises(ValueError, match=r"volume: expected \(\(min...\), \(max...\)\) of 2 axes, max above min"):
+        md.label(cfg, 10, out=out, volume=((0, 0), (1, -1)))
+    with pytest.raises(ValueError, match="n and chunk: expected positive integers"):
+        md.label(cfg, 0, out=out)
     with pytest.raises(ValueError, match="sampler: 'near' is not known"):
         md.label(cfg, 10, out=out, sampler="near")
     assert not list(tmp_path.glob("labels.zarr*"))  # nothing half made
