@@ -356,4 +356,10 @@ def label(source, n, out="labels.zarr", sampler="uniform", chunk=DEFAULT_CHUNK, 
             warnings.filterwarnings("ignore", "Running on a single-machine scheduler")
             with ProgressBar() if progress else contextlib.nullcontext():
                 dask.compute(*tasks, scheduler="threads")
+    # A worker killed while writing leaves its chunk's temporary file (NAME.UUID.partial, renamed into place once
+    # written): the chunk was rerun, the leftover goes.
+    for folder, _, names in os.walk(out):
+        for name in names:
+            if name.endswith(".partial"):
+                os.remove(os.path.join(folder, name))
     return {"out": out, "chunks": len(done), "computed": len(todo)}

@@ -223,3 +223,4 @@ def test_label_survives_a_killed_worker(client, tmp_path):
     scene = meshgap.Scene.from_cfg(HAND_BOWL)
     problem = md.problem(HAND_BOWL)
     check_store(out, n, chunk, scene, problem.volume, False)
+    assert not [name for _, _, names in os.walk(out) for name in names if name.endswith(".partial")]
