@@ -552,7 +552,7 @@ namespace
     }
 }  // namespace
 
-PYBIND11_MODULE(meshgap, m)
+PYBIND11_MODULE(_meshgap, m)
 {
     m.doc() = "meshgap: exact minimum distance between concave triangle meshes, batched over poses, and planning "
               "with certified clearance (OMPL)";

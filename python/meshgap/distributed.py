@@ -1,0 +1,365 @@
+"""meshgap on Dask: the batch of meshgap.Scene over poses spread on a cluster, and clearance data sets in Zarr.
+
+    import meshgap.distributed as md
+    client = md.connect()                        # a local cluster; md.connect("tcp://HOST:8786") for a scheduler
+    r = md.distance("maps/hand_bowl/hand_bowl.cfg", poses, chunks=4096)   # a dict of Dask arrays
+    d = r["distance"].compute()
+    md.label("maps/hand_bowl/hand_bowl.cfg", 10_000_000, out="labels.zarr")
+
+A problem (`source`) is a .cfg path or a (robot, world) pair of mesh paths. Its files are checked and hashed on the
+client; each worker process builds its Scene once per content hash and keeps it for every chunk it runs (the Scene is
+never sent over the network), so the files must be readable at the same paths on every worker. Answers are those of
+Scene.distance on the same poses, bit for bit. Needs Debian's python3-dask; connect() needs python3-distributed and
+label() python3-zarr.
+"""
+import contextlib
+import hashlib
+import math
+import os
+import shutil
+import socket
+import threading
+import warnings
+
+import numpy as np
+
+try:
+    import dask
+    import dask.array as da
+except ImportError as error:  # pragma: no cover - depends on the machine
+    raise ImportError("meshgap.distributed needs Dask (Debian: apt-get install python3-dask python3-distributed "
+                      "python3-zarr): %s" % error) from None
+
+from . import _meshgap
+
+# The fields of Scene.distance, in the order they are packed in one float64 row per pose (an int64 obstacle index
+# and the booleans are exact in float64), with their dtype and width.
+FIELDS = (("distance", np.float64, 1), ("on_robot", np.float64, 3), ("on_obstacle", np.float64, 3),
+          ("obstacle", np.int64, 1), ("in_collision", np.bool_, 1), ("certified", np.bool_, 1),
+          ("open_body", np.bool_, 1))
+_PACKED = sum(width for _, _, width in FIELDS)
+DEFAULT_CHUNK = 16 * _meshgap.SCENE_BATCH_BLOCK  # rows per task: a multiple of the batch's block
+
+
+class Problem:
+    """A problem named by its files: a .cfg (kind "cfg": files = (cfg, robot, world)) or a pair of meshes (kind
+    "meshes": files = (robot, world)), with the hash of their contents (key). Small and picklable: this, not the
+    Scene, travels to the workers. Build it once with problem(source) to hash the files once."""
+
+    def __init__(self, kind, files, key, planar, volume):
+        self.kind, self.files, self.key, self.planar, self.volume = kind, tuple(files), key, planar, volume
+
+    def __repr__(self):
+        return "<meshgap.distributed.Problem %s %s>" % (self.kind, ", ".join(self.files))
+
+    def __dask_tokenize__(self):
+        return (self.kind, self.files, self.key)
+
+
+def _hash_files(paths):
+    digest = hashlib.sha256()
+    for path in paths:
+        with open(path, "rb") as f:
+            for block in iter(lambda: f.read(1 << 20), b""):
+                digest.update(block)
+        digest.update(b"\0")
+    return digest.hexdigest()
+
+
+def _missing(path, where):
+    return FileNotFoundError("%s: no such file%s" % (path, where))
+
+
+def _read_cfg(path):
+    """The [problem] keys of an OMPL.app .cfg (the grammar meshgap's reader takes: key = value, # comments)."""
+    keys, section = {}, None
+    with open(path, encoding="utf-8", errors="replace") as f:
+        for line in f:
+            line = line.strip()
+            if not line or line[0] in "#;":
+                continue
+            if line.startswith("["):
+                section = line.strip("[]").strip()
+            elif section == "problem" and "=" in line:
+                key, value = line.split("=", 1)
+                keys[key.strip()] = value.strip()
+    return keys
+
+
+def problem(source):
+    """The Problem of a .cfg path or a (robot, world) pair of mesh paths, its files checked and hashed here.
+    FileNotFoundError naming a missing file; ValueError for anything else than those two forms."""
+    if isinstance(source, Problem):
+        return source
+    if isinstance(source, (str, os.PathLike)):
+        cfg = os.path.abspath(os.fspath(source))
+        if not os.path.isfile(cfg):
+            raise _missing(cfg, "")
+        keys = _read_cfg(cfg)
+        files = [cfg]
+        for role in ("robot", "world"):
+            if role not in keys:
+                raise ValueError("%s: missing required key '%s' in [problem]" % (cfg, role))
+            mesh = os.path.join(os.path.dirname(cfg), keys[role])
+            if not os.path.isfile(mesh):
+                raise FileNotFoundError("%s: %s mesh '%s' does not exist" % (cfg, role, mesh))
+            files.append(os.path.normpath(mesh))
+        planar = "start.z" not in keys
+        axes = "xy" if planar else "xyz"
+        volume = None
+        if all("volume.%s.%s" % (end, a) in keys for end in ("min", "max") for a in axes):
+            volume = tuple(tuple(float(keys["volume.%s.%s" % (end, a)]) for a in axes) for end in ("min", "max"))
+        return Problem("cfg", files, _hash_files(files), planar, volume)
+    if isinstance(source, (tuple, list)) and len(source) == 2 and all(
+            isinstance(p, (str, os.PathLike)) for p in source):
+        files = [os.path.abspath(os.fspath(p)) for p in source]
+        for path in files:
+            if not os.path.isfile(path):
+                raise _missing(path, "")
+        return Problem("meshes", files, _hash_files(files), None, None)
+    raise ValueError("source: expected a .cfg path or a (robot, world) pair of mesh paths, got %r" % (source,))
+
+
+# The worker side: one Scene per problem's content hash in each process, built on first use.
+_scenes = {}
+_builds = {}
+_lock = threading.Lock()
+
+
+def _where():
+    return " on worker %s (pid %d)" % (socket.gethostname(), os.getpid())
+
+
+def scene(source):
+    """This process's Scene of a problem, built once per content hash and kept (what each task calls)."""
+    p = problem(source) if not isinstance(source, Problem) else source
+    with _lock:
+        built = _scenes.get(p.key)
+        if built is not None:
+            return built
+        for path in p.files:
+            if not os.path.isfile(path):
+                raise _missing(path, _where())
+        if _hash_files(p.files) != p.key:
+            raise ValueError("%s: the files%s differ from those the client hashed" % (", ".join(p.files), _where()))
+        built = _meshgap.Scene.from_cfg(p.files[0]) if p.kind == "cfg" else _meshgap.Scene(*p.files)
+        _scenes[p.key] = built
+        _builds[p.key] = _builds.get(p.key, 0) + 1
+        return built
+
+
+def scene_builds():
+    """How many Scenes this process built, per problem key (read on the workers with client.run(scene_builds))."""
+    with _lock:
+        return dict(_builds)
+
+
+def _distance_block(block, p, exact, warm, depth):
+    r = scene(p).distance(np.ascontiguousarray(block, dtype=np.float64), exact=exact, warm=warm, depth=depth)
+    packed = np.empty((len(block), _PACKED))
+    column = 0
+    for name, _, width in FIELDS:
+        packed[:, column:column + width] = r[name].reshape(len(block), width)
+        column += width
+    return packed
+
+
+def _collision_block(block, p):
+    return scene(p).in_collision(np.ascontiguousarray(block, dtype=np.float64))
+
+
+def _pose_array(poses, p, chunks):
+    """A Dask array of float64 poses, rows chunked, all columns in one chunk; ValueError for a wrong shape."""
+    if not isinstance(poses, da.Array):
+        poses = np.asarray(poses)
+    shape = tuple(poses.shape)
+    columns = (3,) if p.planar else (7,) if p.planar is False else (3, 7)
+    if len(shape) != 2 or shape[1] not in columns:
+        raise ValueError("poses: expected an array of shape (N, %s) (%s), got shape %s" % (
+            " or ".join(map(str, columns)),
+            "x y theta" if columns == (3,) else "x y z qx qy qz qw" if columns == (7,) else
+            "x y z qx qy qz qw, or x y theta", shape))
+    rows = chunks if chunks is not None else (poses.chunks[0] if isinstance(poses, da.Array) else DEFAULT_CHUNK)
+    if isinstance(poses, da.Array):
+        return poses.astype(np.float64).rechunk((rows, -1))
+    return da.from_array(poses.astype(np.float64, copy=False), chunks=(rows, -1))
+
+
+def distance(source, poses, chunks=None, exact=True, warm=True, depth=True):
+    """Scene.distance over a Dask array (or a numpy array, wrapped) of poses, (N, 7) x y z qx qy qz qw or (N, 3) x y
+    theta, rows chunked (chunks: rows per task; default the array's own chunks, or DEFAULT_CHUNK). Returns a dict of
+    Dask arrays with Scene.distance's fields, all from one task per chunk (compute them together:
+    dask.compute(r)). Each task runs Scene.distance(block, exact=, warm=, depth=) with one thread: the warm start is
+    carried within a chunk, the answers identical to one Scene.distance over all the poses."""
+    p = problem(source)
+    x = _pose_array(poses, p, chunks)
+    # meta given: Dask would otherwise call the function on an empty block here, building the Scene on the client.
+    packed = x.map_blocks(_distance_block, p, exact, warm, depth, dtype=np.float64, meta=np.empty((0, _PACKED)),
+                          chunks=(x.chunks[0], (_PACKED,)), name="meshgap-distance")
+    out, column = {}, 0
+    for name, dtype, width in FIELDS:
+        part = packed[:, column] if width == 1 else packed[:, column:column + width]
+        out[name] = part.astype(dtype)
+        column += width
+    return out
+
+
+def in_collision(source, poses, chunks=None):
+    """Scene.in_collision over a Dask array of poses, as distance(): a Dask bool array (N,)."""
+    p = problem(source)
+    x = _pose_array(poses, p, chunks)
+    return x.map_blocks(_collision_block, p, dtype=np.bool_, meta=np.empty((0,), dtype=np.bool_), drop_axis=1,
+                        name="meshgap-in-collision")
+
+
+def connect(address=None, timeout=10, **kwargs):
+    """A distributed.Client: of a new local cluster (address None, keywords to distributed.Client, e.g.
+    n_workers=), or of the scheduler at address ("tcp://HOST:8786"). ConnectionError naming the address when the
+    scheduler is not reached within timeout seconds."""
+    try:
+        import distributed
+    except ImportError as error:
+        raise ImportError("meshgap.distributed.connect needs Debian's python3-distributed: %s" % error) from None
+    if address is None:
+        return distributed.Client(**kwargs)
+    try:
+        return distributed.Client(address, timeout=timeout, **kwargs)
+    except (OSError, TimeoutError) as error:
+        raise ConnectionError("cannot reach the Dask scheduler at %s within %g s: %s" % (address, timeout, error)) \
+            from None
+
+
+def uniform_poses(volume, planar, count, seed, index):
+    """count poses uniform in volume ((min...), (max...)): position uniform, rotation uniform in SO(3) (a uniform
+    unit quaternion, x y z w) or theta uniform in [-pi, pi) when planar; drawn from the generator seeded with
+    (seed, index), so chunk index of a data set is the same on any machine."""
+    rng = np.random.default_rng([seed, index])
+    lo, hi = np.asarray(volume[0], dtype=np.float64), np.asarray(volume[1], dtype=np.float64)
+    position = lo + (hi - lo) * rng.random((count, len(lo)))
+    if planar:
+        return np.column_stack([position[:, :2], rng.uniform(-math.pi, math.pi, count)])
+    u = rng.random((count, 3))
+    a, b = np.sqrt(1.0 - u[:, 0]), np.sqrt(u[:, 0])
+    q = np.column_stack([a * np.sin(2 * math.pi * u[:, 1]), a * np.cos(2 * math.pi * u[:, 1]),
+                         b * np.sin(2 * math.pi * u[:, 2]), b * np.cos(2 * math.pi * u[:, 2])])
+    return np.column_stack([position, q])
+
+
+def _label_chunk(p, out, index, params):
+    import zarr
+    n, chunk, seed = params["n"], params["chunk"], params["seed"]
+    start, stop = index * chunk, min(n, (index + 1) * chunk)
+    poses = uniform_poses(params["volume"], params["planar"], stop - start, seed, index)
+    r = scene(p).distance(poses, exact=True, depth=True)
+    try:
+        group = zarr.open_group(out, mode="r+")
+    except Exception as error:  # not on this worker's file system
+        raise FileNotFoundError("%s: the Zarr store is not readable%s (label() needs a folder every worker shares): "
+                                "%s" % (out, _where(), error)) from None
+    group["poses"][start:stop] = poses
+    for name, _, _ in FIELDS:
+        group[name][start:stop] = r[name]
+    group["done"][index] = 1  # after the data: a chunk marked done is complete
+    return index
+
+
+def _store(out, params, p):
+    """Open the data set at out, or create it (in a temporary folder renamed into place: never half made)."""
+    import zarr
+    if os.path.exists(out):
+        try:
+            group = zarr.open_group(out, mode="r+")
+            made = dict(group.attrs)
+        except Exception as error:
+            raise ValueError("%s: exists and is not a meshgap data set (%s)" % (out, error)) from None
+        if made.get("params") != params:
+            raise ValueError("%s: a data set of other parameters %s (this run: %s); choose another out" % (
+                out, made.get("params"), params))
+        return group
+    temporary = "%s.tmp-%d" % (out, os.getpid())
+    shutil.rmtree(temporary, ignore_errors=True)
+    group = zarr.open_group(temporary, mode="w")
+    n, chunk, d = params["n"], params["chunk"], 3 if params["planar"] else 7
+    group.zeros("poses", shape=(n, d), chunks=(chunk, d), dtype=np.float64)
+    for name, dtype, width in FIELDS:
+        group.zeros(name, shape=(n,) if width == 1 else (n, width), chunks=(chunk,) if width == 1 else (chunk, width),
+                    dtype=dtype)
+    group.zeros("done", shape=(-(-n // chunk),), chunks=(1,), dtype=np.uint8)
+    group.attrs["params"] = params
+    group.attrs["files"] = list(p.files)
+    os.rename(temporary, out)
+    return zarr.open_group(out, mode="r+")
+
+
+def _around(p):
+    """The volume of a problem without one: the world's bounding box grown by the robot's reach from its origin."""
+    if p.kind == "cfg":
+        raise ValueError("volume: %s gives none (volume.min.* and volume.max.*); pass volume=((min...), (max...))"
+                         % p.files[0])
+    robot, world = (_meshgap.load_mesh(path)[0] for path in p.files)
+    reach = float(np.linalg.norm(robot, axis=1).max()) if len(robot) else 0.0
+    return world.min(axis=0) - reach, world.max(axis=0) + reach
+
+
+def _current_client(client):
+    if client is False:
+        return None
+    if client is not None:
+        return client
+    try:
+        from distributed import get_client
+        return get_client()
+    except (ImportError, ValueError):
+        return None
+
+
+def label(source, n, out="labels.zarr", sampler="uniform", chunk=DEFAULT_CHUNK, seed=0, volume=None, client=None,
+          progress=True):
+    """Draw n poses (sampler "uniform": uniform in volume, default the cfg's volume, or for a pair of meshes the
+    world's bounding box grown by the robot's reach)
+    and write them with their exact clearance and witness points (Scene.distance's fields, exact=True, depth=True)
+    to the Zarr group out, one task per chunk of rows, each writing its rows then its mark in done. A rerun with the
+    same arguments computes only the chunks not marked done, so a killed run resumes. Runs on the current
+    distributed Client (or client), with its progress bar; else (or with client=False) on local threads with Dask's
+    ProgressBar. Returns
+    {"out", "chunks", "computed"} (computed: the chunks this run wrote)."""
+    import zarr  # noqa: F401  (fail here, not on the workers, when it is missing)
+    p = problem(source)
+    if sampler != "uniform":
+        raise ValueError("sampler: %r is not known (uniform)" % (sampler,))
+    if not (isinstance(n, (int, np.integer)) and n > 0) or not (isinstance(chunk, (int, np.integer)) and chunk > 0):
+        raise ValueError("n and chunk: expected positive integers, got n=%r, chunk=%r" % (n, chunk))
+    volume = volume if volume is not None else p.volume if p.volume is not None else _around(p)
+    planar = bool(p.planar)
+    volume = [[float(v) for v in volume[0]], [float(v) for v in volume[1]]]
+    if len(volume[0]) != (2 if planar else 3) or len(volume[1]) != len(volume[0]) or any(
+            lo >= hi for lo, hi in zip(*volume)):
+        raise ValueError("volume: expected ((min...), (max...)) of %d axes, max above min, got %r" % (
+            2 if planar else 3, volume))
+    out = os.path.abspath(os.fspath(out))
+    params = {"n": int(n), "chunk": int(chunk), "seed": int(seed), "sampler": sampler, "planar": planar,
+              "volume": volume, "problem": p.key}
+    group = _store(out, params, p)
+    done = group["done"][:]
+    todo = [int(i) for i in np.flatnonzero(done == 0)]
+    tasks = [dask.delayed(_label_chunk, pure=False)(p, out, i, params) for i in todo]
+    client = _current_client(client)
+    if tasks and client is not None:
+        futures = client.compute(tasks)
+        if progress:
+            from distributed import progress as show
+            show(futures)
+        client.gather(futures)
+    elif tasks:
+        from dask.diagnostics import ProgressBar
+        with warnings.catch_warnings():  # client=False beside an active client: local threads, as asked
+            warnings.filterwarnings("ignore", "Running on a single-machine scheduler")
+            with ProgressBar() if progress else contextlib.nullcontext():
+                dask.compute(*tasks, scheduler="threads")
+    # A worker killed while writing leaves its chunk's temporary file (NAME.UUID.partial, renamed into place once
+    # written): the chunk was rerun, the leftover goes.
+    for folder, _, names in os.walk(out):
+        for name in names:
+            if name.endswith(".partial"):
+                os.remove(os.path.join(folder, name))
+    return {"out": out, "chunks": len(done), "computed": len(todo)}
