@@ -91,10 +91,10 @@ namespace meshgap
         answered cold, without paying for a certificate that cannot help. A new certificate is written only when
         the stream shows it is local: the query lies within that motion of one of the last capacity() queries' poses
         (the start of a run of nearby poses, or of a region the stream returns to in turn); it replaces the least
-        recently used one. So a stream of unrelated
-        poses costs what cold queries cost, a path costs what one certificate carried along it costs, and a stream
-        that alternates between a few regions (RRTConnect's two trees, a sampler returning to a region) keeps one
-        certificate per region. Fast mode always carries the certificate in use (the paper's warm start, III-D). */
+        recently used one. So a stream of unrelated poses costs what cold queries cost, a path costs what one
+        certificate carried along it costs, and a stream that alternates between a few regions (RRTConnect's two
+        trees, a sampler returning to a region) keeps one certificate per region. Fast mode always carries the
+        certificate in use (the paper's warm start, III-D). */
     struct SceneWarmStart : SceneCertificate
     {
         /** \brief A pose is near a certificate when the robot moved at most this many radii since it. */
@@ -105,7 +105,7 @@ namespace meshgap
         {
             CARRY,  ///< near the certificate in use (chosen among the recent ones): carried from there
             WRITE,  ///< near a recent query's pose only: a fresh certificate is written, the least recent one goes
-            COLD    ///< unrelated to every certificate and to the last pose: a cold query, no certificate written
+            COLD    ///< unrelated to every certificate and recent pose: a cold query, no certificate written
         };
 
         /** \brief Keep up to \e capacity certificates (at least 1; the default keeps one, carried along a run of
