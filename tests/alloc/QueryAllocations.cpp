@@ -16,19 +16,8 @@
 #include <vector>
 
 #include "TestMeshes.h"
-#include "alloc/CountingAllocator.h"
+#include "alloc/ThreadAllocations.h"
 #include "meshgap/scene/Scene.h"
-
-namespace
-{
-    /** \brief Allocations made by this thread so far (static TLS in the executable: reading it never allocates). */
-    thread_local std::size_t allocationCount = 0;
-}  // namespace
-
-void meshgapNoteAllocation()
-{
-    ++allocationCount;
-}
 
 namespace meshgap
 {
@@ -106,12 +95,12 @@ namespace meshgap
                 SceneResult result;
                 for (const Eigen::Isometry3d &X : poses)
                 {
-                    const std::size_t before = allocationCount;
+                    const std::size_t before = test::threadAllocations();
                     if (cold)
                         scene.distance(X, request, result);
                     else
                         scene.distance(X, request, warm, result);
-                    counted += pass == 1 ? allocationCount - before : 0;
+                    counted += pass == 1 ? test::threadAllocations() - before : 0;
                     answers.push_back({result.distance, result.obstacle, result.inCollision});
                     collisions += pass == 1 && result.inCollision;
                 }
@@ -233,9 +222,9 @@ namespace meshgap
             for (int pass = 0; pass < 2; ++pass)
                 for (const Eigen::Isometry3d &X : poses)
                 {
-                    const std::size_t before = allocationCount;
+                    const std::size_t before = test::threadAllocations();
                     const bool hit = dense_->inCollision(X);
-                    counted += pass == 1 ? allocationCount - before : 0;
+                    counted += pass == 1 ? test::threadAllocations() - before : 0;
                     collisions += pass == 1 && hit;
                 }
             EXPECT_EQ(counted, 0u);
@@ -259,9 +248,9 @@ namespace meshgap
             for (int pass = 0; pass < 2; ++pass)
                 for (const Eigen::Isometry3d &X : poses)
                 {
-                    const std::size_t before = allocationCount;
+                    const std::size_t before = test::threadAllocations();
                     const bool hit = dense_->inCollision(X, warm);
-                    counted += pass == 1 ? allocationCount - before : 0;
+                    counted += pass == 1 ? test::threadAllocations() - before : 0;
                     collisions += pass == 1 && hit;
                     ASSERT_EQ(hit, dense_->inCollision(X));
                 }
@@ -299,6 +288,16 @@ namespace meshgap
             check(*onDemand_, exact(), false, false);
         }
     }  // namespace
+
+    TEST(ThreadAllocations, CountsEveryAllocationOfThisThread)
+    {
+        // The counter the tests above rely on: a query that allocates must be seen.
+        const std::size_t before = test::threadAllocations();
+        auto *vector = new std::vector<double>(100);
+        const std::size_t after = test::threadAllocations();
+        delete vector;
+        EXPECT_EQ(after - before, 2u);  // the vector object, then its buffer
+    }
 }  // namespace meshgap
 
 int main(int argc, char **argv)

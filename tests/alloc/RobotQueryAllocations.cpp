@@ -12,19 +12,10 @@
 #include <vector>
 
 #include "TestMeshes.h"
-#include "alloc/CountingAllocator.h"
+#include "robot/TestTree.h"
+#include "alloc/ThreadAllocations.h"
 #include "meshgap/robot/RobotScene.h"
 #include "meshgap/robot/UrdfRobot.h"
-
-namespace
-{
-    thread_local std::size_t allocationCount = 0;
-}  // namespace
-
-void meshgapNoteAllocation()
-{
-    ++allocationCount;
-}
 
 namespace meshgap
 {
@@ -35,17 +26,9 @@ namespace meshgap
         protected:
             static void SetUpTestSuite()
             {
-                const UrdfRobotPtr robot = UrdfRobot::load(std::string(MESHGAP_TEST_RESOURCES_DIR) +
-                                                           "/robot/meshgap_test_description/urdf/tree.urdf");
-                robot->attach("payload", test::box(0.03, 0.02, 0.01), "tool", test::translation(0.0, 0.0, 0.04));
+                const UrdfRobotPtr robot = test::treeWithPayload();
                 // Boxes around the arm's sweep: the path passes near and through them.
-                std::vector<BodyConstPtr> obstacles;
-                for (int k = 0; k < 6; ++k)
-                {
-                    const double a = k * M_PI / 3;
-                    obstacles.push_back(Body::build(test::transformed(
-                        test::box(0.05, 0.05, 0.3), test::translation(0.35 * std::cos(a), 0.35 * std::sin(a), 0.3))));
-                }
+                const std::vector<BodyConstPtr> obstacles = test::postsAroundTree();
                 scene_ = std::make_shared<RobotScene>(robot, obstacles);
             }
             static void TearDownTestSuite() { scene_.reset(); }
@@ -78,9 +61,9 @@ namespace meshgap
                     warm.reset();
                     for (const std::vector<double> &q : states)
                     {
-                        const std::size_t before = allocationCount;
+                        const std::size_t before = test::threadAllocations();
                         scene_->distance(q.data(), q.size(), request, warm, result);
-                        counted += pass == 1 ? allocationCount - before : 0;
+                        counted += pass == 1 ? test::threadAllocations() - before : 0;
                         (pass == 0 ? first : second).push_back(result.distance);
                         collisions += pass == 1 && result.inCollision;
                     }
@@ -125,9 +108,9 @@ namespace meshgap
                 warm.reset();  // each pass starts afresh, with the memory the first one grew
                 for (const std::vector<double> &q : states)
                 {
-                    const std::size_t before = allocationCount;
+                    const std::size_t before = test::threadAllocations();
                     const bool hit = scene_->inCollision(q.data(), q.size(), warm);
-                    counted += pass == 1 ? allocationCount - before : 0;
+                    counted += pass == 1 ? test::threadAllocations() - before : 0;
                     collisions += pass == 1 && hit;
                 }
             }

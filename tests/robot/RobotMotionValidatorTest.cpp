@@ -10,26 +10,16 @@
 #include "meshgap/ompl/RobotMotionValidator.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 #include "TestMeshes.h"
+#include "robot/TestTree.h"
 #include "TestNote.h"
 
 namespace ob = ompl::base;
 
 namespace meshgap
 {
-    namespace
-    {
-        UrdfRobotPtr treeWithPayload()
-        {
-            const UrdfRobotPtr robot =
-                UrdfRobot::load(std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/meshgap_test_description/urdf/tree.urdf");
-            robot->attach("payload", test::box(0.03, 0.02, 0.01), "tool", test::translation(0.0, 0.0, 0.04));
-            return robot;
-        }
-    }  // namespace
-
     TEST(RobotMotionValidator, DisplacementBoundHoldsForEveryVertex)
     {
-        const UrdfRobotPtr robot = treeWithPayload();
+        const UrdfRobotPtr robot = test::treeWithPayload();
         const MotionBound bound(*robot);
         std::mt19937 rng(4);
         std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -63,14 +53,8 @@ namespace meshgap
 
     TEST(RobotMotionValidator, CertifiedMotionsAreFreeWhenCheckedDensely)
     {
-        const UrdfRobotPtr robot = treeWithPayload();
-        std::vector<BodyConstPtr> obstacles;
-        for (int k = 0; k < 6; ++k)
-        {
-            const double a = k * M_PI / 3;
-            obstacles.push_back(Body::build(test::transformed(
-                test::box(0.05, 0.05, 0.3), test::translation(0.35 * std::cos(a), 0.35 * std::sin(a), 0.3))));
-        }
+        const UrdfRobotPtr robot = test::treeWithPayload();
+        const std::vector<BodyConstPtr> obstacles = test::postsAroundTree();
         const auto scene = std::make_shared<RobotScene>(robot, obstacles);
         ob::RealVectorBounds bounds(3);
         bounds.setLow(-1);

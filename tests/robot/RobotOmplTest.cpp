@@ -18,6 +18,7 @@
 #include "meshgap/robot/MultiBodyRobot.h"
 #include "meshgap/robot/UrdfRobot.h"
 #include "TestMeshes.h"
+#include "robot/TestTree.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -26,9 +27,6 @@ namespace meshgap
 {
     namespace
     {
-        const std::string TREE =
-            std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/meshgap_test_description/urdf/tree.urdf";
-
         ob::RealVectorBounds cube(double half)
         {
             ob::RealVectorBounds b(3);
@@ -37,25 +35,13 @@ namespace meshgap
             return b;
         }
 
-        /** \brief Six boxes around the tree's base, within its reach, \e top high. */
-        std::vector<BodyConstPtr> obstacles(double top = 0.6)
-        {
-            std::vector<BodyConstPtr> bodies;
-            for (int k = 0; k < 6; ++k)
-            {
-                const double a = k * M_PI / 3;
-                bodies.push_back(Body::build(test::transformed(
-                    test::box(0.05, 0.05, top / 2), test::translation(0.35 * std::cos(a), 0.35 * std::sin(a), top / 2))));
-            }
-            return bodies;
-        }
     }  // namespace
 
     TEST(RobotOmpl, JointSpaceFollowsTheStateLayout)
     {
         UrdfOptions options;
         options.floatingBase = true;
-        const UrdfRobotPtr robot = UrdfRobot::load(TREE, options);
+        const UrdfRobotPtr robot = UrdfRobot::load(test::TREE_URDF, options);
         const ob::StateSpacePtr space = robotStateSpace(*robot, cube(2.0));
         const auto *compound = space->as<ob::CompoundStateSpace>();
         // SE(3), then wrist_roll (continuous), shoulder + extend (bounded), spin (continuous), tilt (bounded).
@@ -88,8 +74,8 @@ namespace meshgap
 
     TEST(RobotOmpl, CheckerGivesTheRobotScenesAnswers)
     {
-        const UrdfRobotPtr robot = UrdfRobot::load(TREE);
-        const auto scene = std::make_shared<RobotScene>(robot, obstacles());
+        const UrdfRobotPtr robot = UrdfRobot::load(test::TREE_URDF);
+        const auto scene = std::make_shared<RobotScene>(robot, test::postsAroundTree());
         auto si = std::make_shared<ob::SpaceInformation>(robotStateSpace(*robot, cube(1.0)));
         const auto checker = std::make_shared<RobotChecker>(si, scene);
         si->setStateValidityChecker(checker);
@@ -119,9 +105,9 @@ namespace meshgap
     static void planTreeAroundTheBoxes(bool certified)
     {
         ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-        const UrdfRobotPtr robot = UrdfRobot::load(TREE);
+        const UrdfRobotPtr robot = UrdfRobot::load(test::TREE_URDF);
         // Boxes up to the arm's shoulder: the upper links pass over them, the lower ones must not swing into them.
-        const auto scene = std::make_shared<RobotScene>(robot, obstacles(0.45));
+        const auto scene = std::make_shared<RobotScene>(robot, test::postsAroundTree(0.45));
         og::SimpleSetup setup(robotStateSpace(*robot, cube(1.0)));
         setup.setStateValidityChecker(std::make_shared<RobotChecker>(setup.getSpaceInformation(), scene));
         if (certified)
