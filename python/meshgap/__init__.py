@@ -1,5 +1,6 @@
 # The package meshgap: the compiled extension meshgap._meshgap, every public name of it re-exported here with its
-# docstring; meshgap.distributed runs the batch on Dask (imported on demand: it needs python3-dask).
+# docstring; meshgap.distributed runs the batch on Dask (imported on demand: it needs python3-dask), and
+# meshgap.campaign benchmark campaigns on it (imported here: it loads Dask only when run).
 from . import _meshgap
 from ._meshgap import *  # noqa: F401,F403  (Scene, load_mesh, plan, PLAN_KEYWORDS, SCENE_BATCH_BLOCK, ...)
 
@@ -13,3 +14,4 @@ for _name in __all__:
         except (AttributeError, TypeError):
             pass
 del _name, _value
+from . import campaign  # noqa: E402
