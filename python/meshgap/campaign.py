@@ -297,10 +297,10 @@ def load_database(logs, database, merge=True):
 
 
 def run(problems, planners, checkers=("certified",), samplers=(), runs=10, batch=None, time=10.0, memory=4096.0,
-        seed=1, out="campaign", database="results.db", params=(), retries=3, client=None, executable=None,
-        progress=True, check=True):
+        seed=1, out="campaign", database="results.db", params=(), retries=3, client=None, timeout=10,
+        executable=None, progress=True, check=True):
     """Run a campaign on the current distributed Client (or client: a Client, or a scheduler's address
-    "tcp://HOST:8786", ConnectionError when it is not reached): one task per cell not done yet (see the
+    "tcp://HOST:8786", ConnectionError when it is not reached within timeout seconds): one task per cell not done yet (see the
     module's help), retried up to retries times when it fails, with Dask's progress bar; then every cell's log into
     OUT/database. Bad input (a problem file missing, an unknown planner, checker or sampler, a bad --param: checked
     first by meshgap_benchmark on the client when check is true; meshgap_benchmark or ompl_benchmark_statistics
@@ -312,7 +312,7 @@ def run(problems, planners, checkers=("certified",), samplers=(), runs=10, batch
         raise ValueError("time and memory: expected positive numbers, got %r, %r" % (time, memory))
     executable = find_executable(executable)
     _statistics()
-    client = _dask().connect(client) if isinstance(client, str) else _dask()._current_client(client)
+    client = _dask().connect(client, timeout) if isinstance(client, str) else _dask()._current_client(client)
     if client is None:
         raise ValueError("no Dask client: connect one first (meshgap.distributed.connect()) or give client=")
     out = os.path.abspath(os.fspath(out))
