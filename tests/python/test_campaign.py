@@ -7,6 +7,7 @@ import hashlib
 import os
 import signal
 import sqlite3
+import sys
 import threading
 import time
 
@@ -19,7 +20,7 @@ except ImportError as error:
                 allow_module_level=True)
 
 import meshgap.campaign as mc
-from conftest import MAPS, executable
+from conftest import MAPS, cli_error, executable
 
 PROBLEMS = [MAPS / "twisted" / "twisted.cfg", MAPS / "hand_bowl" / "hand_bowl.cfg"]
 PLANNERS = ["rrtconnect", "rrt"]
@@ -163,6 +164,11 @@ def test_bad_input_writes_nothing(client, tmp_path):
     campaign.write_text("[campaign]\nproblems = a.cfg\nplanners = rrt\nrun = 3\n")
     with pytest.raises(ValueError, match="bad.cfg: unknown key 'run' in \\[campaign\\]"):
         mc.run_file(campaign, client=client)
+    # From a shell: one error line, exit 1.
+    assert cli_error([sys.executable, "-m", "meshgap.campaign", str(tmp_path / "none.cfg")]) == \
+        "%s: no such file" % (tmp_path / "none.cfg")
+    assert cli_error([sys.executable, "-m", "meshgap.campaign", str(campaign)]).startswith(
+        "%s: unknown key 'run' in [campaign]" % campaign)
     assert not out.exists() and not list(tmp_path.glob("campaign*"))
 
 
