@@ -130,7 +130,7 @@ def main():
     print("load average after: %.2f %.2f %.2f" % os.getloadavg())
     print("\nempty task round trip %.2f ms; empty tasks through the scheduler %.0f /s (2 workers)\n"
           % (task_trip * 1e3, tasks_per_second))
-    print("| problem | scene build | first computation (build on each worker), 1 / 2 workers | batch threads=1 | "
+    print("| problem | scene build | scene build on the workers (slowest), 1 / 2 workers | batch threads=1 | "
           "batch threads=2 | " + " | ".join("Dask %s worker%s, chunk %d" % (w, "s" if w > 1 else "", c)
                                            for w in (1, 2) for c in args.chunks) + " |")
     print("|---|---:|---:|---:|---:|" + "---:|" * (2 * len(args.chunks)))
