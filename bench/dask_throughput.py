@@ -9,10 +9,12 @@ keywords of meshgap.distributed.distance (exact, warm, depth):
   3. Dask: a distributed.LocalCluster of 1 and of 2 worker processes (one thread each), md.distance(cfg, poses,
      chunks=C) computed for each chunk size C, each worker's scene built beforehand (its build timed apart on
      each worker: files checked and hashed, then Scene.from_cfg);
-  4. the engine's own costs on the 2-worker cluster: the round trip of one empty task (client.submit, result),
-     and empty tasks per second through the scheduler (client.map over 2,000, gathered);
-then a projection to 8, 64 and 512 workers: each worker computes a chunk in C x (its per-pose cost) plus the per-task
-cost the 2-worker runs show, the scheduler passes at most the measured empty tasks per second, and the results
+  4. the engine's own costs: the round trip of one empty task (client.submit, result; 2 workers), and empty tasks
+     per second through the scheduler with 1 and 2 workers (client.map over 2,000, gathered);
+then a projection to 8, 64 and 512 workers: each worker computes a chunk in C x (the per-pose CPU time of the
+threads=1 batch) plus the engine's cost per chunk (what a chunk took on one worker beyond that CPU time), the
+scheduler passes at most the empty tasks per second measured through two workers (divided by md.distance's tasks
+per chunk in its optimised graph), and the results
 (88 bytes a pose, plus 56 bytes of poses sent out) cross a 1 Gbit/s link at the client (an assumption, stated).
 Rounds are interleaved (each measurement once per round), medians of --rounds.
 
@@ -67,14 +69,24 @@ def dask_rate(client, cfg, poses, chunk):
     return len(poses) / timed(lambda: dask.compute(md.distance(cfg, poses, chunks=chunk)))
 
 
-def engine_costs(client, rounds):
+def engine_costs(clients, rounds):
+    """The round trip of one empty task (2 workers), and empty tasks per second through 1 and 2 workers."""
     trips = []
     for _ in range(50 * rounds):
-        trips.append(timed(lambda: client.submit(noop, np.random.random(), pure=False).result()))
-    per_second = []
+        trips.append(timed(lambda: clients[2].submit(noop, np.random.random(), pure=False).result()))
+    per_second = {}
     for _ in range(rounds):
-        per_second.append(2000 / timed(lambda: client.gather(client.map(noop, range(2000), pure=False))))
-    return statistics.median(trips), statistics.median(per_second)
+        for workers, client in clients.items():
+            per_second.setdefault(workers, []).append(
+                2000 / timed(lambda: client.gather(client.map(noop, range(2000), pure=False))))
+    return statistics.median(trips), {w: statistics.median(v) for w, v in per_second.items()}
+
+
+def tasks_per_chunk(cfg, poses, chunk):
+    """Tasks of md.distance's optimised graph per chunk of poses (the pose slice, the scene's call, the fields)."""
+    import dask.base
+    r = md.distance(cfg, poses, chunks=chunk)
+    return len(dask.base.collections_to_dsk(list(r.values()), optimize_graph=True)) / -(-len(poses) // chunk)
 
 
 def measure(cfg, args, clients):
@@ -86,15 +98,20 @@ def measure(cfg, args, clients):
     first = {}
     for workers, client in clients.items():  # the slowest worker's build of its scene (files checked and hashed)
         first[workers] = max(client.run(worker_build, p).values())
-    rates = {}
+    rates, cpu = {}, []
     for _ in range(args.rounds):
         for threads in (1, 2):
+            start = time.process_time()
             rates.setdefault(("batch", threads), []).append(
                 len(poses) / timed(lambda: scene.distance(poses, threads=threads)))
+            if threads == 1:
+                cpu.append((time.process_time() - start) / len(poses))
         for workers, client in clients.items():
             for chunk in args.chunks:
                 rates.setdefault((workers, chunk), []).append(dask_rate(client, cfg, poses, chunk))
-    return name, p, statistics.median(builds), first, {k: statistics.median(v) for k, v in rates.items()}
+    per_chunk = {chunk: tasks_per_chunk(cfg, poses, chunk) for chunk in args.chunks}
+    return (name, p, statistics.median(builds), first, {k: statistics.median(v) for k, v in rates.items()},
+            statistics.median(cpu), per_chunk)
 
 
 def project(per_pose, task_cost, tasks_per_second, chunk, workers, build):
@@ -121,43 +138,42 @@ def main():
     try:
         for workers in (1, 2):
             clients[workers] = cluster(workers)
-        task_trip, tasks_per_second = engine_costs(clients[2][1], args.rounds)
+        task_trip, tasks_per_second = engine_costs({w: c for w, (_, c) in clients.items()}, args.rounds)
         results = [measure(cfg, args, {w: c for w, (_, c) in clients.items()}) for cfg in args.problems.split(",")]
     finally:
         for c, client in clients.values():
             client.close()
             c.close()
     print("load average after: %.2f %.2f %.2f" % os.getloadavg())
-    print("\nempty task round trip %.2f ms; empty tasks through the scheduler %.0f /s (2 workers)\n"
-          % (task_trip * 1e3, tasks_per_second))
+    print("\nempty task round trip %.2f ms (2 workers); empty tasks per second: %.0f through 1 worker, %.0f through 2\n"
+          % (task_trip * 1e3, tasks_per_second[1], tasks_per_second[2]))
     print("| problem | scene build | scene build on the workers (slowest), 1 / 2 workers | batch threads=1 | "
           "batch threads=2 | " + " | ".join("Dask %s worker%s, chunk %d" % (w, "s" if w > 1 else "", c)
                                            for w in (1, 2) for c in args.chunks) + " |")
     print("|---|---:|---:|---:|---:|" + "---:|" * (2 * len(args.chunks)))
     projections = []
-    for name, p, build, first, rates in results:
+    for name, p, build, first, rates, per_pose, tasks in results:
         one = rates[("batch", 1)]
         cells = ["%.0f (**%.2f**)" % (rates[(w, c)], rates[(w, c)] / (one * w if w == 1 else rates[("batch", 2)]))
                  for w in (1, 2) for c in args.chunks]
         print("| %s | %.0f ms | %.0f / %.0f ms | %.0f | %.0f (**%.2f**) | %s |" % (
             name, build * 1e3, first[1] * 1e3, first[2] * 1e3, one, rates[("batch", 2)], rates[("batch", 2)] / one,
             " | ".join(cells)))
-        per_pose = 1.0 / one
         for chunk in args.chunks:
-            # The per-task cost on a worker: what a 1-worker chunk takes beyond its poses' compute.
-            task_cost = max(0.0, chunk / rates[(1, chunk)] - chunk * per_pose)
-            row = [name, chunk, per_pose * 1e6, chunk * per_pose * 1e3, task_cost * 1e3]
+            # The engine's cost per chunk: what a chunk takes on one worker beyond its poses' CPU time.
+            chunk_cost = max(0.0, chunk / rates[(1, chunk)] - chunk * per_pose)
+            row = [name, chunk, per_pose * 1e6, chunk * per_pose * 1e3, tasks[chunk], chunk_cost * 1e3]
             for workers in (8, 64, 512):
-                row.append(project(per_pose, task_cost, tasks_per_second, chunk, workers, build))
+                row.append(project(per_pose, chunk_cost, tasks_per_second[2] / tasks[chunk], chunk, workers, build))
             projections.append(row)
     print("\nCells: poses per second; in bold, Dask against the batch with as many threads as worker processes "
           "(1 worker: threads=1; 2 workers: threads=2), and threads=2 against threads=1.\n")
-    print("| problem | chunk | per pose | per chunk | per task beyond compute (1 worker) | 8 workers | 64 workers | "
-          "512 workers |")
-    print("|---|---:|---:|---:|---:|---|---|---|")
-    for name, chunk, pose_us, chunk_ms, task_ms, *cells in projections:
-        print("| %s | %d | %.1f µs | %.2f ms | %.2f ms | %s |" % (
-            name, chunk, pose_us, chunk_ms, task_ms,
+    print("| problem | chunk | per pose (CPU) | per chunk (CPU) | tasks per chunk | engine per chunk (1 worker) | "
+          "8 workers | 64 workers | 512 workers |")
+    print("|---|---:|---:|---:|---:|---:|---|---|---|")
+    for name, chunk, pose_us, chunk_ms, tasks, task_ms, *cells in projections:
+        print("| %s | %d | %.1f µs | %.2f ms | %.1f | %.2f ms | %s |" % (
+            name, chunk, pose_us, chunk_ms, tasks, task_ms,
             " | ".join("%.3g /s (%s)" % (rate, limit) for rate, limit in cells)))
 
 
