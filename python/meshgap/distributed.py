@@ -398,6 +398,22 @@ def _current_client(client):
         return None
 
 
+def _compute(tasks, client, progress):
+    """Run label()'s tasks on client with its progress bar, or on local threads (client None)."""
+    if tasks and client is not None:
+        futures = client.compute(tasks)
+        if progress:
+            from distributed import progress as show
+            show(futures)
+        client.gather(futures)
+    elif tasks:
+        from dask.diagnostics import ProgressBar
+        with warnings.catch_warnings():  # client=False beside an active client: local threads, as asked
+            warnings.filterwarnings("ignore", "Running on a single-machine scheduler")
+            with ProgressBar() if progress else contextlib.nullcontext():
+                dask.compute(*tasks, scheduler="threads")
+
+
 def label(source, n, out="labels.zarr", sampler="uniform", chunk=DEFAULT_CHUNK, seed=0, volume=None, client=None,
           progress=True):
     """Draw n poses in volume (default the cfg's volume, or for a pair of meshes the world's bounding box grown by
@@ -408,7 +424,7 @@ def label(source, n, out="labels.zarr", sampler="uniform", chunk=DEFAULT_CHUNK, 
     distributed Client (or client), with its progress bar; else (or with client=False) on local threads with Dask's
     ProgressBar. Returns
     {"out", "chunks", "computed"} (computed: the chunks this run wrote)."""
-    import zarr  # noqa: F401  (fail here, not on the workers, when it is missing)
+    import zarr  # fail here, not on the workers, when it is missing
     p = problem(source)
     if sampler not in SAMPLERS:
         raise ValueError("sampler: %r is not known (%s)" % (sampler, ", ".join(SAMPLERS)))
@@ -428,23 +444,18 @@ def label(source, n, out="labels.zarr", sampler="uniform", chunk=DEFAULT_CHUNK, 
         params["steps"] = NEAR_STEPS
     elif sampler == "path":
         params["states"] = PATH_STATES
+    created = not os.path.exists(out)
     group = _store(out, params, p)
     done = group["done"][:]
     todo = [int(i) for i in np.flatnonzero(done == 0)]
     tasks = [dask.delayed(_label_chunk, pure=False)(p, out, i, params) for i in todo]
     client = _current_client(client)
-    if tasks and client is not None:
-        futures = client.compute(tasks)
-        if progress:
-            from distributed import progress as show
-            show(futures)
-        client.gather(futures)
-    elif tasks:
-        from dask.diagnostics import ProgressBar
-        with warnings.catch_warnings():  # client=False beside an active client: local threads, as asked
-            warnings.filterwarnings("ignore", "Running on a single-machine scheduler")
-            with ProgressBar() if progress else contextlib.nullcontext():
-                dask.compute(*tasks, scheduler="threads")
+    try:
+        _compute(tasks, client, progress)
+    except BaseException:
+        if created and not zarr.open_group(out, mode="r")["done"][:].any():
+            shutil.rmtree(out, ignore_errors=True)  # made by this call, no chunk done: nothing left half made
+        raise
     # A worker killed while writing leaves its chunk's temporary file (NAME.UUID.partial, renamed into place once
     # written): the chunk was rerun, the leftover goes.
     for folder, _, names in os.walk(out):

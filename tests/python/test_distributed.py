@@ -194,6 +194,9 @@ def test_bad_input(client, tmp_path):
         md.label(cfg, 0, out=out)
     with pytest.raises(ValueError, match="sampler: 'nearby' is not known \\(uniform, near, path\\)"):
         md.label(cfg, 10, out=out, sampler="nearby")
+    # No contact in the volume (the bar stays clear of the wall): the near sampler has nothing to bisect.
+    with pytest.raises(ValueError, match=r"sampler 'near': 0 of \d+ uniform poses of the volume .* collide"):
+        md.label(cfg, 10, out=out, sampler="near", volume=((3, 3), (5, 5)), progress=False)
     assert not list(tmp_path.glob("labels.zarr*"))  # nothing half made
     md.label(cfg, 10, out=out, chunk=5, progress=False)
     with pytest.raises(ValueError, match="labels.zarr: a data set of other parameters"):
