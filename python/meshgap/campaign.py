@@ -33,7 +33,8 @@ A cell is (problem, planner, checker, sampler, batch b of B); it writes OUT/<pro
 same cell gets the same seed in any campaign, whatever else it holds). meshgap_benchmark writes into a folder of the
 cell's own (OUT/.cells/...), and the task moves the log into place once it holds all the cell's runs: a log in OUT is
 complete, a cell whose log is there is never rerun, and a cell failed (non-zero exit, or runs missing) or lost with its
-worker is run again by Dask (retries= for failures; a lost worker's tasks go to the others). meshgap_benchmark is
+worker is run again by Dask (retries= for failures; a lost worker's tasks go to the others). A log already in OUT of
+other settings (runs, seed, time or memory) is refused before anything runs: one folder, one campaign. meshgap_benchmark is
 found by executable=, else $MESHGAP_BENCHMARK, else beside the package (a build tree's planners/, an install's bin/),
 else on PATH; problems and the executable must be at the same paths on every worker, and OUT a folder they share.
 Needs Debian's python3-dask and python3-distributed, and ompl-demos for the database.
@@ -41,6 +42,7 @@ Needs Debian's python3-dask and python3-distributed, and ompl-demos for the data
 import configparser
 import glob
 import hashlib
+import math
 import os
 import re
 import shutil
@@ -164,6 +166,31 @@ def log_runs(path):
     with open(path, encoding="utf-8", errors="replace") as f:
         found = _RUNS_LINE.findall(f.read())
     return int(found[-1]) if len(found) == 1 else None
+
+
+def _log_settings(path):
+    """(runs, seed, seconds per run, MB per run) of an OMPL .log, None for what it lacks."""
+    with open(path, encoding="utf-8", errors="replace") as f:
+        text = f.read()
+    found = lambda pattern: re.findall(pattern, text, re.MULTILINE)
+    runs, seed = found(r"^(\d+) runs$"), found(r"^(\d+) is the random seed$")
+    time, memory = found(r"^(\S+) seconds per run$"), found(r"^(\S+) MB per run$")
+    return (int(runs[0]) if len(runs) == 1 else None, int(seed[0]) if seed else None,
+            float(time[0]) if time else None, float(memory[0]) if memory else None)
+
+
+def _check_present(cells, out, time, memory):
+    """The logs already in out must be those of these cells (runs, seed, time and memory); ValueError naming the
+    first that is not (a campaign of other settings: choose another out)."""
+    for cell in cells:
+        path = os.path.join(out, cell.name + ".log")
+        if os.path.isfile(path):
+            got = _log_settings(path)
+            want = (cell.runs, cell.seed, time, memory)
+            if got[0] != want[0] or got[1] != want[1] or got[2] is None or not math.isclose(got[2], time) or \
+                    got[3] is None or not math.isclose(got[3], memory):
+                raise ValueError("%s: a log of other settings (runs, seed, seconds, MB: %s; this campaign's cell: %s);"
+                                 " choose another out" % (path, got, want))
 
 
 def _arguments(executable, cell, time, memory, params, out):
@@ -304,7 +331,8 @@ def run(problems, planners, checkers=("certified",), samplers=(), runs=10, batch
     module's help), retried up to retries times when it fails, with Dask's progress bar; then every cell's log into
     OUT/database. Bad input (a problem file missing, an unknown planner, checker or sampler, a bad --param: checked
     first by meshgap_benchmark on the client when check is true; meshgap_benchmark or ompl_benchmark_statistics
-    missing; no client) raises before anything is written. Returns {"cells", "ran", "present", "logs",
+    missing; no client; a log in out of other settings: runs, seed, time or memory) raises before anything is
+    written. Returns {"cells", "ran", "present", "logs",
     "database"}: ran counts the cells this call ran."""
     cells = grid(problems, planners, checkers, samplers, runs, batch, seed)
     params = [str(p) for p in ([params] if isinstance(params, str) else params)]
@@ -318,6 +346,7 @@ def run(problems, planners, checkers=("certified",), samplers=(), runs=10, batch
     out = os.path.abspath(os.fspath(out))
     if check:
         _check(cells, executable, params)
+    _check_present(cells, out, float(time), float(memory))
     os.makedirs(out, exist_ok=True)
     todo = [c for c in cells if not os.path.isfile(os.path.join(out, c.name + ".log"))]
     if todo:

@@ -142,6 +142,14 @@ def test_campaign_complete_database_and_no_rerun(client, reference, tmp_path):
     third = mc.run_file(campaign, client=client, executable=executable("benchmark"), progress=False)
     assert (third["ran"], third["present"]) == (1, 15)
     assert timeless(gone) == before
+    # The same folder with other settings: refused, nothing touched.
+    with pytest.raises(ValueError, match=r"twisted.rrtconnect.certified.b1of2.log: a log of other settings"):
+        mc.run(out=out, client=client, executable=executable("benchmark"), progress=False,
+               **dict(SETTINGS, time=4.0))
+    with pytest.raises(ValueError, match=r"twisted.rrtconnect.certified.b1of2.log: a log of other settings"):
+        mc.run(out=out, client=client, executable=executable("benchmark"), progress=False, **dict(SETTINGS, seed=8))
+    stamps[gone.name] = (gone.stat().st_ino, gone.stat().st_mtime_ns)
+    assert stamps == {p.name: (p.stat().st_ino, p.stat().st_mtime_ns) for p in out.glob("*.log")}
 
 
 def test_bad_input_writes_nothing(client, tmp_path):
