@@ -114,9 +114,8 @@ def measure(cfg, args, clients):
             statistics.median(cpu), per_chunk)
 
 
-def project(per_pose, task_cost, tasks_per_second, chunk, workers, build):
-    """Poses per second of workers workers, chunks of chunk poses, and what limits it; the time to the first
-    answers: the scene build."""
+def project(per_pose, task_cost, tasks_per_second, chunk, workers):
+    """Poses per second of workers workers on chunks of chunk poses, and what limits it."""
     compute = workers * chunk / (chunk * per_pose + task_cost)
     scheduler = tasks_per_second * chunk
     link = LINK / (RESULT_BYTES + 56)
@@ -164,7 +163,7 @@ def main():
             chunk_cost = max(0.0, chunk / rates[(1, chunk)] - chunk * per_pose)
             row = [name, chunk, per_pose * 1e6, chunk * per_pose * 1e3, tasks[chunk], chunk_cost * 1e3]
             for workers in (8, 64, 512):
-                row.append(project(per_pose, chunk_cost, tasks_per_second[2] / tasks[chunk], chunk, workers, build))
+                row.append(project(per_pose, chunk_cost, tasks_per_second[2] / tasks[chunk], chunk, workers))
             projections.append(row)
     print("\nCells: poses per second; in bold, Dask against the batch with as many threads as worker processes "
           "(1 worker: threads=1; 2 workers: threads=2), and threads=2 against threads=1.\n")

@@ -1,8 +1,8 @@
 """meshgap.campaign on a local Dask cluster of two worker processes: a small campaign (two maps, two planners, two
 checkers, two batches of two runs) ends with every cell's complete log, seeded as specified, and one database of
 one experiment per problem; a second call, from a campaign file, reruns nothing; a campaign during which a worker is
-killed ends with the same logs as the undisturbed one (timings aside); bad input raises one clear exception and
-writes nothing."""
+killed ends with the same logs as the undisturbed one (timings aside); a failing cell is retried; bad input raises
+one clear exception and writes nothing."""
 import hashlib
 import os
 import signal
@@ -178,6 +178,43 @@ def test_bad_input_writes_nothing(client, tmp_path):
     assert cli_error([sys.executable, "-m", "meshgap.campaign", str(campaign)]).startswith(
         "%s: unknown key 'run' in [campaign]" % campaign)
     assert not out.exists() and not list(tmp_path.glob("campaign*"))
+
+
+def flaky(folder, real):
+    """A meshgap_benchmark that fails the first time it runs a cell (by its --seed; marked in folder), then runs the
+    real one."""
+    folder.mkdir()
+    script = folder / "flaky_benchmark"
+    script.write_text("""#!/bin/sh
+seed=""; previous=""
+for a in "$@"; do [ "$previous" = "--seed" ] && seed="$a"; previous="$a"; done
+if [ -n "$seed" ] && [ ! -e "%s/tried.$seed" ]; then
+    : > "%s/tried.$seed"; echo "error: a simulated failure" >&2; exit 1
+fi
+exec "%s" "$@"
+""" % (folder, folder, real))
+    script.chmod(0o755)
+    return script
+
+
+def test_failed_cell_retried(client, tmp_path):
+    settings = dict(SETTINGS, problems=[PROBLEMS[0]], planners=["rrtconnect"], checkers=["certified"], runs=2,
+                    batch=1)
+    script = flaky(tmp_path / "a", executable("benchmark"))
+    # No retry: the first failure is the campaign's, naming the cell; no database.
+    out = tmp_path / "once"
+    with pytest.raises(RuntimeError, match=r"twisted.rrtconnect.certified.b\dof2: meshgap_benchmark failed on .* "
+                                           r"\(exit 1\): a simulated failure"):
+        mc.run(out=out, client=client, executable=script, retries=0, progress=False, **settings)
+    assert not (out / "results.db").exists()
+    # One retry: every cell fails once, then runs; the logs are the real executable's.
+    script = flaky(tmp_path / "b", executable("benchmark"))
+    out = tmp_path / "retried"
+    summary = mc.run(out=out, client=client, executable=script, retries=1, progress=False, **settings)
+    assert (summary["cells"], summary["ran"]) == (2, 2)
+    assert len(list((tmp_path / "b").glob("tried.*"))) == 2
+    assert [mc.log_runs(out / ("twisted.rrtconnect.certified.b%dof2.log" % b)) for b in (1, 2)] == [1, 1]
+    assert sqlite3.connect(str(out / "results.db")).execute("SELECT COUNT(*) FROM runs").fetchone()[0] == 2
 
 
 def benchmark_processes(out):
