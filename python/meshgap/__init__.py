@@ -1,5 +1,6 @@
 # The package meshgap: the compiled extension meshgap._meshgap, every public name of it re-exported here with its
-# docstring; meshgap.distributed runs the batch on Dask (imported on demand: it needs python3-dask).
+# docstring; meshgap.distributed runs the batch on Dask (imported on demand: it needs python3-dask), and
+# meshgap.campaign benchmark campaigns on it (meshgap.campaign, imported on first use).
 from . import _meshgap
 from ._meshgap import *  # noqa: F401,F403  (Scene, load_mesh, plan, PLAN_KEYWORDS, SCENE_BATCH_BLOCK, ...)
 
@@ -13,3 +14,11 @@ for _name in __all__:
         except (AttributeError, TypeError):
             pass
 del _name, _value
+
+
+def __getattr__(name):
+    """meshgap.campaign on first use, so `python3 -m meshgap.campaign` runs it as a fresh module."""
+    if name == "campaign":
+        import importlib
+        return importlib.import_module(".campaign", __name__)
+    raise AttributeError("module %r has no attribute %r" % (__name__, name))

@@ -229,11 +229,13 @@ def connect(address=None, timeout=10, **kwargs):
             from None
 
 
-def uniform_poses(volume, planar, count, seed, index):
-    """count poses uniform in volume ((min...), (max...)): position uniform, rotation uniform in SO(3) (a uniform
-    unit quaternion, x y z w) or theta uniform in [-pi, pi) when planar; drawn from the generator seeded with
-    (seed, index), so chunk index of a data set is the same on any machine."""
-    rng = np.random.default_rng([seed, index])
+SAMPLERS = ("uniform", "near", "path")
+NEAR_STEPS = 24  # bisection steps of the "near" sampler: its pairs end 2^-24 of their first length apart
+PATH_STATES = 32  # poses per straight path of the "path" sampler
+_NEAR_ROUNDS = 64
+
+
+def _uniform(rng, volume, planar, count):
     lo, hi = np.asarray(volume[0], dtype=np.float64), np.asarray(volume[1], dtype=np.float64)
     position = lo + (hi - lo) * rng.random((count, len(lo)))
     if planar:
@@ -245,11 +247,94 @@ def uniform_poses(volume, planar, count, seed, index):
     return np.column_stack([position, q])
 
 
+def uniform_poses(volume, planar, count, seed, index):
+    """count poses uniform in volume ((min...), (max...)): position uniform, rotation uniform in SO(3) (a uniform
+    unit quaternion, x y z w) or theta uniform in [-pi, pi) when planar; drawn from the generator seeded with
+    (seed, index), so chunk index of a data set is the same on any machine."""
+    return _uniform(np.random.default_rng([seed, index]), volume, planar, count)
+
+
+def interpolate(a, b, t, planar):
+    """Poses between rows of a and b at fractions t (one per row): position linear, theta along the shorter arc
+    (wrapped to [-pi, pi)) when planar, else the quaternion by slerp along the shorter arc (x y z w, unit)."""
+    t = np.asarray(t, dtype=np.float64).reshape(-1, 1)
+    axes = 2 if planar else 3
+    out = np.empty(a.shape)
+    out[:, :axes] = a[:, :axes] + t * (b[:, :axes] - a[:, :axes])
+    if planar:
+        turn = np.remainder(b[:, 2] - a[:, 2] + math.pi, 2 * math.pi) - math.pi
+        out[:, 2] = np.remainder(a[:, 2] + t[:, 0] * turn + math.pi, 2 * math.pi) - math.pi
+        return out
+    qa, qb = a[:, 3:], b[:, 3:] * np.where(np.sum(a[:, 3:] * b[:, 3:], axis=1) < 0, -1.0, 1.0)[:, None]
+    cos = np.clip(np.sum(qa * qb, axis=1), -1.0, 1.0)
+    angle = np.arccos(cos)[:, None]
+    sin = np.sin(angle)
+    small = sin[:, 0] < 1e-9
+    wa = np.where(small[:, None], 1.0 - t, np.sin((1.0 - t) * angle) / np.where(small[:, None], 1.0, sin))
+    wb = np.where(small[:, None], t, np.sin(t * angle) / np.where(small[:, None], 1.0, sin))
+    q = wa * qa + wb * qb
+    out[:, 3:] = q / np.linalg.norm(q, axis=1, keepdims=True)
+    return out
+
+
+def near_poses(scene, volume, planar, count, seed, index, steps=NEAR_STEPS):
+    """count poses near the obstacles, in pairs straddling contact: uniform poses of volume are split into free and
+    colliding ones (scene.in_collision), a free pose is paired with a colliding one, and the segment between them
+    (interpolate()) is bisected steps times, keeping a free and a colliding end; rows 0, 2, 4... are the free ends,
+    rows 1, 3, 5... the colliding ones, 2^-steps of the pair's first segment apart. Seeded with (seed, index, 1);
+    ValueError when no pose of the volume collides (or none is free) in 64 rounds of draws."""
+    rng = np.random.default_rng([seed, index, 1])
+    pairs = (count + 1) // 2
+    free, hit, drawn = [], [], 0
+    for _ in range(_NEAR_ROUNDS):
+        x = _uniform(rng, volume, planar, max(2 * pairs, 64))
+        colliding = np.asarray(scene.in_collision(x), dtype=bool)
+        drawn += len(x)
+        free.append(x[~colliding])
+        hit.append(x[colliding])
+        if min(sum(map(len, free)), sum(map(len, hit))) >= pairs:
+            break
+    free, hit = np.concatenate(free), np.concatenate(hit)
+    if min(len(free), len(hit)) < pairs:
+        raise ValueError("sampler 'near': %d of %d uniform poses of the volume %r collide: no contact to sample "
+                         "near" % (len(hit), drawn, volume))
+    a, b = free[:pairs].copy(), hit[:pairs].copy()
+    for _ in range(steps):
+        middle = interpolate(a, b, np.full(pairs, 0.5), planar)
+        colliding = np.asarray(scene.in_collision(middle), dtype=bool)
+        a[~colliding] = middle[~colliding]
+        b[colliding] = middle[colliding]
+    out = np.empty((2 * pairs, a.shape[1]))
+    out[0::2], out[1::2] = a, b
+    return out[:count]
+
+
+def path_poses(volume, planar, count, seed, index, states=PATH_STATES):
+    """count poses along straight paths: pairs of poses uniform in volume, each joined by states poses evenly spaced
+    from one to the other (interpolate(), both ends included), path after path. Seeded with (seed, index, 2)."""
+    rng = np.random.default_rng([seed, index, 2])
+    paths = -(-count // states)
+    ends = _uniform(rng, volume, planar, 2 * paths)
+    t = np.tile(np.linspace(0.0, 1.0, states), paths)
+    poses = interpolate(np.repeat(ends[:paths], states, axis=0), np.repeat(ends[paths:], states, axis=0), t, planar)
+    return poses[:count]
+
+
+def _draw(p, params, count, index):
+    """The poses of chunk index of a data set, by its sampler."""
+    volume, planar, seed = params["volume"], params["planar"], params["seed"]
+    if params["sampler"] == "near":
+        return near_poses(scene(p), volume, planar, count, seed, index, params["steps"])
+    if params["sampler"] == "path":
+        return path_poses(volume, planar, count, seed, index, params["states"])
+    return uniform_poses(volume, planar, count, seed, index)
+
+
 def _label_chunk(p, out, index, params):
     import zarr
-    n, chunk, seed = params["n"], params["chunk"], params["seed"]
+    n, chunk = params["n"], params["chunk"]
     start, stop = index * chunk, min(n, (index + 1) * chunk)
-    poses = uniform_poses(params["volume"], params["planar"], stop - start, seed, index)
+    poses = _draw(p, params, stop - start, index)
     r = scene(p).distance(poses, exact=True, depth=True)
     try:
         group = zarr.open_group(out, mode="r+")
@@ -313,37 +398,8 @@ def _current_client(client):
         return None
 
 
-def label(source, n, out="labels.zarr", sampler="uniform", chunk=DEFAULT_CHUNK, seed=0, volume=None, client=None,
-          progress=True):
-    """Draw n poses (sampler "uniform": uniform in volume, default the cfg's volume, or for a pair of meshes the
-    world's bounding box grown by the robot's reach)
-    and write them with their exact clearance and witness points (Scene.distance's fields, exact=True, depth=True)
-    to the Zarr group out, one task per chunk of rows, each writing its rows then its mark in done. A rerun with the
-    same arguments computes only the chunks not marked done, so a killed run resumes. Runs on the current
-    distributed Client (or client), with its progress bar; else (or with client=False) on local threads with Dask's
-    ProgressBar. Returns
-    {"out", "chunks", "computed"} (computed: the chunks this run wrote)."""
-    import zarr  # noqa: F401  (fail here, not on the workers, when it is missing)
-    p = problem(source)
-    if sampler != "uniform":
-        raise ValueError("sampler: %r is not known (uniform)" % (sampler,))
-    if not (isinstance(n, (int, np.integer)) and n > 0) or not (isinstance(chunk, (int, np.integer)) and chunk > 0):
-        raise ValueError("n and chunk: expected positive integers, got n=%r, chunk=%r" % (n, chunk))
-    volume = volume if volume is not None else p.volume if p.volume is not None else _around(p)
-    planar = bool(p.planar)
-    volume = [[float(v) for v in volume[0]], [float(v) for v in volume[1]]]
-    if len(volume[0]) != (2 if planar else 3) or len(volume[1]) != len(volume[0]) or any(
-            lo >= hi for lo, hi in zip(*volume)):
-        raise ValueError("volume: expected ((min...), (max...)) of %d axes, max above min, got %r" % (
-            2 if planar else 3, volume))
-    out = os.path.abspath(os.fspath(out))
-    params = {"n": int(n), "chunk": int(chunk), "seed": int(seed), "sampler": sampler, "planar": planar,
-              "volume": volume, "problem": p.key}
-    group = _store(out, params, p)
-    done = group["done"][:]
-    todo = [int(i) for i in np.flatnonzero(done == 0)]
-    tasks = [dask.delayed(_label_chunk, pure=False)(p, out, i, params) for i in todo]
-    client = _current_client(client)
+def _compute(tasks, client, progress):
+    """Run label()'s tasks on client with its progress bar, or on local threads (client None)."""
     if tasks and client is not None:
         futures = client.compute(tasks)
         if progress:
@@ -356,6 +412,50 @@ def label(source, n, out="labels.zarr", sampler="uniform", chunk=DEFAULT_CHUNK, 
             warnings.filterwarnings("ignore", "Running on a single-machine scheduler")
             with ProgressBar() if progress else contextlib.nullcontext():
                 dask.compute(*tasks, scheduler="threads")
+
+
+def label(source, n, out="labels.zarr", sampler="uniform", chunk=DEFAULT_CHUNK, seed=0, volume=None, client=None,
+          progress=True):
+    """Draw n poses in volume (default the cfg's volume, or for a pair of meshes the world's bounding box grown by
+    the robot's reach) with sampler "uniform" (uniform_poses()), "near" (pairs straddling contact, near_poses()) or
+    "path" (along straight paths between uniform poses, path_poses()), seeded per chunk, and write them with their exact clearance and witness points (Scene.distance's fields, exact=True, depth=True)
+    to the Zarr group out, one task per chunk of rows, each writing its rows then its mark in done. A rerun with the
+    same arguments computes only the chunks not marked done, so a killed run resumes. Runs on the current
+    distributed Client (or client), with its progress bar; else (or with client=False) on local threads with Dask's
+    ProgressBar. Returns
+    {"out", "chunks", "computed"} (computed: the chunks this run wrote)."""
+    import zarr  # fail here, not on the workers, when it is missing
+    p = problem(source)
+    if sampler not in SAMPLERS:
+        raise ValueError("sampler: %r is not known (%s)" % (sampler, ", ".join(SAMPLERS)))
+    if not (isinstance(n, (int, np.integer)) and n > 0) or not (isinstance(chunk, (int, np.integer)) and chunk > 0):
+        raise ValueError("n and chunk: expected positive integers, got n=%r, chunk=%r" % (n, chunk))
+    volume = volume if volume is not None else p.volume if p.volume is not None else _around(p)
+    planar = bool(p.planar)
+    volume = [[float(v) for v in volume[0]], [float(v) for v in volume[1]]]
+    if len(volume[0]) != (2 if planar else 3) or len(volume[1]) != len(volume[0]) or any(
+            lo >= hi for lo, hi in zip(*volume)):
+        raise ValueError("volume: expected ((min...), (max...)) of %d axes, max above min, got %r" % (
+            2 if planar else 3, volume))
+    out = os.path.abspath(os.fspath(out))
+    params = {"n": int(n), "chunk": int(chunk), "seed": int(seed), "sampler": sampler, "planar": planar,
+              "volume": volume, "problem": p.key}
+    if sampler == "near":
+        params["steps"] = NEAR_STEPS
+    elif sampler == "path":
+        params["states"] = PATH_STATES
+    created = not os.path.exists(out)
+    group = _store(out, params, p)
+    done = group["done"][:]
+    todo = [int(i) for i in np.flatnonzero(done == 0)]
+    tasks = [dask.delayed(_label_chunk, pure=False)(p, out, i, params) for i in todo]
+    client = _current_client(client)
+    try:
+        _compute(tasks, client, progress)
+    except BaseException:
+        if created and not zarr.open_group(out, mode="r")["done"][:].any():
+            shutil.rmtree(out, ignore_errors=True)  # made by this call, no chunk done: nothing left half made
+        raise
     # A worker killed while writing leaves its chunk's temporary file (NAME.UUID.partial, renamed into place once
     # written): the chunk was rerun, the leftover goes.
     for folder, _, names in os.walk(out):

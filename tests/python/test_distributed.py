@@ -1,7 +1,7 @@
 """meshgap.distributed on a local Dask cluster of two worker processes: the answers of Scene.distance in this process
 on the same poses (SE(3) and SE(2) problems, a pair of meshes), one scene built per worker, label() to Zarr against
-the same single-process computation, resumed after a simulated crash and after a worker killed mid-run, and bad
-input (one clear exception each)."""
+the same single-process computation, resumed after a simulated crash and after a worker killed mid-run, its samplers
+near the obstacles and along paths, and bad input (one clear exception each)."""
 import os
 import shutil
 import signal
@@ -192,14 +192,85 @@ def test_bad_input(client, tmp_path):
         md.label(cfg, 10, out=out, volume=((0, 0), (1, -1)))
     with pytest.raises(ValueError, match="n and chunk: expected positive integers"):
         md.label(cfg, 0, out=out)
-    with pytest.raises(ValueError, match="sampler: 'near' is not known"):
-        md.label(cfg, 10, out=out, sampler="near")
+    with pytest.raises(ValueError, match="sampler: 'nearby' is not known \\(uniform, near, path\\)"):
+        md.label(cfg, 10, out=out, sampler="nearby")
+    # No contact in the volume (the bar stays clear of the wall): the near sampler has nothing to bisect.
+    with pytest.raises(ValueError, match=r"sampler 'near': 0 of \d+ uniform poses of the volume .* collide"):
+        md.label(cfg, 10, out=out, sampler="near", volume=((3, 3), (5, 5)), progress=False)
     assert not list(tmp_path.glob("labels.zarr*"))  # nothing half made
     md.label(cfg, 10, out=out, chunk=5, progress=False)
     with pytest.raises(ValueError, match="labels.zarr: a data set of other parameters"):
         md.label(cfg, 20, out=out, chunk=5, progress=False)
     with pytest.raises(ConnectionError, match="cannot reach the Dask scheduler at tcp://127.0.0.1:1 within 2 s"):
         md.connect("tcp://127.0.0.1:1", timeout=2)
+
+
+def quaternion_angle(a, b):
+    """The rotation angle between unit quaternions, rows of a and b."""
+    return 2 * np.arccos(np.clip(np.abs(np.sum(a * b, axis=1)), 0, 1))
+
+
+def reach(path):
+    """The largest distance of the robot's vertices from its origin (read in float32, as the scene reads them)."""
+    V, _ = meshgap.load_mesh(path)
+    return float(np.linalg.norm(V.astype(np.float32).astype(np.float64), axis=1).max())
+
+
+def test_label_near_obstacles(client, tmp_path):
+    """sampler="near": pairs straddling contact, 2^-24 of a segment of the volume apart; the free end's exact
+    clearance is bounded by how far the pair's robot points are apart (clearance is 1-Lipschitz in them), far below
+    that of uniform poses."""
+    problem = md.problem(HAND_BOWL)
+    n, chunk = 600, 200
+    md.label(HAND_BOWL, n, out=tmp_path / "near.zarr", chunk=chunk, sampler="near", progress=False)
+    md.label(HAND_BOWL, n, out=tmp_path / "uniform.zarr", chunk=chunk, progress=False)
+    near, uniform = zarr.open_group(str(tmp_path / "near.zarr")), zarr.open_group(str(tmp_path / "uniform.zarr"))
+    assert near.attrs["params"]["sampler"] == "near" and near["done"][:].all()
+    poses = near["poses"][:]
+    scene = meshgap.Scene.from_cfg(HAND_BOWL)
+    want = scene.distance(poses)
+    assert_same({name: near[name][:] for name in FIELDS}, want)
+    lo, hi = np.asarray(problem.volume[0]), np.asarray(problem.volume[1])
+    assert (poses[:, :3] >= lo).all() and (poses[:, :3] <= hi).all()
+    free, hit = poses[0::2], poses[1::2]
+    assert (~want["in_collision"][0::2]).all() and want["in_collision"][1::2].all()
+    moved = np.linalg.norm(free[:, :3] - hit[:, :3], axis=1)
+    turned = quaternion_angle(free[:, 3:], hit[:, 3:])
+    assert (moved <= np.linalg.norm(hi - lo) / 2 ** 24 * (1 + 1e-9)).all() and (turned <= np.pi / 2 ** 24 + 1e-12).all()
+    bound = moved + reach(MAPS / "hand_bowl" / "hand_bowl_b.obj") * turned
+    assert (want["distance"][0::2] <= bound + 1e-9).all()
+    assert np.abs(want["distance"]).mean() < 1e-3 * np.abs(uniform["distance"][:]).mean()
+
+
+def test_label_along_paths(client, tmp_path):
+    """sampler="path": straight paths of PATH_STATES poses between uniform poses, evenly spaced (translation and
+    angle), their clearance changing along a free stretch by no more than the robot's points move."""
+    cfg = planar_cfg(tmp_path / "problem")
+    n, chunk, states = 500, 200, md.PATH_STATES
+    md.label(cfg, n, out=tmp_path / "path.zarr", chunk=chunk, sampler="path", progress=False)
+    group = zarr.open_group(str(tmp_path / "path.zarr"))
+    poses = group["poses"][:]
+    want = meshgap.Scene.from_cfg(cfg).distance(poses)
+    assert_same({name: group[name][:] for name in FIELDS}, want)
+    assert 0 < want["in_collision"].sum() < n
+    assert (np.abs(poses[:, :2]) <= 5).all() and (poses[:, 2] >= -np.pi).all() and (poses[:, 2] < np.pi).all()
+    bar = reach(tmp_path / "problem" / "bar.obj")
+    paths = 0
+    for start in range(0, n, chunk):
+        rows = poses[start:min(n, start + chunk)]
+        for first in range(0, len(rows), states):
+            path = rows[first:first + states]
+            d = want["distance"][start + first:start + first + len(path)]
+            free = ~want["in_collision"][start + first:start + first + len(path)]
+            step = np.diff(path[:, :2], axis=0)
+            turn = np.remainder(np.diff(path[:, 2]) + np.pi, 2 * np.pi) - np.pi
+            assert np.allclose(step, step[0], atol=1e-12) and np.allclose(turn, turn[0], atol=1e-12)
+            assert abs(turn[0]) * (states - 1) <= np.pi + 1e-9  # the shorter arc
+            moved = np.linalg.norm(step, axis=1) + bar * np.abs(turn)
+            both = free[1:] & free[:-1]
+            assert (np.abs(np.diff(d))[both] <= moved[both] + 1e-9).all()
+            paths += 1
+    assert paths == 7 + 7 + 4  # chunks of 200, 200 and 100 rows: paths of 32 poses, the last of each cut short
 
 
 def test_label_survives_a_killed_worker(client, tmp_path):
