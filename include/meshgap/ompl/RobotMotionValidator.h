@@ -36,8 +36,9 @@ namespace meshgap
                          std::pair<ompl::base::State *, double> &lastValid) const override;
 
     private:
-        /** \brief Every pair's clearance at \e q into \e pairs (empty: a collision). */
-        bool pairClearances(const std::vector<double> &q, std::vector<double> &pairs) const;
+        /** \brief Every pair's clearance at \e q into \e pairs, exact below \e needed and a lower bound (at least
+            \e needed) above it; false for a collision. */
+        bool pairClearances(const std::vector<double> &q, double needed, std::vector<double> &pairs) const;
 
         RobotSceneConstPtr scene_;
         MotionBound bound_;
