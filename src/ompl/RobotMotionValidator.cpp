@@ -17,12 +17,15 @@ namespace meshgap
             throw Exception("RobotMotionValidator", "the robot scene was built with another set of links");
     }
 
-    bool RobotMotionValidator::pairClearances(const std::vector<double> &q, std::vector<double> &pairs) const
+    bool RobotMotionValidator::pairClearances(const std::vector<double> &q, double needed,
+                                              std::vector<double> &pairs) const
     {
         thread_local RobotWarmStart warm;
         thread_local RobotResult result;
         RobotRequest request;
         request.everyPair = true;
+        // A pair at least `needed` away is proven on every segment it takes part in: its lower bound will do.
+        request.upperBound = std::max(needed, 1e-12);
         scene_->distance(q.data(), q.size(), request, warm, result);
         if (result.inCollision)
             return false;
@@ -46,14 +49,26 @@ namespace meshgap
         Segment first{0.0, 1.0, {}, {}, {}, {}, 0};
         robotStateToVector(space, s1, first.q0);
         robotStateToVector(space, s2, first.q1);
-        if (!pairClearances(first.q0, first.d0) || !pairClearances(first.q1, first.d1))
+        const std::size_t links = scene_->links().size();
+        std::vector<double> moves;
+        // The largest displacement bound of any pair over \e s: no pair needs its clearance known beyond it.
+        auto largestReach = [&](const Segment &s)
+        {
+            bound_.linkDisplacements(s.q0, s.q1, moves);
+            double most = 0.0;
+            for (std::size_t i = 0; i < links; ++i)
+                most = std::max(most, moves[i]);
+            for (const auto &[a, b] : scene_->selfPairs())
+                most = std::max(most, bound_.pairDisplacement(a, b, s.q0, s.q1));
+            return most;
+        };
+        const double reach = largestReach(first);
+        if (!pairClearances(first.q0, reach, first.d0) || !pairClearances(first.q1, reach, first.d1))
         {
             invalid_++;
             return false;
         }
-        const std::size_t links = scene_->links().size();
         std::vector<Segment> stack{first};
-        std::vector<double> moves;
         ompl::base::State *middle = si_->allocState();
         bool free = true;
         while (free && !stack.empty())
@@ -65,8 +80,9 @@ namespace meshgap
             for (std::size_t k = 0; k < s.d0.size() && proven; ++k)
             {
                 const double reach = k < links ? moves[k]
-                                               : moves[scene_->selfPairs()[k - links].first] +
-                                                     moves[scene_->selfPairs()[k - links].second];
+                                               : bound_.pairDisplacement(scene_->selfPairs()[k - links].first,
+                                                                         scene_->selfPairs()[k - links].second,
+                                                                         s.q0, s.q1);
                 proven = s.d0[k] + s.d1[k] > reach;
             }
             if (proven)
@@ -81,7 +97,7 @@ namespace meshgap
             space.interpolate(s1, s2, t, middle);
             Segment left{s.t0, t, s.q0, {}, s.d0, {}, s.depth + 1}, right{t, s.t1, {}, s.q1, {}, s.d1, s.depth + 1};
             robotStateToVector(space, middle, left.q1);
-            if (!pairClearances(left.q1, left.d1))
+            if (!pairClearances(left.q1, largestReach(s), left.d1))
             {
                 free = false;
                 break;
