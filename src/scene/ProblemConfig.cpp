@@ -1,116 +1,29 @@
-// boost::program_options::parse_config_file reads this format too, but it reports neither the line of a bad entry
-// nor keeps the [planner] order, so this small reader does; the grammar is the same INI subset OMPL.app uses
-// ("key = value", "[section]", '#' comments).
-
 #include "meshgap/scene/ProblemConfig.h"
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <map>
-#include <sstream>
 #include <set>
+#include <sstream>
 
 #include "meshgap/Exception.h"
-#include "meshgap/Text.h"
+#include "meshgap/scene/ConfigFile.h"
 #include "meshgap/scene/Pose.h"
 
 namespace meshgap
 {
     namespace
     {
-        std::string trim(const std::string &s)
+        using ProblemKeys = ConfigKeys;
+
+        bool singleBodyKey(const std::string &key)
         {
-            const auto b = s.find_first_not_of(" \t\r");
-            if (b == std::string::npos)
-                return "";
-            const auto e = s.find_last_not_of(" \t\r");
-            return s.substr(b, e - b + 1);
-        }
-
-        double number(const std::string &value, const std::string &where, const std::string &key)
-        {
-            double x = 0.0;
-            if (parseNumber(value, x) && std::isfinite(x))
-                return x;
-            throw Exception(where, key + " = '" + value + "' is not a finite number");
-        }
-
-        /** \brief The [problem] section's keys, each value with where it was given ("file:line"). */
-        class ProblemKeys
-        {
-        public:
-            explicit ProblemKeys(std::string path) : path_(std::move(path)) {}
-
-            /** \brief Add \e key = \e value given at \e at; throws for an unknown key or one given twice. */
-            void add(const std::string &key, const std::string &value, const std::string &at)
-            {
-                static const std::set<std::string> known = {
-                    "name",         "robot",        "world",        "objective",    "objective.threshold", "sampler",
-                    "start.x",      "start.y",      "start.z",      "start.theta",  "start.axis.x",        "start.axis.y",
-                    "start.axis.z", "goal.x",       "goal.y",       "goal.z",       "goal.theta",          "goal.axis.x",
-                    "goal.axis.y",  "goal.axis.z",  "volume.min.x", "volume.min.y", "volume.min.z",        "volume.max.x",
-                    "volume.max.y", "volume.max.z"};
-                if (!known.count(key))
-                    throw Exception(at, "unknown key '" + key + "' in [problem]");
-                if (has(key))
-                    throw Exception(at, "'" + key + "' is given twice (first at " + where(key) + ")");
-                values_[key] = {value, at};
-            }
-
-            bool has(const std::string &key) const { return values_.count(key) > 0; }
-            const std::string &value(const std::string &key) const { return values_.at(key).first; }
-            /** \brief "file:line" of \e key, or the file when it is not given. */
-            std::string where(const std::string &key) const { return has(key) ? values_.at(key).second : path_; }
-            double num(const std::string &key, double fallback) const
-            {
-                return has(key) ? number(value(key), where(key), key) : fallback;
-            }
-            void require(const std::string &key) const
-            {
-                if (!has(key) || value(key).empty())
-                    throw Exception(path_, "missing required key '" + key + "' in [problem]");
-            }
-
-        private:
-            std::string path_;
-            std::map<std::string, std::pair<std::string, std::string>> values_;
-        };
-
-        /** \brief Read the file's sections: [problem] into \e problem, [benchmark] and [planner] into \e config. */
-        void readSections(const std::string &path, std::istream &in, ProblemKeys &problem, ProblemConfig &config)
-        {
-            std::string section, line;
-            for (std::size_t number = 1; std::getline(in, line); ++number)
-            {
-                const std::string where = path + ":" + std::to_string(number);
-                line = trim(line);
-                if (line.empty() || line[0] == '#' || line[0] == ';')
-                    continue;
-                if (line.front() == '[')
-                {
-                    if (line.back() != ']')
-                        throw Exception(where, "malformed section header '" + line + "'");
-                    section = trim(line.substr(1, line.size() - 2));
-                    if (section != "problem" && section != "benchmark" && section != "planner")
-                        throw Exception(where, "unknown section [" + section + "] (expected problem, benchmark, planner)");
-                    continue;
-                }
-                const auto eq = line.find('=');
-                if (eq == std::string::npos)
-                    throw Exception(where, "expected 'key = value', found '" + line + "'");
-                const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
-                if (key.empty())
-                    throw Exception(where, "empty key");
-                if (section.empty())
-                    throw Exception(where, "'" + key + "' is outside any [section]");
-                if (section == "problem")
-                    problem.add(key, value, where);
-                else if (section == "benchmark")
-                    config.benchmark.emplace_back(key, value);
-                else
-                    config.planners.emplace_back(key, value);
-            }
+            static const std::set<std::string> known = {
+                "name",         "robot",        "world",        "objective",    "objective.threshold", "sampler",
+                "start.x",      "start.y",      "start.z",      "start.theta",  "start.axis.x",        "start.axis.y",
+                "start.axis.z", "goal.x",       "goal.y",       "goal.z",       "goal.theta",          "goal.axis.x",
+                "goal.axis.y",  "goal.axis.z",  "volume.min.x", "volume.min.y", "volume.min.z",        "volume.max.x",
+                "volume.max.y", "volume.max.z"};
+            return known.count(key) > 0;
         }
 
         /** \brief A mesh file named by \e key, relative to the cfg's folder; it must exist. */
@@ -198,15 +111,16 @@ namespace meshgap
     ProblemConfig readProblemConfig(const std::string &path)
     {
         namespace fs = std::filesystem;
-        std::ifstream in(path);
-        if (!fs::exists(path))
-            throw Exception(path, "no such file");
-        if (!in)
-            throw Exception(path, "cannot open the problem file");
+        const ConfigFile file = readConfigFile(path);
+        if (const ConfigEntry *key = robotProblemKey(file))
+            throw Exception(key->where, "'" + key->key + "' makes this a robot problem (a URDF robot or several "
+                                                         "bodies), not a single-body one: read it as a robot problem "
+                                                         "(readRobotProblem())");
         ProblemConfig config;
         config.file = path;
-        ProblemKeys problem(path);
-        readSections(path, in, problem, config);
+        config.benchmark = file.benchmark;
+        config.planners = file.planners;
+        const ProblemKeys problem(file, singleBodyKey);
         for (const char *key : {"robot", "world", "start.x", "start.y"})
             problem.require(key);
         // OMPL.app's 2D problems have no start.z: SE(2), the yaw in start.theta.

@@ -37,7 +37,8 @@ namespace meshgap
     /** \brief Read a .cfg. Throws meshgap::Exception naming "file:line" for a malformed line, an unknown section or
         [problem] key, a value that is not a number where one is needed, a zero rotation axis, a 3D key (goal.z,
         *.axis.*, volume.*.z) in a planar file, and "file" for a missing required key (robot, world, start.x/y, and
-        start.z unless planar) or a mesh file that does not exist. */
+        start.z unless planar) or a mesh file that does not exist, and "file:line" for a key of a robot problem
+        (robotProblemKey(): robot.urdf, start.joints, robot.1, ...; those files are read by readRobotProblem()). */
     ProblemConfig readProblemConfig(const std::string &path);
 }  // namespace meshgap
 

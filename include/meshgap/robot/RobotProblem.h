@@ -1,0 +1,68 @@
+#ifndef MESHGAP_ROBOT_ROBOT_PROBLEM_H
+#define MESHGAP_ROBOT_ROBOT_PROBLEM_H
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "meshgap/geometry/Body.h"
+#include "meshgap/robot/RobotModel.h"
+
+namespace meshgap
+{
+    /** \brief A planning problem for a robot of many bodies, read from an OMPL.app-style .cfg (readRobotProblem()).
+
+        A URDF robot: [problem] keys
+        - robot.urdf = FILE; robot.srdf = FILE (optional: its disable_collisions pairs are allowed);
+          robot.package_path = DIR:DIR (optional; else ROS_PACKAGE_PATH; the URDF's folder and its parents are
+          searched after either);
+        - world = FILE (the obstacles: the mesh's connected parts, in the world frame, as for a single body);
+        - attach = MESH LINK x y z qx qy qz qw (optional): the payload MESH (in its own frame) fixed to link LINK at
+          that pose; it becomes the link named "payload";
+        - start.joints = v1 v2 ... and goal.joints = ... (goal optional): the URDF's movable joints (revolute,
+          continuous, prismatic; not fixed, not mimic) in its order; seven more numbers first, "x y z qx qy qz qw",
+          make the base float in SE(3) (its pose).
+        Several rigid bodies (OMPL.app's multi-body problems): robot.1 = FILE, robot.2 = FILE, ... (numbered from 1,
+        no gaps), world, and per body start.N.x, start.N.y, start.N.z, start.N.theta, start.N.axis.x/y/z (the same
+        for goal.N): each body a mesh centred as OMPL.app centres a robot, its state its pose; an SE(2) body (x y
+        theta, in the plane z = 0) when no body has start.N.z, as a planar single-body file; SE(3) otherwise
+        (x y z qx qy qz qw; theta about the axis, as OMPL.app's start.theta and start.axis).
+        Both: name, volume.min.x .. volume.max.z (x and y only when planar), objective, objective.threshold,
+        sampler, and the [benchmark] and [planner] sections, as ProblemConfig keeps them. Relative paths are relative
+        to the .cfg's folder. */
+    struct RobotProblem
+    {
+        std::string file;  ///< the .cfg path
+        std::string name;  ///< problem name (the file's stem when absent)
+        /** \brief The robot: a UrdfRobot (SRDF read, payload attached) or a MultiBodyRobot. */
+        RobotModelPtr robot;
+        bool urdf{false};     ///< robot is a UrdfRobot
+        bool planar{false};   ///< a multi-body problem in SE(2)
+        std::string world;    ///< world mesh path, resolved
+        std::vector<BodyConstPtr> obstacles;  ///< the world's connected parts
+        std::vector<double> start;            ///< robot->dimension() numbers
+        std::optional<std::vector<double>> goal;
+        std::optional<Eigen::AlignedBox3d> volume;
+        std::string objective;
+        std::optional<double> objectiveThreshold;
+        std::string sampler;
+        std::vector<std::pair<std::string, std::string>> benchmark;  ///< [benchmark] entries
+        std::vector<std::pair<std::string, std::string>> planners;   ///< [planner] entries
+    };
+
+    /** \brief True when \e path is a robot problem (robotProblemKey()); throws as readConfigFile() for a file that
+        cannot be read. */
+    bool isRobotProblemFile(const std::string &path);
+
+    /** \brief Read the robot problem \e path, building every body with \e options. Throws meshgap::Exception naming
+        "file:line" for a malformed line or number, an unknown key, a single-body key (robot = FILE: such files are
+        read by readProblemConfig()), a start.joints or goal.joints of the wrong count or outside a joint's limits,
+        an attach line that is not a mesh, a link and seven numbers or names an unknown link, a numbered body with a
+        gap, a missing file (URDF, SRDF, world, payload, a robot mesh), and whatever the URDF or SRDF reader
+        rejects (a URDF mesh that cannot be found, ...). */
+    RobotProblem readRobotProblem(const std::string &path, const BodyOptions &options = BodyOptions());
+}  // namespace meshgap
+
+#endif

@@ -1,0 +1,379 @@
+#include "meshgap/robot/RobotProblem.h"
+
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "meshgap/Exception.h"
+#include "meshgap/mesh/MeshLoader.h"
+#include "meshgap/mesh/MeshOperations.h"
+#include "meshgap/robot/MultiBodyRobot.h"
+#include "meshgap/robot/Srdf.h"
+#include "meshgap/robot/UrdfRobot.h"
+#include "meshgap/scene/ConfigFile.h"
+#include "meshgap/scene/Pose.h"
+#include "meshgap/scene/RobotMesh.h"
+
+namespace meshgap
+{
+    namespace
+    {
+        namespace fs = std::filesystem;
+
+        const char *const POSE_FIELDS[] = {"x", "y", "z", "theta", "axis.x", "axis.y", "axis.z"};
+        const char *const VOLUME_KEYS[] = {"volume.min.x", "volume.min.y", "volume.min.z",
+                                           "volume.max.x", "volume.max.y", "volume.max.z"};
+
+        /** \brief The N of "robot.N", or 0 when \e key is no such key. */
+        std::size_t bodyNumber(const std::string &key, const std::string &prefix, std::string *rest = nullptr)
+        {
+            if (key.compare(0, prefix.size(), prefix) != 0)
+                return 0;
+            std::size_t end = prefix.size();
+            while (end < key.size() && std::isdigit(static_cast<unsigned char>(key[end])))
+                ++end;
+            if (end == prefix.size() || end - prefix.size() > 6 || key[prefix.size()] == '0')
+                return 0;
+            if (rest)
+                *rest = key.substr(end);
+            else if (end != key.size())
+                return 0;
+            return std::stoul(key.substr(prefix.size(), end - prefix.size()));
+        }
+
+        bool robotKey(const std::string &key)
+        {
+            static const std::set<std::string> known = {
+                "name",         "world",        "objective",    "objective.threshold", "sampler",
+                "robot.urdf",   "robot.srdf",   "robot.package_path", "attach", "start.joints",
+                "goal.joints",  "volume.min.x", "volume.min.y", "volume.min.z", "volume.max.x",
+                "volume.max.y", "volume.max.z"};
+            if (known.count(key) || bodyNumber(key, "robot.") > 0)
+                return true;
+            for (const char *prefix : {"start.", "goal."})
+            {
+                std::string rest;
+                if (bodyNumber(key, prefix, &rest) > 0 && !rest.empty())
+                    for (const char *field : POSE_FIELDS)
+                        if (rest == std::string(".") + field)
+                            return true;
+            }
+            return false;
+        }
+
+        /** \brief The file \e key names, relative to \e folder; it must exist. */
+        std::string existingFile(const ConfigKeys &keys, const std::string &key, const std::string &text,
+                                 const fs::path &folder)
+        {
+            fs::path p(text);
+            if (p.is_relative())
+                p = folder / p;
+            if (!fs::is_regular_file(p))
+                throw Exception(keys.where(key), key + " file '" + p.string() + "' does not exist");
+            return p.lexically_normal().string();
+        }
+
+        /** \brief Run \e f; a meshgap::Exception it throws is rethrown prefixed by where \e key is given. */
+        template <typename F>
+        auto naming(const ConfigKeys &keys, const std::string &key, F &&f) -> decltype(f())
+        {
+            try
+            {
+                return f();
+            }
+            catch (const Exception &e)
+            {
+                throw Exception(keys.where(key), key + ": " + e.what());
+            }
+        }
+
+        /** \brief The folders of robot.package_path (split at ':'), or empty. */
+        std::vector<std::string> packagePath(const ConfigKeys &keys, const fs::path &folder)
+        {
+            std::vector<std::string> dirs;
+            if (!keys.has("robot.package_path"))
+                return dirs;
+            std::stringstream list(keys.value("robot.package_path"));
+            std::string dir;
+            while (std::getline(list, dir, ':'))
+                if (!dir.empty())
+                    dirs.push_back(fs::path(dir).is_relative() ? (folder / dir).lexically_normal().string() : dir);
+            return dirs;
+        }
+
+        /** \brief The obstacles: the world mesh's connected parts. */
+        void readWorld(const ConfigKeys &keys, const fs::path &folder, const BodyOptions &options,
+                       RobotProblem &problem)
+        {
+            keys.require("world");
+            problem.world = existingFile(keys, "world", keys.value("world"), folder);
+            naming(keys, "world",
+                   [&]
+                   {
+                       for (Mesh &part : splitComponents(loadMesh(problem.world)))
+                           problem.obstacles.push_back(Body::build(std::move(part), options));
+                       return 0;
+                   });
+        }
+
+        /** \brief The names of the movable joints, in state order. */
+        std::string jointNames(const UrdfRobot &robot)
+        {
+            std::string names;
+            for (std::size_t v : robot.variables())
+                names += (names.empty() ? "" : " ") + robot.joints()[v].name;
+            return names;
+        }
+
+        /** \brief Check the joint values \e key gives: their count, the floating base's quaternion and the joints'
+            limits. */
+        void checkJoints(const ConfigKeys &keys, const std::string &key, const std::vector<double> &q,
+                         const UrdfRobot &robot)
+        {
+            const std::size_t joints = robot.variables().size(), offset = robot.jointOffset();
+            if (q.size() != robot.dimension())
+                throw Exception(keys.where(key),
+                                key + " has " + std::to_string(q.size()) + " numbers; robot '" + robot.name() +
+                                    "' takes " + (offset ? "7 (the floating base's x y z qx qy qz qw) + " : "") +
+                                    std::to_string(joints) + " (its movable joints: " + jointNames(robot) + ")" +
+                                    (offset ? "" : ", or 7 more first for a floating base (x y z qx qy qz qw)"));
+            if (offset && std::abs(Eigen::Vector4d(q[3], q[4], q[5], q[6]).norm() - 1.0) > 1e-6)
+                throw Exception(keys.where(key), key + ": the floating base's quaternion (numbers 4 to 7) is not of "
+                                                       "unit length");
+            for (std::size_t k = 0; k < joints; ++k)
+            {
+                const UrdfJoint &joint = robot.joints()[robot.variables()[k]];
+                const double value = q[offset + k];
+                if (value < joint.lower || value > joint.upper)
+                {
+                    std::ostringstream text;
+                    text << key << ": joint '" << joint.name << "' (number " << offset + k + 1 << ") = " << value
+                         << " is outside its limits [" << joint.lower << ", " << joint.upper << "]";
+                    throw Exception(keys.where(key), text.str());
+                }
+            }
+        }
+
+        /** \brief The attach line: the payload mesh fixed to its link. */
+        void attachPayload(const ConfigKeys &keys, const fs::path &folder, const BodyOptions &options,
+                           RobotModel &robot)
+        {
+            std::istringstream fields(keys.value("attach"));
+            std::string mesh, link, rest;
+            fields >> mesh >> link;
+            std::getline(fields, rest);
+            if (mesh.empty() || link.empty())
+                throw Exception(keys.where("attach"), "attach = MESH LINK x y z qx qy qz qw: found '" +
+                                                          keys.value("attach") + "'");
+            const Eigen::Isometry3d X = naming(keys, "attach", [&] { return parsePose(rest, "the pose"); });
+            if (robot.findFrame(link) == RobotModel::NONE)
+            {
+                std::string links;
+                for (const RobotFrame &f : robot.frames())
+                    links += (links.empty() ? "" : ", ") + f.name;
+                throw Exception(keys.where("attach"), "attach: the robot has no link '" + link + "' (its links: " +
+                                                          links + ")");
+            }
+            const std::string path = existingFile(keys, "attach", mesh, folder);
+            naming(keys, "attach", [&] { return robot.attach("payload", loadMesh(path), link, X, options); });
+        }
+
+        /** \brief robot.urdf, robot.srdf, attach, start.joints and goal.joints. */
+        void readUrdfProblem(const ConfigKeys &keys, const fs::path &folder, const BodyOptions &options,
+                             RobotProblem &problem)
+        {
+            keys.require("start.joints");
+            UrdfOptions urdfOptions;
+            urdfOptions.packagePath = packagePath(keys, folder);
+            urdfOptions.body = options;
+            const std::string urdf = existingFile(keys, "robot.urdf", keys.value("robot.urdf"), folder);
+            const std::vector<double> start = keys.numbers("start.joints");
+            UrdfRobotPtr robot = naming(keys, "robot.urdf", [&] { return UrdfRobot::load(urdf, urdfOptions); });
+            if (start.size() == robot->dimension() + 7)
+            {
+                urdfOptions.floatingBase = true;
+                robot = naming(keys, "robot.urdf", [&] { return UrdfRobot::load(urdf, urdfOptions); });
+            }
+            checkJoints(keys, "start.joints", start, *robot);
+            problem.start = start;
+            if (keys.has("goal.joints"))
+            {
+                problem.goal = keys.numbers("goal.joints");
+                checkJoints(keys, "goal.joints", *problem.goal, *robot);
+            }
+            if (keys.has("robot.srdf"))
+            {
+                const std::string srdf = existingFile(keys, "robot.srdf", keys.value("robot.srdf"), folder);
+                naming(keys, "robot.srdf", [&] { return (readSrdf(*robot, srdf), 0); });
+            }
+            if (keys.has("attach"))
+                attachPayload(keys, folder, options, *robot);
+            problem.robot = robot;
+            problem.urdf = true;
+        }
+
+        /** \brief The state numbers of body \e prefix ("start.2"): x y theta, or x y z qx qy qz qw. */
+        void appendBodyState(const ConfigKeys &keys, const std::string &prefix, bool planar, std::vector<double> &out)
+        {
+            for (const char *field : {".x", ".y"})
+                keys.require(prefix + field);
+            if (!planar)
+                keys.require(prefix + ".z");
+            const double theta = keys.num(prefix + ".theta", 0.0);
+            if (planar)
+            {
+                out.insert(out.end(), {keys.num(prefix + ".x", 0), keys.num(prefix + ".y", 0), theta});
+                return;
+            }
+            const Eigen::Vector3d axis(keys.num(prefix + ".axis.x", 1), keys.num(prefix + ".axis.y", 0),
+                                       keys.num(prefix + ".axis.z", 0));
+            if (theta != 0.0 && axis.norm() == 0.0)
+                throw Exception(keys.where(prefix + ".theta"), prefix + ".axis is the zero vector");
+            const Eigen::Isometry3d X = poseFromAxisAngle(
+                Eigen::Vector3d(keys.num(prefix + ".x", 0), keys.num(prefix + ".y", 0), keys.num(prefix + ".z", 0)),
+                theta, axis);
+            const Eigen::Quaterniond r(X.linear());
+            out.insert(out.end(), {X.translation().x(), X.translation().y(), X.translation().z(), r.x(), r.y(), r.z(),
+                                   r.w()});
+        }
+
+        /** \brief The number of bodies (robot.1 .. robot.K); throws for a gap or a start.N / goal.N of no body. */
+        std::size_t countBodies(const ConfigFile &file)
+        {
+            std::set<std::size_t> bodies;
+            for (const ConfigEntry &e : file.problem)
+                if (const std::size_t n = bodyNumber(e.key, "robot."))
+                    bodies.insert(n);
+            for (std::size_t n = 1; n <= bodies.size(); ++n)
+                if (!bodies.count(n))
+                    throw Exception(file.path, "robot." + std::to_string(*bodies.rbegin()) + " is given but robot." +
+                                                   std::to_string(n) + " is not (bodies are numbered 1, 2, ...)");
+            for (const ConfigEntry &e : file.problem)
+                for (const char *prefix : {"start.", "goal."})
+                {
+                    std::string rest;
+                    const std::size_t n = bodyNumber(e.key, prefix, &rest);
+                    if (n > bodies.size())
+                        throw Exception(e.where, "'" + e.key + "' names body " + std::to_string(n) + ", but there are " +
+                                                     std::to_string(bodies.size()) + " (robot.1 ..)");
+                }
+            return bodies.size();
+        }
+
+        /** \brief robot.N, start.N.*, goal.N.*: a MultiBodyRobot. */
+        void readBodies(const ConfigFile &file, const ConfigKeys &keys, const fs::path &folder,
+                        const BodyOptions &options, RobotProblem &problem)
+        {
+            const std::size_t count = countBodies(file);
+            problem.planar = true;
+            for (std::size_t n = 1; n <= count; ++n)
+                problem.planar = problem.planar && !keys.has("start." + std::to_string(n) + ".z");
+            std::vector<MultiBodyRobot::Part> parts;
+            bool anyGoal = false;
+            std::string rest;
+            for (const ConfigEntry &e : file.problem)
+                anyGoal = anyGoal || bodyNumber(e.key, "goal.", &rest) > 0;
+            std::vector<double> goal;
+            for (std::size_t n = 1; n <= count; ++n)
+            {
+                const std::string id = std::to_string(n), key = "robot." + id;
+                if (problem.planar)
+                    for (const char *field : {".z", ".axis.x", ".axis.y", ".axis.z"})
+                        for (const std::string prefix : {"start.", "goal."})
+                            if (keys.has(prefix + id + field))
+                                throw Exception(keys.where(prefix + id + field),
+                                                "'" + prefix + id + field + "' in a planar problem (no start.N.z: "
+                                                "SE(2), theta is the yaw about z); give start.N.z for SE(3)");
+                const std::string path = existingFile(keys, key, keys.value(key), folder);
+                const Mesh mesh = naming(keys, key, [&] { return loadRobotMesh(path, problem.planar); });
+                parts.push_back({key, Body::build(mesh, options), problem.planar ? RigidSpace::SE2 : RigidSpace::SE3});
+                appendBodyState(keys, "start." + id, problem.planar, problem.start);
+                if (anyGoal)
+                    appendBodyState(keys, "goal." + id, problem.planar, goal);
+            }
+            problem.robot = std::make_shared<MultiBodyRobot>(parts);
+            if (anyGoal)
+                problem.goal = goal;
+        }
+
+        /** \brief The volume, if given: all six keys (four, x and y, when planar) or none. */
+        void readVolume(const ConfigKeys &keys, RobotProblem &problem)
+        {
+            int given = 0;
+            for (const char *key : VOLUME_KEYS)
+                given += keys.has(key);
+            if (problem.planar)
+                for (const char *key : {"volume.min.z", "volume.max.z"})
+                    if (keys.has(key))
+                        throw Exception(keys.where(key), std::string(key) + " in a planar problem (x and y only)");
+            const int needed = problem.planar ? 4 : 6;
+            if (given == 0)
+                return;
+            if (given != needed)
+                throw Exception(keys.path(), "volume needs " + std::to_string(needed) + " keys (volume.min.x .. " +
+                                                 (problem.planar ? "volume.max.y" : "volume.max.z") + "), found " +
+                                                 std::to_string(given));
+            Eigen::Vector3d lo, hi;
+            for (int k = 0; k < 3; ++k)
+            {
+                lo[k] = keys.num(VOLUME_KEYS[k], 0.0);
+                hi[k] = keys.num(VOLUME_KEYS[3 + k], 0.0);
+                if (k < needed / 2 && !(hi[k] > lo[k]))
+                    throw Exception(keys.where(VOLUME_KEYS[3 + k]), "volume.max must exceed volume.min on every axis");
+            }
+            problem.volume = Eigen::AlignedBox3d(lo, hi);
+        }
+    }  // namespace
+
+    bool isRobotProblemFile(const std::string &path)
+    {
+        return robotProblemKey(readConfigFile(path)) != nullptr;
+    }
+
+    RobotProblem readRobotProblem(const std::string &path, const BodyOptions &options)
+    {
+        const ConfigFile file = readConfigFile(path);
+        for (const ConfigEntry &e : file.problem)
+            if (e.key == "robot")
+                throw Exception(e.where, "'robot = " + e.value + "' makes this a single-body problem (one mesh in "
+                                                                 "SE(2) or SE(3)), not a robot problem: read it as a "
+                                                                 "single-body problem (readProblemConfig())");
+        const ConfigKeys keys(file, robotKey);
+        const bool urdf = keys.has("robot.urdf");
+        if (!urdf && !keys.has("robot.1"))
+            throw Exception(path, "a robot problem needs robot.urdf = FILE (a URDF robot) or robot.1 = FILE, "
+                                  "robot.2 = FILE, ... (several bodies)");
+        if (urdf && keys.has("robot.1"))
+            throw Exception(keys.where("robot.1"), "robot.1 and robot.urdf in one problem: either a URDF robot "
+                                                   "or several bodies");
+        RobotProblem problem;
+        problem.file = path;
+        problem.name = keys.has("name") ? keys.value("name") : fs::path(path).stem().string();
+        problem.benchmark = file.benchmark;
+        problem.planners = file.planners;
+        const fs::path folder = fs::path(path).parent_path();
+        if (urdf)
+        {
+            countBodies(file);  // no start.N / goal.N without bodies
+            readUrdfProblem(keys, folder, options, problem);
+        }
+        else
+        {
+            for (const char *key : {"robot.srdf", "robot.package_path", "attach", "start.joints", "goal.joints"})
+                if (keys.has(key))
+                    throw Exception(keys.where(key), std::string(key) + " applies to a URDF robot (robot.urdf)");
+            readBodies(file, keys, folder, options, problem);
+        }
+        readVolume(keys, problem);
+        readWorld(keys, folder, options, problem);
+        if (keys.has("objective"))
+            problem.objective = keys.value("objective");
+        if (keys.has("objective.threshold"))
+            problem.objectiveThreshold = keys.num("objective.threshold", 0.0);
+        if (keys.has("sampler"))
+            problem.sampler = keys.value("sampler");
+        return problem;
+    }
+}  // namespace meshgap
