@@ -29,6 +29,7 @@
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/mesh/MeshOperations.h"
 #include "meshgap/robot/RobotBatch.h"
+#include "meshgap/robot/RobotProblem.h"
 #include "meshgap/robot/RobotScene.h"
 #include "meshgap/robot/Srdf.h"
 #include "meshgap/robot/UrdfRobot.h"
@@ -290,6 +291,9 @@ namespace
         const std::string path = pathArg(pathObject, "cfg");
         PyScene s;
         py::gil_scoped_release release;
+        if (isRobotProblemFile(path))
+            throw Exception(path, "a robot problem (robot.urdf, or robot.1 and more bodies): open it with "
+                                  "meshgap.RobotScene.from_cfg");
         const ProblemConfig config = readProblemConfig(path);
         s.scene = Scene::fromMeshes(loadRobotMesh(config.robot, config.planar), loadMesh(config.world));
         s.config = config;
@@ -581,6 +585,21 @@ namespace
         return names;
     }
 
+    /** \brief The names of the state numbers of a robot of rigid bodies: per body (its frame's name), x y theta
+        (SE(2)) or x y z qx qy qz qw (SE(3)), told apart by the count per body. */
+    std::vector<std::string> genericStateNames(const RobotModel &robot)
+    {
+        std::vector<std::string> names;
+        const std::size_t bodies = robot.frames().size();
+        const bool planar = bodies * 3 == robot.dimension();
+        for (const RobotFrame &f : robot.frames())
+            for (const char *c : planar ? std::vector<const char *>{"x", "y", "theta"} :
+                                          std::vector<const char *>{"x", "y", "z", "qx", "qy", "qz", "qw"})
+                names.push_back(f.name + "." + c);
+        names.resize(robot.dimension(), "?");
+        return names;
+    }
+
     /** \brief A package search path: a str of folders joined by ':' (ROS_PACKAGE_PATH's form), an os.PathLike, or
         a sequence of either; None: empty. */
     std::vector<std::string> packagePathArg(const py::handle &h)
@@ -702,6 +721,31 @@ namespace
         s.model = robot;
         std::vector<BodyConstPtr> obstacles = worldArg(world);
         s.scene = std::make_shared<RobotScene>(robot, std::move(obstacles));
+        return s;
+    }
+
+    /** \brief A robot problem file (RobotProblem.h): its robot among its world, its start and goal. */
+    PyRobotScene robotSceneFromCfg(const py::handle &pathObject)
+    {
+        const std::string path = pathArg(pathObject, "cfg");
+        PyRobotScene s;
+        {
+            py::gil_scoped_release release;
+            if (!std::filesystem::exists(path))
+                throw Exception(path, "no such file");
+            if (!isRobotProblemFile(path))
+                throw Exception(path, "a single-body problem (robot = FILE): open it with meshgap.Scene.from_cfg");
+            RobotProblem problem = readRobotProblem(path);
+            s.model = problem.robot;
+            s.scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles);
+            s.name = problem.name;
+            s.start = problem.start;
+            s.goal = problem.goal;
+        }
+        if (const auto *urdf = dynamic_cast<const UrdfRobot *>(s.model.get()))
+            s.stateNames = urdfStateNames(*urdf);
+        else
+            s.stateNames = genericStateNames(*s.model);
         return s;
     }
 
@@ -889,6 +933,11 @@ namespace
             "obstacles. RobotScene.from_urdf(urdf, world=..., ...) builds one; a state is a row of numbers: a "
             "floating base's pose (x y z qx qy qz qw) if any, then the URDF's movable joints in its order "
             "(state_names).")
+            .def_static("from_cfg", &robotSceneFromCfg, py::arg("path"),
+                        "A robot problem file (robot.urdf = FILE with robot.srdf, robot.package_path, world, attach, "
+                        "start.joints and goal.joints; or several bodies robot.1 = FILE, ...): its robot among its "
+                        "world; start and goal its states. A single-body OMPL.app file is refused (meshgap.Scene."
+                        "from_cfg reads those, and refuses robot problems).")
             .def_static("from_urdf", &robotSceneFromUrdf, py::arg("urdf"), py::kw_only(),
                         py::arg("world") = py::none(), py::arg("srdf") = py::none(),
                         py::arg("package_path") = py::none(), py::arg("attach") = py::none(),
@@ -1006,7 +1055,9 @@ PYBIND11_MODULE(_meshgap, m)
                         "A robot among obstacles. Scene(robot, world): each a mesh file (OBJ, STL, PLY, COLLADA, ...) "
                         "or a (V, F) pair of numpy arrays (V float64 (n, 3), F integer (m, 3)); the robot in its own "
                         "frame, the world split into its connected parts, one obstacle each. Scene.from_cfg(path): "
-                        "an OMPL.app problem, the robot centred as OMPL.app does, so a pose is the robot's state.")
+                        "an OMPL.app problem, the robot centred as OMPL.app does, so a pose is the robot's state (a "
+                        "robot problem file, robot.urdf or robot.1 and more bodies, is refused with a ValueError "
+                        "naming meshgap.RobotScene.from_cfg, which reads those).")
         .def(py::init(&sceneFromMeshes), py::arg("robot"), py::arg("world"))
         .def_static("from_cfg", &sceneFromCfg, py::arg("path"))
         .def("distance", &distance, py::arg("poses"), py::kw_only(), py::arg("exact") = true,
