@@ -271,3 +271,48 @@ def test_bad_input(files, tmp_path):
         meshgap.RobotScene.from_urdf(urdf, srdf=srdf)
     with pytest.raises(ValueError, match="threads: must be at least 1"):
         meshgap.RobotScene.from_urdf(urdf).distance(np.zeros((1, 2)), threads=0)
+
+
+def write_cfg(folder, extra=()):
+    """The arm among the world as a robot problem file, the payload cube on the tool."""
+    write_obj(folder / "payload.obj", box(0.05, 0.05, 0.05))
+    lines = ["[problem]", "name = boxarm_problem", "robot.urdf = boxarm.urdf", "world = world.obj",
+             "attach = payload.obj tool 0 0 0.9 0 0 0 1", "start.joints = 0.5 1.0", "goal.joints = -2.5 0.25"]
+    path = folder / "boxarm.cfg"
+    path.write_text("\n".join(lines + list(extra)) + "\n")
+    return path
+
+
+def test_from_cfg_is_from_urdf(files):
+    scene = meshgap.RobotScene.from_cfg(write_cfg(files))
+    same = meshgap.RobotScene.from_urdf(files / "boxarm.urdf", world=files / "world.obj",
+                                        attach=(files / "payload.obj", "tool", (0, 0, 0.9, 0, 0, 0, 1)))
+    assert scene.name == "boxarm_problem" and scene.link_names == same.link_names
+    assert scene.self_pairs == same.self_pairs and scene.obstacles == 2
+    np.testing.assert_array_equal(scene.start, [0.5, 1.0])
+    np.testing.assert_array_equal(scene.goal, [-2.5, 0.25])
+    rng = np.random.default_rng(13)
+    states = np.column_stack([rng.uniform(-3.5, 3.5, 200), rng.uniform(-1.0, 2.5, 200)])
+    a, b = scene.distance(states), same.distance(states)
+    for key in ("distance", "link_clearance", "self_pair_distance", "in_collision", "link", "obstacle"):
+        np.testing.assert_array_equal(a[key], b[key])
+    # The payload's pose: the tool's frame composed by hand, then 0.9 up.
+    poses = scene.link_poses(np.array([scene.start]))
+    expected = link_frames(*scene.start)["tool"] @ transform(np.eye(3), (0, 0, 0.9))
+    np.testing.assert_allclose(poses[0, scene.link_names.index("payload")], expected, atol=1e-12)
+
+
+def test_single_body_and_robot_files_each_refused_by_the_other(files):
+    cfg = write_cfg(files)
+    with pytest.raises(ValueError, match="robot problem .*meshgap.RobotScene.from_cfg"):
+        meshgap.Scene.from_cfg(cfg)
+    single = files / "single.cfg"
+    single.write_text("[problem]\nrobot = payload.obj\nworld = world.obj\nstart.x = 0\nstart.y = 0\nstart.z = 5\n")
+    with pytest.raises(ValueError, match="single-body problem .*meshgap.Scene.from_cfg"):
+        meshgap.RobotScene.from_cfg(single)
+    with pytest.raises(FileNotFoundError):
+        meshgap.RobotScene.from_cfg(files / "missing.cfg")
+    bad = files / "bad.cfg"
+    bad.write_text(cfg.read_text().replace("start.joints = 0.5 1.0", "start.joints = 0.5"))
+    with pytest.raises(ValueError, match="start.joints"):
+        meshgap.RobotScene.from_cfg(bad)
