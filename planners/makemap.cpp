@@ -5,13 +5,16 @@
 //   hand_bowl        a hand (B) whose middle fingertip is about to touch a bowl's rim (A) (mm, Table IV)
 //   handshake        two hands about to shake, B's thumb tip nearest to A's index tip (mm)
 //
-// and two scenes that are not from the paper:
+// and scenes that are not from the paper:
 //
 //   slotted_wall     a C-shaped payload (B) to pass through a wall (A) by a narrow slot (short, little clearance)
 //                    or a wide one off to the side (long, four times the play): a length/clearance trade-off
 //   twisted          a stress scene for the exact layer: a thin helical strip (B, three turns of long thin
 //                    triangles) screwed through a helical channel of the same pitch (A) with 0.3 of play on every
 //                    side; its .poses are the whole screw motion, a collision-free path close to A all the way
+//   arm_fixture      a four-joint arm (URDF primitives) carrying a C-shaped payload through a window in a wall
+//   swap_se3         two L-shaped bodies swapping rooms through one door, in SE(3)
+//   swap_se2         the same in SE(2)
 //
 // Each body is built from planar-faced polyhedra (planners/support/Shapes.h) gridded at the paper's grid sizes. Each
 // pose is designed by hand and then slid along one direction until the exact (triangle-triangle) distance between
@@ -43,13 +46,15 @@ int main(int argc, char **argv)
         const std::vector<std::pair<std::string, std::function<Scene()>>> scenes = {
             {"battery_fixture", batteryFixture}, {"hand_bowl", handBowl}, {"handshake", handshake},
             {"slotted_wall", slottedWallScene}, {"twisted", twistedScene}};
+        const std::vector<std::pair<std::string, std::function<void(const std::filesystem::path &)>>> robotMaps = {
+            {"arm_fixture", writeArmFixture}, {"swap_se3", writeSwapSE3}, {"swap_se2", writeSwapSE2}};
         po::options_description options("meshgap_makemap: write the paper's test scenes (meshes, poses, OMPL.app "
                                         "problems)");
         std::string out, which;
         options.add_options()("help,h", "show this help")(
             "out", po::value<std::string>(&out)->required(), "output directory (one sub-directory per scene)")(
             "scene", po::value<std::string>(&which)->default_value("all"),
-            "battery_fixture, hand_bowl, handshake, slotted_wall, twisted or all")(
+            "battery_fixture, hand_bowl, handshake, slotted_wall, twisted, arm_fixture, swap_se3, swap_se2 or all")(
             "battery-grid", po::value<double>(&batteryGrid),
             "largest edge of the battery and fixture meshes in cm (default 5 sqrt 2, Table II's grid; a larger value "
             "gives coarse meshes for adaptive node sizing to refine)");
@@ -59,12 +64,17 @@ int main(int argc, char **argv)
         std::vector<std::string> names;
         for (const auto &scene : scenes)
             names.push_back(scene.first);
+        for (const auto &map : robotMaps)
+            names.push_back(map.first);
         if (which != "all" && std::find(names.begin(), names.end(), which) == names.end())
             throw meshgap::Exception("--scene", "unknown scene '" + which + "' (valid: " + meshgap::joinNames(names) +
                                                     ", all)");
         for (const auto &scene : scenes)
             if (which == "all" || which == scene.first)
                 writeScene(scene.second(), std::filesystem::path(out) / scene.first);
+        for (const auto &map : robotMaps)
+            if (which == "all" || which == map.first)
+                map.second(std::filesystem::path(out) / map.first);
         return 0;
     });
 }

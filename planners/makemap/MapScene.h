@@ -93,6 +93,12 @@ namespace meshgap
         Scene slottedWallScene();
         Scene twistedScene();
 
+        /** \brief The robot maps (RobotMaps.cpp), each written into \e directory with its robot problem file, then
+            read back and checked (start and goal free). */
+        void writeArmFixture(const std::filesystem::path &directory);
+        void writeSwapSE3(const std::filesystem::path &directory);
+        void writeSwapSE2(const std::filesystem::path &directory);
+
         /** \brief Write \e s into \e directory (meshes, poses, the OMPL.app problem), then report and check it. */
         void writeScene(Scene s, const std::filesystem::path &directory);
     }  // namespace makemap
