@@ -66,7 +66,8 @@ namespace
     bool parseOptions(int argc, char **argv, Options &o)
     {
         po::options_description options("meshgap_benchmark --cfg FILE [options]\n\nOptions");
-        options.add_options()("help,h", "print this help")("cfg", po::value(&o.cfg), "OMPL.app problem file, or a robot problem file (.cfg)")(
+        options.add_options()("help,h", "print this help")(
+            "cfg", po::value(&o.cfg), "OMPL.app problem file, or a robot problem file (.cfg)")(
             "planner", po::value(&o.plannerList), "planners, comma-separated (default: the cfg's [planner] section)")(
             "param", po::value(&o.params),
             "PLANNER.NAME=VALUE: a parameter of every planner of that kind, after the cfg's, e.g. "
@@ -273,7 +274,8 @@ namespace
                 return;
             std::fprintf(stderr, "%s: %zu runs, %zu solved, %zu free by FCL's dense check, %.3f s planning: %.1f "
                                  "valid paths per minute\n",
-                         name.c_str(), runs, solved, free, seconds, seconds > 0.0 ? 60.0 * double(free) / seconds : 0.0);
+                         name.c_str(), runs, solved, free, seconds,
+                         seconds > 0.0 ? 60.0 * double(free) / seconds : 0.0);
         }
     };
 
