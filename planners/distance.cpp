@@ -12,6 +12,11 @@
 // node-level solver on the two whole bodies, refined to the exact distance with --exact. Results go to stdout (text,
 // CSV with --poses, or JSON with --json); the log, and with --poses the time per query (median and mean), go to
 // stderr. In collision (always decided exactly) the distance is signed: negative, minus a penetration depth estimate.
+//
+// On a robot problem (meshgap/robot/RobotProblem.h) --cfg F [--pose "v1 v2 ..."] [--poses STATES] [--exact] prints,
+// per state (the numbers of start.joints; default the start), the whole robot's exact signed clearance, the pair
+// that attains it (a link and an obstacle, or two links) with its witness points, and every link's clearance
+// (support/RobotRun.h).
 
 #include <ompl/util/Console.h>
 
@@ -35,6 +40,7 @@
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/RobotMesh.h"
 #include "meshgap/scene/Scene.h"
+#include "support/RobotRun.h"
 #include "support/SurfaceText.h"
 
 namespace po = boost::program_options;
@@ -412,6 +418,15 @@ namespace
         Options o;
         if (!parseOptions(argc, argv, o))
             return 0;
+        if (!o.cfg.empty() && isRobotProblemFile(o.cfg))
+        {
+            if (o.algorithmGiven || o.cold || o.json || !o.settings.empty())
+                throw Exception("command line", "a robot problem (" + o.cfg + ") is answered by the exact "
+                                                "whole-robot scene: --algorithm, --param, --cold and --json apply to "
+                                                "single bodies");
+            cli::robotDistance(o.cfg, o.poseText, o.posesFile, std::cout);
+            return 0;
+        }
         const DistanceSolverPtr solver = solverOf(o);
         const double hA = gridValue(o.gridA.empty() ? o.grid : o.gridA, o.gridA.empty() ? "grid" : "grid-a");
         const double hB = gridValue(o.gridB.empty() ? o.grid : o.gridB, o.gridB.empty() ? "grid" : "grid-b");

@@ -16,6 +16,11 @@
 // collision: the message says which, the obstacle and the distance). --optimize clearance runs the
 // ClearancePathOptimizer on the planner's path (its uncertified motions repaired first) before any of this.
 //
+// On a robot problem (robot.urdf, or robot.1, robot.2, ...: meshgap/robot/RobotProblem.h) it plans in the robot's
+// joint space (support/RobotRun.h): exact whole-robot checks, the certified motion validator for a fixed-base URDF
+// robot (OMPL's discrete one otherwise, or with --motion discrete); the summary and the .path (one state a line, the
+// numbers of start.joints); the options that write scenes, reports or optimise are for single bodies.
+//
 // Its options are support/PlanOptions.h's table (the Python module's plan() takes the same ones as keywords), and a
 // run is support/PlanRun.h's (plan() makes the same one): the progress line, --optimize (OptimizeOption.h), the
 // summary and the files it writes (support/PlanOutputs.h).
@@ -30,6 +35,7 @@
 #include "CliMain.h"
 #include "support/PlanOptions.h"
 #include "support/PlanRun.h"
+#include "support/RobotRun.h"
 
 namespace po = boost::program_options;
 using namespace meshgap;
@@ -77,12 +83,31 @@ namespace
         return true;
     }
 
+    /** \brief A robot problem (a URDF robot, or several bodies): support/RobotRun.h. */
+    int runRobot(const PlanOptions &o)
+    {
+        const std::unique_ptr<RobotPlanRun> p = setUpRobotPlan(o);
+        OMPL_INFORM("%s: robot problem, %zu state numbers, %zu obstacles, planner %s", p->problem.name.c_str(),
+                    p->problem.robot->dimension(), p->problem.obstacles.size(), o.planner.c_str());
+        solveRobotPlan(*p, o);
+        std::cout << p->summary;
+        writeRobotPlanFiles(*p, o, std::cout);
+        if (!p->havePath)
+        {
+            std::fprintf(stderr, "no path found within %g s\n", o.time);
+            return 2;
+        }
+        return p->exact ? 0 : 2;
+    }
+
     int run(int argc, char **argv)
     {
         PlanOptions o;
         if (!parseOptions(argc, argv, o))
             return 0;
         ompl::RNG::setSeed(o.seed);
+        if (isRobotProblemFile(o.cfg))
+            return runRobot(o);
         const std::unique_ptr<PlanRun> p = setUpPlan(o);
         OMPL_INFORM("%s: %s, %zu obstacles, planner %s, objective %s, clearance %s, motion %s", p->config.name.c_str(),
                     p->config.planar ? "SE(2)" : "SE(3)", p->problem.scene->obstacles().size(), o.planner.c_str(),

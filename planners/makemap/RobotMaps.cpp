@@ -80,7 +80,7 @@ namespace meshgap
             }
 
             /** \brief The arm: a base, a column turning about z, then three links pitching about y (upper arm 0.5,
-                forearm 0.4, hand 0.08), a tool frame at the hand's tip; boxes and cylinders only. */
+                forearm 0.4, hand 0.15), a tool frame at the hand's tip; boxes and cylinders only. */
             const char *const ARM_URDF = R"(<?xml version="1.0"?>
 <!-- Written by meshgap_makemap: a small four-joint arm of URDF primitives (metres). -->
 <robot name="arm4">
@@ -97,7 +97,7 @@ namespace meshgap
     <collision><origin xyz="0.2 0 0" rpy="0 0 0"/><geometry><box size="0.4 0.05 0.05"/></geometry></collision>
   </link>
   <link name="hand">
-    <collision><origin xyz="0.04 0 0" rpy="0 0 0"/><geometry><box size="0.08 0.08 0.04"/></geometry></collision>
+    <collision><origin xyz="0.075 0 0" rpy="0 0 0"/><geometry><box size="0.15 0.08 0.04"/></geometry></collision>
   </link>
   <link name="tool"/>
   <joint name="yaw" type="revolute">
@@ -117,7 +117,7 @@ namespace meshgap
     <limit lower="-2" upper="2" effort="1" velocity="1"/>
   </joint>
   <joint name="tool_mount" type="fixed">
-    <origin xyz="0.08 0 0" rpy="0 0 0"/><parent link="hand"/><child link="tool"/>
+    <origin xyz="0.15 0 0" rpy="0 0 0"/><parent link="hand"/><child link="tool"/>
   </joint>
 </robot>
 )";
@@ -143,9 +143,9 @@ namespace meshgap
                                  pose(Vector3d(0, 0, -0.02)));
             writeObj(c, (directory / "arm_fixture_payload.obj").string());
             // The fixture: a wall x in [0.62, 0.67], y in [-1.3, 1.3], z in [-0.8, 1.6] (beyond the arm's reach on
-            // every side) with a window y in [-0.14, 0.14], z in [0.28, 0.52]: drawn in (y, z), extruded along x.
+            // every side) with a window y in [-0.25, 0.25], z in [0.2, 0.6]: drawn in (y, z), extruded along x.
             Polyhedron wall = prismPolyhedron({{-1.3, -0.8}, {1.3, -0.8}, {1.3, 1.6}, {-1.3, 1.6}},
-                                              {{{-0.14, 0.28}, {0.14, 0.28}, {0.14, 0.52}, {-0.14, 0.52}}}, 0.05);
+                                              {{{-0.25, 0.2}, {0.25, 0.2}, {0.25, 0.6}, {-0.25, 0.6}}}, 0.05);
             Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
             X.linear() << 0, 0, 1, 1, 0, 0, 0, 1, 0;
             X.translation() = Vector3d(0.62, 0, 0);
@@ -156,7 +156,7 @@ namespace meshgap
             writeText(directory / "arm_fixture.cfg",
                       "[problem]\nname = arm_fixture\nrobot.urdf = arm4.urdf\nworld = arm_fixture_world.obj\n"
                       "attach = arm_fixture_payload.obj tool 0 0 0 0 0 0 1\n"
-                      "start.joints = 0 -0.5 1.8 0.27\ngoal.joints = 0 0 0 0\n\n"
+                      "start.joints = 0 -0.5 2 0.07\ngoal.joints = 0 0 0 0\n\n"
                       "[benchmark]\ntime_limit = 10\nmem_limit = 1000\nrun_count = 10\n");
             checkProblem(directory / "arm_fixture.cfg");
         }

@@ -139,6 +139,11 @@ namespace meshgap
             }
         }  // namespace
 
+        ompl::base::PlannerPtr allocPlanPlanner(const PlanOptions &o, const ompl::base::SpaceInformationPtr &si)
+        {
+            return planner(o, si);
+        }
+
         std::unique_ptr<PlanRun> setUpPlan(const PlanOptions &o)
         {
             checkPlanOptions(o);

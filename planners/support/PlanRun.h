@@ -36,6 +36,10 @@ namespace meshgap
             std::string summary;
         };
 
+        /** \brief The planner \e o names, with its --param values (and Python's params); throws meshgap::Exception
+            naming the option at fault. */
+        ompl::base::PlannerPtr allocPlanPlanner(const PlanOptions &o, const ompl::base::SpaceInformationPtr &si);
+
         /** \brief Load the problem and set up the planner as \e o says (OMPL's seed is the caller's to set first);
             throws meshgap::Exception naming the option or file at fault. */
         std::unique_ptr<PlanRun> setUpPlan(const PlanOptions &o);

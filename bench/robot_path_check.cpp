@@ -1,0 +1,122 @@
+// A robot problem's path checked by FCL 0.7, pair by pair: every link against every obstacle and every self pair the
+// robot checks, the same meshes at the same link poses, at states interpolated densely along each motion (OMPL's
+// interpolation in the problem's state space, at most --step of the space's extent apart). Prints the states
+// checked, those FCL finds colliding, and FCL's least distance; exit status 0 when no state collides, 3 otherwise.
+//
+//   build/bench/meshgap_bench_robot_path_check --cfg maps/swap_se3/swap_se3.cfg --path solution.path [--step 1e-4]
+
+#include <boost/program_options.hpp>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <ompl/util/Console.h>
+#include <sstream>
+
+#include "CliMain.h"
+#include "FclOracle.h"
+#include "meshgap/Exception.h"
+#include "meshgap/Text.h"
+#include "meshgap/ompl/RobotStateSpace.h"
+#include "meshgap/robot/RobotProblem.h"
+#include "meshgap/robot/RobotScene.h"
+
+using namespace meshgap;
+namespace po = boost::program_options;
+namespace ob = ompl::base;
+
+namespace
+{
+    std::vector<std::vector<double>> readStates(const std::string &file, std::size_t dimension)
+    {
+        std::ifstream in(file);
+        if (!in)
+            throw Exception(file, "cannot read the path file");
+        std::vector<std::vector<double>> states;
+        std::string text;
+        for (std::size_t number = 1; std::getline(in, text); ++number)
+        {
+            std::istringstream fields(text);
+            std::vector<double> q;
+            std::string token;
+            while (fields >> token)
+                q.push_back(parseFiniteNumber(token, file + ":" + std::to_string(number)));
+            if (q.empty())
+                continue;
+            if (q.size() != dimension)
+                throw Exception(file + ":" + std::to_string(number), "expected " + std::to_string(dimension) +
+                                                                         " numbers, found " + std::to_string(q.size()));
+            states.push_back(q);
+        }
+        return states;
+    }
+}  // namespace
+
+int main(int argc, char **argv)
+{
+#ifndef MESHGAP_HAVE_FCL
+    std::fprintf(stderr, "error: built without FCL, the oracle\n");
+    return 1;
+#else
+    return cli::runMain(argc, argv, [](int ac, char **av) {
+        std::string cfg, pathFile;
+        double step = 1e-4;
+        po::options_description options("meshgap_bench_robot_path_check --cfg F --path P [--step S]");
+        options.add_options()("help,h", "print this help")("cfg", po::value(&cfg)->required(), "robot problem")(
+            "path", po::value(&pathFile)->required(), "path file (one state a line)")(
+            "step", po::value(&step), "largest step between checked states, a fraction of the space's extent");
+        po::variables_map vm;
+        if (!cli::parseCommandLine(ac, av, options, vm))
+            return 0;
+        ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+        const RobotProblem p = readRobotProblem(cfg);
+        const RobotScene scene(p.robot, p.obstacles);
+        ob::RealVectorBounds bounds(3);
+        bounds.setLow(-1e3);
+        bounds.setHigh(1e3);
+        const ob::StateSpacePtr space = robotStateSpace(*p.robot, bounds);
+        std::vector<std::shared_ptr<test::FclModel>> links, obstacles;
+        for (const RobotLink &link : scene.links())
+            links.push_back(test::fclModel(link.body->surface()));
+        for (const BodyConstPtr &o : scene.obstacles())
+            obstacles.push_back(test::fclModel(o->surface()));
+        const auto states = readStates(pathFile, p.robot->dimension());
+        const double extent = p.volume ? (p.volume->max() - p.volume->min()).norm() : space->getMaximumExtent();
+        ob::State *a = space->allocState(), *b = space->allocState(), *s = space->allocState();
+        std::vector<double> q;
+        std::vector<Eigen::Isometry3d> frames, poses;
+        std::size_t checked = 0, colliding = 0;
+        double least = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i + 1 < states.size(); ++i)
+        {
+            robotStateFromVector(*space, states[i], a);
+            robotStateFromVector(*space, states[i + 1], b);
+            const auto n = static_cast<std::size_t>(std::ceil(space->distance(a, b) / (step * extent))) + 1;
+            for (std::size_t k = (i == 0 ? 0 : 1); k <= n; ++k)
+            {
+                space->interpolate(a, b, static_cast<double>(k) / n, s);
+                robotStateToVector(*space, s, q);
+                p.robot->linkPoses(q.data(), q.size(), frames, poses);
+                bool hit = false;
+                for (std::size_t l = 0; l < links.size(); ++l)
+                    for (const auto &o : obstacles)
+                        hit = hit || test::fclCollide(o, links[l], poses[l]);
+                for (const auto &[x, y] : scene.selfPairs())
+                    hit = hit || test::fclCollide(links[x], links[y], poses[x].inverse() * poses[y]);
+                colliding += hit;
+                ++checked;
+                if (k == n || k == 0)  // FCL's distance at the path's own states
+                    for (std::size_t l = 0; l < links.size(); ++l)
+                        for (const auto &o : obstacles)
+                            least = std::min(least, test::fclDistance(o, links[l], poses[l]));
+            }
+        }
+        space->freeState(a);
+        space->freeState(b);
+        space->freeState(s);
+        std::printf("%s: %zu states checked (step %g of %g), %zu colliding by FCL, FCL's least link-obstacle "
+                    "distance at the path's states %.6g\n",
+                    pathFile.c_str(), checked, step, extent, colliding, least);
+        return colliding == 0 ? 0 : 3;
+    });
+#endif
+}

@@ -1,0 +1,304 @@
+#include "support/RobotRun.h"
+
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "meshgap/Exception.h"
+#include "meshgap/Text.h"
+#include "meshgap/ompl/RobotStateSpace.h"
+#include "meshgap/robot/MultiBodyRobot.h"
+#include "meshgap/robot/UrdfRobot.h"
+#include "support/PlanOutputs.h"
+#include "support/PlanRun.h"
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+namespace meshgap
+{
+    namespace cli
+    {
+        namespace
+        {
+            /** \brief OMPL's discrete motion check steps this fraction of the state space's extent on a robot
+                problem (its default, 0.01, lets two bodies moving at once pass through each other between steps). */
+            constexpr double DISCRETE_RESOLUTION = 0.002;
+
+            /** \brief One summary line: "key" padded to 16 columns, then the value. */
+            template <typename T>
+            void line(std::ostringstream &out, const char *key, const T &value)
+            {
+                char padded[24];
+                std::snprintf(padded, sizeof padded, "%-16s", key);
+                out << padded << value << "\n";
+            }
+
+            /** \brief "link 'a' and obstacle 3" or "links 'a' and 'b'": the pair \e r names. */
+            std::string pairText(const RobotScene &scene, const RobotResult &r)
+            {
+                const std::string link = "'" + scene.links()[r.link].name + "'";
+                return r.selfPair ? "links " + link + " and '" + scene.links()[r.other].name + "'" :
+                                    "link " + link + " and obstacle " + std::to_string(r.other);
+            }
+
+            /** \brief The options meshgap_plan has that a robot problem does not take (yet). */
+            void checkRobotOptions(const PlanOptions &o)
+            {
+                for (const char *name : {"weight", "optimize", "optimize-time", "sampler", "export-glb",
+                                         "export-states", "report", "clearance-csv"})
+                    if (o.isGiven(name))
+                        throw Exception(o.label(name), "does not apply to a robot problem (" + o.cfg + ")");
+                if (!o.objective.empty() && o.objective != "length")
+                    throw Exception(o.label("objective"), "a robot problem is planned for length only");
+                if (o.checker != "certified")
+                    throw Exception(o.label("checker"), "a robot problem is checked exactly (certified) only");
+            }
+
+            /** \brief The state space's bounds: the volume, or (a fixed-base arm needs none) a unit cube. */
+            ob::RealVectorBounds bounds(const RobotProblem &p)
+            {
+                ob::RealVectorBounds b(3);
+                b.setLow(-1.0);
+                b.setHigh(1.0);
+                const auto *urdf = dynamic_cast<const UrdfRobot *>(p.robot.get());
+                if (!p.volume && !(urdf && !urdf->floatingBase()))
+                    throw Exception(p.file, "needs volume.min.x .. volume.max.z (the bounds of its bodies' positions)");
+                if (p.volume)
+                    for (int k = 0; k < 3; ++k)
+                    {
+                        b.setLow(k, p.volume->min()[k]);
+                        b.setHigh(k, p.volume->max()[k]);
+                    }
+                return b;
+            }
+
+            /** \brief The start or goal as an OMPL state; throws when it is out of bounds or in collision. */
+            void checkEnd(const RobotPlanRun &run, const std::vector<double> &q, const char *which,
+                          ob::ScopedState<> &state)
+            {
+                robotStateFromVector(*run.setup->getStateSpace(), q, state.get());
+                if (!run.setup->getStateSpace()->satisfiesBounds(state.get()))
+                    throw Exception(run.problem.file, std::string(which) + " is outside the state space's bounds");
+                RobotResult r;
+                run.scene->distance(q, RobotRequest(), r);
+                if (r.inCollision)
+                {
+                    std::ostringstream text;
+                    text << which << " is in collision: " << pairText(*run.scene, r) << " (signed distance "
+                         << r.distance << ")";
+                    throw Exception(run.problem.file, text.str());
+                }
+            }
+
+            /** \brief What the robot is, in a few words. */
+            std::string robotText(const RobotPlanRun &run)
+            {
+                std::ostringstream text;
+                const RobotModel &robot = *run.problem.robot;
+                if (const auto *urdf = dynamic_cast<const UrdfRobot *>(&robot))
+                    text << "URDF '" << urdf->name() << "'" << (urdf->floatingBase() ? ", floating base" : "") << ", "
+                         << urdf->variables().size() << " joints, ";
+                else
+                    text << robot.links().size() << " bodies in " << (run.problem.planar ? "SE(2)" : "SE(3)") << ", ";
+                text << robot.links().size() << " links, " << run.scene->selfPairs().size() << " self pairs, "
+                     << run.problem.obstacles.size() << " obstacles";
+                return text.str();
+            }
+
+            /** \brief The path interpolated with \e perSegment states per validity-check segment, and its exact
+                clearance: the summary's path lines. */
+            void summarizePath(const RobotPlanRun &run, const PlanOptions &o, std::ostringstream &summary)
+            {
+                const og::PathGeometric &path = run.setup->getSolutionPath();
+                const ob::StateSpacePtr &space = run.setup->getStateSpace();
+                unsigned count = 1;
+                for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i)
+                    count += std::max(1u, space->validSegmentCount(path.getState(i), path.getState(i + 1))) * o.dense;
+                og::PathGeometric dense(path);
+                dense.interpolate(count);
+                RobotWarmStart warm;
+                RobotResult r, worst;
+                std::vector<double> q;
+                std::size_t collisions = 0;
+                for (std::size_t i = 0; i < dense.getStateCount(); ++i)
+                {
+                    robotStateToVector(*space, dense.getState(i), q);
+                    run.scene->distance(q.data(), q.size(), RobotRequest(), warm, r);
+                    collisions += r.inCollision;
+                    if (i == 0 || r.distance < worst.distance)
+                        worst = r;
+                }
+                line(summary, "states", std::to_string(path.getStateCount()) + " (dense: " +
+                                            std::to_string(dense.getStateCount()) + ")");
+                line(summary, "length", path.length());
+                std::ostringstream mc;
+                mc.precision(6);
+                mc << worst.distance << " (exact, over the dense path; " << pairText(*run.scene, worst) << ")";
+                line(summary, "min clearance", mc.str());
+                line(summary, "dense path free", collisions == 0 ? std::string("yes") :
+                                                                   "NO: " + std::to_string(collisions) +
+                                                                       " states collide");
+            }
+        }  // namespace
+
+        std::unique_ptr<RobotPlanRun> setUpRobotPlan(const PlanOptions &o)
+        {
+            checkPlanOptions(o);
+            checkRobotOptions(o);
+            auto run = std::make_unique<RobotPlanRun>();
+            run->problem = readRobotProblem(o.cfg);
+            const RobotProblem &p = run->problem;
+            if (!p.goal)
+                throw Exception(p.file, "no goal (goal.joints, or goal.N.x ... for each body)");
+            run->scene = std::make_shared<RobotScene>(p.robot, p.obstacles);
+            run->setup = std::make_shared<og::SimpleSetup>(robotStateSpace(*p.robot, bounds(p)));
+            const ob::SpaceInformationPtr si = run->setup->getSpaceInformation();
+            run->checker = std::make_shared<RobotChecker>(si, run->scene);
+            run->setup->setStateValidityChecker(run->checker);
+            const auto *urdf = dynamic_cast<const UrdfRobot *>(p.robot.get());
+            const bool certifiable = urdf && !urdf->floatingBase();
+            if (o.isGiven("motion") && o.motion == "clearance" && !certifiable)
+                throw Exception(o.label("motion"), "the certified motion validator takes fixed-base URDF robots; use "
+                                                   "discrete");
+            if (certifiable && !(o.isGiven("motion") && o.motion == "discrete"))
+                si->setMotionValidator(run->motion = std::make_shared<RobotMotionValidator>(si, run->scene, *urdf));
+            else
+                si->setStateValidityCheckingResolution(DISCRETE_RESOLUTION);
+            ob::ScopedState<> start(si), goal(si);
+            checkEnd(*run, p.start, "start", start);
+            checkEnd(*run, *p.goal, "goal", goal);
+            run->setup->setStartAndGoalStates(start, goal);
+            run->setup->setPlanner(allocPlanPlanner(o, si));
+            run->setup->setup();
+            return run;
+        }
+
+        void solveRobotPlan(RobotPlanRun &run, const PlanOptions &o)
+        {
+            run.status = run.setup->solve(o.time);
+            run.exact = run.status == ob::PlannerStatus::EXACT_SOLUTION;
+            run.havePath = run.setup->haveSolutionPath() &&
+                           (run.exact || run.status == ob::PlannerStatus::APPROXIMATE_SOLUTION);
+            std::ostringstream summary;
+            summary.precision(6);
+            line(summary, "problem", run.problem.name + " (robot problem)");
+            line(summary, "robot", robotText(run));
+            line(summary, "planner", o.planner);
+            line(summary, "objective", "length");
+            line(summary, "clearance mode", std::string("certified, motion ") +
+                                                (run.motion ? "certified (joint-space displacement bound)" :
+                                                              "discrete (OMPL's)"));
+            line(summary, "status", run.status.asString());
+            line(summary, "solved", !run.havePath ? "no" : run.exact ? "yes (exact)" : "approximate");
+            line(summary, "exact solution", run.exact ? "yes" : "no");
+            line(summary, "planning time", std::to_string(run.setup->getLastPlanComputationTime()) + " s");
+            if (run.havePath)
+                summarizePath(run, o, summary);
+            const ob::MotionValidatorPtr &mv = run.setup->getSpaceInformation()->getMotionValidator();
+            line(summary, "motion checks", std::to_string(mv->getValidMotionCount() + mv->getInvalidMotionCount()) +
+                                               " (" + std::to_string(mv->getValidMotionCount()) + " free)");
+            run.summary = summary.str();
+        }
+
+        void writeRobotPlanFiles(const RobotPlanRun &run, const PlanOptions &o, std::ostream &log)
+        {
+            if (!o.summaryFile.empty())
+                writeTextFile(run.summary, o.summaryFile);
+            if (!run.havePath || o.out.empty())
+                return;
+            std::ostringstream text;
+            text << std::setprecision(17);
+            const og::PathGeometric &path = run.setup->getSolutionPath();
+            std::vector<double> q;
+            for (std::size_t i = 0; i < path.getStateCount(); ++i)
+            {
+                robotStateToVector(*run.setup->getStateSpace(), path.getState(i), q);
+                for (std::size_t k = 0; k < q.size(); ++k)
+                    text << (k ? " " : "") << q[k];
+                text << "\n";
+            }
+            writeTextFile(text.str(), o.out);
+            log << "path written    " << o.out << "\n";
+        }
+
+        namespace
+        {
+            /** \brief The numbers of one state in \e text, \e dimension of them; throws naming \e where. */
+            std::vector<double> parseState(const std::string &text, std::size_t dimension, const std::string &where)
+            {
+                std::istringstream fields(text);
+                std::vector<double> q;
+                std::string token;
+                while (fields >> token)
+                    q.push_back(parseFiniteNumber(token, where, "a state of " + std::to_string(dimension) +
+                                                                    " numbers"));
+                if (q.size() != dimension)
+                    throw Exception(where, "a state of this problem has " + std::to_string(dimension) +
+                                               " numbers (as start.joints, or the bodies' states one after the "
+                                               "other), found " + std::to_string(q.size()));
+                return q;
+            }
+
+            /** \brief The states of \e file, one a line ('#' lines and blank lines skipped). */
+            std::vector<std::vector<double>> readStates(const std::string &file, std::size_t dimension)
+            {
+                std::ifstream in(file);
+                if (!in)
+                    throw Exception(file, "no such file, or it cannot be read");
+                std::vector<std::vector<double>> states;
+                std::string text;
+                for (std::size_t number = 1; std::getline(in, text); ++number)
+                {
+                    const auto first = text.find_first_not_of(" \t\r");
+                    if (first != std::string::npos && text[first] != '#')
+                        states.push_back(parseState(text, dimension, file + ":" + std::to_string(number)));
+                }
+                if (states.empty())
+                    throw Exception(file, "no states in the file");
+                return states;
+            }
+
+            /** \brief One state's answer: the clearance, its pair and witnesses, every link's clearance. */
+            void printAnswer(const RobotScene &scene, const RobotResult &r, std::size_t index, std::ostream &out)
+            {
+                out << "state " << index << ": clearance " << r.distance << " ("
+                    << (r.certified ? "exact, certified" : "not certified") << ")"
+                    << (r.inCollision ? ", IN COLLISION" : "") << "\n";
+                out << "  closest pair   " << pairText(scene, r) << "\n";
+                out << "  witnesses      (" << r.onLink.transpose() << ") on the link, (" << r.onOther.transpose()
+                    << ") on the other\n";
+                for (std::size_t i = 0; i < scene.links().size(); ++i)
+                {
+                    char name[40];
+                    std::snprintf(name, sizeof name, "  link %-24s", scene.links()[i].name.c_str());
+                    out << name << " " << r.linkClearance[i] << "\n";
+                }
+            }
+        }  // namespace
+
+        void robotDistance(const std::string &cfg, const std::string &stateText, const std::string &statesFile,
+                           std::ostream &out)
+        {
+            const RobotProblem p = readRobotProblem(cfg);
+            const RobotScene scene(p.robot, p.obstacles);
+            const std::size_t n = p.robot->dimension();
+            std::vector<std::vector<double>> states = {p.start};
+            if (!stateText.empty())
+                states = {parseState(stateText, n, "--pose")};
+            if (!statesFile.empty())
+                states = readStates(statesFile, n);
+            RobotRequest request;
+            request.everyPair = true;
+            RobotWarmStart warm;
+            RobotResult r;
+            out << std::setprecision(10);
+            for (std::size_t i = 0; i < states.size(); ++i)
+            {
+                scene.distance(states[i].data(), n, request, warm, r);
+                printAnswer(scene, r, i + 1, out);
+            }
+        }
+    }  // namespace cli
+}  // namespace meshgap

@@ -1,0 +1,61 @@
+#ifndef MESHGAP_PLANNERS_SUPPORT_ROBOT_RUN_H
+#define MESHGAP_PLANNERS_SUPPORT_ROBOT_RUN_H
+
+// meshgap_plan and meshgap_distance on a robot problem (RobotProblem: a URDF robot, its payload, or several bodies):
+// the OMPL setup (robotStateSpace(), RobotChecker, RobotMotionValidator for a fixed-base URDF robot), the run's
+// summary and path file, and the per-state whole-robot answers meshgap_distance prints.
+
+#include <memory>
+#include <ompl/base/PlannerStatus.h>
+#include <ompl/geometric/SimpleSetup.h>
+#include <ostream>
+#include <string>
+
+#include "meshgap/ompl/RobotChecker.h"
+#include "meshgap/ompl/RobotMotionValidator.h"
+#include "meshgap/robot/RobotProblem.h"
+#include "support/PlanOptions.h"
+
+namespace meshgap
+{
+    namespace cli
+    {
+        /** \brief A planning run on a robot problem. */
+        struct RobotPlanRun
+        {
+            RobotProblem problem;
+            RobotSceneConstPtr scene;
+            ompl::geometric::SimpleSetupPtr setup;
+            std::shared_ptr<RobotChecker> checker;
+            /** \brief The certified motion validator (a fixed-base URDF robot, unless --motion discrete); null when
+                OMPL's discrete one checks motions. */
+            std::shared_ptr<RobotMotionValidator> motion;
+            ompl::base::PlannerStatus status;
+            bool exact = false, havePath = false;
+            std::string summary;
+        };
+
+        /** \brief Read the robot problem o.cfg and set up the planner; throws meshgap::Exception naming the option
+            that does not apply to robot problems, a problem without a goal (or, for rigid bodies, a volume), and a
+            start or goal out of bounds or in collision (the pair and its distance). */
+        std::unique_ptr<RobotPlanRun> setUpRobotPlan(const PlanOptions &o);
+
+        /** \brief Solve, then the summary: the path's length and the exact minimum clearance over it densely
+            interpolated (o.dense states per validity-check segment), and the checker's and validator's counts. */
+        void solveRobotPlan(RobotPlanRun &run, const PlanOptions &o);
+
+        /** \brief Write the summary (o.summaryFile) and the path (o.out: one state a line, the numbers of
+            start.joints, or of the bodies' states one after the other). */
+        void writeRobotPlanFiles(const RobotPlanRun &run, const PlanOptions &o, std::ostream &log);
+
+        /** \brief meshgap_distance on a robot problem: at the start (\e stateText empty and \e statesFile empty),
+            at the state \e stateText, or at every state of \e statesFile (one a line, as a .path of the problem),
+            print the whole robot's exact signed clearance, the pair that attains it (a link and an obstacle, or
+            two links) and every link's clearance. Throws meshgap::Exception naming file:line for a state of the
+            wrong dimension or a malformed number. */
+        void robotDistance(const std::string &cfg, const std::string &stateText, const std::string &statesFile,
+                           std::ostream &out);
+    }  // namespace cli
+}  // namespace meshgap
+
+#endif

@@ -1,0 +1,165 @@
+// meshgap_plan and meshgap_distance on robot problems (a URDF arm with its payload, several bodies): the path file
+// holds the problem's own state numbers, the distance tool's per-state answer matches distances worked out by hand,
+// and each bad input gets one clear error and a non-zero exit.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "CliRun.h"
+
+namespace fs = std::filesystem;
+
+namespace
+{
+    using meshgap::test::CliRun;
+
+    const std::string RES = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot";
+    const std::string CUBE = RES + "/meshgap_test_description/meshes/cube.obj";
+    const std::string MAPS = std::string(MESHGAP_SOURCE_DIR) + "/maps";
+
+    /** \brief A folder of its own per test process. */
+    class RobotCli : public ::testing::Test
+    {
+    protected:
+        void SetUp() override
+        {
+            dir_ = fs::temp_directory_path() / ("meshgap_robot_cli_" + std::to_string(::getpid()));
+            fs::create_directories(dir_);
+        }
+        void TearDown() override { fs::remove_all(dir_); }
+
+        std::string file(const std::string &name, const std::string &text)
+        {
+            const std::string path = (dir_ / name).string();
+            std::ofstream(path) << text;
+            return path;
+        }
+
+        /** \brief Two unit cubes as bodies (centred by OMPL.app's rule: [-0.5, 0.5]^3 about their state), the world
+            one unit cube at x in [2, 3], y and z in [0, 1]. */
+        std::string twoCubes()
+        {
+            return file("two.cfg", "[problem]\nrobot.1 = " + CUBE + "\nrobot.2 = " + CUBE + "\nworld = " +
+                                       file("world.obj", "v 2 0 0\nv 3 0 0\nv 3 1 0\nv 2 1 0\nv 2 0 1\nv 3 0 1\n"
+                                                         "v 3 1 1\nv 2 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\n"
+                                                         "f 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n") +
+                                       "\nstart.1.x = 0\nstart.1.y = 0\nstart.1.z = 0.5\nstart.2.x = 0\n"
+                                       "start.2.y = 1.8\nstart.2.z = 0.5\n");
+        }
+
+        fs::path dir_;
+    };
+
+    /** \brief The number after \e key on the line of \e text that starts with \e key. */
+    double valueAfter(const std::string &text, const std::string &key)
+    {
+        std::istringstream in(text);
+        std::string line;
+        while (std::getline(in, line))
+        {
+            const auto at = line.find(key);
+            if (at != std::string::npos)
+                return std::stod(line.substr(at + key.size()));
+        }
+        return NAN;
+    }
+
+    std::vector<std::vector<double>> readRows(const std::string &path)
+    {
+        std::ifstream in(path);
+        std::vector<std::vector<double>> rows;
+        std::string line;
+        while (std::getline(in, line))
+        {
+            std::istringstream fields(line);
+            std::vector<double> row;
+            double x;
+            while (fields >> x)
+                row.push_back(x);
+            rows.push_back(row);
+        }
+        return rows;
+    }
+}  // namespace
+
+TEST_F(RobotCli, DistanceGivesTheWholeRobotsClearanceItsPairAndEveryLink)
+{
+    // Body 1 spans x in [-0.5, 0.5], 1.5 from the world cube; body 2 (y in [1.3, 2.3]) is 0.8 from body 1 and
+    // sqrt(1.5^2 + 0.3^2) from the world cube: the minimum is the pair of bodies, 0.8, and each body's clearance too.
+    const CliRun r = meshgap::test::runExecutable("meshgap_distance", "--cfg " + twoCubes() + " --exact");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NEAR(valueAfter(r.out, "state 1: clearance"), 0.8, 1e-9) << r.out;
+    EXPECT_NE(r.out.find("closest pair   links 'robot.1' and 'robot.2'"), std::string::npos) << r.out;
+    EXPECT_NEAR(valueAfter(r.out, "link robot.1"), 0.8, 1e-9) << r.out;
+    EXPECT_NEAR(valueAfter(r.out, "link robot.2"), 0.8, 1e-9) << r.out;
+    // Body 2 moved away (y = 5): body 1's 1.5 to the world cube is the minimum.
+    const CliRun far = meshgap::test::runExecutable(
+        "meshgap_distance", "--cfg " + twoCubes() + " --pose '0 0 0.5 0 0 0 1 0 5 0.5 0 0 0 1'");
+    ASSERT_EQ(far.status, 0) << far.err;
+    EXPECT_NEAR(valueAfter(far.out, "state 1: clearance"), 1.5, 1e-9) << far.out;
+    EXPECT_NE(far.out.find("closest pair   link 'robot.1' and obstacle 0"), std::string::npos) << far.out;
+    EXPECT_NEAR(valueAfter(far.out, "link robot.2"), std::hypot(1.5, 3.5), 1e-9) << far.out;
+}
+
+TEST_F(RobotCli, PlanWritesThePathInTheProblemsStateNumbers)
+{
+    const std::string path = (dir_ / "swap.path").string();
+    const CliRun r = meshgap::test::runExecutable(
+        "meshgap_plan", "--cfg " + MAPS + "/swap_se2/swap_se2.cfg --seed 3 --time 20 -q --out " + path, 120);
+    ASSERT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("dense path free yes"), std::string::npos) << r.out;
+    const auto rows = readRows(path);
+    ASSERT_GE(rows.size(), 2u);
+    for (const auto &row : rows)
+        ASSERT_EQ(row.size(), 6u);  // x y theta of each body
+    // The cfg's start and goal (maps/swap_se2/swap_se2.cfg): the bodies swap (-3.3, -1.2) and (3.3, 1.2).
+    const std::vector<double> start = {-3.3, -1.2, 0, 3.3, 1.2, 0}, goal = {3.3, 1.2, 0, -3.3, -1.2, 0};
+    for (std::size_t k = 0; k < 6; ++k)
+    {
+        EXPECT_NEAR(rows.front()[k], start[k], 1e-12) << k;
+        EXPECT_NEAR(rows.back()[k], goal[k], 1e-12) << k;
+    }
+    // meshgap_distance reads the path back: every state free.
+    const CliRun d = meshgap::test::runExecutable("meshgap_distance", "--cfg " + MAPS +
+                                                                         "/swap_se2/swap_se2.cfg --exact --poses " +
+                                                                         path);
+    ASSERT_EQ(d.status, 0) << d.err;
+    EXPECT_EQ(d.out.find("IN COLLISION"), std::string::npos) << d.out;
+}
+
+TEST_F(RobotCli, BadInputGetsOneClearErrorEach)
+{
+    struct Case
+    {
+        std::string tool, args, expected;
+    };
+    const std::string arm = "robot.urdf = " + RES + "/problems/arm2.urdf\nworld = " + CUBE + "\n";
+    const std::vector<Case> cases = {
+        {"meshgap_distance", "--cfg " + twoCubes() + " --pose '1 2 3'", "--pose: a state of this problem has 14"},
+        {"meshgap_distance", "--cfg " + twoCubes() + " --poses " + file("bad.path", "0 0 0.5 0 0 0 1\n"),
+         "bad.path:1: a state of this problem has 14 numbers"},
+        {"meshgap_plan",
+         "--cfg " + file("claw.cfg", "[problem]\n" + arm + "attach = " + CUBE +
+                                         " claw 0 0 0 0 0 0 1\nstart.joints = 0 0\ngoal.joints = 1 0\n"),
+         "claw.cfg:4: attach: the robot has no link 'claw'"},
+        {"meshgap_distance",
+         "--cfg " + file("wrong.cfg", "[problem]\n" + arm + "start.joints = 0 0 0\n"),
+         "wrong.cfg:4: start.joints has 3 numbers"},
+        {"meshgap_plan",
+         "--cfg " + file("missing.cfg", "[problem]\nrobot.urdf = " + RES + "/missing_mesh.urdf\nworld = " + CUBE +
+                                            "\nstart.joints = 0\ngoal.joints = 0\n"),
+         "missing.cfg:2: robot.urdf:"}};
+    for (const Case &c : cases)
+    {
+        const CliRun r = meshgap::test::runExecutable(c.tool, c.args);
+        EXPECT_EQ(r.status, 1) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.args << "\n" << r.err;
+        EXPECT_EQ(meshgap::test::countLines(r.err, "error"), 1) << r.err;
+        EXPECT_TRUE(r.out.empty() || r.out.find("path written") == std::string::npos) << r.out;
+    }
+}
