@@ -2,6 +2,7 @@
 per-link and per-pair clearances checked against analytic box distances (quarter turns keep every box axis-aligned),
 threads, payloads, and bad input (one clear exception)."""
 import math
+import re
 
 import numpy as np
 import pytest
@@ -316,3 +317,32 @@ def test_single_body_and_robot_files_each_refused_by_the_other(files):
     bad.write_text(cfg.read_text().replace("start.joints = 0.5 1.0", "start.joints = 0.5"))
     with pytest.raises(ValueError, match="start.joints"):
         meshgap.RobotScene.from_cfg(bad)
+
+
+def test_batch_equals_meshgap_distance_cli(files, tmp_path):
+    """The batch against the C++ whole-robot answer meshgap_distance prints for the same problem file and states."""
+    from conftest import executable
+    import subprocess
+    cli = executable("distance")
+    cfg = write_cfg(files)
+    scene = meshgap.RobotScene.from_cfg(cfg)
+    rng = np.random.default_rng(17)
+    states = np.column_stack([rng.uniform(-3.5, 3.5, 40), rng.uniform(-1.0, 2.5, 40)])
+    path = tmp_path / "states.txt"
+    path.write_text("".join("%r %r\n" % tuple(q) for q in states))
+    run = subprocess.run([cli, "--cfg", str(cfg), "--poses", str(path), "--exact"], capture_output=True, text=True,
+                         timeout=300)
+    assert run.returncode == 0, run.stderr
+    blocks = re.split(r"^state (\d+): ", run.stdout, flags=re.M)[1:]
+    assert len(blocks) == 2 * len(states)
+    r = scene.distance(states)
+    for i in range(len(states)):
+        assert int(blocks[2 * i]) == i + 1
+        text = blocks[2 * i + 1]
+        printed = float(re.match(r"clearance (\S+)", text).group(1))
+        assert printed == pytest.approx(r["distance"][i], rel=1e-9, abs=1e-12), (i, text)
+        assert ("IN COLLISION" in text) == bool(r["in_collision"][i])
+        links = dict((name, float(value)) for name, value in re.findall(r"^  link (\S+)\s+(\S+)$", text, re.M))
+        assert list(links) == scene.link_names
+        np.testing.assert_allclose([links[n] for n in scene.link_names], r["link_clearance"][i], rtol=1e-9,
+                                   atol=1e-12)
