@@ -17,12 +17,16 @@ namespace meshgap
             throw Exception("RobotMotionValidator", "the robot scene was built with another set of links");
     }
 
-    bool RobotMotionValidator::pairClearances(const std::vector<double> &q, std::vector<double> &pairs) const
+    bool RobotMotionValidator::pairClearances(const std::vector<double> &q, double bound,
+                                              std::vector<double> &pairs) const
     {
         thread_local RobotWarmStart warm;
         thread_local RobotResult result;
         RobotRequest request;
         request.everyPair = true;
+        // A pair at or beyond the bound is answered AT_LEAST with the bound as its distance: enough for any
+        // segment whose displacement bound is at most it (the other end's clearance being positive).
+        request.upperBound = bound > 0.0 ? bound : std::numeric_limits<double>::min();
         scene_->distance(q.data(), q.size(), request, warm, result);
         if (result.inCollision)
             return false;
@@ -32,6 +36,17 @@ namespace meshgap
                            ? std::numeric_limits<double>::infinity()
                            : result.pairs[k].distance;
         return true;
+    }
+
+    double RobotMotionValidator::largestReach(const std::vector<double> &moves) const
+    {
+        const std::size_t links = scene_->links().size();
+        double largest = 0.0;
+        for (std::size_t i = 0; i < links; ++i)
+            largest = std::max(largest, moves[i]);
+        for (const LinkPair &p : scene_->selfPairs())
+            largest = std::max(largest, moves[p.first] + moves[p.second]);
+        return largest;
     }
 
     bool RobotMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
@@ -46,14 +61,16 @@ namespace meshgap
         Segment first{0.0, 1.0, {}, {}, {}, {}, 0};
         robotStateToVector(space, s1, first.q0);
         robotStateToVector(space, s2, first.q1);
-        if (!pairClearances(first.q0, first.d0) || !pairClearances(first.q1, first.d1))
+        std::vector<double> moves;
+        bound_.linkDisplacements(first.q0, first.q1, moves);
+        const double whole = largestReach(moves);
+        if (!pairClearances(first.q0, whole, first.d0) || !pairClearances(first.q1, whole, first.d1))
         {
             invalid_++;
             return false;
         }
         const std::size_t links = scene_->links().size();
         std::vector<Segment> stack{first};
-        std::vector<double> moves;
         ompl::base::State *middle = si_->allocState();
         bool free = true;
         while (free && !stack.empty())
@@ -81,7 +98,7 @@ namespace meshgap
             space.interpolate(s1, s2, t, middle);
             Segment left{s.t0, t, s.q0, {}, s.d0, {}, s.depth + 1}, right{t, s.t1, {}, s.q1, {}, s.d1, s.depth + 1};
             robotStateToVector(space, middle, left.q1);
-            if (!pairClearances(left.q1, left.d1))
+            if (!pairClearances(left.q1, largestReach(moves), left.d1))
             {
                 free = false;
                 break;

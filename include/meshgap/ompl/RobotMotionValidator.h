@@ -35,8 +35,11 @@ namespace meshgap
                          std::pair<ompl::base::State *, double> &lastValid) const override;
 
     private:
-        /** \brief Every pair's clearance at \e q into \e pairs (empty: a collision). */
-        bool pairClearances(const std::vector<double> &q, std::vector<double> &pairs) const;
+        /** \brief Every pair's clearance at \e q into \e pairs, a pair at or beyond \e bound given as \e bound
+            (pruned: at least that); false for a collision. */
+        bool pairClearances(const std::vector<double> &q, double bound, std::vector<double> &pairs) const;
+        /** \brief The largest displacement bound of any pair, given each link's (\e moves). */
+        double largestReach(const std::vector<double> &moves) const;
 
         RobotSceneConstPtr scene_;
         MotionBound bound_;
