@@ -82,8 +82,9 @@ namespace meshgap
             for (std::size_t k = 0; k < s.d0.size() && proven; ++k)
             {
                 const double reach = k < links ? moves[k]
-                                               : moves[scene_->selfPairs()[k - links].first] +
-                                                     moves[scene_->selfPairs()[k - links].second];
+                                               : bound_.pairDisplacement(scene_->selfPairs()[k - links].first,
+                                                                         scene_->selfPairs()[k - links].second,
+                                                                         s.q0, s.q1);
                 proven = s.d0[k] + s.d1[k] > reach;
             }
             if (proven)

@@ -38,13 +38,16 @@ namespace meshgap
         si->setMotionValidator(validator);
         si->setup();
 
-        // Start states facing the fixture (yaw within 0.6 rad of it), within every joint's limits; motions of up to
-        // 0.25 rad per joint from there, so that many pass near the window's edges.
+        // Start states facing the fixture (yaw within 0.6 rad of it), within every joint's limits, near contact;
+        // motions of up to 0.25 rad per joint from there.
         std::mt19937 rng(11);
         std::uniform_real_distribution<double> u(-1.0, 1.0);
         const std::vector<double> half = {0.6, 2.0, 2.5, 2.0};
         ob::State *a = si->allocState(), *b = si->allocState();
         RobotWarmStart warm;
+        RobotRequest near;
+        near.upperBound = 0.05;
+        RobotResult result;
         long accepted = 0, rejected = 0, colliding = 0, states = 0;
         std::vector<double> qa(4), qb(4), q(4);
         while (accepted < wanted)
@@ -54,7 +57,10 @@ namespace meshgap
                 qa[k] = half[k] * u(rng);
                 qb[k] = std::clamp(qa[k] + 0.25 * u(rng), -half[k], half[k]);
             }
-            if (scene->inCollision(qa.data(), 4, warm) || scene->inCollision(qb.data(), 4, warm))
+            // Only motions that start near contact (some pair within 0.05) say much: most of the joint space is
+            // far from the fixture.
+            scene->distance(qa.data(), 4, near, warm, result);
+            if (result.inCollision || result.atLeast || scene->inCollision(qb.data(), 4, warm))
                 continue;
             robotStateFromVector(*si->getStateSpace(), qa, a);
             robotStateFromVector(*si->getStateSpace(), qb, b);

@@ -61,6 +61,63 @@ namespace meshgap
         EXPECT_GT(tightest, 0.2);  // a bound, not a wild one
     }
 
+    TEST(RobotMotionValidator, PairBoundHoldsInTheCommonAncestorsFrame)
+    {
+        const UrdfRobotPtr robot = treeWithPayload();
+        const MotionBound bound(*robot);
+        // Each pair's nearest common frame, found here by walking the parents.
+        auto ancestor = [&](std::size_t f1, std::size_t f2)
+        {
+            for (std::size_t f = f1; f != RobotModel::NONE; f = robot->frames()[f].parent)
+                for (std::size_t g = f2; g != RobotModel::NONE; g = robot->frames()[g].parent)
+                    if (f == g)
+                        return f;
+            return RobotModel::NONE;
+        };
+        std::mt19937 rng(9);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        double tightest = 0.0, saving = 0.0;
+        std::vector<double> moves;
+        std::vector<Eigen::Isometry3d> framesA, framesQ, linksA, linksQ;
+        for (int trial = 0; trial < 60; ++trial)
+        {
+            const std::vector<double> a = {1.5 * u(rng), 2.5 * u(rng), 0.1 + 0.2 * u(rng), 1.5 * u(rng), u(rng)};
+            const std::vector<double> b = {1.5 * u(rng), 2.5 * u(rng), 0.1 + 0.2 * u(rng), 1.5 * u(rng), u(rng)};
+            bound.linkDisplacements(a, b, moves);
+            robot->linkPoses(a.data(), a.size(), framesA, linksA);
+            for (int step = 1; step <= 40; ++step)
+            {
+                std::vector<double> q(a.size());
+                for (std::size_t k = 0; k < q.size(); ++k)
+                    q[k] = a[k] + (b[k] - a[k]) * step / 40.0;
+                robot->linkPoses(q.data(), q.size(), framesQ, linksQ);
+                for (const auto &[first, second] : robot->selfPairs())
+                {
+                    const std::size_t c = ancestor(robot->links()[first].frame, robot->links()[second].frame);
+                    ASSERT_NE(c, RobotModel::NONE);
+                    double moved = 0.0;  // each link's largest vertex move in the common frame, summed
+                    for (std::size_t link : {first, second})
+                    {
+                        double most = 0.0;
+                        for (const Eigen::Vector3d &v : robot->links()[link].body->surface().vertices)
+                            most = std::max(most, (framesQ[c].inverse() * linksQ[link] * v -
+                                                   framesA[c].inverse() * linksA[link] * v)
+                                                      .norm());
+                        moved += most;
+                    }
+                    const double pair = bound.pairDisplacement(first, second, a, b);
+                    ASSERT_LE(moved, pair + 1e-12) << robot->links()[first].name << " " << robot->links()[second].name;
+                    ASSERT_LE(pair, moves[first] + moves[second] + 1e-12);
+                    if (pair > 0)
+                        tightest = std::max(tightest, moved / pair);
+                    saving = std::max(saving, 1.0 - pair / (moves[first] + moves[second]));
+                }
+            }
+        }
+        test::Note() << "largest relative displacement / pair bound " << tightest << ", largest saving over the two "
+                     << "links' own bounds " << saving;
+    }
+
     TEST(RobotMotionValidator, CertifiedMotionsAreFreeWhenCheckedDensely)
     {
         const UrdfRobotPtr robot = treeWithPayload();

@@ -14,8 +14,9 @@ namespace meshgap
        A certified motion validator for fixed-base URDF robots in a space made by robotStateSpace(): a motion is
        valid when it is proven free. Each pair's clearance is 1-Lipschitz in the displacement of its bodies, which
        MotionBound bounds along the motion; a segment is free when, for every pair, the clearances at its two ends
-       add up to more than the displacement bound of the pair over the segment (the two links' bounds; a link's for
-       a link against the obstacles). Else it is split in two, down to a depth of 30; a state in collision on the
+       add up to more than the displacement bound of the pair over the segment (for two links, how far either moves
+       in the frame of their nearest common ancestor, MotionBound::pairDisplacement(); a link's own bound for a link
+       against the obstacles). Else it is split in two, down to a depth of 30; a state in collision on the
        way makes the motion invalid, and so does reaching that depth (conservative). Clearances are exact
        (RobotScene, every pair, pruned at the bound each pair needs).
        @par External documentation

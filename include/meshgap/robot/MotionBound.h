@@ -25,15 +25,29 @@ namespace meshgap
         void linkDisplacements(const std::vector<double> &a, const std::vector<double> &b,
                                std::vector<double> &out) const;
 
+        /** \brief The bound for links \e first and \e second relative to each other from state \e a to state
+            \e b: how far any point of either moves in the frame of their nearest common ancestor (the joints above
+            that frame move both alike, which changes no distance between them), summed over the two. At most
+            linkDisplacements()' two bounds added; far less for links close in the tree (a wrist and the link two
+            joints up). */
+        double pairDisplacement(std::size_t first, std::size_t second, const std::vector<double> &a,
+                                const std::vector<double> &b) const;
+
     private:
-        /** \brief Per link, the movable joints above it: the state number driving it and its factor r * |m|. */
+        /** \brief Per link, the movable joints above it, nearest first: the state number driving it, its factor
+            r * |m|, and where its child frame is on the link's way up (an index into chains_). */
         struct Term
         {
             std::size_t variable;
             double factor;
             bool angle;  ///< a continuous joint's value: the shorter arc
+            std::size_t step;
         };
+        /** \brief |b - a| of \e t (the shorter arc for an angle) times its factor. */
+        static double termMove(const Term &t, const std::vector<double> &a, const std::vector<double> &b);
         std::vector<std::vector<Term>> terms_;
+        /** \brief Per link, its frame and every frame above it, up to the root. */
+        std::vector<std::vector<std::size_t>> chains_;
         std::vector<bool> continuous_;  ///< per state number
     };
 }  // namespace meshgap
