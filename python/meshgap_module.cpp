@@ -896,8 +896,8 @@ namespace
         return std::size_t(i);
     }
 
-    /** \brief Every state number's bounds, (dof, 2): a URDF joint's limits (-inf, inf for a continuous joint and
-        a floating base's position, -1, 1 for its quaternion). */
+    /** \brief Every state number's bounds, (dof, 2): a URDF joint's limits (-inf, inf for a continuous joint), -1, 1
+        for a quaternion's numbers (a floating base's, a rigid body's), -inf, inf for positions and angles. */
     py::array_t<double> robotBounds(const PyRobotScene &self)
     {
         const std::size_t dof = self.scene->robot().dimension();
@@ -905,8 +905,12 @@ namespace
         const double inf = std::numeric_limits<double>::infinity();
         for (std::size_t k = 0; k < dof; ++k)
         {
-            out.mutable_at(py::ssize_t(k), 0) = k >= 3 && k < 7 ? -1.0 : -inf;
-            out.mutable_at(py::ssize_t(k), 1) = k >= 3 && k < 7 ? 1.0 : inf;
+            const std::string &name = self.stateNames[k];
+            const std::size_t dot = name.rfind('.');
+            const std::string last = dot == std::string::npos ? name : name.substr(dot + 1);
+            const bool quaternion = last == "qx" || last == "qy" || last == "qz" || last == "qw";
+            out.mutable_at(py::ssize_t(k), 0) = quaternion ? -1.0 : -inf;
+            out.mutable_at(py::ssize_t(k), 1) = quaternion ? 1.0 : inf;
         }
         if (const auto *urdf = dynamic_cast<const UrdfRobot *>(&self.scene->robot()))
             for (std::size_t v = 0; v < urdf->variables().size(); ++v)

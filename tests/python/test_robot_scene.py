@@ -346,3 +346,33 @@ def test_batch_equals_meshgap_distance_cli(files, tmp_path):
         assert list(links) == scene.link_names
         np.testing.assert_allclose([links[n] for n in scene.link_names], r["link_clearance"][i], rtol=1e-9,
                                    atol=1e-12)
+
+
+@pytest.mark.parametrize("name, dimension", [("arm_fixture", 4), ("swap_se2", 6), ("swap_se3", 14)])
+def test_maps_batch_equals_meshgap_distance_cli(tmp_path, name, dimension):
+    """Every kind of robot problem of maps/ (a URDF arm with its payload, two bodies in SE(2), two in SE(3)): the
+    batch at states between start and goal (linear, quaternions renormalised) against meshgap_distance's answers."""
+    from conftest import MAPS, executable
+    import subprocess
+    cli = executable("distance")
+    cfg = MAPS / name / (name + ".cfg")
+    scene = meshgap.RobotScene.from_cfg(cfg)
+    assert scene.dimension == dimension and len(scene.state_names) == dimension
+    quaternion = np.array([n.rsplit(".", 1)[-1] in ("qx", "qy", "qz", "qw") for n in scene.state_names])
+    assert np.all(scene.bounds[quaternion] == [-1.0, 1.0]) and quaternion.sum() == (8 if name == "swap_se3" else 0)
+    states = np.linspace(scene.start, scene.goal, 25)
+    for first in np.flatnonzero(quaternion)[::4]:
+        q = states[:, first:first + 4]
+        states[:, first:first + 4] = q / np.linalg.norm(q, axis=1)[:, None]
+    path = tmp_path / "states.txt"
+    path.write_text("".join(" ".join("%r" % x for x in q) + "\n" for q in states))
+    run = subprocess.run([cli, "--cfg", str(cfg), "--poses", str(path), "--exact"], capture_output=True, text=True,
+                         timeout=300)
+    assert run.returncode == 0, run.stderr
+    printed = [float(x) for x in re.findall(r"^state \d+: clearance (\S+)", run.stdout, re.M)]
+    r = scene.distance(states)
+    assert not r["in_collision"][[0, -1]].any()  # start and goal are free
+    np.testing.assert_allclose(printed, r["distance"], rtol=1e-9, atol=1e-12)
+    links = re.findall(r"^  link (\S+)\s+(\S+)$", run.stdout, re.M)
+    np.testing.assert_allclose(np.array([float(v) for _, v in links]).reshape(len(states), -1), r["link_clearance"],
+                               rtol=1e-9, atol=1e-12)
