@@ -365,11 +365,11 @@ namespace
             return 0;
         const auto [shard, shards] = parseShard(o.shardText);
         const bool robot = isRobotProblemFile(o.cfg);
-        const std::vector<std::pair<std::string, std::string>> setups =
-            checkerSetups(o, robot ? robotCheckerNames() : checkerNames());
         std::optional<RobotProblem> robotProblem;
         if (robot)
             robotProblem = readRobotProblem(o.cfg);
+        const std::vector<std::pair<std::string, std::string>> setups =
+            checkerSetups(o, robot ? robotCheckerNames(robotProblem->robot.get()) : checkerNames());
         const ProblemConfig config = robot ? benchmarkConfigOf(*robotProblem) : readProblemConfig(o.cfg);
         const Settings settings = settingsOf(config, o.vm);
         const std::vector<PlannerSpec> planners = plannerSpecs(o, config);

@@ -77,9 +77,12 @@ namespace meshgap
             }
         }  // namespace
 
-        std::vector<std::string> robotCheckerNames()
+        std::vector<std::string> robotCheckerNames(const RobotModel *robot)
         {
+            const auto *urdf = dynamic_cast<const UrdfRobot *>(robot);
             std::vector<std::string> names = {"certified", "discrete"};
+            if (robot && (!urdf || urdf->floatingBase()))
+                names.erase(names.begin());
     #ifdef MESHGAP_HAVE_FCL
             names.push_back("fcl");
     #endif

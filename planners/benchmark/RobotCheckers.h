@@ -22,8 +22,9 @@ namespace meshgap
     {
         /** \brief The checkers of a robot problem, in grid order, as --checker spells them: "certified" (RobotChecker,
             RobotMotionValidator: certified motions), "discrete" (RobotChecker, OMPL's DiscreteMotionValidator at its
-            default resolution) and, when built with FCL, "fcl" (FclRobotChecker, OMPL's DiscreteMotionValidator). */
-        std::vector<std::string> robotCheckerNames();
+            default resolution) and, when built with FCL, "fcl" (FclRobotChecker, OMPL's DiscreteMotionValidator).
+            Given \e robot, "certified" only when it is a fixed-base URDF robot (what RobotMotionValidator bounds). */
+        std::vector<std::string> robotCheckerNames(const RobotModel *robot = nullptr);
 
         /** \brief What the grid reads of a problem file (name, file, objective, [benchmark], [planner]) for a robot
             problem. */
