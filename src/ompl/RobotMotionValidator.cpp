@@ -17,16 +17,15 @@ namespace meshgap
             throw Exception("RobotMotionValidator", "the robot scene was built with another set of links");
     }
 
-    bool RobotMotionValidator::pairClearances(const std::vector<double> &q, double bound,
+    bool RobotMotionValidator::pairClearances(const std::vector<double> &q, double needed,
                                               std::vector<double> &pairs) const
     {
         thread_local RobotWarmStart warm;
         thread_local RobotResult result;
         RobotRequest request;
         request.everyPair = true;
-        // A pair at or beyond the bound is answered AT_LEAST with the bound as its distance: enough for any
-        // segment whose displacement bound is at most it (the other end's clearance being positive).
-        request.upperBound = bound > 0.0 ? bound : std::numeric_limits<double>::min();
+        // A pair at least `needed` away is proven on every segment it takes part in: its lower bound will do.
+        request.upperBound = std::max(needed, 1e-12);
         scene_->distance(q.data(), q.size(), request, warm, result);
         if (result.inCollision)
             return false;
@@ -36,17 +35,6 @@ namespace meshgap
                            ? std::numeric_limits<double>::infinity()
                            : result.pairs[k].distance;
         return true;
-    }
-
-    double RobotMotionValidator::largestReach(const std::vector<double> &moves) const
-    {
-        const std::size_t links = scene_->links().size();
-        double largest = 0.0;
-        for (std::size_t i = 0; i < links; ++i)
-            largest = std::max(largest, moves[i]);
-        for (const LinkPair &p : scene_->selfPairs())
-            largest = std::max(largest, moves[p.first] + moves[p.second]);
-        return largest;
     }
 
     bool RobotMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
@@ -61,15 +49,25 @@ namespace meshgap
         Segment first{0.0, 1.0, {}, {}, {}, {}, 0};
         robotStateToVector(space, s1, first.q0);
         robotStateToVector(space, s2, first.q1);
+        const std::size_t links = scene_->links().size();
         std::vector<double> moves;
-        bound_.linkDisplacements(first.q0, first.q1, moves);
-        const double whole = largestReach(moves);
-        if (!pairClearances(first.q0, whole, first.d0) || !pairClearances(first.q1, whole, first.d1))
+        // The largest displacement bound of any pair over \e s: no pair needs its clearance known beyond it.
+        auto largestReach = [&](const Segment &s)
+        {
+            bound_.linkDisplacements(s.q0, s.q1, moves);
+            double most = 0.0;
+            for (std::size_t i = 0; i < links; ++i)
+                most = std::max(most, moves[i]);
+            for (const auto &[a, b] : scene_->selfPairs())
+                most = std::max(most, bound_.pairDisplacement(a, b, s.q0, s.q1));
+            return most;
+        };
+        const double reach = largestReach(first);
+        if (!pairClearances(first.q0, reach, first.d0) || !pairClearances(first.q1, reach, first.d1))
         {
             invalid_++;
             return false;
         }
-        const std::size_t links = scene_->links().size();
         std::vector<Segment> stack{first};
         ompl::base::State *middle = si_->allocState();
         bool free = true;
@@ -99,7 +97,7 @@ namespace meshgap
             space.interpolate(s1, s2, t, middle);
             Segment left{s.t0, t, s.q0, {}, s.d0, {}, s.depth + 1}, right{t, s.t1, {}, s.q1, {}, s.d1, s.depth + 1};
             robotStateToVector(space, middle, left.q1);
-            if (!pairClearances(left.q1, largestReach(moves), left.d1))
+            if (!pairClearances(left.q1, largestReach(s), left.d1))
             {
                 free = false;
                 break;

@@ -36,11 +36,9 @@ namespace meshgap
                          std::pair<ompl::base::State *, double> &lastValid) const override;
 
     private:
-        /** \brief Every pair's clearance at \e q into \e pairs, a pair at or beyond \e bound given as \e bound
-            (pruned: at least that); false for a collision. */
-        bool pairClearances(const std::vector<double> &q, double bound, std::vector<double> &pairs) const;
-        /** \brief The largest displacement bound of any pair, given each link's (\e moves). */
-        double largestReach(const std::vector<double> &moves) const;
+        /** \brief Every pair's clearance at \e q into \e pairs, exact below \e needed and a lower bound (at least
+            \e needed) above it; false for a collision. */
+        bool pairClearances(const std::vector<double> &q, double needed, std::vector<double> &pairs) const;
 
         RobotSceneConstPtr scene_;
         MotionBound bound_;
