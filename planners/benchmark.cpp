@@ -14,6 +14,12 @@
 // results.db). --sampler makes the valid-state sampler a dimension too: each checker runs once per sampler, as
 // "<planner>[<checker>,<sampler>]".
 //
+// On a robot problem (robot.urdf = ..., robot.1 = ...: RobotProblem.h) the grid runs in joint space with the checkers
+// of benchmark/RobotCheckers.h: meshgap's whole-robot checker with its certified motion validator ("certified") or
+// OMPL's discrete one ("discrete"), and FCL on the same pairs at the same link poses with OMPL's discrete one
+// ("fcl"). After each slice a line gives its valid paths per minute: runs solved whose path FCL finds free, densely
+// interpolated, per minute of planning.
+//
 // The parts: benchmark/Checkers.h (the checkers by name), benchmark/MeasuredPlanner.h (reads the checker's counters
 // when solve() returns), benchmark/BenchmarkLog.h (the .log files), benchmark/BenchmarkConfig.h (the cfg's sections).
 
@@ -22,6 +28,9 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
 #include <ompl/util/RandomNumbers.h>
 #include <set>
 
@@ -30,6 +39,7 @@
 #include "benchmark/BenchmarkLog.h"
 #include "benchmark/Checkers.h"
 #include "benchmark/MeasuredPlanner.h"
+#include "benchmark/RobotCheckers.h"
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
 #include "meshgap/ompl/PlannerFactory.h"
@@ -56,13 +66,15 @@ namespace
     bool parseOptions(int argc, char **argv, Options &o)
     {
         po::options_description options("meshgap_benchmark --cfg FILE [options]\n\nOptions");
-        options.add_options()("help,h", "print this help")("cfg", po::value(&o.cfg), "OMPL.app problem file (.cfg)")(
+        options.add_options()("help,h", "print this help")(
+            "cfg", po::value(&o.cfg), "OMPL.app problem file, or a robot problem file (.cfg)")(
             "planner", po::value(&o.plannerList), "planners, comma-separated (default: the cfg's [planner] section)")(
             "param", po::value(&o.params),
             "PLANNER.NAME=VALUE: a parameter of every planner of that kind, after the cfg's, e.g. "
             "rrtstar.use_k_nearest=0; repeatable")(
             "checker", po::value(&o.checkerList),
-            ("checkers, comma-separated (default: all of " + joinNames(checkerNames()) + ")").c_str())(
+            ("checkers, comma-separated (default: all of " + joinNames(checkerNames()) + "; on a robot problem: " +
+             joinNames(robotCheckerNames()) + ")").c_str())(
             "sampler", po::value(&o.samplerList),
             ("valid-state samplers, comma-separated, a dimension of the experiment like the checkers (default: the "
              "cfg's sampler, else OMPL's; only planners that use one, e.g. PRM, EST, notice): " +
@@ -91,9 +103,9 @@ namespace
 
     /** \brief The grid's second axis: every checker with every sampler ("": the problem's own), as (checker,
         sampler) pairs. */
-    std::vector<std::pair<std::string, std::string>> checkerSetups(const Options &o)
+    std::vector<std::pair<std::string, std::string>> checkerSetups(const Options &o,
+                                                                   const std::vector<std::string> &available)
     {
-        const std::vector<std::string> available = checkerNames();
         const std::vector<std::string> checkers = o.checkerList.empty() ? available : splitList(o.checkerList);
         for (const std::string &c : checkers)
         {
@@ -197,7 +209,7 @@ namespace
 
     /** \brief The run properties meshgap adds to OMPL's: the checker's counters over the run (\e before and
         \e after it), and FCL's verdict on the path. */
-    void addCheckerProperties(Checkers &problem, const CheckerStats &before, const CheckerStats &after,
+    void addCheckerProperties(CheckerSet &problem, const CheckerStats &before, const CheckerStats &after,
                               ompl::tools::Benchmark::RunProperties &run)
     {
         const double validity = static_cast<double>(after.validityCalls - before.validityCalls);
@@ -240,6 +252,33 @@ namespace
         slice.runCount = static_cast<unsigned>(slice.planners[0].runs.size());
     }
 
+    /** \brief A slice's solved runs, those FCL finds free along the densely interpolated path, and the time they
+        took: valid paths per minute. */
+    struct SliceTally
+    {
+        std::size_t runs{0}, solved{0}, free{0};
+        double seconds{0.0};
+
+        void add(bool exact, const std::map<std::string, std::string> &props, double time)
+        {
+            ++runs;
+            seconds += time;
+            solved += exact ? 1 : 0;
+            const auto fcl = props.find("fcl path collision free BOOLEAN");
+            free += exact && fcl != props.end() && fcl->second == "1" ? 1 : 0;
+        }
+
+        void print(const std::string &name) const
+        {
+            if (runs == 0)
+                return;
+            std::fprintf(stderr, "%s: %zu runs, %zu solved, %zu free by FCL's dense check, %.3f s planning: %.1f "
+                                 "valid paths per minute\n",
+                         name.c_str(), runs, solved, free, seconds,
+                         seconds > 0.0 ? 60.0 * double(free) / seconds : 0.0);
+        }
+    };
+
     /** \brief Where the grid is and how far it has got, for the progress lines. */
     struct Progress
     {
@@ -250,7 +289,7 @@ namespace
 
     /** \brief One slice of the grid: \e runs of \e spec with one (checker, sampler) setup, each appended to the
         slice's .log as soon as it is done. */
-    void runSlice(Checkers &problem, const ProblemConfig &config, const Settings &settings, const PlannerSpec &spec,
+    void runSlice(CheckerSet &problem, const ProblemConfig &config, const Settings &settings, const PlannerSpec &spec,
                   const std::pair<std::string, std::string> &setup, const std::vector<std::size_t> &runs,
                   LogWriter &writer, Progress &progress)
     {
@@ -286,6 +325,7 @@ namespace
         request.saveConsoleOutput = false;
         request.simplify = settings.simplify;
         ompl::tools::Benchmark::CompleteExperiment slice;
+        SliceTally tally;
         const fs::path log =
             logPath(settings.outDir, config.name, inner->getName(), label, sampler, progress.shard, progress.shards);
         for (std::size_t r : runs)
@@ -307,6 +347,7 @@ namespace
             const bool exact = props.count("solved BOOLEAN") && props.at("solved BOOLEAN") == "1";
             double seconds = 0.0;
             parseNumber(props.at("time REAL"), seconds);
+            tally.add(exact, props, seconds);
             std::fprintf(stderr, "[%7.1f s] run %zu of %zu: %s run %zu: %s in %.3g s\n", elapsed, progress.done,
                          progress.mine, name.c_str(), r + 1,
                          exact ? "solved" : (problem.setup().haveSolutionPath() ? "approximate" : "not solved"),
@@ -314,6 +355,7 @@ namespace
         }
         if (!slice.planners.empty())
             std::fprintf(stderr, "wrote %s (%zu runs)\n", log.c_str(), slice.planners[0].runs.size());
+        tally.print(name);
     }
 
     int run(int argc, char **argv)
@@ -322,14 +364,24 @@ namespace
         if (!parseOptions(argc, argv, o))
             return 0;
         const auto [shard, shards] = parseShard(o.shardText);
-        const std::vector<std::pair<std::string, std::string>> setups = checkerSetups(o);
-        const ProblemConfig config = readProblemConfig(o.cfg);
+        const bool robot = isRobotProblemFile(o.cfg);
+        std::optional<RobotProblem> robotProblem;
+        if (robot)
+            robotProblem = readRobotProblem(o.cfg);
+        const std::vector<std::pair<std::string, std::string>> setups =
+            checkerSetups(o, robot ? robotCheckerNames(robotProblem->robot.get()) : checkerNames());
+        const ProblemConfig config = robot ? benchmarkConfigOf(*robotProblem) : readProblemConfig(o.cfg);
         const Settings settings = settingsOf(config, o.vm);
         const std::vector<PlannerSpec> planners = plannerSpecs(o, config);
         if (o.seed != 0)
             ompl::RNG::setSeed(o.seed + shard - 1);
 
-        Checkers problem(config, o.objective);
+        std::unique_ptr<CheckerSet> checkers;
+        if (robot)
+            checkers = std::make_unique<RobotCheckers>(*robotProblem, o.objective);
+        else
+            checkers = std::make_unique<Checkers>(config, o.objective);
+        CheckerSet &problem = *checkers;
         checkPlanners(planners, problem.setup().getSpaceInformation(), config);
         fs::create_directories(settings.outDir);
 

@@ -1,5 +1,6 @@
 // meshgap_report: turn an OMPL.app problem and a path for it into one self-contained HTML report, as
-// meshgap_plan --report writes after planning.
+// meshgap_plan --report writes after planning. On a robot problem (robot.urdf, or robot.1 and more bodies) the path
+// has one state a line as start.joints, and the report draws every link along it, with each link's clearance.
 //
 //   meshgap_report --cfg problem.cfg --path solution.path --out report.html [--dense 4] [-q]
 //
@@ -10,6 +11,7 @@
 // (nothing is written then).
 
 #include <boost/program_options.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -19,13 +21,36 @@
 #include "meshgap/ompl/ProblemSetup.h"
 #include "support/DenseClearance.h"
 #include "support/PathFile.h"
+#include "meshgap/robot/RobotProblem.h"
 #include "support/PlanReport.h"
+#include "support/RobotReport.h"
 
 namespace po = boost::program_options;
 using namespace meshgap;
 
 namespace
 {
+    /** \brief The report of a robot problem (robot.urdf or robot.1 ...): every link along the path. */
+    int robotReport(const std::string &cfg, const std::string &pathFile, const std::string &out, unsigned dense)
+    {
+        const RobotProblem problem = readRobotProblem(cfg);
+        const RobotScene scene(problem.robot, problem.obstacles);
+        const std::vector<std::vector<double>> states = readRobotPathFile(pathFile, problem.robot->dimension());
+        const PlanReportData data =
+            robotReportFromPath(scene, states, dense,
+                                {{"problem", problem.name + " (" + std::to_string(scene.links().size()) + " links, " +
+                                                 std::to_string(problem.robot->dimension()) + " state numbers)"},
+                                 {"path", pathFile},
+                                 {"states", std::to_string(states.size())}});
+        writeRobotReport(scene, data, out);
+        double least = data.clearance.front();
+        for (double c : data.clearance)
+            least = std::min(least, c);
+        std::printf("report written  %s (%zu dense states, %zu links, min clearance %g)\n", out.c_str(),
+                    data.clearance.size(), scene.links().size(), least);
+        return 0;
+    }
+
     int run(int argc, char **argv)
     {
         std::string cfg, pathFile, out;
@@ -44,6 +69,8 @@ namespace
         if (dense < 1)
             throw Exception("--dense", "must be at least 1");
 
+        if (isRobotProblemFile(cfg))
+            return robotReport(cfg, pathFile, out, dense);
         const ProblemConfig config = readProblemConfig(cfg);
         const OmplProblem problem = setupProblem(config, ClearanceChecker::Mode::CERTIFIED);
         problem.setup->getSpaceInformation()->setup();  // the longest valid segment, which the dense path uses

@@ -1,6 +1,7 @@
 // The Python module `meshgap`: a thin pybind11 layer over meshgap's public C++ API (DESIGN.md, "Second wave"):
 // scenes from OMPL.app .cfg problems or meshes (files or (V, F) numpy arrays), batched distance and collision
-// queries over (N, 7) SE(3) or (N, 3) SE(2) pose arrays (distanceBatch(), the GIL released), and planning: plan()
+// queries over (N, 7) SE(3) or (N, 3) SE(2) pose arrays (distanceBatch(), the GIL released), robots of many bodies
+// (RobotScene: a URDF arm among obstacles, batches of (N, dof) states, robotDistanceBatch()), and planning: plan()
 // makes meshgap_plan's run (support/PlanRun.h), its keywords the flags of support/PlanOptions.h's table, so the two
 // cannot drift apart. meshgap::Exception becomes FileNotFoundError for a missing file and ValueError otherwise, with
 // the CLI's one-line message.
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
@@ -25,6 +27,12 @@
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
 #include "meshgap/mesh/MeshLoader.h"
+#include "meshgap/mesh/MeshOperations.h"
+#include "meshgap/robot/RobotBatch.h"
+#include "meshgap/robot/RobotProblem.h"
+#include "meshgap/robot/RobotScene.h"
+#include "meshgap/robot/Srdf.h"
+#include "meshgap/robot/UrdfRobot.h"
 #include "meshgap/ompl/ProblemSetup.h"
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/RobotMesh.h"
@@ -283,6 +291,9 @@ namespace
         const std::string path = pathArg(pathObject, "cfg");
         PyScene s;
         py::gil_scoped_release release;
+        if (isRobotProblemFile(path))
+            throw Exception(path, "a robot problem (robot.urdf, or robot.1 and more bodies): open it with "
+                                  "meshgap.RobotScene.from_cfg");
         const ProblemConfig config = readProblemConfig(path);
         s.scene = Scene::fromMeshes(loadRobotMesh(config.robot, config.planar), loadMesh(config.world));
         s.config = config;
@@ -550,6 +561,467 @@ namespace
                "The old mode= is refused (checker=).";
         return doc;
     }
+
+    /** \brief A robot of many bodies among obstacles (RobotScene) and, when it came from a problem file, the
+        problem's start and goal states. */
+    struct PyRobotScene
+    {
+        RobotModelPtr model;
+        RobotSceneConstPtr scene;
+        std::string name;
+        std::vector<std::string> stateNames;  ///< what each number of a state is
+        std::optional<std::vector<double>> start, goal;
+    };
+
+    /** \brief The names of a UrdfRobot's state numbers: a floating base's pose, then the movable joints. */
+    std::vector<std::string> urdfStateNames(const UrdfRobot &robot)
+    {
+        std::vector<std::string> names;
+        if (robot.floatingBase())
+            for (const char *c : {"x", "y", "z", "qx", "qy", "qz", "qw"})
+                names.push_back(std::string("base.") + c);
+        for (std::size_t j : robot.variables())
+            names.push_back(robot.joints()[j].name);
+        return names;
+    }
+
+    /** \brief The names of the state numbers of a robot of rigid bodies: per body (its frame's name), x y theta
+        (SE(2)) or x y z qx qy qz qw (SE(3)), told apart by the count per body. */
+    std::vector<std::string> genericStateNames(const RobotModel &robot)
+    {
+        std::vector<std::string> names;
+        const std::size_t bodies = robot.frames().size();
+        const bool planar = bodies * 3 == robot.dimension();
+        for (const RobotFrame &f : robot.frames())
+            for (const char *c : planar ? std::vector<const char *>{"x", "y", "theta"} :
+                                          std::vector<const char *>{"x", "y", "z", "qx", "qy", "qz", "qw"})
+                names.push_back(f.name + "." + c);
+        names.resize(robot.dimension(), "?");
+        return names;
+    }
+
+    /** \brief A package search path: a str of folders joined by ':' (ROS_PACKAGE_PATH's form), an os.PathLike, or
+        a sequence of either; None: empty. */
+    std::vector<std::string> packagePathArg(const py::handle &h)
+    {
+        std::vector<std::string> folders;
+        if (h.is_none())
+            return folders;
+        if (py::isinstance<py::str>(h) || py::hasattr(h, "__fspath__"))
+        {
+            std::stringstream text(pathArg(h, "package_path"));
+            for (std::string folder; std::getline(text, folder, ':');)
+                if (!folder.empty())
+                    folders.push_back(folder);
+            return folders;
+        }
+        if (!py::isinstance<py::sequence>(h))
+            throw Exception("package_path", "expected a str of folders joined by ':' or a list of folders, got " +
+                                                typeName(h));
+        for (const py::handle &item : py::reinterpret_borrow<py::sequence>(h))
+            folders.push_back(pathArg(item, "package_path"));
+        return folders;
+    }
+
+    /** \brief x y z qx qy qz qw (a sequence of 7 finite numbers, the quaternion of unit length within 1e-3) as a
+        pose. */
+    Eigen::Isometry3d pose7Arg(const py::handle &h, const std::string &what)
+    {
+        std::vector<double> v;
+        try
+        {
+            v = h.cast<std::vector<double>>();
+        }
+        catch (const py::cast_error &)
+        {
+            throw Exception(what, "expected 7 numbers x y z qx qy qz qw, got " + typeName(h));
+        }
+        if (v.size() != 7)
+            throw Exception(what, "expected 7 numbers x y z qx qy qz qw, got " + std::to_string(v.size()));
+        for (double x : v)
+            if (!std::isfinite(x))
+                throw Exception(what, "pose has a NaN or infinite number");
+        Eigen::Quaterniond q(v[6], v[3], v[4], v[5]);
+        if (std::abs(q.norm() - 1.0) > 1e-3)
+            throw Exception(what, "quaternion (qx qy qz qw) is not of unit length (norm " + std::to_string(q.norm()) +
+                                      ")");
+        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+        X.linear() = q.normalized().toRotationMatrix();
+        X.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+        return X;
+    }
+
+    /** \brief attach=: None, one (mesh, link, pose) triple or a list of them; each payload is named "payload"
+        (one) or "payload1", "payload2", ... (several), in the order given. */
+    void attachArg(RobotModel &robot, const py::handle &h)
+    {
+        if (h.is_none())
+            return;
+        std::vector<py::handle> items;
+        const bool one = py::isinstance<py::tuple>(h) && py::len(h) == 3 && py::isinstance<py::str>(h[py::int_(1)]);
+        if (one)
+            items.push_back(h);
+        else if (py::isinstance<py::list>(h) || py::isinstance<py::tuple>(h))
+            for (const py::handle &item : py::reinterpret_borrow<py::sequence>(h))
+                items.push_back(item);
+        else
+            throw Exception("attach", "expected a (mesh, link, pose) triple or a list of them, got " + typeName(h));
+        for (std::size_t k = 0; k < items.size(); ++k)
+        {
+            const std::string what = one ? "attach" : "attach[" + std::to_string(k) + "]";
+            if (!py::isinstance<py::tuple>(items[k]) || py::len(items[k]) != 3)
+                throw Exception(what, "expected a (mesh, link, pose) triple: a mesh file or (V, F), a link name and "
+                                      "x y z qx qy qz qw");
+            const py::tuple t = py::reinterpret_borrow<py::tuple>(items[k]);
+            if (!py::isinstance<py::str>(t[1]))
+                throw Exception(what, "the link must be a str (a link's name), got " + typeName(t[1]));
+            Mesh mesh = meshArg(t[0], what + " mesh");
+            const Eigen::Isometry3d X = pose7Arg(t[2], what + " pose");
+            robot.attach(one || items.size() == 1 ? "payload" : "payload" + std::to_string(k + 1), std::move(mesh),
+                         t[1].cast<std::string>(), X);
+        }
+    }
+
+    /** \brief The world's bodies: a mesh (file or (V, F)) split into its connected parts, one obstacle each; None:
+        no obstacles. */
+    std::vector<BodyConstPtr> worldArg(const py::handle &h)
+    {
+        std::vector<BodyConstPtr> obstacles;
+        if (h.is_none())
+            return obstacles;
+        const Mesh world = meshArg(h, "world");
+        py::gil_scoped_release release;
+        for (Mesh &part : splitComponents(world))
+            obstacles.push_back(Body::build(std::move(part)));
+        return obstacles;
+    }
+
+    PyRobotScene robotSceneFromUrdf(const py::handle &urdf, const py::handle &world, const py::handle &srdf,
+                                    const py::handle &packagePath, const py::handle &attach, bool floatingBase)
+    {
+        UrdfOptions options;
+        options.packagePath = packagePathArg(packagePath);
+        options.floatingBase = floatingBase;
+        const std::string path = pathArg(urdf, "urdf");
+        const std::string srdfPath = srdf.is_none() ? std::string() : pathArg(srdf, "srdf");
+        for (const std::string &file : {path, srdfPath})
+            if (!file.empty() && !std::filesystem::exists(file))
+                throw Exception(file, "no such file");  // FileNotFoundError, as for a mesh
+        UrdfRobotPtr robot;
+        {
+            py::gil_scoped_release release;
+            robot = UrdfRobot::load(path, options);
+            if (!srdfPath.empty())
+                readSrdf(*robot, srdfPath);
+        }
+        attachArg(*robot, attach);
+        PyRobotScene s;
+        s.stateNames = urdfStateNames(*robot);
+        s.name = robot->name();
+        s.model = robot;
+        std::vector<BodyConstPtr> obstacles = worldArg(world);
+        s.scene = std::make_shared<RobotScene>(robot, std::move(obstacles));
+        return s;
+    }
+
+    /** \brief A robot problem file (RobotProblem.h): its robot among its world, its start and goal. */
+    PyRobotScene robotSceneFromCfg(const py::handle &pathObject)
+    {
+        const std::string path = pathArg(pathObject, "cfg");
+        PyRobotScene s;
+        {
+            py::gil_scoped_release release;
+            if (!std::filesystem::exists(path))
+                throw Exception(path, "no such file");
+            if (!isRobotProblemFile(path))
+                throw Exception(path, "a single-body problem (robot = FILE): open it with meshgap.Scene.from_cfg");
+            RobotProblem problem = readRobotProblem(path);
+            s.model = problem.robot;
+            s.scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles);
+            s.name = problem.name;
+            s.start = problem.start;
+            s.goal = problem.goal;
+        }
+        if (const auto *urdf = dynamic_cast<const UrdfRobot *>(s.model.get()))
+            s.stateNames = urdfStateNames(*urdf);
+        else
+            s.stateNames = genericStateNames(*s.model);
+        return s;
+    }
+
+    /** \brief \e h as (N, dof) float64 numbers, C-contiguous (a copy when it is not), every number finite; or one
+        ValueError naming the problem. */
+    py::array_t<double, py::array::c_style> statesArg(const PyRobotScene &self, const py::handle &h)
+    {
+        const std::size_t dof = self.scene->robot().dimension();
+        std::string expected = "of shape (N, " + std::to_string(dof) + ") (one state per row:";
+        for (const std::string &n : self.stateNames)
+            expected += " " + n;
+        expected += ")";
+        const py::array_t<double> a = doubleArray(h, "states", expected);
+        if (a.ndim() != 2 || a.shape(1) != static_cast<py::ssize_t>(dof))
+            throw Exception("states", "expected an array " + expected + ", got shape " + shapeText(a));
+        const auto s = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+        const auto v = s.unchecked<2>();
+        for (py::ssize_t i = 0; i < v.shape(0); ++i)
+            for (py::ssize_t k = 0; k < v.shape(1); ++k)
+                if (!std::isfinite(v(i, k)))
+                    throw Exception("states[" + std::to_string(i) + "]", "state has a NaN or infinite number (" +
+                                                                             self.stateNames[std::size_t(k)] + ")");
+        return s;
+    }
+
+    /** \brief The per-state arrays of robotDistance() filled from \e results. */
+    py::dict robotResultDict(const PyRobotScene &self, const std::vector<RobotResult> &results, bool everyPair)
+    {
+        const py::ssize_t n = py::ssize_t(results.size()), links = py::ssize_t(self.scene->links().size());
+        const py::ssize_t self_ = py::ssize_t(self.scene->selfPairs().size());
+        py::array_t<double> distance(n), onLink({n, py::ssize_t(3)}), onOther({n, py::ssize_t(3)});
+        py::array_t<double> clearance({n, links}), linkObstacles({n, links}), selfPairs({n, self_});
+        py::array_t<std::int64_t> link(n), obstacle(n), otherLink(n);
+        py::array_t<bool> selfPair(n), inCollision(n), certified(n);
+        for (py::ssize_t i = 0; i < n; ++i)
+        {
+            const RobotResult &r = results[std::size_t(i)];
+            const bool none = !r.selfPair && r.atLeast;  // no pair below the bound: no attaining pair
+            distance.mutable_at(i) = r.distance;
+            selfPair.mutable_at(i) = r.selfPair;
+            link.mutable_at(i) = none ? -1 : std::int64_t(r.link);
+            obstacle.mutable_at(i) = r.selfPair || none ? -1 : std::int64_t(r.other);
+            otherLink.mutable_at(i) = r.selfPair ? std::int64_t(r.other) : -1;
+            inCollision.mutable_at(i) = r.inCollision;
+            certified.mutable_at(i) = r.certified;
+            for (py::ssize_t k = 0; k < 3; ++k)
+            {
+                onLink.mutable_at(i, k) = r.onLink[k];
+                onOther.mutable_at(i, k) = r.onOther[k];
+            }
+            for (py::ssize_t k = 0; everyPair && k < links; ++k)
+            {
+                clearance.mutable_at(i, k) = r.linkClearance[std::size_t(k)];
+                linkObstacles.mutable_at(i, k) = r.pairs[std::size_t(k)].distance;
+            }
+            for (py::ssize_t k = 0; everyPair && k < self_; ++k)
+                selfPairs.mutable_at(i, k) = r.pairs[std::size_t(links + k)].distance;
+        }
+        py::dict out;
+        out["distance"] = distance;
+        out["in_collision"] = inCollision;
+        out["certified"] = certified;
+        out["self_pair"] = selfPair;
+        out["link"] = link;
+        out["obstacle"] = obstacle;
+        out["other_link"] = otherLink;
+        out["on_link"] = onLink;
+        out["on_other"] = onOther;
+        if (everyPair)
+        {
+            out["link_clearance"] = clearance;
+            out["link_obstacle_distance"] = linkObstacles;
+            out["self_pair_distance"] = selfPairs;
+        }
+        return out;
+    }
+
+    py::dict robotDistance(const PyRobotScene &self, const py::handle &statesObject, int threads, bool everyPair,
+                           bool selfCollision)
+    {
+        const auto states = statesArg(self, statesObject);
+        const unsigned t = threadsArg(threads);
+        RobotRequest request;
+        request.everyPair = everyPair;
+        request.selfCollision = selfCollision;
+        std::vector<RobotResult> results;
+        {
+            py::gil_scoped_release release;
+            robotDistanceBatch(*self.scene, states.data(), std::size_t(states.shape(0)), request, t, results);
+        }
+        return robotResultDict(self, results, everyPair);
+    }
+
+    py::array_t<bool> robotInCollision(const PyRobotScene &self, const py::handle &statesObject, int threads,
+                                       bool selfCollision)
+    {
+        const auto states = statesArg(self, statesObject);
+        const unsigned t = threadsArg(threads);
+        std::vector<char> results;
+        {
+            py::gil_scoped_release release;
+            robotInCollisionBatch(*self.scene, states.data(), std::size_t(states.shape(0)), selfCollision, t, results);
+        }
+        py::array_t<bool> out(py::ssize_t(results.size()));
+        for (std::size_t i = 0; i < results.size(); ++i)
+            out.mutable_at(py::ssize_t(i)) = results[i] != 0;
+        return out;
+    }
+
+    /** \brief Every link body's world pose at every state, (N, links, 4, 4). */
+    py::array_t<double> robotLinkPoses(const PyRobotScene &self, const py::handle &statesObject)
+    {
+        const auto states = statesArg(self, statesObject);
+        const RobotModel &robot = self.scene->robot();
+        const py::ssize_t n = states.shape(0), links = py::ssize_t(self.scene->links().size());
+        py::array_t<double> out({n, links, py::ssize_t(4), py::ssize_t(4)});
+        std::vector<Eigen::Isometry3d> frames;
+        for (py::ssize_t i = 0; i < n; ++i)
+        {
+            robot.framePoses(states.data(i, 0), robot.dimension(), frames);
+            for (py::ssize_t k = 0; k < links; ++k)
+            {
+                const RobotLink &link = self.scene->links()[std::size_t(k)];
+                const Eigen::Matrix4d X = (frames[link.frame] * link.X_FL).matrix();
+                for (py::ssize_t r = 0; r < 4; ++r)
+                    for (py::ssize_t c = 0; c < 4; ++c)
+                        out.mutable_at(i, k, r, c) = X(r, c);
+            }
+        }
+        return out;
+    }
+
+    std::size_t linkIndexArg(const PyRobotScene &self, const py::handle &h)
+    {
+        const std::vector<RobotLink> &links = self.scene->links();
+        if (py::isinstance<py::str>(h))
+        {
+            const std::string name = h.cast<std::string>();
+            for (std::size_t i = 0; i < links.size(); ++i)
+                if (links[i].name == name)
+                    return i;
+            throw Exception("link", "no link named '" + name + "'");
+        }
+        const std::int64_t i = h.cast<std::int64_t>();
+        if (i < 0 || i >= std::int64_t(links.size()))
+            throw Exception("link", "index " + std::to_string(i) + " is out of range [0, " +
+                                        std::to_string(links.size()) + ")");
+        return std::size_t(i);
+    }
+
+    /** \brief Every state number's bounds, (dof, 2): a URDF joint's limits (-inf, inf for a continuous joint), -1, 1
+        for a quaternion's numbers (a floating base's, a rigid body's), -inf, inf for positions and angles. */
+    py::array_t<double> robotBounds(const PyRobotScene &self)
+    {
+        const std::size_t dof = self.scene->robot().dimension();
+        py::array_t<double> out({py::ssize_t(dof), py::ssize_t(2)});
+        const double inf = std::numeric_limits<double>::infinity();
+        for (std::size_t k = 0; k < dof; ++k)
+        {
+            const std::string &name = self.stateNames[k];
+            const std::size_t dot = name.rfind('.');
+            const std::string last = dot == std::string::npos ? name : name.substr(dot + 1);
+            const bool quaternion = last == "qx" || last == "qy" || last == "qz" || last == "qw";
+            out.mutable_at(py::ssize_t(k), 0) = quaternion ? -1.0 : -inf;
+            out.mutable_at(py::ssize_t(k), 1) = quaternion ? 1.0 : inf;
+        }
+        if (const auto *urdf = dynamic_cast<const UrdfRobot *>(&self.scene->robot()))
+            for (std::size_t v = 0; v < urdf->variables().size(); ++v)
+            {
+                const UrdfJoint &j = urdf->joints()[urdf->variables()[v]];
+                out.mutable_at(py::ssize_t(urdf->jointOffset() + v), 0) = j.lower;
+                out.mutable_at(py::ssize_t(urdf->jointOffset() + v), 1) = j.upper;
+            }
+        return out;
+    }
+
+    py::object stateOrNone(const std::optional<std::vector<double>> &state)
+    {
+        if (!state)
+            return py::none();
+        return py::array_t<double>(py::ssize_t(state->size()), state->data());
+    }
+
+    void addRobotScene(py::module_ &m)
+    {
+        py::class_<PyRobotScene>(
+            m, "RobotScene",
+            "A robot of many bodies (a URDF arm, links checked against the obstacles and against each other) among "
+            "obstacles. RobotScene.from_urdf(urdf, world=..., ...) builds one; a state is a row of numbers: a "
+            "floating base's pose (x y z qx qy qz qw) if any, then the URDF's movable joints in its order "
+            "(state_names).")
+            .def_static("from_cfg", &robotSceneFromCfg, py::arg("path"),
+                        "A robot problem file (robot.urdf = FILE with robot.srdf, robot.package_path, world, attach, "
+                        "start.joints and goal.joints; or several bodies robot.1 = FILE, ...): its robot among its "
+                        "world; start and goal its states. A single-body OMPL.app file is refused (meshgap.Scene."
+                        "from_cfg reads those, and refuses robot problems).")
+            .def_static("from_urdf", &robotSceneFromUrdf, py::arg("urdf"), py::kw_only(),
+                        py::arg("world") = py::none(), py::arg("srdf") = py::none(),
+                        py::arg("package_path") = py::none(), py::arg("attach") = py::none(),
+                        py::arg("floating_base") = false,
+                        "A URDF robot among the parts of world (a mesh file or (V, F), split into its connected "
+                        "parts, one obstacle each; None: no obstacles). srdf: its disable_collisions pairs are not "
+                        "checked (links joined by a joint never are). package_path: folders that hold the packages "
+                        "package:// URIs name, a str joined by ':' or a list (default ROS_PACKAGE_PATH; the URDF's "
+                        "folder and its parents are searched after). attach: a (mesh, link, pose) triple or a list of "
+                        "them, a payload fixed to the link at pose x y z qx qy qz qw, named 'payload' ('payload1', "
+                        "'payload2', ... for several). floating_base: the root link moves free in SE(3), its pose the "
+                        "state's first 7 numbers.")
+            .def("distance", &robotDistance, py::arg("states"), py::kw_only(), py::arg("threads") = 1,
+                 py::arg("every_pair") = true, py::arg("self_collision") = true,
+                 "Whole-robot minimum signed distance (negative in collision) at every state of an (N, dimension) "
+                 "float64 array, exact and certified. Returns a dict of arrays: distance (N,), in_collision (N,), "
+                 "certified (N,); the pair that attains it: self_pair (N,) (two links, else a link against an "
+                 "obstacle), link (N,) (index in link_names), obstacle (N,) (-1 for a self pair), other_link (N,) "
+                 "(-1 for an obstacle); on_link and on_other (N, 3) witness points (world frame); and with "
+                 "every_pair (default): link_clearance (N, links) (each link's distance from everything it is "
+                 "checked against), link_obstacle_distance (N, links) (each link against the obstacles) and "
+                 "self_pair_distance (N, len(self_pairs)). every_pair=False: the minimum alone, cheaper (pairs "
+                 "pruned). self_collision=False: links against the obstacles only. threads: split the states over "
+                 "this many threads (identical answers). The GIL is released while it runs.")
+            .def("in_collision", &robotInCollision, py::arg("states"), py::kw_only(), py::arg("threads") = 1,
+                 py::arg("self_collision") = true, "Exact collision test at every state; a bool array (N,).")
+            .def("link_poses", &robotLinkPoses, py::arg("states"),
+                 "Every link's world pose (the frame its mesh is in) at every state: an (N, links, 4, 4) array.")
+            .def("link_mesh",
+                 [](const PyRobotScene &s, const py::handle &link)
+                 { return meshArrays(s.scene->links()[linkIndexArg(s, link)].body->surface()); },
+                 py::arg("link"), "(V, F) of a link's surface (by name or index) in its own frame (link_poses)")
+            .def("obstacle_mesh",
+                 [](const PyRobotScene &s, std::size_t i)
+                 {
+                     if (i >= s.scene->obstacles().size())
+                         throw Exception("obstacle_mesh", "index " + std::to_string(i) + " is out of range [0, " +
+                                                              std::to_string(s.scene->obstacles().size()) + ")");
+                     return meshArrays(s.scene->obstacles()[i]->surface());
+                 },
+                 py::arg("index"), "(V, F) of obstacle index's surface, world frame")
+            .def_property_readonly("dimension", [](const PyRobotScene &s) { return s.scene->robot().dimension(); },
+                                   "numbers in a state")
+            .def_property_readonly("state_names", [](const PyRobotScene &s) { return s.stateNames; },
+                                   "what each number of a state is (joint names; base.x ... for a floating base)")
+            .def_property_readonly("bounds", &robotBounds,
+                                   "(dimension, 2) lower and upper bound of each state number (joint limits)")
+            .def_property_readonly("link_names",
+                                   [](const PyRobotScene &s)
+                                   {
+                                       std::vector<std::string> names;
+                                       for (const RobotLink &l : s.scene->links())
+                                           names.push_back(l.name);
+                                       return names;
+                                   })
+            .def_property_readonly("self_pairs",
+                                   [](const PyRobotScene &s)
+                                   {
+                                       std::vector<std::pair<std::string, std::string>> pairs;
+                                       for (const LinkPair &p : s.scene->selfPairs())
+                                           pairs.emplace_back(s.scene->links()[p.first].name,
+                                                              s.scene->links()[p.second].name);
+                                       return pairs;
+                                   },
+                                   "the link pairs checked against each other (names), self_pair_distance's columns")
+            .def_property_readonly("obstacles", [](const PyRobotScene &s) { return s.scene->obstacles().size(); })
+            .def_property_readonly("name", [](const PyRobotScene &s) { return s.name; })
+            .def_property_readonly("start", [](const PyRobotScene &s) { return stateOrNone(s.start); },
+                                   "the problem's start state, None without a problem file")
+            .def_property_readonly("goal", [](const PyRobotScene &s) { return stateOrNone(s.goal); },
+                                   "the problem's goal state, None without a problem file")
+            .def("__repr__",
+                 [](const PyRobotScene &s)
+                 {
+                     return "<meshgap.RobotScene " + s.name + ": " + std::to_string(s.scene->links().size()) +
+                            " links, " + std::to_string(s.scene->robot().dimension()) + " state numbers, " +
+                            std::to_string(s.scene->selfPairs().size()) + " self pairs, " +
+                            std::to_string(s.scene->obstacles().size()) + " obstacles>";
+                 });
+    }
 }  // namespace
 
 PYBIND11_MODULE(_meshgap, m)
@@ -587,7 +1059,9 @@ PYBIND11_MODULE(_meshgap, m)
                         "A robot among obstacles. Scene(robot, world): each a mesh file (OBJ, STL, PLY, COLLADA, ...) "
                         "or a (V, F) pair of numpy arrays (V float64 (n, 3), F integer (m, 3)); the robot in its own "
                         "frame, the world split into its connected parts, one obstacle each. Scene.from_cfg(path): "
-                        "an OMPL.app problem, the robot centred as OMPL.app does, so a pose is the robot's state.")
+                        "an OMPL.app problem, the robot centred as OMPL.app does, so a pose is the robot's state (a "
+                        "robot problem file, robot.urdf or robot.1 and more bodies, is refused with a ValueError "
+                        "naming meshgap.RobotScene.from_cfg, which reads those).")
         .def(py::init(&sceneFromMeshes), py::arg("robot"), py::arg("world"))
         .def_static("from_cfg", &sceneFromCfg, py::arg("path"))
         .def("distance", &distance, py::arg("poses"), py::kw_only(), py::arg("exact") = true,
@@ -673,6 +1147,8 @@ PYBIND11_MODULE(_meshgap, m)
                 return py::none();
             return poseArray({*s.config->goal}, s.config->planar)[py::int_(0)];
         });
+
+    addRobotScene(m);
 
     m.def("load_mesh", [](const py::handle &path) { return meshArrays(meshArg(path, "path")); }, py::arg("path"),
           "Load a mesh file as meshgap does (welded, cleaned): a (V, F) pair of numpy arrays.");

@@ -40,8 +40,27 @@ namespace meshgap
             return name == "fcl" ? name : "meshgap-" + name;
         }
 
+        /** \brief What the benchmark's grid needs of a problem: its SimpleSetup, and checkers (with their motion
+            validators) installed into it by name in turn. Checkers serves a single rigid body (OMPL.app's problems),
+            RobotCheckers (RobotCheckers.h) a robot of many bodies. */
+        class CheckerSet
+        {
+        public:
+            virtual ~CheckerSet() = default;
+            virtual ompl::geometric::SimpleSetup &setup() = 0;
+            /** \brief Make \e name the problem's validity checker and motion validator. */
+            virtual void install(const std::string &name) = 0;
+            /** \brief Counters of the installed checker (cumulative). */
+            virtual CheckerStats stats() const = 0;
+            virtual bool isMeshgap() const = 0;
+            /** \brief FCL's verdict on \e path, densely interpolated (4x OMPL's motion-check resolution, as the
+                Benchmark's strict check): states checked, whether all are collision-free, the least distance. */
+            virtual void fclPathProperties(const ompl::geometric::PathGeometric &solution,
+                                           ompl::tools::Benchmark::RunProperties &run) = 0;
+        };
+
         /** \brief One problem, its scene built once, and the checkers installed into its SpaceInformation in turn. */
-        class Checkers
+        class Checkers : public CheckerSet
         {
         public:
             Checkers(const ProblemConfig &config, const std::string &objective)
@@ -56,11 +75,10 @@ namespace meshgap
     #endif
             }
 
-            ompl::geometric::SimpleSetup &setup() { return *problem_.setup; }
+            ompl::geometric::SimpleSetup &setup() override { return *problem_.setup; }
             const OmplProblem &problem() const { return problem_; }
 
-            /** \brief Make \e name the problem's validity checker and motion validator. */
-            void install(const std::string &name)
+            void install(const std::string &name) override
             {
                 ompl::base::StateValidityCheckerPtr checker;
                 ompl::base::MotionValidatorPtr validator;
@@ -90,8 +108,7 @@ namespace meshgap
                 si_->setMotionValidator(validator ? validator : std::make_shared<ompl::base::DiscreteMotionValidator>(si_));
             }
 
-            /** \brief Counters of the installed checker (cumulative). */
-            CheckerStats stats() const
+            CheckerStats stats() const override
             {
     #ifdef MESHGAP_HAVE_FCL
                 if (active_ == "fcl")
@@ -100,11 +117,10 @@ namespace meshgap
                 return std::static_pointer_cast<const ClearanceChecker>(si_->getStateValidityChecker())->stats();
             }
 
-            bool isMeshgap() const { return active_ != "fcl"; }
+            bool isMeshgap() const override { return active_ != "fcl"; }
 
-            /** \brief FCL's verdict on \e path, densely interpolated (4x OMPL's motion-check resolution, as the
-                Benchmark's strict check): states checked, whether all are collision-free, the least distance. */
-            void fclPathProperties(const ompl::geometric::PathGeometric &solution, ompl::tools::Benchmark::RunProperties &run)
+            void fclPathProperties(const ompl::geometric::PathGeometric &solution,
+                                   ompl::tools::Benchmark::RunProperties &run) override
             {
     #ifdef MESHGAP_HAVE_FCL
                 ompl::geometric::PathGeometric path(solution);

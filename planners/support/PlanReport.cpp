@@ -91,14 +91,10 @@ namespace meshgap
             return buffer;
         }
 
-        /** \brief The scene as glTF 2.0 binary: obstacles, then the robot in its own frame, named "robot". */
-        std::string sceneGlb(const Scene &scene, const std::string &file)
+        /** \brief \e parts (obstacles in the world frame; the robot, or each link, in its own frame) as glTF 2.0
+            binary in base64. */
+        std::string sceneGlb(const std::vector<ColoredMesh> &parts, const std::string &file)
         {
-            const SceneExportOptions colors;
-            std::vector<ColoredMesh> parts;
-            for (std::size_t i = 0; i < scene.obstacles().size(); ++i)
-                parts.push_back({"obstacle " + std::to_string(i), scene.obstacles()[i]->surface(), colors.worldColor});
-            parts.push_back({"robot", scene.robot().surface(), colors.robotColor});
             // In the system's temporary folder: the report's own folder is checked first, by its own temporary file.
             const std::string temporary =
                 temporaryPath((std::filesystem::temp_directory_path() / "meshgap_report.glb").string());
@@ -194,61 +190,106 @@ namespace meshgap
         return std::strlen(REPORT_THREE_JS) > 0;
     }
 
+    namespace
+    {
+        void writeReportPage(const std::vector<ColoredMesh> &parts, const PlanReportData &data,
+                             const std::string &file);
+    }  // namespace
+
     void writePlanReport(const Scene &scene, const PlanReportData &data, const std::string &file)
     {
-        if (!planReportAvailable())
-            throw Exception(file, "cannot write a plan report: three.js (Debian's libjs-three) was not found when "
-                                  "meshgap was built");
-        if (data.poses.empty())
-            throw Exception(file, "a plan report needs at least one robot pose");
-        const std::size_t n = data.poses.size();
-        const bool hasPath = data.clearance.size() == n && n > 0;
-        std::vector<double> poses, onRobot, onObstacle;
-        for (const Eigen::Isometry3d &X : data.poses)
-        {
-            const Eigen::Quaterniond q(X.linear());
-            poses.insert(poses.end(), {X.translation().x(), X.translation().y(), X.translation().z(), q.x(), q.y(),
-                                       q.z(), q.w()});
-        }
-        std::ostringstream json;
-        json << "{\"title\": " << jsonString(data.title) << ", \"summary\": [";
-        for (std::size_t i = 0; i < data.summary.size(); ++i)
-            json << (i ? ", " : "") << "[" << jsonString(data.summary[i].first) << ", "
-                 << jsonString(data.summary[i].second) << "]";
-        json << "], \"states\": " << n << ", \"poses\": \"" << floats(poses) << "\"";
-        if (hasPath)
-        {
-            std::size_t argmin = 0;
-            for (std::size_t i = 0; i < n; ++i)
-            {
-                if (data.clearance[i] < data.clearance[argmin])
-                    argmin = i;
-                for (int k = 0; k < 3; ++k)
-                {
-                    onRobot.push_back(data.onRobot[i][k]);
-                    onObstacle.push_back(data.onObstacle[i][k]);
-                }
-            }
-            std::vector<unsigned char> collide(data.inCollision.begin(), data.inCollision.end());
-            json << ", \"arcLength\": \"" << floats(data.arcLength) << "\", \"clearance\": \""
-                 << floats(data.clearance) << "\", \"inCollision\": \"" << base64(collide.data(), collide.size())
-                 << "\", \"onRobot\": \"" << floats(onRobot) << "\", \"onObstacle\": \"" << floats(onObstacle)
-                 << "\", \"argmin\": " << argmin << ", \"minClearance\": " << jsonNumber(data.clearance[argmin]);
-        }
-        else
-            json << ", \"clearance\": null";
-
-        // The temporary file is opened first, so an output folder that cannot be written fails before any work.
-        writeStreamAtomically(
-            file,
-            [&](std::ostream &out)
-            {
-                json << ", \"glb\": \"" << sceneGlb(scene, file) << "\"}";
-                std::string html = REPORT_TEMPLATE;
-                replaceOnce(html, "/*MESHGAP_THREE_JS*/", REPORT_THREE_JS);
-                replaceOnce(html, "/*MESHGAP_DATA*/null", json.str());
-                out << html;
-            },
-            /*binary=*/true);
+        const SceneExportOptions colors;
+        std::vector<ColoredMesh> parts;
+        for (std::size_t i = 0; i < scene.obstacles().size(); ++i)
+            parts.push_back({"obstacle " + std::to_string(i), scene.obstacles()[i]->surface(), colors.worldColor});
+        parts.push_back({"robot", scene.robot().surface(), colors.robotColor});
+        writeReportPage(parts, data, file);
     }
+
+    void writeRobotReport(const RobotScene &scene, const PlanReportData &data, const std::string &file)
+    {
+        const std::size_t links = scene.links().size();
+        if (data.linkNames.size() != links || data.poses.size() % std::max<std::size_t>(links, 1) != 0 ||
+            (!data.linkClearance.empty() && data.linkClearance.size() != data.poses.size()))
+            throw Exception(file, "a robot report needs one pose (and one clearance) per link and state");
+        const SceneExportOptions colors;
+        std::vector<ColoredMesh> parts;
+        for (std::size_t i = 0; i < scene.obstacles().size(); ++i)
+            parts.push_back({"obstacle " + std::to_string(i), scene.obstacles()[i]->surface(), colors.worldColor});
+        for (std::size_t i = 0; i < links; ++i)  // names the page finds them by (no spaces: GLTFLoader keeps these)
+            parts.push_back({"link_" + std::to_string(i), scene.links()[i].body->surface(),
+                             scene.links()[i].payload ? Eigen::Vector4d(0.85, 0.55, 0.15, 1.0) : colors.robotColor});
+        writeReportPage(parts, data, file);
+    }
+
+    namespace
+    {
+        /** \brief The page of writePlanReport() and writeRobotReport(): \e parts and \e data. */
+        void writeReportPage(const std::vector<ColoredMesh> &parts, const PlanReportData &data, const std::string &file)
+        {
+            if (!planReportAvailable())
+                throw Exception(file, "cannot write a plan report: three.js (Debian's libjs-three) was not found when "
+                                      "meshgap was built");
+            if (data.poses.empty())
+                throw Exception(file, "a plan report needs at least one robot pose");
+            const std::size_t links = std::max<std::size_t>(1, data.linkNames.size()), n = data.poses.size() / links;
+            const bool hasPath = data.clearance.size() == n && n > 0;
+            std::vector<double> poses, onRobot, onObstacle;
+            for (const Eigen::Isometry3d &X : data.poses)
+            {
+                const Eigen::Quaterniond q(X.linear());
+                poses.insert(poses.end(), {X.translation().x(), X.translation().y(), X.translation().z(), q.x(), q.y(),
+                                           q.z(), q.w()});
+            }
+            std::ostringstream json;
+            json << "{\"title\": " << jsonString(data.title) << ", \"summary\": [";
+            for (std::size_t i = 0; i < data.summary.size(); ++i)
+                json << (i ? ", " : "") << "[" << jsonString(data.summary[i].first) << ", "
+                     << jsonString(data.summary[i].second) << "]";
+            json << "], \"states\": " << n << ", \"poses\": \"" << floats(poses) << "\"";
+            if (!data.linkNames.empty())
+            {
+                json << ", \"links\": [";
+                for (std::size_t i = 0; i < data.linkNames.size(); ++i)
+                    json << (i ? ", " : "") << jsonString(data.linkNames[i]);
+                json << "]";
+                if (!data.linkClearance.empty())
+                    json << ", \"linkClearance\": \"" << floats(data.linkClearance) << "\"";
+            }
+            if (hasPath)
+            {
+                std::size_t argmin = 0;
+                for (std::size_t i = 0; i < n; ++i)
+                {
+                    if (data.clearance[i] < data.clearance[argmin])
+                        argmin = i;
+                    for (int k = 0; k < 3; ++k)
+                    {
+                        onRobot.push_back(data.onRobot[i][k]);
+                        onObstacle.push_back(data.onObstacle[i][k]);
+                    }
+                }
+                std::vector<unsigned char> collide(data.inCollision.begin(), data.inCollision.end());
+                json << ", \"arcLength\": \"" << floats(data.arcLength) << "\", \"clearance\": \""
+                     << floats(data.clearance) << "\", \"inCollision\": \"" << base64(collide.data(), collide.size())
+                     << "\", \"onRobot\": \"" << floats(onRobot) << "\", \"onObstacle\": \"" << floats(onObstacle)
+                     << "\", \"argmin\": " << argmin << ", \"minClearance\": " << jsonNumber(data.clearance[argmin]);
+            }
+            else
+                json << ", \"clearance\": null";
+
+            // The temporary file is opened first, so an output folder that cannot be written fails before any work.
+            writeStreamAtomically(
+                file,
+                [&](std::ostream &out)
+                {
+                    json << ", \"glb\": \"" << sceneGlb(parts, file) << "\"}";
+                    std::string html = REPORT_TEMPLATE;
+                    replaceOnce(html, "/*MESHGAP_THREE_JS*/", REPORT_THREE_JS);
+                    replaceOnce(html, "/*MESHGAP_DATA*/null", json.str());
+                    out << html;
+                },
+                /*binary=*/true);
+        }
+    }  // namespace
 }  // namespace meshgap

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "meshgap/robot/RobotScene.h"
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/Scene.h"
 #include "support/DenseClearance.h"
@@ -22,6 +23,11 @@ namespace meshgap
         std::vector<double> arcLength, clearance;                   ///< empty without a path
         std::vector<char> inCollision;
         std::vector<Eigen::Vector3d> onRobot, onObstacle;
+        /** \brief A robot of many bodies (writeRobotReport()): its links' names. poses then holds every link's pose
+            at every state (state-major: state k's link i at k * links + i), onRobot the witness point on the link
+            of the attaining pair, and linkClearance each link's clearance at every state (the same order). */
+        std::vector<std::string> linkNames;
+        std::vector<double> linkClearance;
     };
 
     /** \brief The report of a dense path: its states, clearance and segments, and \e summary with "min clearance"
@@ -50,6 +56,12 @@ namespace meshgap
         Throws meshgap::Exception naming the file when it cannot be written, or if three.js was not found when
         meshgap was built. */
     void writePlanReport(const Scene &scene, const PlanReportData &data, const std::string &file);
+
+    /** \brief The same page for a robot of many bodies: every link drawn at its pose at the slider's state
+        (data.linkNames, data.poses per link), the closest-point segment of the attaining pair, and beside the
+        whole robot's clearance the clearance of every link along the path. Throws as writePlanReport(), and for
+        data whose poses or link clearances are not one per link and state. */
+    void writeRobotReport(const RobotScene &scene, const PlanReportData &data, const std::string &file);
 }  // namespace meshgap
 
 #endif
