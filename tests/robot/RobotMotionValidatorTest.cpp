@@ -53,7 +53,7 @@ namespace meshgap
 
     TEST(RobotMotionValidator, PairBoundHoldsInTheCommonAncestorsFrame)
     {
-        const UrdfRobotPtr robot = treeWithPayload();
+        const UrdfRobotPtr robot = test::treeWithPayload();
         const MotionBound bound(*robot);
         // Each pair's nearest common frame, found here by walking the parents.
         auto ancestor = [&](std::size_t f1, std::size_t f2)
