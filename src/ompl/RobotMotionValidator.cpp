@@ -2,6 +2,8 @@
 
 #include <ompl/base/SpaceInformation.h>
 
+#include <vector>
+
 #include "meshgap/Exception.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 
@@ -17,97 +19,84 @@ namespace meshgap
             throw Exception("RobotMotionValidator", "the robot scene was built with another set of links");
     }
 
-    bool RobotMotionValidator::pairClearances(const std::vector<double> &q, double needed,
-                                              std::vector<double> &pairs) const
+    namespace
     {
-        thread_local RobotWarmStart warm;
-        thread_local RobotResult result;
-        RobotRequest request;
-        request.everyPair = true;
-        // A pair at least `needed` away is proven on every segment it takes part in: its lower bound will do.
-        request.upperBound = std::max(needed, 1e-12);
-        scene_->distance(q.data(), q.size(), request, warm, result);
-        if (result.inCollision)
+        /** \brief Pieces of a motion halved further than this, or more of them than this, and the motion is
+            refused unproven (conservative): a pair that stays within a hair of touching over a long stretch. */
+        constexpr int MAX_DEPTH = 30;
+        constexpr std::size_t MAX_PIECES = std::size_t(1) << 20;
+
+        /** \brief A piece [t0, t1] of the motion and the pairs still to prove on it: Work::pending[first, first +
+            count). */
+        struct Piece
+        {
+            double t0, t1;
+            std::size_t first, count;
+            int depth;
+        };
+
+        /** \brief One thread's buffers, kept between motions (no allocation once warm). */
+        struct Work
+        {
+            RobotWarmStart warm;
+            std::vector<double> q0, q1, q, moves, lambda;
+            std::vector<Piece> pieces;           ///< breadth first: a queue read from its head
+            std::vector<std::size_t> pending;  ///< pair indices, a range per piece
+        };
+    }  // namespace
+
+    bool RobotMotionValidator::proveFree(const ompl::base::State *s1, const ompl::base::State *s2) const
+    {
+        thread_local Work w;
+        const ompl::base::StateSpace &space = *si_->getStateSpace();
+        robotStateToVector(space, s1, w.q0);
+        robotStateToVector(space, s2, w.q1);
+        if (scene_->inCollision(w.q1.data(), w.q1.size(), w.warm) ||
+            scene_->inCollision(w.q0.data(), w.q0.size(), w.warm))
             return false;
-        pairs.resize(result.pairs.size());
-        for (std::size_t k = 0; k < pairs.size(); ++k)
-            pairs[k] = result.pairs[k].status == RobotPairAnswer::Status::NOT_CHECKED
-                           ? std::numeric_limits<double>::infinity()
-                           : result.pairs[k].distance;
-        return true;
+        // Each pair's displacement bound over the whole motion; over a piece it is (t1 - t0) times that (the
+        // bound is linear in the joint steps, and the joints move linearly in t).
+        const std::size_t links = scene_->links().size(), pairs = scene_->numPairs();
+        bound_.linkDisplacements(w.q0, w.q1, w.moves);
+        w.lambda.assign(w.moves.begin(), w.moves.begin() + links);
+        for (const auto &[a, b] : scene_->selfPairs())
+            w.lambda.push_back(bound_.pairDisplacement(a, b, w.q0, w.q1));
+        w.pending.clear();
+        for (std::size_t k = 0; k < pairs; ++k)
+            w.pending.push_back(k);
+        w.pieces.assign(1, Piece{0.0, 1.0, 0, pairs, 0});
+        ompl::base::State *middle = si_->allocState();
+        bool free = true;
+        for (std::size_t head = 0; free && head < w.pieces.size(); ++head)
+        {
+            const Piece p = w.pieces[head];
+            const double t = 0.5 * (p.t0 + p.t1), half = 0.5 * (p.t1 - p.t0);
+            space.interpolate(s1, s2, t, middle);  // OMPL's own interpolation (SO(2) by the shorter arc)
+            robotStateToVector(space, middle, w.q);
+            scene_->place(w.q.data(), w.q.size(), w.warm);
+            const std::size_t start = w.pending.size();
+            for (std::size_t i = p.first; free && i < p.first + p.count; ++i)
+            {
+                const std::size_t k = w.pending[i];
+                if (scene_->pairApart(k, half * w.lambda[k], w.warm))
+                    continue;
+                free = !scene_->pairCollides(k, w.warm);
+                w.pending.push_back(k);
+            }
+            const std::size_t left = w.pending.size() - start;
+            if (!free || left == 0)
+                continue;
+            free = p.depth + 1 < MAX_DEPTH && w.pieces.size() + 2 <= MAX_PIECES;
+            w.pieces.push_back({p.t0, t, start, left, p.depth + 1});
+            w.pieces.push_back({t, p.t1, start, left, p.depth + 1});
+        }
+        si_->freeState(middle);
+        return free;
     }
 
     bool RobotMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const
     {
-        const ompl::base::StateSpace &space = *si_->getStateSpace();
-        struct Segment
-        {
-            double t0, t1;
-            std::vector<double> q0, q1, d0, d1;
-            int depth;
-        };
-        Segment first{0.0, 1.0, {}, {}, {}, {}, 0};
-        robotStateToVector(space, s1, first.q0);
-        robotStateToVector(space, s2, first.q1);
-        const std::size_t links = scene_->links().size();
-        std::vector<double> moves;
-        // The largest displacement bound of any pair over \e s: no pair needs its clearance known beyond it.
-        auto largestReach = [&](const Segment &s)
-        {
-            bound_.linkDisplacements(s.q0, s.q1, moves);
-            double most = 0.0;
-            for (std::size_t i = 0; i < links; ++i)
-                most = std::max(most, moves[i]);
-            for (const auto &[a, b] : scene_->selfPairs())
-                most = std::max(most, bound_.pairDisplacement(a, b, s.q0, s.q1));
-            return most;
-        };
-        const double reach = largestReach(first);
-        if (!pairClearances(first.q0, reach, first.d0) || !pairClearances(first.q1, reach, first.d1))
-        {
-            invalid_++;
-            return false;
-        }
-        std::vector<Segment> stack{first};
-        ompl::base::State *middle = si_->allocState();
-        bool free = true;
-        while (free && !stack.empty())
-        {
-            Segment s = std::move(stack.back());
-            stack.pop_back();
-            bound_.linkDisplacements(s.q0, s.q1, moves);
-            bool proven = true;
-            for (std::size_t k = 0; k < s.d0.size() && proven; ++k)
-            {
-                const double reach = k < links ? moves[k]
-                                               : bound_.pairDisplacement(scene_->selfPairs()[k - links].first,
-                                                                         scene_->selfPairs()[k - links].second,
-                                                                         s.q0, s.q1);
-                proven = s.d0[k] + s.d1[k] > reach;
-            }
-            if (proven)
-                continue;
-            if (s.depth >= 30)
-            {
-                free = false;
-                break;
-            }
-            // Split at the middle, along OMPL's own interpolation (SO(2) by the shorter arc).
-            const double t = 0.5 * (s.t0 + s.t1);
-            space.interpolate(s1, s2, t, middle);
-            Segment left{s.t0, t, s.q0, {}, s.d0, {}, s.depth + 1}, right{t, s.t1, {}, s.q1, {}, s.d1, s.depth + 1};
-            robotStateToVector(space, middle, left.q1);
-            if (!pairClearances(left.q1, largestReach(s), left.d1))
-            {
-                free = false;
-                break;
-            }
-            right.q0 = left.q1;
-            right.d0 = left.d1;
-            stack.push_back(std::move(right));
-            stack.push_back(std::move(left));
-        }
-        si_->freeState(middle);
+        const bool free = proveFree(s1, s2);
         if (free)
             valid_++;
         else

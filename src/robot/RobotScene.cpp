@@ -246,6 +246,46 @@ namespace meshgap
         distance(state.data(), state.size(), request, cold, result);
     }
 
+    void RobotScene::place(const double *state, std::size_t size, RobotWarmStart &warm) const
+    {
+        prepare(state, size, warm);
+    }
+
+    bool RobotScene::pairApart(std::size_t k, double margin, RobotWarmStart &warm) const
+    {
+        // Above margin, strictly: the question asked is "nothing at or below margin * (1 + 1e-12) + tiny".
+        const double bound = margin * (1.0 + 1e-12) + 1e-300;
+        if (k < links_.size())
+        {
+            SceneRequest request;
+            request.upperBound = bound;
+            request.stopBelow = bound;
+            request.computeDepth = false;
+            SceneResult s;
+            scenes_[k]->distance(warm.poses[k], request, warm.links[k], s);
+            return s.atLeast && !s.inCollision;
+        }
+        const std::size_t p = k - links_.size();
+        double gap;
+        if (spheresApart(p, warm, bound, gap))
+            return true;
+        const auto [a, b] = selfPairs_[p];
+        DistanceRequest request;
+        request.upperBound = bound;
+        request.stopBelow = bound;
+        request.computeDepth = false;
+        DistanceResult r;
+        refineExact(*links_[a].body, *links_[b].body, warm.poses[a].inverse() * warm.poses[b], r, request,
+                    &warm.self[p]);
+        return !r.inCollision && !(r.distance < bound);
+    }
+
+    bool RobotScene::pairCollides(std::size_t k, RobotWarmStart &warm) const
+    {
+        return k < links_.size() ? scenes_[k]->inCollision(warm.poses[k], warm.links[k])
+                                 : selfCollides(k - links_.size(), warm);
+    }
+
     void RobotScene::finish(RobotResult &result) const
     {
         for (std::size_t i = 0; i < links_.size(); ++i)

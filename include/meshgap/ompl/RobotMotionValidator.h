@@ -12,13 +12,17 @@ namespace meshgap
        @anchor mgRobotMotionValidator
        @par Short description
        A certified motion validator for fixed-base URDF robots in a space made by robotStateSpace(): a motion is
-       valid when it is proven free. Each pair's clearance is 1-Lipschitz in the displacement of its bodies, which
-       MotionBound bounds along the motion; a segment is free when, for every pair, the clearances at its two ends
-       add up to more than the displacement bound of the pair over the segment (for two links, how far either moves
-       in the frame of their nearest common ancestor, MotionBound::pairDisplacement(); a link's own bound for a link
-       against the obstacles). Else it is split in two, down to a depth of 30; a state in collision on the
-       way makes the motion invalid, and so does reaching that depth (conservative). Clearances are exact
-       (RobotScene, every pair, pruned at the bound each pair needs).
+       valid when it is proven free. Each pair's signed distance is 1-Lipschitz in the displacement of its bodies,
+       and MotionBound bounds that displacement along the motion by lambda = sum_j |dq_j| r_j, linear in the joint
+       steps (for two links, how far either moves in the frame of their nearest common ancestor,
+       MotionBound::pairDisplacement(); a link's own bound for a link against the obstacles). So on a piece
+       [t0, t1] of the motion every state is within (t1 - t0) lambda / 2 of the piece's middle state, and a pair
+       that is more than that apart at the middle (RobotScene::pairApart(), a bounded question as cheap as a
+       collision test) is free on the whole piece. Pieces are taken breadth first (halves of halves, as OMPL's
+       discrete validator orders its states), each asking only the pairs its parent could not prove; a pair that
+       collides at a middle state (RobotScene::pairCollides()) makes the motion invalid at once, and so does a
+       piece 2^-30 of the motion long that is still unproven (conservative). The end state is tested for
+       collision first.
        @par External documentation
        F. Schwarzer, M. Saha, J.-C. Latombe, Adaptive dynamic collision checking for single and multiple
        articulated robots in complex environments, IEEE Transactions on Robotics 21(3), 2005.
@@ -36,9 +40,8 @@ namespace meshgap
                          std::pair<ompl::base::State *, double> &lastValid) const override;
 
     private:
-        /** \brief Every pair's clearance at \e q into \e pairs, exact below \e needed and a lower bound (at least
-            \e needed) above it; false for a collision. */
-        bool pairClearances(const std::vector<double> &q, double needed, std::vector<double> &pairs) const;
+        /** \brief Whether the motion from \e s1 to \e s2 is proven free, as described above. */
+        bool proveFree(const ompl::base::State *s1, const ompl::base::State *s2) const;
 
         RobotSceneConstPtr scene_;
         MotionBound bound_;

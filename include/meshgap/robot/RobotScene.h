@@ -138,6 +138,19 @@ namespace meshgap
         /** \brief The same, cold (no warm start). */
         void distance(const std::vector<double> &state, const RobotRequest &request, RobotResult &result) const;
 
+        /** \brief Pair by pair, for callers that ask different pairs different questions (a motion validator):
+            place the robot at \e state in \e warm, then ask pairApart() and pairCollides() about any pair at that
+            state. Throws meshgap::Exception for a state of the wrong dimension. */
+        void place(const double *state, std::size_t size, RobotWarmStart &warm) const;
+        /** \brief At the state last placed in \e warm: true when pair \e k (RobotResult::pairs order) is certified
+            more than \e margin (>= 0) apart, its signed distance above margin; false when some part of it is
+            within margin, or collides. A bounded question (the pair's traversal prunes everything beyond margin
+            and stops at the first triangle pair within it): about as cheap as a collision test. */
+        bool pairApart(std::size_t k, double margin, RobotWarmStart &warm) const;
+        /** \brief At the state last placed in \e warm: the exact collision verdict of pair \e k (containment
+            included). */
+        bool pairCollides(std::size_t k, RobotWarmStart &warm) const;
+
     private:
         /** \brief Size \e warm for this scene (afresh if it was made with another) and fill its poses. */
         void prepare(const double *state, std::size_t size, RobotWarmStart &warm) const;
