@@ -67,6 +67,27 @@ namespace meshgap
             std::vector<std::uint32_t> partitionRight;  ///< the right side while partitioning a range
         };
 
+        /** \brief The box of the points \e begin to \e end along \e axes (columns): each coordinate axes.col(c) . p
+            summed as Eigen's axes.transpose() * p does, ((x + y) + z), in scalars (a product vector built per point
+            and read back whole stalls on the store), and the bounds as AlignedBox3d::extend() keeps them. */
+        Eigen::AlignedBox3d boxAlong(const Eigen::Matrix3d &axes, const Eigen::Vector3d *begin,
+                                     const Eigen::Vector3d *end)
+        {
+            Eigen::AlignedBox3d box;
+            double lo[3] = {box.min()[0], box.min()[1], box.min()[2]}, hi[3] = {box.max()[0], box.max()[1],
+                                                                                box.max()[2]};
+            for (const Eigen::Vector3d *p = begin; p != end; ++p)
+                for (int c = 0; c < 3; ++c)
+                {
+                    const double q = (axes(0, c) * p->x() + axes(1, c) * p->y()) + axes(2, c) * p->z();
+                    lo[c] = std::min(lo[c], q);
+                    hi[c] = std::max(hi[c], q);
+                }
+            box.min() = Eigen::Vector3d(lo[0], lo[1], lo[2]);
+            box.max() = Eigen::Vector3d(hi[0], hi[1], hi[2]);
+            return box;
+        }
+
         /** \brief The box of the triangles order[first, first + count) of \e mesh: the tighter of the axis-aligned
             box and the box along the principal axes of their corners (kept only if clearly smaller, an aligned box
             making cheaper tests), with the bounding sphere about its centre; padded against roundoff. */
@@ -107,9 +128,7 @@ namespace meshgap
             Eigen::Matrix3d axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors();
             if (axes.determinant() < 0.0)
                 axes.col(2) = -axes.col(2);
-            Eigen::AlignedBox3d principal;
-            for (const Eigen::Vector3d &p : corners)
-                principal.extend(Eigen::Vector3d(axes.transpose() * p));
+            const Eigen::AlignedBox3d principal = boxAlong(axes, corners.data(), corners.data() + corners.size());
             const Eigen::Vector3d principalHalf = 0.5 * principal.sizes();
             auto measure = [](const Eigen::Vector3d &h) { return h.prod() + 1e-3 * h.squaredNorm() * h.minCoeff(); };
             if (axes.allFinite() && measure(principalHalf) < 0.8 * measure(node.half))
@@ -138,10 +157,9 @@ namespace meshgap
             for (std::uint32_t k = 0; k < count; ++k)
             {
                 const std::uint32_t t = order[first + k];
-                Eigen::AlignedBox3d box;
-                for (std::uint32_t v : mesh.triangles[t])
-                    box.extend(Eigen::Vector3d(node.axes.transpose() * mesh.vertices[v]));
-                scratch.boxes[k] = box;
+                const Triangle &f = mesh.triangles[t];
+                const Eigen::Vector3d corners[3] = {mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]};
+                scratch.boxes[k] = boxAlong(node.axes, corners, corners + 3);
                 scratch.centre[k] = node.axes.transpose() * scratch.centroid[t];
             }
         }
