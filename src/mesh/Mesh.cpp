@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory_resource>
 #include <numeric>
 #include <unordered_map>
 
@@ -85,8 +86,10 @@ namespace meshgap
     CleanReport cleanMesh(Mesh &mesh)
     {
         CleanReport report;
+        // The two maps' nodes come from one arena, released at once on return (no allocation per node).
+        std::pmr::monotonic_buffer_resource arena;
         // 1. Weld identical positions.
-        std::unordered_map<Eigen::Vector3d, std::uint32_t, PositionHash, PositionEqual> firstAt;
+        std::pmr::unordered_map<Eigen::Vector3d, std::uint32_t, PositionHash, PositionEqual> firstAt(&arena);
         firstAt.reserve(mesh.vertices.size());
         std::vector<std::uint32_t> weldTo(mesh.vertices.size());
         for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
@@ -96,7 +99,7 @@ namespace meshgap
                 index = weldTo[index];
 
         // 2. Drop degenerate and duplicated triangles (same vertex set, either winding).
-        std::unordered_map<Triangle, std::uint32_t, TriangleKeyHash> seen;
+        std::pmr::unordered_map<Triangle, std::uint32_t, TriangleKeyHash> seen(&arena);
         seen.reserve(mesh.triangles.size());
         std::vector<Triangle> kept;
         kept.reserve(mesh.triangles.size());
