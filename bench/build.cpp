@@ -1,8 +1,10 @@
 // Load and build time per mesh file, meshgap against FCL 0.7 in the same run.
 //
 // meshgap: loadMesh() (assimp, weld, clean), splitComponents() (one obstacle part per connected component, as
-// Scene::fromMeshes does) and Body::build() of every part with the default options (node grid, surface maps, surface
-// graph, clusters, triangle BVH; mesh distances are built on first use, so not here). FCL, as OMPL.app's FCL checker
+// Scene::fromMeshes does) and Body::build() of every part with the default options (triangle BVH, edges, orientation,
+// one point per component; the node layer -- node grid, surface maps, surface graph, clusters -- and the mesh
+// distances are built on first use by the node solvers, seeds or penetration depth, so not here; --nodes builds the
+// node layer too, as the first such query would). FCL, as OMPL.app's FCL checker
 // does it: the same assimp import with OMPL.app's post-processing, the triangles gathered, one BVHModel<OBBRSS> of the
 // whole file. Each file is run --repeat times, the two sides interleaved; the table gives the median of each phase in
 // ms and the ratio of the totals (meshgap / FCL).
@@ -10,7 +12,7 @@
 // The generated inputs of bench/README.md (a world of 100 parts, a 250k-triangle mesh) come from
 // bench/build_inputs.py.
 //
-//   build/bench/meshgap_bench_build [--repeat 5] FILE...
+//   build/bench/meshgap_bench_build [--repeat 5] [--nodes] FILE...
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -59,8 +61,9 @@ namespace
         }
     };
 
-    /** \brief meshgap's load, split into parts and Body::build of each; returns the part and triangle counts. */
-    std::pair<std::size_t, std::size_t> meshgapOnce(const std::string &file, Phases &phases)
+    /** \brief meshgap's load, split into parts and Body::build of each (\e withNodes: and its node layer); returns
+        the part and triangle counts. */
+    std::pair<std::size_t, std::size_t> meshgapOnce(const std::string &file, bool withNodes, Phases &phases)
     {
         auto t0 = Clock::now();
         const Mesh mesh = loadMesh(file);
@@ -72,7 +75,11 @@ namespace
         std::vector<BodyConstPtr> bodies;
         bodies.reserve(parts.size());
         for (Mesh &part : parts)
+        {
             bodies.push_back(Body::build(std::move(part)));
+            if (withNodes)
+                bodies.back()->numNodes();  // builds the node layer
+        }
         phases.add(load, split, ms(t0));
         return {bodies.size(), mesh.triangles.size()};
     }
@@ -127,6 +134,7 @@ namespace
         po::options_description options("meshgap_bench_build");
         options.add_options()("help,h", "print this help")("repeat", po::value<int>()->default_value(5),
                                                             "runs per file (median)")(
+            "nodes", "also build each body's node layer (what the first node-solver query would build)")(
             "file", po::value<std::vector<std::string>>()->required(), "mesh files (positional)");
         po::positional_options_description positional;
         positional.add("file", -1);
@@ -134,6 +142,7 @@ namespace
         if (!cli::parseCommandLine(argc, argv, options, vm, &positional))
             return 0;
         const int repeat = vm["repeat"].as<int>();
+        const bool withNodes = vm.count("nodes") > 0;
         if (repeat < 1)
             throw Exception("--repeat", "must be at least 1");
         ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
@@ -151,7 +160,7 @@ namespace
             std::pair<std::size_t, std::size_t> counts;
             for (int r = 0; r < repeat; ++r)
             {
-                counts = meshgapOnce(file, ours);
+                counts = meshgapOnce(file, withNodes, ours);
                 fclOnce(file, fcl);
             }
             const double a = median(ours.total), b = median(fcl.total);

@@ -133,7 +133,8 @@ namespace meshgap
             if (!outer.isClosed())
                 return false;
             for (const std::uint32_t node : inner.componentNodes())
-                if (insideClosedBody(outer, X_outer_inner * inner.node(node)))  // O(log n); containsPoint() is O(n)
+                // O(log n); containsPoint() is O(n)
+                if (insideClosedBody(outer, X_outer_inner * inner.surface().vertices[node]))
                     return true;
             return false;
         }

@@ -9,25 +9,10 @@ namespace meshgap
     BodyPtr Body::build(Mesh mesh, const BodyOptions &options)
     {
         mesh.validate();
-        BodyPtr body(new Body());
-        std::vector<std::uint32_t> parent;
         if (options.sizing == GridSizing::ADAPTIVE)
-        {
-            const std::vector<double> sizes = adaptiveNodeSizes(mesh, options.adaptive);
-            body->adaptive_ = true;
-            body->gridSize_ = sizes.empty() ? 0.0 : *std::max_element(sizes.begin(), sizes.end());
-            body->mesh_ = refineMesh(mesh, sizes, &body->refinement_, &parent);
-        }
-        else
-        {
-            double h = options.gridSize;
-            if (h < 0.0)
-                h = BodyOptions::DEFAULT_GRID_FRACTION * mesh.size();
-            if (!std::isfinite(h))
-                h = 0.0;
-            body->gridSize_ = h;
-            body->mesh_ = refineMesh(mesh, h, &body->refinement_, &parent);
-        }
+            checkAdaptiveSizing(options.adaptive, mesh.source);  // a bad rule fails here, not at first use
+        BodyPtr body(new Body());
+        body->options_ = options;
         body->surface_ = std::move(mesh);
         body->bvh_ = std::make_unique<TriangleBvh>(body->surface_);
         const Mesh &surface = body->surface_;
@@ -35,23 +20,56 @@ namespace meshgap
         for (const Triangle &f : surface.triangles)
             volume += surface.vertices[f[0]].dot(surface.vertices[f[1]].cross(surface.vertices[f[2]]));
         body->orientation_ = volume >= 0.0 ? 1.0 : -1.0;
-        body->buildSurfaceMaps(parent);
-        body->graph_ = std::make_shared<const SurfaceGraph>(body->mesh_);
-        body->componentNodes_.assign(body->graph_->numComponents(), UINT32_MAX);
-        for (std::uint32_t i = body->graph_->numNodes(); i-- > 0;)
-            body->componentNodes_[body->graph_->component(i)] = i;  // ends at each component's first node
-        body->distanceOptions_ = options.distances;
-        body->buildClusters();
-        for (const Eigen::Vector3d &v : body->mesh_.vertices)
-            body->originRadius_ = std::max(body->originRadius_, v.norm());
+        // Closed: every undirected edge in exactly two triangles.
+        body->edges_ = countEdges(surface);
+        body->closed_ = !surface.triangles.empty() && body->edges_.closed();
+        // Components numbered in order of first vertex, as the node mesh's (which keeps these vertices first and
+        // only adds vertices on their edges).
+        std::uint32_t components = 0;
+        const std::vector<std::uint32_t> label = labelComponents(surface, components);
+        body->componentNodes_.assign(components, UINT32_MAX);
+        for (auto v = static_cast<std::uint32_t>(label.size()); v-- > 0;)
+            body->componentNodes_[label[v]] = v;  // ends at each component's first vertex
         return body;
+    }
+
+    const Body::NodeLayer &Body::buildNodeLayer() const
+    {
+        std::call_once(layerOnce_, [this] {
+            auto layer = std::make_unique<NodeLayer>();
+            std::vector<std::uint32_t> parent;
+            if (options_.sizing == GridSizing::ADAPTIVE)
+            {
+                const std::vector<double> sizes = adaptiveNodeSizes(surface_, options_.adaptive);
+                layer->gridSize = sizes.empty() ? 0.0 : *std::max_element(sizes.begin(), sizes.end());
+                layer->mesh = refineMesh(surface_, sizes, &layer->refinement, &parent);
+            }
+            else
+            {
+                double h = options_.gridSize;
+                if (h < 0.0)
+                    h = BodyOptions::DEFAULT_GRID_FRACTION * surface_.size();
+                if (!std::isfinite(h))
+                    h = 0.0;
+                layer->gridSize = h;
+                layer->mesh = refineMesh(surface_, h, &layer->refinement, &parent);
+            }
+            buildSurfaceMaps(*layer, parent);
+            layer->graph = std::make_shared<const SurfaceGraph>(layer->mesh);
+            buildClusters(*layer);
+            for (const Eigen::Vector3d &v : layer->mesh.vertices)
+                layer->originRadius = std::max(layer->originRadius, v.norm());
+            layerStore_ = std::move(layer);
+            layer_.store(layerStore_.get(), std::memory_order_release);
+        });
+        return *layer_.load(std::memory_order_acquire);
     }
 
     const MeshDistances &Body::distances() const
     {
         std::call_once(distancesOnce_, [this] {
-            distances_ = MeshDistances::build(graph_, distanceOptions_);
-            OMPL_INFORM("%s: mesh distances for %u nodes %s", mesh_.source.c_str(), numNodes(),
+            distances_ = MeshDistances::build(nodeLayer().graph, options_.distances);
+            OMPL_INFORM("%s: mesh distances for %u nodes %s", surface_.source.c_str(), numNodes(),
                         distances_->isDense() ? (distances_->fromCache() ? "read from cache" : "computed (all pairs)") :
                                                 "answered on demand");
         });
@@ -91,14 +109,14 @@ namespace meshgap
         }
     }  // namespace
 
-    void Body::buildSurfaceMaps(const std::vector<std::uint32_t> &parent)
+    void Body::buildSurfaceMaps(NodeLayer &layer, const std::vector<std::uint32_t> &parent) const
     {
         std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-        pairs.reserve(3 * mesh_.triangles.size());
-        for (std::size_t t = 0; t < mesh_.triangles.size(); ++t)
-            for (std::uint32_t v : mesh_.triangles[t])
+        pairs.reserve(3 * layer.mesh.triangles.size());
+        for (std::size_t t = 0; t < layer.mesh.triangles.size(); ++t)
+            for (std::uint32_t v : layer.mesh.triangles[t])
                 pairs.emplace_back(v, parent[t]);
-        toRows(pairs, mesh_.vertices.size(), nodeTriangleOffsets_, nodeTriangles_);
+        toRows(pairs, layer.mesh.vertices.size(), layer.nodeTriangleOffsets, layer.nodeTriangles);
 
         // Triangles around each surface vertex, then each triangle's corner-sharing neighbours.
         std::vector<std::pair<std::uint32_t, std::uint32_t>> corner;
@@ -113,20 +131,18 @@ namespace meshgap
                 for (std::uint32_t k = vertexOffsets[v]; k < vertexOffsets[v + 1]; ++k)
                     if (vertexTriangles[k] != t)
                         pairs.emplace_back(t, vertexTriangles[k]);
-        toRows(pairs, surface_.triangles.size(), triangleNeighbourOffsets_, triangleNeighbours_);
-
-        // Closed: every undirected edge in exactly two triangles.
-        edges_ = countEdges(surface_);
-        closed_ = !surface_.triangles.empty() && edges_.closed();
+        toRows(pairs, surface_.triangles.size(), layer.triangleNeighbourOffsets, layer.triangleNeighbours);
     }
 
-    void Body::buildClusters()
+    void Body::buildClusters(NodeLayer &layer)
     {
         constexpr std::uint32_t LEAF = 32;
-        const std::uint32_t n = numNodes();
-        order_.resize(n);
+        const Mesh &mesh = layer.mesh;
+        std::vector<std::uint32_t> &order = layer.order;
+        const auto n = static_cast<std::uint32_t>(mesh.vertices.size());
+        order.resize(n);
         for (std::uint32_t i = 0; i < n; ++i)
-            order_[i] = i;
+            order[i] = i;
         // Recursive median split along the longest axis of each range's box, leaves of at most LEAF nodes.
         std::vector<std::pair<std::uint32_t, std::uint32_t>> stack{{0u, n}};
         while (!stack.empty())
@@ -135,35 +151,35 @@ namespace meshgap
             stack.pop_back();
             Eigen::AlignedBox3d box;
             for (std::uint32_t k = begin; k < end; ++k)
-                box.extend(mesh_.vertices[order_[k]]);
+                box.extend(mesh.vertices[order[k]]);
             if (end - begin <= LEAF)
             {
                 const Eigen::Vector3d center = box.center();
                 double r2 = 0.0;
                 for (std::uint32_t k = begin; k < end; ++k)
-                    r2 = std::max(r2, (mesh_.vertices[order_[k]] - center).squaredNorm());
+                    r2 = std::max(r2, (mesh.vertices[order[k]] - center).squaredNorm());
                 // Pad by a relative epsilon so rounding in the bound never prunes a node that is inside it.
-                clusters_.push_back({center, std::sqrt(r2) * (1.0 + 1e-12) + 1e-300, begin, end});
+                layer.clusters.push_back({center, std::sqrt(r2) * (1.0 + 1e-12) + 1e-300, begin, end});
                 continue;
             }
             int axis;
             box.sizes().maxCoeff(&axis);
             const std::uint32_t mid = begin + (end - begin) / 2;
-            std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+            std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
                              [&](std::uint32_t i, std::uint32_t j) {
-                                 return mesh_.vertices[i][axis] < mesh_.vertices[j][axis];
+                                 return mesh.vertices[i][axis] < mesh.vertices[j][axis];
                              });
             stack.emplace_back(begin, mid);
             stack.emplace_back(mid, end);
         }
-        xs_.resize(n);
-        ys_.resize(n);
-        zs_.resize(n);
+        layer.xs.resize(n);
+        layer.ys.resize(n);
+        layer.zs.resize(n);
         for (std::uint32_t k = 0; k < n; ++k)
         {
-            xs_[k] = mesh_.vertices[order_[k]].x();
-            ys_[k] = mesh_.vertices[order_[k]].y();
-            zs_[k] = mesh_.vertices[order_[k]].z();
+            layer.xs[k] = mesh.vertices[order[k]].x();
+            layer.ys[k] = mesh.vertices[order[k]].y();
+            layer.zs[k] = mesh.vertices[order[k]].z();
         }
     }
 }  // namespace meshgap

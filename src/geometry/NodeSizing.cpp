@@ -191,22 +191,27 @@ namespace meshgap
         return lfs;
     }
 
-    std::vector<double> adaptiveNodeSizes(const Mesh &mesh, const AdaptiveSizing &rule)
+    void checkAdaptiveSizing(const AdaptiveSizing &rule, const std::string &source)
     {
         auto positive = [&](double x, const char *name) {
             if (!(x > 0.0) || !std::isfinite(x))
                 throw Exception("AdaptiveSizing", std::string(name) + " must be positive and finite, not " +
-                                                      std::to_string(x) + " (" + mesh.source + ")");
+                                                      std::to_string(x) + " (" + source + ")");
         };
         positive(rule.featureFraction, "featureFraction");
         positive(rule.minFraction, "minFraction");
         positive(rule.maxFraction, "maxFraction");
         if (!(rule.grading >= 0.0) || !std::isfinite(rule.grading))
             throw Exception("AdaptiveSizing", "grading must be >= 0 and finite, not " + std::to_string(rule.grading) +
-                                                  " (" + mesh.source + ")");
+                                                  " (" + source + ")");
         if (rule.minFraction > rule.maxFraction)
             throw Exception("AdaptiveSizing", "minFraction " + std::to_string(rule.minFraction) +
                                                   " is above maxFraction " + std::to_string(rule.maxFraction));
+    }
+
+    std::vector<double> adaptiveNodeSizes(const Mesh &mesh, const AdaptiveSizing &rule)
+    {
+        checkAdaptiveSizing(rule, mesh.source);
         const double size = mesh.size();
         const double hMin = rule.minFraction * size, hMax = rule.maxFraction * size;
         const std::vector<double> lfs = localFeatureSizes(mesh);

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -9,19 +10,100 @@ namespace meshgap
 {
     namespace
     {
+        /** \brief A triangle's place along one axis: its centroid's coordinate, ties broken by triangle index (a
+            strict total order, so the sorted sequence is unique); \e k is its position in the node's range. */
+        struct AxisKey
+        {
+            double key;
+            std::uint32_t triangle, k;
+            bool operator<(const AxisKey &o) const { return key < o.key || (key == o.key && triangle < o.triangle); }
+        };
+
+        /** \brief The build's working arrays, sized once for the whole mesh (no allocation per node), and what is
+            computed once per triangle: its axis-aligned box and centroid. */
+        struct BuildScratch
+        {
+            explicit BuildScratch(const Mesh &mesh)
+            {
+                const std::size_t n = mesh.triangles.size();
+                corners.reserve(3 * n);
+                boxes.resize(n);
+                centre.resize(n);
+                sorted.resize(n);
+                bestSorted.resize(n);
+                leftArea.resize(n);
+                triangleBox.resize(n);
+                centroid.resize(n);
+                for (std::size_t t = 0; t < n; ++t)
+                {
+                    const Triangle &f = mesh.triangles[t];
+                    for (std::uint32_t v : f)
+                        triangleBox[t].extend(mesh.vertices[v]);
+                    centroid[t] = (mesh.vertices[f[0]] + mesh.vertices[f[1]] + mesh.vertices[f[2]]) / 3.0;
+                }
+                for (int axis = 0; axis < 3; ++axis)
+                {
+                    for (std::size_t t = 0; t < n; ++t)
+                        sorted[t] = {centroid[t][axis], static_cast<std::uint32_t>(t), 0u};
+                    std::sort(sorted.begin(), sorted.end());
+                    axisOrder[axis].resize(n);
+                    for (std::size_t k = 0; k < n; ++k)
+                        axisOrder[axis][k] = sorted[k].triangle;
+                }
+                onLeft.assign(n, 0);
+                partitionRight.resize(n);
+            }
+            std::vector<Eigen::Vector3d> corners;  ///< the node's triangle corners, in order
+            std::vector<Eigen::AlignedBox3d> boxes;  ///< per position in the node's range: box along the node's axes
+            std::vector<Eigen::Vector3d> centre;     ///< per position: centroid along the node's axes
+            std::vector<AxisKey> sorted, bestSorted;
+            std::vector<double> leftArea;
+            std::vector<Eigen::AlignedBox3d> triangleBox;  ///< per triangle, axis-aligned
+            std::vector<Eigen::Vector3d> centroid;         ///< per triangle
+            /** \brief Per body axis, each pending node's triangles sorted by AxisKey along that axis, in the node's
+                range (as order()): an aligned node's sorts are read here, not redone. */
+            std::array<std::vector<std::uint32_t>, 3> axisOrder;
+            std::vector<std::uint8_t> onLeft;           ///< per triangle, set for the left side of the last split
+            std::vector<std::uint32_t> partitionRight;  ///< the right side while partitioning a range
+        };
+
+        /** \brief The box of the points \e begin to \e end along \e axes (columns): each coordinate axes.col(c) . p
+            summed as Eigen's axes.transpose() * p does, ((x + y) + z), in scalars (a product vector built per point
+            and read back whole stalls on the store), and the bounds as AlignedBox3d::extend() keeps them. */
+        Eigen::AlignedBox3d boxAlong(const Eigen::Matrix3d &axes, const Eigen::Vector3d *begin,
+                                     const Eigen::Vector3d *end)
+        {
+            Eigen::AlignedBox3d box;
+            double lo[3] = {box.min()[0], box.min()[1], box.min()[2]}, hi[3] = {box.max()[0], box.max()[1],
+                                                                                box.max()[2]};
+            for (const Eigen::Vector3d *p = begin; p != end; ++p)
+                for (int c = 0; c < 3; ++c)
+                {
+                    const double q = (axes(0, c) * p->x() + axes(1, c) * p->y()) + axes(2, c) * p->z();
+                    lo[c] = std::min(lo[c], q);
+                    hi[c] = std::max(hi[c], q);
+                }
+            box.min() = Eigen::Vector3d(lo[0], lo[1], lo[2]);
+            box.max() = Eigen::Vector3d(hi[0], hi[1], hi[2]);
+            return box;
+        }
+
         /** \brief The box of the triangles order[first, first + count) of \e mesh: the tighter of the axis-aligned
             box and the box along the principal axes of their corners (kept only if clearly smaller, an aligned box
             making cheaper tests), with the bounding sphere about its centre; padded against roundoff. */
         TriangleBvh::Node fitNode(const Mesh &mesh, const std::vector<std::uint32_t> &order, std::uint32_t first,
-                                  std::uint32_t count)
+                                  std::uint32_t count, std::vector<Eigen::Vector3d> &corners)
         {
+            corners.clear();
             Eigen::AlignedBox3d box;
             Eigen::Vector3d mean = Eigen::Vector3d::Zero();
             for (std::uint32_t k = first; k < first + count; ++k)
                 for (std::uint32_t v : mesh.triangles[order[k]])
                 {
-                    box.extend(mesh.vertices[v]);
-                    mean += mesh.vertices[v];
+                    const Eigen::Vector3d &p = mesh.vertices[v];
+                    corners.push_back(p);
+                    box.extend(p);
+                    mean += p;
                 }
             mean /= 3.0 * count;
             TriangleBvh::Node node;
@@ -29,20 +111,24 @@ namespace meshgap
             node.half = 0.5 * box.sizes();
             // The principal box: along the eigenvectors of the corners' covariance. Kept if clearly smaller (an
             // aligned box makes cheaper tests).
-            Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-            for (std::uint32_t k = first; k < first + count; ++k)
-                for (std::uint32_t v : mesh.triangles[order[k]])
-                {
-                    const Eigen::Vector3d d = mesh.vertices[v] - mean;
-                    covariance += d * d.transpose();
-                }
+            // Its six distinct entries summed (entry (i, j) adds d_i d_j, the same product as entry (j, i)).
+            double xx = 0.0, xy = 0.0, xz = 0.0, yy = 0.0, yz = 0.0, zz = 0.0;
+            for (const Eigen::Vector3d &p : corners)
+            {
+                const Eigen::Vector3d d = p - mean;
+                xx += d.x() * d.x();
+                xy += d.x() * d.y();
+                xz += d.x() * d.z();
+                yy += d.y() * d.y();
+                yz += d.y() * d.z();
+                zz += d.z() * d.z();
+            }
+            Eigen::Matrix3d covariance;
+            covariance << xx, xy, xz, xy, yy, yz, xz, yz, zz;
             Eigen::Matrix3d axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors();
             if (axes.determinant() < 0.0)
                 axes.col(2) = -axes.col(2);
-            Eigen::AlignedBox3d principal;
-            for (std::uint32_t k = first; k < first + count; ++k)
-                for (std::uint32_t v : mesh.triangles[order[k]])
-                    principal.extend(Eigen::Vector3d(axes.transpose() * mesh.vertices[v]));
+            const Eigen::AlignedBox3d principal = boxAlong(axes, corners.data(), corners.data() + corners.size());
             const Eigen::Vector3d principalHalf = 0.5 * principal.sizes();
             auto measure = [](const Eigen::Vector3d &h) { return h.prod() + 1e-3 * h.squaredNorm() * h.minCoeff(); };
             if (axes.allFinite() && measure(principalHalf) < 0.8 * measure(node.half))
@@ -53,9 +139,8 @@ namespace meshgap
                 node.half = principalHalf;
             }
             double r2 = 0.0;
-            for (std::uint32_t k = first; k < first + count; ++k)
-                for (std::uint32_t v : mesh.triangles[order[k]])
-                    r2 = std::max(r2, (mesh.vertices[v] - node.center).squaredNorm());
+            for (const Eigen::Vector3d &p : corners)
+                r2 = std::max(r2, (p - node.center).squaredNorm());
             // Rounding slack: bounds must never cut into the geometry they bound (a rotated box's corners are
             // projected with roundoff of a few 1e-16 of the coordinates).
             const double slack = 1e-12 * (node.center.norm() + node.half.norm() + mean.norm());
@@ -64,57 +149,67 @@ namespace meshgap
             return node;
         }
 
-        /** \brief Split the triangles order[first, first + count) in two by the surface area heuristic: along each
-            of the node's box \e axes, the triangles sorted by centroid, the cut that minimises the sum over both
-            sides of (surface area of the side's box along \e axes) x (its triangle count). The triangles are
-            reordered, the first side first; returns its size (between 1 and count - 1). Boxes that fit their
-            triangles tightly rather than halves of equal counts: on meshes of unequal density (a tube of slivers
-            with capped ends, a fine part welded to a coarse one) far fewer box pairs overlap between two trees. */
-        std::uint32_t splitBySurfaceArea(const Mesh &mesh, const std::vector<Eigen::Vector3d> &centroid,
-                                         const Eigen::Matrix3d &axes, std::uint32_t first, std::uint32_t count,
-                                         std::vector<std::uint32_t> &order)
+        /** \brief Each triangle of order[first, first + count)'s box and centroid along the (rotated) node's axes,
+            into the scratch arrays. */
+        void boxesAlong(const Mesh &mesh, const TriangleBvh::Node &node, const std::vector<std::uint32_t> &order,
+                        std::uint32_t first, std::uint32_t count, BuildScratch &scratch)
         {
-            // Each triangle's box and centroid along the node's axes, once.
-            std::vector<Eigen::AlignedBox3d> boxes(count);
-            std::vector<Eigen::Vector3d> centre(count);
             for (std::uint32_t k = 0; k < count; ++k)
             {
-                for (std::uint32_t v : mesh.triangles[order[first + k]])
-                    boxes[k].extend(Eigen::Vector3d(axes.transpose() * mesh.vertices[v]));
-                centre[k] = axes.transpose() * centroid[order[first + k]];
+                const std::uint32_t t = order[first + k];
+                const Triangle &f = mesh.triangles[t];
+                const Eigen::Vector3d corners[3] = {mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]};
+                scratch.boxes[k] = boxAlong(node.axes, corners, corners + 3);
+                scratch.centre[k] = node.axes.transpose() * scratch.centroid[t];
             }
+        }
+
+        /** \brief Split the triangles order[first, first + count) in two by the surface area heuristic: along each
+            of the node's box axes, the triangles sorted by centroid, the cut that minimises the sum over both
+            sides of (surface area of the side's box along the node's axes) x (its triangle count). The triangles
+            are reordered, the first side first; returns its size (between 1 and count - 1). Boxes that fit their
+            triangles tightly rather than halves of equal counts: on meshes of unequal density (a tube of slivers
+            with capped ends, a fine part welded to a coarse one) far fewer box pairs overlap between two trees. */
+        std::uint32_t splitBySurfaceArea(const Mesh &mesh, const TriangleBvh::Node &node, std::uint32_t first,
+                                         std::uint32_t count, std::vector<std::uint32_t> &order, BuildScratch &scratch)
+        {
+            if (!node.aligned)
+                boxesAlong(mesh, node, order, first, count, scratch);
+            // A triangle's box along the node's axes: an aligned node's is the triangle's own.
+            auto boxOf = [&](const AxisKey &key) -> const Eigen::AlignedBox3d &
+            { return node.aligned ? scratch.triangleBox[key.triangle] : scratch.boxes[key.k]; };
             auto area = [](const Eigen::AlignedBox3d &box)
             {
                 const Eigen::Vector3d d = box.sizes();
                 return d.x() * d.y() + d.y() * d.z() + d.z() * d.x();
             };
-            // Sorted along an axis: by the centroid's coordinate, ties by triangle index (deterministic).
-            std::vector<std::pair<double, std::uint32_t>> sorted(count), bestSorted;
-            auto sortAlong = [&](int axis, std::vector<std::pair<double, std::uint32_t>> &keys)
-            {
-                for (std::uint32_t k = 0; k < count; ++k)
-                    keys[k] = {centre[k][axis], k};
-                std::sort(keys.begin(), keys.end(),
-                          [&](const auto &x, const auto &y)
-                          {
-                              return x.first < y.first ||
-                                     (x.first == y.first && order[first + x.second] < order[first + y.second]);
-                          });
-            };
-            std::vector<double> leftArea(count);
             double bestCost = std::numeric_limits<double>::infinity();
             std::uint32_t bestCut = count / 2;
+            bool haveBest = false;
             for (int axis = 0; axis < 3; ++axis)
             {
-                sortAlong(axis, sorted);
+                AxisKey *sorted = scratch.sorted.data();
+                if (node.aligned)  // already sorted along the body's axes
+                    for (std::uint32_t k = 0; k < count; ++k)
+                    {
+                        const std::uint32_t t = scratch.axisOrder[axis][first + k];
+                        sorted[k] = {scratch.centroid[t][axis], t, 0u};
+                    }
+                else
+                {
+                    for (std::uint32_t k = 0; k < count; ++k)
+                        sorted[k] = {scratch.centre[k][axis], order[first + k], k};
+                    std::sort(sorted, sorted + count);
+                }
                 Eigen::AlignedBox3d left, right;
                 for (std::uint32_t k = 0; k < count; ++k)
-                    leftArea[k] = area(left.extend(boxes[sorted[k].second]));
+                    scratch.leftArea[k] = area(left.extend(boxOf(sorted[k])));
                 bool better = false;
                 for (std::uint32_t k = count - 1; k >= 1; --k)
                 {
                     // The first k triangles on one side, the rest on the other.
-                    const double cost = leftArea[k - 1] * k + area(right.extend(boxes[sorted[k].second])) * (count - k);
+                    const double cost =
+                        scratch.leftArea[k - 1] * k + area(right.extend(boxOf(sorted[k]))) * (count - k);
                     if (cost < bestCost)
                     {
                         bestCost = cost;
@@ -122,16 +217,39 @@ namespace meshgap
                         better = true;
                     }
                 }
-                if (better || bestSorted.empty())
-                    bestSorted.swap(sorted);
-                if (sorted.size() != count)
-                    sorted.resize(count);
+                if (better || !haveBest)
+                {
+                    scratch.bestSorted.swap(scratch.sorted);
+                    haveBest = true;
+                }
             }
-            std::vector<std::uint32_t> reordered(count);
             for (std::uint32_t k = 0; k < count; ++k)
-                reordered[k] = order[first + bestSorted[k].second];
-            std::copy(reordered.begin(), reordered.end(), order.begin() + first);
+                order[first + k] = scratch.bestSorted[k].triangle;
             return bestCut;
+        }
+
+        /** \brief After a split of order[first, first + count) (its first \e half on the left), each axis's sorted
+            range partitioned the same way, keeping the sort on both sides. */
+        void partitionAxes(const std::vector<std::uint32_t> &order, std::uint32_t first, std::uint32_t count,
+                           std::uint32_t half, BuildScratch &scratch)
+        {
+            for (std::uint32_t k = 0; k < half; ++k)
+                scratch.onLeft[order[first + k]] = 1;
+            for (int axis = 0; axis < 3; ++axis)
+            {
+                std::uint32_t *range = scratch.axisOrder[axis].data() + first;
+                std::uint32_t left = 0, right = 0;
+                for (std::uint32_t k = 0; k < count; ++k)
+                {
+                    if (scratch.onLeft[range[k]])
+                        range[left++] = range[k];
+                    else
+                        scratch.partitionRight[right++] = range[k];
+                }
+                std::copy(scratch.partitionRight.begin(), scratch.partitionRight.begin() + right, range + left);
+            }
+            for (std::uint32_t k = 0; k < half; ++k)
+                scratch.onLeft[order[first + k]] = 0;
         }
     }  // namespace
 
@@ -139,16 +257,10 @@ namespace meshgap
     {
         const auto n = static_cast<std::uint32_t>(mesh.triangles.size());
         order_.resize(n);
-        std::vector<Eigen::Vector3d> centroid(n);
-        for (std::uint32_t t = 0; t < n; ++t)
-        {
-            order_[t] = t;
-            const Triangle &f = mesh.triangles[t];
-            centroid[t] = (mesh.vertices[f[0]] + mesh.vertices[f[1]] + mesh.vertices[f[2]]) / 3.0;
-        }
         normals_.resize(n);
         for (std::uint32_t t = 0; t < n; ++t)
         {
+            order_[t] = t;
             const Triangle &f = mesh.triangles[t];
             const Eigen::Vector3d c =
                 (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
@@ -157,6 +269,7 @@ namespace meshgap
         }
         if (n == 0)
             return;
+        BuildScratch scratch(mesh);
         nodes_.reserve(2 * n / LEAF_SIZE + 2);
         // Build top-down; each stack entry is (node index, first, count).
         struct Work
@@ -169,7 +282,7 @@ namespace meshgap
         {
             const Work w = stack.back();
             stack.pop_back();
-            Node node = fitNode(mesh, order_, w.first, w.count);
+            Node node = fitNode(mesh, order_, w.first, w.count, scratch.corners);
             if (w.count <= LEAF_SIZE)
             {
                 node.first = w.first;
@@ -177,7 +290,8 @@ namespace meshgap
                 nodes_[w.node] = node;
                 continue;
             }
-            const std::uint32_t half = splitBySurfaceArea(mesh, centroid, node.axes, w.first, w.count, order_);
+            const std::uint32_t half = splitBySurfaceArea(mesh, node, w.first, w.count, order_, scratch);
+            partitionAxes(order_, w.first, w.count, half, scratch);
             const auto left = static_cast<std::uint32_t>(nodes_.size());
             nodes_.push_back(Node());
             nodes_.push_back(Node());

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory_resource>
 #include <numeric>
 #include <unordered_map>
 
@@ -85,8 +86,10 @@ namespace meshgap
     CleanReport cleanMesh(Mesh &mesh)
     {
         CleanReport report;
+        // The two maps' nodes come from one arena, released at once on return (no allocation per node).
+        std::pmr::monotonic_buffer_resource arena;
         // 1. Weld identical positions.
-        std::unordered_map<Eigen::Vector3d, std::uint32_t, PositionHash, PositionEqual> firstAt;
+        std::pmr::unordered_map<Eigen::Vector3d, std::uint32_t, PositionHash, PositionEqual> firstAt(&arena);
         firstAt.reserve(mesh.vertices.size());
         std::vector<std::uint32_t> weldTo(mesh.vertices.size());
         for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
@@ -96,7 +99,7 @@ namespace meshgap
                 index = weldTo[index];
 
         // 2. Drop degenerate and duplicated triangles (same vertex set, either winding).
-        std::unordered_map<Triangle, std::uint32_t, TriangleKeyHash> seen;
+        std::pmr::unordered_map<Triangle, std::uint32_t, TriangleKeyHash> seen(&arena);
         seen.reserve(mesh.triangles.size());
         std::vector<Triangle> kept;
         kept.reserve(mesh.triangles.size());
@@ -146,25 +149,38 @@ namespace meshgap
 
     EdgeReport countEdges(const Mesh &mesh)
     {
-        // Each undirected edge as one 64-bit key (smaller index high), sorted: equal edges are then adjacent.
-        std::vector<std::uint64_t> edges;
-        edges.reserve(3 * mesh.triangles.size());
+        // Each undirected edge filed under its smaller vertex (a counting sort, O(n)), then each vertex's short row
+        // of larger ends sorted: equal edges are then adjacent.
+        std::uint32_t rows = 0;
+        for (const Triangle &f : mesh.triangles)
+            rows = std::max({rows, f[0] + 1, f[1] + 1, f[2] + 1});
+        std::vector<std::uint32_t> offsets(std::size_t(rows) + 1, 0);
+        for (const Triangle &f : mesh.triangles)
+            for (int k = 0; k < 3; ++k)
+                ++offsets[std::min(f[k], f[(k + 1) % 3]) + 1];
+        for (std::uint32_t v = 0; v < rows; ++v)
+            offsets[v + 1] += offsets[v];
+        std::vector<std::uint32_t> ends(offsets.back()), fill(offsets.begin(), offsets.end() - 1);
         for (const Triangle &f : mesh.triangles)
             for (int k = 0; k < 3; ++k)
             {
                 const auto [lo, hi] = std::minmax(f[k], f[(k + 1) % 3]);
-                edges.push_back(std::uint64_t(lo) << 32 | hi);
+                ends[fill[lo]++] = hi;
             }
-        std::sort(edges.begin(), edges.end());
         EdgeReport report;
-        for (std::size_t i = 0; i < edges.size();)
+        for (std::uint32_t v = 0; v < rows; ++v)
         {
-            std::size_t j = i + 1;
-            while (j < edges.size() && edges[j] == edges[i])
-                ++j;
-            report.boundaryEdges += j - i == 1;
-            report.nonManifoldEdges += j - i >= 3;
-            i = j;
+            const auto begin = ends.begin() + offsets[v], end = ends.begin() + offsets[v + 1];
+            std::sort(begin, end);
+            for (auto i = begin; i != end;)
+            {
+                auto j = i + 1;
+                while (j != end && *j == *i)
+                    ++j;
+                report.boundaryEdges += j - i == 1;
+                report.nonManifoldEdges += j - i >= 3;
+                i = j;
+            }
         }
         return report;
     }

@@ -6,6 +6,7 @@
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/connected_components.hpp>
 #include <cmath>
+#include <map>
 #include <random>
 #include <set>
 
@@ -100,4 +101,39 @@ TEST(MeshOperations, VolumeMeanAndTransformOfABox)
     EXPECT_NEAR(signedVolume(box), 48.0, 1e-9);  // a rigid motion keeps the volume
     EXPECT_LT((vertexMean(box) - X.translation()).norm(), 1e-12);
     EXPECT_EQ(vertexMean(Mesh()), Eigen::Vector3d::Zero());
+}
+
+// countEdges() against a count kept in a std::map of undirected edges, on random triangle soups over few vertices
+// (so edges are shared by one, two or many triangles, and some vertices are used by none).
+TEST(MeshOperations, CountEdgesMatchesAMapOfEdges)
+{
+    std::mt19937 rng(7);
+    for (int round = 0; round < 200; ++round)
+    {
+        Mesh mesh;
+        const std::uint32_t n = 3 + rng() % 12;
+        for (std::uint32_t v = 0; v < n + 2; ++v)  // the last two vertices are never used
+            mesh.vertices.emplace_back(double(v), double(v * v % 7), double(v % 3));
+        const int triangles = 1 + static_cast<int>(rng() % 40);
+        for (int t = 0; t < triangles; ++t)
+        {
+            Triangle f{std::uint32_t(rng() % n), std::uint32_t(rng() % n), std::uint32_t(rng() % n)};
+            if (f[0] != f[1] && f[1] != f[2] && f[0] != f[2])
+                mesh.triangles.push_back(f);
+        }
+        std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+        for (const Triangle &f : mesh.triangles)
+            for (int k = 0; k < 3; ++k)
+                ++uses[std::minmax(f[k], f[(k + 1) % 3])];
+        std::size_t boundary = 0, nonManifold = 0;
+        for (const auto &edge : uses)
+        {
+            boundary += edge.second == 1;
+            nonManifold += edge.second >= 3;
+        }
+        const EdgeReport report = countEdges(mesh);
+        EXPECT_EQ(report.boundaryEdges, boundary) << "round " << round;
+        EXPECT_EQ(report.nonManifoldEdges, nonManifold) << "round " << round;
+    }
+    EXPECT_TRUE(countEdges(test::box(1.0, 2.0, 3.0, 3)).closed());
 }

@@ -2,6 +2,7 @@
 #define MESHGAP_GEOMETRY_BODY_H
 
 #include <Eigen/Core>
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -55,18 +56,21 @@ namespace meshgap
 
     /** \brief A rigid body for distance queries: its surface as given (with a triangle BVH, for exact distance and
         collision), the refined mesh whose nodes the combinatorial solvers search, the surface graph Pi, mesh
-        distances D/P, and node data laid out for fast enumeration. Immutable once built and safe to share between threads;
-        the mesh distances are computed on first request (once, thread-safely), since enumeration and hill climbing
-        do not need them. */
+        distances D/P, and node data laid out for fast enumeration. Immutable once built and safe to share between threads.
+        Body::build() makes what every exact query reads: the surface, its triangle BVH, its edges and orientation,
+        one vertex per connected component. The node layer (refined mesh, node-to-triangle maps, surface graph,
+        clusters) is built on the first call of an accessor that reads it, once and thread-safely: exact distance and
+        collision never read it, the node solvers, their seeds and penetration depth do. The mesh distances are
+        likewise built on first request, since enumeration and hill climbing do not need them. */
     class Body
     {
     public:
         /** \brief Build a body from a mesh in its own frame. The mesh must be valid (see Mesh::validate()). */
         static BodyPtr build(Mesh mesh, const BodyOptions &options = BodyOptions());
 
-        const std::string &name() const { return mesh_.source; }
+        const std::string &name() const { return surface_.source; }
         /** \brief The refined mesh: its vertices are the nodes the combinatorial solvers search. */
-        const Mesh &mesh() const { return mesh_; }
+        const Mesh &mesh() const { return nodeLayer().mesh; }
         /** \brief The surface as given (cleaned, not refined): what exact distance and collision use. */
         const Mesh &surface() const { return surface_; }
         /** \brief BVH over surface()'s triangles. */
@@ -74,20 +78,24 @@ namespace meshgap
         /** \brief Surface triangles that contain node \e i (at a corner, on an edge or inside). */
         const std::uint32_t *beginNodeTriangles(std::uint32_t i) const
         {
-            return nodeTriangles_.data() + nodeTriangleOffsets_[i];
+            const NodeLayer &layer = nodeLayer();
+            return layer.nodeTriangles.data() + layer.nodeTriangleOffsets[i];
         }
         const std::uint32_t *endNodeTriangles(std::uint32_t i) const
         {
-            return nodeTriangles_.data() + nodeTriangleOffsets_[i + 1];
+            const NodeLayer &layer = nodeLayer();
+            return layer.nodeTriangles.data() + layer.nodeTriangleOffsets[i + 1];
         }
         /** \brief Surface triangles sharing a corner with surface triangle \e t (t excluded). */
         const std::uint32_t *beginTriangleNeighbours(std::uint32_t t) const
         {
-            return triangleNeighbours_.data() + triangleNeighbourOffsets_[t];
+            const NodeLayer &layer = nodeLayer();
+            return layer.triangleNeighbours.data() + layer.triangleNeighbourOffsets[t];
         }
         const std::uint32_t *endTriangleNeighbours(std::uint32_t t) const
         {
-            return triangleNeighbours_.data() + triangleNeighbourOffsets_[t + 1];
+            const NodeLayer &layer = nodeLayer();
+            return layer.triangleNeighbours.data() + layer.triangleNeighbourOffsets[t + 1];
         }
         /** \brief True when every surface edge is shared by exactly two triangles (a closed surface: edges() counts
             no boundary and no non-manifold edge), so inside and outside are defined. Only a closed body has an
@@ -100,59 +108,74 @@ namespace meshgap
         /** \brief +1 when the surface's triangles wind outward (positive signed volume), -1 when inward: which side
             of a triangle is inside, for a closed body. */
         double orientation() const { return orientation_; }
-        const SurfaceGraph &graph() const { return *graph_; }
-        /** \brief One node of each connected component of the surface, in component order: a part with no surface
-            contact with another body lies wholly inside or wholly outside it, so one point per part decides. */
+        const SurfaceGraph &graph() const { return *nodeLayer().graph; }
+        /** \brief One vertex of surface() in each of its connected components (the component's first), in component
+            order: a part with no surface contact with another body lies wholly inside or wholly outside it, so one
+            point per part decides. The node mesh keeps surface()'s vertices first, so each is also that node. */
         const std::vector<std::uint32_t> &componentNodes() const { return componentNodes_; }
-        const RefineReport &refinement() const { return refinement_; }
+        const RefineReport &refinement() const { return nodeLayer().refinement; }
         /** \brief The grid size used (0 when not refined); with adaptive sizing, the largest target size (every
             node-mesh edge is at most that long unless the input's was). */
-        double gridSize() const { return gridSize_; }
+        double gridSize() const { return nodeLayer().gridSize; }
         /** \brief True when the nodes were placed by adaptive sizing. */
-        bool adaptiveSizing() const { return adaptive_; }
-        std::uint32_t numNodes() const { return static_cast<std::uint32_t>(mesh_.vertices.size()); }
-        const Eigen::Vector3d &node(std::uint32_t i) const { return mesh_.vertices[i]; }
+        bool adaptiveSizing() const { return options_.sizing == GridSizing::ADAPTIVE; }
+        std::uint32_t numNodes() const { return static_cast<std::uint32_t>(nodeLayer().mesh.vertices.size()); }
+        const Eigen::Vector3d &node(std::uint32_t i) const { return nodeLayer().mesh.vertices[i]; }
 
         /** \brief Mesh distances D and P, built on the first call. */
         const MeshDistances &distances() const;
 
         /** \brief Leaf clusters of nodes (at most 32 nodes each), and the node order they index. Node coordinates in
             that order are given as separate x, y, z arrays (structure of arrays). */
-        const std::vector<NodeCluster> &clusters() const { return clusters_; }
-        const std::vector<std::uint32_t> &clusterOrder() const { return order_; }
-        const std::vector<double> &xs() const { return xs_; }
-        const std::vector<double> &ys() const { return ys_; }
-        const std::vector<double> &zs() const { return zs_; }
+        const std::vector<NodeCluster> &clusters() const { return nodeLayer().clusters; }
+        const std::vector<std::uint32_t> &clusterOrder() const { return nodeLayer().order; }
+        const std::vector<double> &xs() const { return nodeLayer().xs; }
+        const std::vector<double> &ys() const { return nodeLayer().ys; }
+        const std::vector<double> &zs() const { return nodeLayer().zs; }
 
         /** \brief Radius of the smallest origin-centred ball holding every node (bounds how far a node moves under a
             rotation about the body origin). */
-        double radiusAboutOrigin() const { return originRadius_; }
+        double radiusAboutOrigin() const { return nodeLayer().originRadius; }
 
     private:
+        /** \brief What the node solvers, their seeds and penetration depth read, built on first use. */
+        struct NodeLayer
+        {
+            Mesh mesh;  ///< the refined mesh: its vertices are the nodes
+            RefineReport refinement;
+            double gridSize{0.0};
+            std::vector<std::uint32_t> nodeTriangleOffsets, nodeTriangles;
+            std::vector<std::uint32_t> triangleNeighbourOffsets, triangleNeighbours;
+            std::shared_ptr<const SurfaceGraph> graph;
+            std::vector<NodeCluster> clusters;
+            std::vector<std::uint32_t> order;
+            std::vector<double> xs, ys, zs;
+            double originRadius{0.0};
+        };
+
         Body() = default;
-        void buildClusters();
-        void buildSurfaceMaps(const std::vector<std::uint32_t> &parent);
+        /** \brief The node layer, built by the first caller (others wait for it); afterwards one load. */
+        const NodeLayer &nodeLayer() const
+        {
+            const NodeLayer *layer = layer_.load(std::memory_order_acquire);
+            return layer != nullptr ? *layer : buildNodeLayer();
+        }
+        const NodeLayer &buildNodeLayer() const;
+        static void buildClusters(NodeLayer &layer);
+        void buildSurfaceMaps(NodeLayer &layer, const std::vector<std::uint32_t> &parent) const;
 
         Mesh surface_;
         std::unique_ptr<TriangleBvh> bvh_;
-        Mesh mesh_;
-        std::vector<std::uint32_t> nodeTriangleOffsets_, nodeTriangles_;
-        std::vector<std::uint32_t> triangleNeighbourOffsets_, triangleNeighbours_;
         bool closed_{false};
         EdgeReport edges_;
         double orientation_{1.0};
-        RefineReport refinement_;
-        double gridSize_{0.0};
-        bool adaptive_{false};
-        std::shared_ptr<const SurfaceGraph> graph_;
         std::vector<std::uint32_t> componentNodes_;
-        MeshDistancesOptions distanceOptions_;
+        BodyOptions options_;
+        mutable std::once_flag layerOnce_;
+        mutable std::unique_ptr<const NodeLayer> layerStore_;
+        mutable std::atomic<const NodeLayer *> layer_{nullptr};
         mutable std::once_flag distancesOnce_;
         mutable MeshDistancesConstPtr distances_;
-        std::vector<NodeCluster> clusters_;
-        std::vector<std::uint32_t> order_;
-        std::vector<double> xs_, ys_, zs_;
-        double originRadius_{0.0};
     };
 }  // namespace meshgap
 

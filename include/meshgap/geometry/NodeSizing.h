@@ -1,6 +1,7 @@
 #ifndef MESHGAP_GEOMETRY_NODE_SIZING_H
 #define MESHGAP_GEOMETRY_NODE_SIZING_H
 
+#include <string>
 #include <vector>
 
 #include "meshgap/mesh/Mesh.h"
@@ -44,6 +45,10 @@ namespace meshgap
         at most grading times their edge length. Throws meshgap::Exception for a non-positive or non-finite fraction
         or a negative grading. */
     std::vector<double> adaptiveNodeSizes(const Mesh &mesh, const AdaptiveSizing &rule = AdaptiveSizing());
+
+    /** \brief Throws meshgap::Exception, naming \e source and the value, when \e rule has a non-positive or
+        non-finite fraction, a negative or non-finite grading, or minFraction above maxFraction. */
+    void checkAdaptiveSizing(const AdaptiveSizing &rule, const std::string &source);
 }  // namespace meshgap
 
 #endif
