@@ -2,7 +2,7 @@
 
 #include <cmath>
 #include <fstream>
-#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/StateSpace.h>
 #include <sstream>
 
 #include "meshgap/Exception.h"
@@ -14,11 +14,10 @@ namespace meshgap
     namespace
     {
         /** \brief The dense states of \e states in \e space: \e dense per validity-check segment of each motion. */
-        std::vector<std::vector<double>> interpolate(const ompl::base::SpaceInformation &si,
+        std::vector<std::vector<double>> interpolate(const ompl::base::StateSpace &space,
                                                      const std::vector<std::vector<double>> &states, unsigned dense,
                                                      std::vector<double> &arcLength)
         {
-            const ompl::base::StateSpace &space = *si.getStateSpace();
             ompl::base::State *a = space.allocState(), *b = space.allocState(), *s = space.allocState();
             std::vector<std::vector<double>> out{states.front()};
             arcLength = {0.0};
@@ -95,10 +94,12 @@ namespace meshgap
     PlanReportData robotReportFromPath(const RobotScene &scene, const std::vector<std::vector<double>> &states,
                                        unsigned dense, std::vector<std::pair<std::string, std::string>> summary)
     {
-        auto si = std::make_shared<ompl::base::SpaceInformation>(robotStateSpace(scene.robot(), boundsAround(states)));
-        si->setup();
+        // The space alone (set up for its validity-check resolution): no SpaceInformation, which would warn that
+        // it has no validity checker.
+        const ompl::base::StateSpacePtr space = robotStateSpace(scene.robot(), boundsAround(states));
+        space->setup();
         PlanReportData r;
-        const std::vector<std::vector<double>> path = interpolate(*si, states, dense, r.arcLength);
+        const std::vector<std::vector<double>> path = interpolate(*space, states, dense, r.arcLength);
         RobotRequest request;
         request.everyPair = true;
         RobotWarmStart warm;

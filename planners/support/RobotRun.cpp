@@ -12,6 +12,7 @@
 #include "meshgap/robot/UrdfRobot.h"
 #include "support/PlanOutputs.h"
 #include "support/PlanRun.h"
+#include "support/RobotReport.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -47,7 +48,7 @@ namespace meshgap
             void checkRobotOptions(const PlanOptions &o)
             {
                 for (const char *name : {"weight", "optimize", "optimize-time", "sampler", "export-glb",
-                                         "export-states", "report", "clearance-csv"})
+                                         "export-states", "clearance-csv"})
                     if (o.isGiven(name))
                         throw Exception(o.label(name), "does not apply to a robot problem (" + o.cfg + ")");
                 if (!o.objective.empty() && o.objective != "length")
@@ -206,21 +207,33 @@ namespace meshgap
         {
             if (!o.summaryFile.empty())
                 writeTextFile(run.summary, o.summaryFile);
-            if (!run.havePath || o.out.empty())
+            if (!run.havePath)
                 return;
-            std::ostringstream text;
-            text << std::setprecision(17);
             const og::PathGeometric &path = run.setup->getSolutionPath();
-            std::vector<double> q;
-            for (std::size_t i = 0; i < path.getStateCount(); ++i)
+            std::vector<std::vector<double>> states(path.getStateCount());
+            for (std::size_t i = 0; i < states.size(); ++i)
+                robotStateToVector(*run.setup->getStateSpace(), path.getState(i), states[i]);
+            if (!o.out.empty())
             {
-                robotStateToVector(*run.setup->getStateSpace(), path.getState(i), q);
-                for (std::size_t k = 0; k < q.size(); ++k)
-                    text << (k ? " " : "") << q[k];
-                text << "\n";
+                std::ostringstream text;
+                text << std::setprecision(17);
+                for (const std::vector<double> &q : states)
+                {
+                    for (std::size_t k = 0; k < q.size(); ++k)
+                        text << (k ? " " : "") << q[k];
+                    text << "\n";
+                }
+                writeTextFile(text.str(), o.out);
+                log << "path written    " << o.out << "\n";
             }
-            writeTextFile(text.str(), o.out);
-            log << "path written    " << o.out << "\n";
+            if (!o.report.empty())
+            {
+                const PlanReportData data =
+                    robotReportFromPath(*run.scene, states, o.dense,
+                                        {{"problem", run.problem.name}, {"states", std::to_string(states.size())}});
+                writeRobotReport(*run.scene, data, o.report);
+                log << "report written  " << o.report << "\n";
+            }
         }
 
         namespace

@@ -44,8 +44,9 @@ namespace meshgap
             interpolated (o.dense states per validity-check segment), and the checker's and validator's counts. */
         void solveRobotPlan(RobotPlanRun &run, const PlanOptions &o);
 
-        /** \brief Write the summary (o.summaryFile) and the path (o.out: one state a line, the numbers of
-            start.joints, or of the bodies' states one after the other). */
+        /** \brief Write the summary (o.summaryFile), the path (o.out: one state a line, the numbers of
+            start.joints, or of the bodies' states one after the other) and the HTML report (o.report: every link
+            along the path, as meshgap_report writes it). */
         void writeRobotPlanFiles(const RobotPlanRun &run, const PlanOptions &o, std::ostream &log);
 
         /** \brief meshgap_distance on a robot problem: at the start (\e stateText empty and \e statesFile empty),

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "CliRun.h"
@@ -130,6 +131,21 @@ TEST_F(RobotCli, PlanWritesThePathInTheProblemsStateNumbers)
                                                                          path);
     ASSERT_EQ(d.status, 0) << d.err;
     EXPECT_EQ(d.out.find("IN COLLISION"), std::string::npos) << d.out;
+}
+
+TEST_F(RobotCli, PlanWritesTheReportWithEveryLink)
+{
+    const std::string report = (dir_ / "arm.html").string();
+    const CliRun r = meshgap::test::runExecutable(
+        "meshgap_plan", "--cfg " + MAPS + "/arm_fixture/arm_fixture.cfg --seed 1 --time 20 -q --report " + report, 120);
+    ASSERT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("report written  " + report), std::string::npos) << r.out;
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+    std::ifstream in(report);
+    const std::string page((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // arm4.urdf's links with geometry, and the payload the cfg attaches, by name in the page's link list.
+    for (const char *link : {"base", "column", "upper", "fore", "hand", "payload"})
+        EXPECT_NE(page.find(std::string("\"") + link + "\""), std::string::npos) << link;
 }
 
 TEST_F(RobotCli, BadInputGetsOneClearErrorEach)
