@@ -32,22 +32,14 @@ namespace meshgap
         return model;
     }
 
-    /**
-       @anchor mgFclChecker
-       @par Short description
-       A state validity checker built the way OMPL.app builds its own: the robot and the whole world as FCL
-       BVHModel<OBBRSS>, isValid() by fcl::collide (first contact), clearance() by fcl::distance (nearest points
-       requested, as OMPL.app does). The robot mesh must be in OMPL.app's robot frame (loadRobotMesh()), the world
-       as loaded, so a state places the robot exactly where ClearanceChecker places it (poseFromState()). A state out
-       of the space's bounds is invalid, as for ClearanceChecker. Counts its queries and their time; thread-safe.
-    */
-    class FclChecker : public ompl::base::StateValidityChecker
+    /** \brief What the FCL peer checkers share: isValid() (within the space's bounds, and Derived::inCollision()
+        false at Derived::pose()) and clearance() (Derived::distance() there), each counted and timed;
+        thread-safe. */
+    template <typename Derived>
+    class FclTimedChecker : public ompl::base::StateValidityChecker
     {
     public:
-        using Model = fcl::BVHModel<fcl::OBBRSSd>;
-
-        FclChecker(const ompl::base::SpaceInformationPtr &si, const Mesh &robot, const Mesh &world)
-          : ompl::base::StateValidityChecker(si), robot_(fclModelOf(robot)), world_(fclModelOf(world))
+        explicit FclTimedChecker(const ompl::base::SpaceInformationPtr &si) : ompl::base::StateValidityChecker(si)
         {
             specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::EXACT;
         }
@@ -56,7 +48,7 @@ namespace meshgap
         {
             const auto start = std::chrono::steady_clock::now();
             ++validityCalls_;
-            const bool valid = si_->satisfiesBounds(state) && !inCollision(pose(state));
+            const bool valid = si_->satisfiesBounds(state) && !self().inCollision(self().pose(state));
             addTime(start);
             return valid;
         }
@@ -68,14 +60,54 @@ namespace meshgap
             return valid;
         }
 
-        /** \brief FCL's distance between robot and world; 0 when they touch or overlap. */
         double clearance(const ompl::base::State *state) const override
         {
             const auto start = std::chrono::steady_clock::now();
             ++clearanceCalls_;
-            const double d = distance(pose(state));
+            const double d = self().distance(self().pose(state));
             addTime(start);
             return d;
+        }
+
+        /** \brief Counters in ClearanceChecker's form (evaluations and warm-start hits stay 0). */
+        CheckerStats stats() const
+        {
+            CheckerStats s;
+            s.validityCalls = validityCalls_;
+            s.clearanceCalls = clearanceCalls_;
+            s.seconds = 1e-9 * static_cast<double>(nanoseconds_.load());
+            return s;
+        }
+
+    private:
+        const Derived &self() const { return static_cast<const Derived &>(*this); }
+
+        void addTime(std::chrono::steady_clock::time_point start) const
+        {
+            nanoseconds_ += static_cast<std::uint64_t>(
+                std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
+        }
+
+        mutable std::atomic<std::uint64_t> validityCalls_{0}, clearanceCalls_{0}, nanoseconds_{0};
+    };
+
+    /**
+       @anchor mgFclChecker
+       @par Short description
+       A state validity checker built the way OMPL.app builds its own: the robot and the whole world as FCL
+       BVHModel<OBBRSS>, isValid() by fcl::collide (first contact), clearance() by fcl::distance (nearest points
+       requested, as OMPL.app does). The robot mesh must be in OMPL.app's robot frame (loadRobotMesh()), the world
+       as loaded, so a state places the robot exactly where ClearanceChecker places it (poseFromState()). A state out
+       of the space's bounds is invalid, as for ClearanceChecker. Counts its queries and their time; thread-safe.
+    */
+    class FclChecker : public FclTimedChecker<FclChecker>
+    {
+    public:
+        using Model = fcl::BVHModel<fcl::OBBRSSd>;
+
+        FclChecker(const ompl::base::SpaceInformationPtr &si, const Mesh &robot, const Mesh &world)
+          : FclTimedChecker(si), robot_(fclModelOf(robot)), world_(fclModelOf(world))
+        {
         }
 
         /** \brief fcl::collide of the robot at \e X with the world (no counting). */
@@ -96,30 +128,14 @@ namespace meshgap
             return std::max(0.0, result.min_distance);
         }
 
+        /** \brief The robot's pose at \e state. */
         Eigen::Isometry3d pose(const ompl::base::State *state) const
         {
             return poseFromState(*si_->getStateSpace(), state);
         }
 
-        /** \brief Counters in ClearanceChecker's form (evaluations and warm-start hits stay 0). */
-        CheckerStats stats() const
-        {
-            CheckerStats s;
-            s.validityCalls = validityCalls_;
-            s.clearanceCalls = clearanceCalls_;
-            s.seconds = 1e-9 * static_cast<double>(nanoseconds_.load());
-            return s;
-        }
-
     private:
-        void addTime(std::chrono::steady_clock::time_point start) const
-        {
-            nanoseconds_ += static_cast<std::uint64_t>(
-                std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
-        }
-
         std::shared_ptr<Model> robot_, world_;
-        mutable std::atomic<std::uint64_t> validityCalls_{0}, clearanceCalls_{0}, nanoseconds_{0};
     };
 }  // namespace meshgap
 #endif

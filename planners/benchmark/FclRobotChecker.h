@@ -6,8 +6,6 @@
 
 #ifdef MESHGAP_HAVE_FCL
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <fcl/fcl.h>
 #include <limits>
 #include <memory>
@@ -31,48 +29,22 @@ namespace meshgap
        contact; clearance() fcl::distance on every pair, the least kept (0 in collision, as FCL answers). A state out
        of the space's bounds is invalid. Counts its queries and their time; thread-safe.
     */
-    class FclRobotChecker : public ompl::base::StateValidityChecker
+    class FclRobotChecker : public FclTimedChecker<FclRobotChecker>
     {
     public:
         using Model = fcl::BVHModel<fcl::OBBRSSd>;
 
         FclRobotChecker(const ompl::base::SpaceInformationPtr &si, RobotSceneConstPtr scene)
-          : ompl::base::StateValidityChecker(si), scene_(std::move(scene))
+          : FclTimedChecker(si), scene_(std::move(scene))
         {
-            specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::EXACT;
             for (const RobotLink &link : scene_->links())
                 links_.push_back(fclModelOf(link.body->surface()));
             for (const BodyConstPtr &o : scene_->obstacles())
                 obstacles_.push_back(fclModelOf(o->surface()));
         }
 
-        bool isValid(const ompl::base::State *state) const override
-        {
-            const auto start = std::chrono::steady_clock::now();
-            ++validityCalls_;
-            const bool valid = si_->satisfiesBounds(state) && !inCollision(linkPoses(state));
-            addTime(start);
-            return valid;
-        }
-
-        bool isValid(const ompl::base::State *state, double &dist) const override
-        {
-            const bool valid = isValid(state);
-            dist = valid ? clearance(state) : 0.0;
-            return valid;
-        }
-
-        double clearance(const ompl::base::State *state) const override
-        {
-            const auto start = std::chrono::steady_clock::now();
-            ++clearanceCalls_;
-            const double d = distance(linkPoses(state));
-            addTime(start);
-            return d;
-        }
-
         /** \brief Every link's world pose at \e state (the link's mesh frame). */
-        std::vector<Eigen::Isometry3d> linkPoses(const ompl::base::State *state) const
+        std::vector<Eigen::Isometry3d> pose(const ompl::base::State *state) const
         {
             std::vector<double> q;
             robotStateToVector(*si_->getStateSpace(), state, q);
@@ -118,26 +90,9 @@ namespace meshgap
             return least;
         }
 
-        /** \brief Counters in ClearanceChecker's form (evaluations and warm-start hits stay 0). */
-        CheckerStats stats() const
-        {
-            CheckerStats s;
-            s.validityCalls = validityCalls_;
-            s.clearanceCalls = clearanceCalls_;
-            s.seconds = 1e-9 * static_cast<double>(nanoseconds_.load());
-            return s;
-        }
-
     private:
-        void addTime(std::chrono::steady_clock::time_point start) const
-        {
-            nanoseconds_ += static_cast<std::uint64_t>(
-                std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
-        }
-
         RobotSceneConstPtr scene_;
         std::vector<std::shared_ptr<Model>> links_, obstacles_;
-        mutable std::atomic<std::uint64_t> validityCalls_{0}, clearanceCalls_{0}, nanoseconds_{0};
     };
 }  // namespace meshgap
 #endif

@@ -199,7 +199,7 @@ namespace meshgap
             // The verdict only: FCL's distance on every pair of an arm costs milliseconds a state.
             bool free = true;
             for (const ompl::base::State *s : path.getStates())
-                free = free && !fcl_->inCollision(fcl_->linkPoses(s));
+                free = free && !fcl_->inCollision(fcl_->pose(s));
             run["fcl path states INTEGER"] = std::to_string(path.getStateCount());
             run["fcl path collision free BOOLEAN"] = free ? "1" : "0";
     #else
