@@ -65,3 +65,15 @@ def cli_error(args):
     lines = [line for line in stderr.splitlines() if line.startswith("error: ")]
     assert len(lines) == 1, stderr
     return lines[0][len("error: "):]
+
+
+@pytest.fixture(scope="module")
+def client():
+    """A Dask client on a LocalCluster of 2 worker processes, one thread each, for a test module's tests."""
+    import distributed  # here, not at the top: modules without Dask skip before they ask for it
+
+    cluster = distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1, dashboard_address=":0")
+    c = distributed.Client(cluster)
+    yield c
+    c.close()
+    cluster.close()

@@ -33,15 +33,6 @@ LABELS = {"certified": "meshgap-certified", "fast": "meshgap-fast"}
 
 
 @pytest.fixture(scope="module")
-def client():
-    cluster = distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1, dashboard_address=":0")
-    c = distributed.Client(cluster)
-    yield c
-    c.close()
-    cluster.close()
-
-
-@pytest.fixture(scope="module")
 def reference(client, tmp_path_factory):
     out = tmp_path_factory.mktemp("reference") / "campaign"
     summary = mc.run(out=out, client=client, executable=executable("benchmark"), progress=False, **SETTINGS)

@@ -27,15 +27,6 @@ HAND_BOWL = MAPS / "hand_bowl" / "hand_bowl.cfg"
 FIELDS = {"distance", "on_robot", "on_obstacle", "obstacle", "in_collision", "certified", "open_body"}
 
 
-@pytest.fixture(scope="module")
-def client():
-    cluster = distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1, dashboard_address=":0")
-    c = distributed.Client(cluster)
-    yield c
-    c.close()
-    cluster.close()
-
-
 def planar_cfg(folder, name="bars"):
     """A planar problem of two boxes (a wall and a bar), as OMPL.app writes 2D ones (no start.z)."""
     folder.mkdir(parents=True, exist_ok=True)
