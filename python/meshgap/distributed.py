@@ -6,7 +6,8 @@
     d = r["distance"].compute()
     md.label("maps/hand_bowl/hand_bowl.cfg", 10_000_000, out="labels.zarr")
 
-A problem (`source`) is a .cfg path or a (robot, world) pair of mesh paths. Its files are checked and hashed on the
+A problem (`source`) is a .cfg path or a (robot, world) pair of mesh paths; a robot problem file (robot.urdf, or
+robot.1 ...) takes (N, dof) states in distance() and in_collision(), answered as RobotScene.distance answers them. Its files are checked and hashed on the
 client; each worker process builds its Scene once per content hash and keeps it for every chunk it runs (the Scene is
 never sent over the network), so the files must be readable at the same paths on every worker. Answers are those of
 Scene.distance on the same poses, bit for bit. Needs Debian's python3-dask; connect() needs python3-distributed and
@@ -37,17 +38,18 @@ from . import _meshgap
 FIELDS = (("distance", np.float64, 1), ("on_robot", np.float64, 3), ("on_obstacle", np.float64, 3),
           ("obstacle", np.int64, 1), ("in_collision", np.bool_, 1), ("certified", np.bool_, 1),
           ("open_body", np.bool_, 1))
-_PACKED = sum(width for _, _, width in FIELDS)
 DEFAULT_CHUNK = 16 * _meshgap.SCENE_BATCH_BLOCK  # rows per task: a multiple of the batch's block
 
 
 class Problem:
-    """A problem named by its files: a .cfg (kind "cfg": files = (cfg, robot, world)) or a pair of meshes (kind
-    "meshes": files = (robot, world)), with the hash of their contents (key). Small and picklable: this, not the
+    """A problem named by its files: a .cfg (kind "cfg": files = (cfg, robot, world)), a pair of meshes (kind
+    "meshes": files = (robot, world)) or a robot problem file (kind "robot": files = (cfg, the files it names); robot
+    = (state numbers, links, self pairs)), with the hash of their contents (key). Small and picklable: this, not the
     Scene, travels to the workers. Build it once with problem(source) to hash the files once."""
 
-    def __init__(self, kind, files, key, planar, volume):
+    def __init__(self, kind, files, key, planar, volume, robot=None):
         self.kind, self.files, self.key, self.planar, self.volume = kind, tuple(files), key, planar, volume
+        self.robot = robot
 
     def __repr__(self):
         return "<meshgap.distributed.Problem %s %s>" % (self.kind, ", ".join(self.files))
@@ -86,6 +88,28 @@ def _read_cfg(path):
     return keys
 
 
+def _robot_problem(cfg, keys):
+    """The Problem of a robot problem file (robot.urdf, or robot.1 ...): the cfg and the files its keys name are
+    hashed (the meshes a URDF names are not: change the URDF or the cfg when they change); the robot is built here
+    once to learn its state numbers, links and self pairs (RobotScene.from_cfg's errors name the file and line)."""
+    named = [keys[k] for k in ("robot.urdf", "robot.srdf", "world") if k in keys]
+    if keys.get("attach", "").split():
+        named.append(keys["attach"].split()[0])
+    n = 1
+    while "robot.%d" % n in keys:
+        named.append(keys["robot.%d" % n])
+        n += 1
+    files = [cfg]
+    for name in named:
+        path = os.path.normpath(os.path.join(os.path.dirname(cfg), name))
+        if not os.path.isfile(path):
+            raise FileNotFoundError("%s: '%s' does not exist" % (cfg, path))
+        files.append(path)
+    robot = _meshgap.RobotScene.from_cfg(cfg)
+    shape = (robot.dimension, len(robot.link_names), len(robot.self_pairs))
+    return Problem("robot", files, _hash_files(files), None, None, shape)
+
+
 def problem(source):
     """The Problem of a .cfg path or a (robot, world) pair of mesh paths, its files checked and hashed here.
     FileNotFoundError naming a missing file; ValueError for anything else than those two forms."""
@@ -96,6 +120,8 @@ def problem(source):
         if not os.path.isfile(cfg):
             raise _missing(cfg, "")
         keys = _read_cfg(cfg)
+        if "robot.urdf" in keys or "robot.1" in keys:
+            return _robot_problem(cfg, keys)
         files = [cfg]
         for role in ("robot", "world"):
             if role not in keys:
@@ -142,7 +168,10 @@ def scene(source):
                 raise _missing(path, _where())
         if _hash_files(p.files) != p.key:
             raise ValueError("%s: the files%s differ from those the client hashed" % (", ".join(p.files), _where()))
-        built = _meshgap.Scene.from_cfg(p.files[0]) if p.kind == "cfg" else _meshgap.Scene(*p.files)
+        if p.kind == "robot":
+            built = _meshgap.RobotScene.from_cfg(p.files[0])
+        else:
+            built = _meshgap.Scene.from_cfg(p.files[0]) if p.kind == "cfg" else _meshgap.Scene(*p.files)
         _scenes[p.key] = built
         _builds[p.key] = _builds.get(p.key, 0) + 1
         return built
@@ -154,11 +183,28 @@ def scene_builds():
         return dict(_builds)
 
 
+def _fields(p):
+    """The fields of the problem's distance answer: (name, dtype, width, a column per pose (width 1) or a row)."""
+    if p.kind != "robot":
+        return tuple((name, dtype, width, width > 1) for name, dtype, width in FIELDS)
+    _, links, pairs = p.robot
+    return (("distance", np.float64, 1, False), ("in_collision", np.bool_, 1, False),
+            ("certified", np.bool_, 1, False), ("self_pair", np.bool_, 1, False), ("link", np.int64, 1, False),
+            ("obstacle", np.int64, 1, False), ("other_link", np.int64, 1, False), ("on_link", np.float64, 3, True),
+            ("on_other", np.float64, 3, True), ("link_clearance", np.float64, links, True),
+            ("link_obstacle_distance", np.float64, links, True), ("self_pair_distance", np.float64, pairs, True))
+
+
 def _distance_block(block, p, exact, warm, depth):
-    r = scene(p).distance(np.ascontiguousarray(block, dtype=np.float64), exact=exact, warm=warm, depth=depth)
-    packed = np.empty((len(block), _PACKED))
+    block = np.ascontiguousarray(block, dtype=np.float64)
+    if p.kind == "robot":
+        r = scene(p).distance(block)
+    else:
+        r = scene(p).distance(block, exact=exact, warm=warm, depth=depth)
+    fields = _fields(p)
+    packed = np.empty((len(block), sum(width for _, _, width, _ in fields)))
     column = 0
-    for name, _, width in FIELDS:
+    for name, _, width, _ in fields:
         packed[:, column:column + width] = r[name].reshape(len(block), width)
         column += width
     return packed
@@ -173,7 +219,13 @@ def _pose_array(poses, p, chunks):
     if not isinstance(poses, da.Array):
         poses = np.asarray(poses)
     shape = tuple(poses.shape)
-    columns = (3,) if p.planar else (7,) if p.planar is False else (3, 7)
+    if p.kind == "robot":
+        if len(shape) != 2 or shape[1] != p.robot[0]:
+            raise ValueError("states: expected an array of shape (N, %d) (the robot's state numbers, as "
+                             "RobotScene.state_names), got shape %s" % (p.robot[0], shape))
+        columns = (p.robot[0],)
+    else:
+        columns = (3,) if p.planar else (7,) if p.planar is False else (3, 7)
     if len(shape) != 2 or shape[1] not in columns:
         raise ValueError("poses: expected an array of shape (N, %s) (%s), got shape %s" % (
             " or ".join(map(str, columns)),
@@ -190,22 +242,31 @@ def distance(source, poses, chunks=None, exact=True, warm=True, depth=True):
     theta, rows chunked (chunks: rows per task; default the array's own chunks, or DEFAULT_CHUNK). Returns a dict of
     Dask arrays with Scene.distance's fields, all from one task per chunk (compute them together:
     dask.compute(r)). Each task runs Scene.distance(block, exact=, warm=, depth=) with one thread: the warm start is
-    carried within a chunk, the answers identical to one Scene.distance over all the poses."""
+    carried within a chunk, the answers identical to one Scene.distance over all the poses.
+
+    A robot problem file (robot.urdf, or robot.1 ...) takes (N, dof) states instead and gives RobotScene.distance's
+    fields (every pair answered: link_clearance, link_obstacle_distance, self_pair_distance too); it is always
+    exact, with the depth, so exact and depth must stay True."""
     p = problem(source)
+    if p.kind == "robot" and not (exact and depth):
+        raise ValueError("a robot problem is answered exactly, with the depth: exact and depth must be True")
     x = _pose_array(poses, p, chunks)
+    fields = _fields(p)
+    width = sum(w for _, _, w, _ in fields)
     # meta given: Dask would otherwise call the function on an empty block here, building the Scene on the client.
-    packed = x.map_blocks(_distance_block, p, exact, warm, depth, dtype=np.float64, meta=np.empty((0, _PACKED)),
-                          chunks=(x.chunks[0], (_PACKED,)), name="meshgap-distance")
+    packed = x.map_blocks(_distance_block, p, exact, warm, depth, dtype=np.float64, meta=np.empty((0, width)),
+                          chunks=(x.chunks[0], (width,)), name="meshgap-distance")
     out, column = {}, 0
-    for name, dtype, width in FIELDS:
-        part = packed[:, column] if width == 1 else packed[:, column:column + width]
+    for name, dtype, w, row in fields:
+        part = packed[:, column:column + w] if row else packed[:, column]
         out[name] = part.astype(dtype)
-        column += width
+        column += w
     return out
 
 
 def in_collision(source, poses, chunks=None):
-    """Scene.in_collision over a Dask array of poses, as distance(): a Dask bool array (N,)."""
+    """Scene.in_collision (RobotScene.in_collision for a robot problem file) over a Dask array of poses (states), as
+    distance(): a Dask bool array (N,)."""
     p = problem(source)
     x = _pose_array(poses, p, chunks)
     return x.map_blocks(_collision_block, p, dtype=np.bool_, meta=np.empty((0,), dtype=np.bool_), drop_axis=1,
@@ -426,6 +487,9 @@ def label(source, n, out="labels.zarr", sampler="uniform", chunk=DEFAULT_CHUNK, 
     {"out", "chunks", "computed"} (computed: the chunks this run wrote)."""
     import zarr  # fail here, not on the workers, when it is missing
     p = problem(source)
+    if p.kind == "robot":
+        raise ValueError("label: %s is a robot problem; label() draws poses of one rigid robot (distance() takes a "
+                         "robot's (N, dof) states)" % p.files[0])
     if sampler not in SAMPLERS:
         raise ValueError("sampler: %r is not known (%s)" % (sampler, ", ".join(SAMPLERS)))
     if not (isinstance(n, (int, np.integer)) and n > 0) or not (isinstance(chunk, (int, np.integer)) and chunk > 0):

@@ -96,6 +96,28 @@ def test_se2_and_mesh_pair_identical(client, tmp_path):
     assert_same(got, meshgap.Scene(*pair).distance(poses3))
 
 
+def test_robot_states_identical(client, tmp_path):
+    # A URDF arm carrying a payload (maps/arm_fixture) and two bodies in SE(2) (maps/swap_se2): (N, dof) states.
+    for cfg, count in ((MAPS / "arm_fixture" / "arm_fixture.cfg", 600), (MAPS / "swap_se2" / "swap_se2.cfg", 400)):
+        robot = meshgap.RobotScene.from_cfg(cfg)
+        bounds = robot.bounds
+        low, high = np.maximum(bounds[:, 0], -4.0), np.minimum(bounds[:, 1], 4.0)
+        states = np.random.default_rng(5).uniform(low, high, size=(count, robot.dimension))
+        want = robot.distance(states)
+        assert 0 < want["in_collision"].sum() < count, cfg
+        (got,) = dask.compute(md.distance(cfg, states, chunks=128))
+        assert set(got) == set(want), cfg
+        for name in want:
+            assert got[name].dtype == want[name].dtype and got[name].shape == want[name].shape, (cfg, name)
+            assert np.array_equal(got[name], want[name]), (cfg, name)
+        assert np.array_equal(md.in_collision(cfg, states, chunks=128).compute(), robot.in_collision(states))
+    with pytest.raises(ValueError, match=r"\(N, 4\)"):
+        md.distance(MAPS / "arm_fixture" / "arm_fixture.cfg", np.zeros((3, 7)))
+    with pytest.raises(ValueError, match="robot problem"):
+        md.label(MAPS / "arm_fixture" / "arm_fixture.cfg", 10, out=str(tmp_path / "robot.zarr"))
+    assert not (tmp_path / "robot.zarr").exists()
+
+
 def check_store(out, n, chunk, scene, volume, planar):
     """The data set at out against the same computation here: the sampler's poses chunk by chunk, inside the
     volume, and Scene.distance's exact answers at them."""
