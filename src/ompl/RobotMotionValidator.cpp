@@ -24,7 +24,9 @@ namespace meshgap
         /** \brief Pieces of a motion halved further than this, or more of them than this, and the motion is
             refused unproven (conservative): a pair that stays within a hair of touching over a long stretch. */
         constexpr int MAX_DEPTH = 30;
-        constexpr std::size_t MAX_PIECES = std::size_t(1) << 20;
+        constexpr std::size_t MAX_PIECES = std::size_t(1) << 16;
+        /** \brief Buffers grown past this many pieces by an unusual motion are released after it. */
+        constexpr std::size_t KEPT_PIECES = std::size_t(1) << 12;
 
         /** \brief A piece [t0, t1] of the motion and the pairs still to prove on it: Work::pending[first, first +
             count). */
@@ -91,6 +93,11 @@ namespace meshgap
             w.pieces.push_back({t, p.t1, start, left, p.depth + 1});
         }
         si_->freeState(middle);
+        if (w.pieces.capacity() > KEPT_PIECES)
+        {
+            w.pieces = std::vector<Piece>();
+            w.pending = std::vector<std::size_t>();
+        }
         return free;
     }
 
