@@ -42,7 +42,7 @@ namespace meshgap
         {
             RobotWarmStart warm;
             std::vector<double> q0, q1, q, moves, lambda;
-            std::vector<Piece> pieces;           ///< breadth first: a queue read from its head
+            std::vector<Piece> pieces;         ///< breadth first: a queue read from its head
             std::vector<std::size_t> pending;  ///< pair indices, a range per piece
         };
     }  // namespace

@@ -17,12 +17,12 @@ namespace meshgap
        steps (for two links, how far either moves in the frame of their nearest common ancestor,
        MotionBound::pairDisplacement(); a link's own bound for a link against the obstacles). So on a piece
        [t0, t1] of the motion every state is within (t1 - t0) lambda / 2 of the piece's middle state, and a pair
-       that is more than that apart at the middle (RobotScene::pairApart(), a bounded question as cheap as a
-       collision test) is free on the whole piece. Pieces are taken breadth first (halves of halves, as OMPL's
+       that is more than that apart at the middle (RobotScene::pairApart(), a bounded question: nothing beyond the
+       margin is looked at) is free on the whole piece. Pieces are taken breadth first (halves of halves, as OMPL's
        discrete validator orders its states), each asking only the pairs its parent could not prove; a pair that
        collides at a middle state (RobotScene::pairCollides()) makes the motion invalid at once, and so does a
-       piece 2^-30 of the motion long that is still unproven (conservative). The end state is tested for
-       collision first.
+       piece 2^-30 of the motion long, or a 65,537th piece, still unproven (conservative). Both end states are
+       tested for collision first.
        @par External documentation
        F. Schwarzer, M. Saha, J.-C. Latombe, Adaptive dynamic collision checking for single and multiple
        articulated robots in complex environments, IEEE Transactions on Robotics 21(3), 2005.

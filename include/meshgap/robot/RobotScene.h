@@ -144,8 +144,8 @@ namespace meshgap
         void place(const double *state, std::size_t size, RobotWarmStart &warm) const;
         /** \brief At the state last placed in \e warm: true when pair \e k (RobotResult::pairs order) is certified
             more than \e margin (>= 0) apart, its signed distance above margin; false when some part of it is
-            within margin, or collides. A bounded question (the pair's traversal prunes everything beyond margin
-            and stops at the first triangle pair within it): about as cheap as a collision test. */
+            within margin, or collides. A bounded question: the pair's traversal prunes everything beyond margin
+            and stops at the first triangle pair within it. */
         bool pairApart(std::size_t k, double margin, RobotWarmStart &warm) const;
         /** \brief At the state last placed in \e warm: the exact collision verdict of pair \e k (containment
             included). */
