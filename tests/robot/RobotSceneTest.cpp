@@ -22,6 +22,7 @@
 #include "FclOracle.h"
 #include "TestMeshes.h"
 #include "TestNote.h"
+#include "robot/TestTree.h"
 
 namespace meshgap
 {
@@ -347,6 +348,45 @@ namespace meshgap
         EXPECT_GT(tally.colliding, 0u);
         expectPrunedMatchesEveryPair(scene, std::vector<std::vector<double>>(states.begin(), states.begin() + 100));
 #endif
+    }
+
+    TEST(RobotScene, PairQuestionsAgreeWithEveryPairsExactAnswer)
+    {
+        // pairApart(k, m) says "more than m apart" exactly when pair k's exact distance (every pair answered) is
+        // above m, and pairCollides(k) when it is negative; margins drawn around each pair's own distance.
+        const UrdfRobotPtr robot = test::treeWithPayload();
+        const RobotScene scene(robot, test::postsAroundTree());
+        std::mt19937 rng(23);
+        std::uniform_real_distribution<double> u(-1.0, 1.0), factor(0.5, 1.5);
+        RobotRequest every;
+        every.everyPair = true;
+        RobotWarmStart warm;
+        RobotResult exact;
+        std::size_t apart = 0, within = 0, colliding = 0;
+        for (int trial = 0; trial < 300; ++trial)
+        {
+            const std::vector<double> q = {3 * u(rng), 2.5 * u(rng), 0.05 + 0.05 * u(rng), 3 * u(rng), u(rng)};
+            scene.distance(q, every, exact);
+            scene.place(q.data(), q.size(), warm);
+            for (std::size_t k = 0; k < scene.numPairs(); ++k)
+            {
+                const double d = exact.pairs[k].distance;
+                if (std::isinf(d))
+                    continue;  // a pair the query left out
+                const double margin = d > 0.0 ? d * factor(rng) : 0.01 * factor(rng);
+                if (std::abs(margin - d) < 1e-9 * (1.0 + std::abs(d)))
+                    continue;  // too close to call either way
+                const bool says = scene.pairApart(k, margin, warm);
+                EXPECT_EQ(says, d > margin) << "trial " << trial << ", pair " << k << ": " << d << " vs " << margin;
+                EXPECT_EQ(scene.pairCollides(k, warm), d < 0.0) << "trial " << trial << ", pair " << k;
+                (says ? apart : within)++;
+                colliding += d < 0.0;
+            }
+        }
+        test::Note() << apart << " apart, " << within << " within their margin, " << colliding << " colliding";
+        EXPECT_GT(apart, 100u);
+        EXPECT_GT(within, 100u);
+        EXPECT_GT(colliding, 0u);
     }
 
     TEST(RobotScene, ThreadsWithTheirOwnWarmStartsGiveTheSameAnswers)
