@@ -19,37 +19,11 @@
 #include "meshgap/ompl/RobotStateSpace.h"
 #include "meshgap/robot/RobotProblem.h"
 #include "meshgap/robot/RobotScene.h"
+#include "support/PathFile.h"
 
 using namespace meshgap;
 namespace po = boost::program_options;
 namespace ob = ompl::base;
-
-namespace
-{
-    std::vector<std::vector<double>> readStates(const std::string &file, std::size_t dimension)
-    {
-        std::ifstream in(file);
-        if (!in)
-            throw Exception(file, "cannot read the path file");
-        std::vector<std::vector<double>> states;
-        std::string text;
-        for (std::size_t number = 1; std::getline(in, text); ++number)
-        {
-            std::istringstream fields(text);
-            std::vector<double> q;
-            std::string token;
-            while (fields >> token)
-                q.push_back(parseFiniteNumber(token, file + ":" + std::to_string(number)));
-            if (q.empty())
-                continue;
-            if (q.size() != dimension)
-                throw Exception(file + ":" + std::to_string(number), "expected " + std::to_string(dimension) +
-                                                                         " numbers, found " + std::to_string(q.size()));
-            states.push_back(q);
-        }
-        return states;
-    }
-}  // namespace
 
 int main(int argc, char **argv)
 {
@@ -79,7 +53,7 @@ int main(int argc, char **argv)
             links.push_back(test::fclModel(link.body->surface()));
         for (const BodyConstPtr &o : scene.obstacles())
             obstacles.push_back(test::fclModel(o->surface()));
-        const auto states = readStates(pathFile, p.robot->dimension());
+        const auto states = readRobotPathFile(pathFile, p.robot->dimension());
         const double extent = p.volume ? (p.volume->max() - p.volume->min()).norm() : space->getMaximumExtent();
         ob::State *a = space->allocState(), *b = space->allocState(), *s = space->allocState();
         std::vector<double> q;

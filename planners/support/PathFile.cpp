@@ -63,4 +63,36 @@ namespace meshgap
             throw Exception(file, "no states in the path file");
         return path;
     }
+
+    std::vector<double> parseRobotState(const std::string &text, std::size_t dimension, const std::string &where)
+    {
+        std::istringstream fields(text);
+        std::vector<double> q;
+        std::string token;
+        while (fields >> token)
+            q.push_back(parseFiniteNumber(token, where, "a state of " + std::to_string(dimension) + " numbers"));
+        if (q.size() != dimension)
+            throw Exception(where, "a state of this problem has " + std::to_string(dimension) +
+                                       " numbers (as start.joints, or the bodies' states one after the other), "
+                                       "found " + std::to_string(q.size()));
+        return q;
+    }
+
+    std::vector<std::vector<double>> readRobotPathFile(const std::string &file, std::size_t dimension)
+    {
+        std::ifstream in(file);
+        if (!in)
+            throw Exception(file, "no such file, or it cannot be read");
+        std::vector<std::vector<double>> states;
+        std::string text;
+        for (std::size_t number = 1; std::getline(in, text); ++number)
+        {
+            const auto first = text.find_first_not_of(" \t\r");
+            if (first != std::string::npos && text[first] != '#')
+                states.push_back(parseRobotState(text, dimension, file + ":" + std::to_string(number)));
+        }
+        if (states.empty())
+            throw Exception(file, "no states in the file");
+        return states;
+    }
 }  // namespace meshgap

@@ -3,6 +3,7 @@
 
 #include <ompl/geometric/PathGeometric.h>
 #include <string>
+#include <vector>
 
 namespace meshgap
 {
@@ -11,6 +12,16 @@ namespace meshgap
         states. Throws meshgap::Exception naming "file:line" for a line with the wrong count of numbers, a
         non-number, NaN, or a quaternion not of unit length, and "file" for a missing file or one without states. */
     ompl::geometric::PathGeometric readPathFile(const std::string &file, const ompl::base::SpaceInformationPtr &si);
+
+    /** \brief One state of a robot problem from \e text: \e dimension finite numbers (as start.joints: a floating
+        base's pose first, then the joints; per body its pose for several bodies). Throws meshgap::Exception naming
+        \e where for a non-number, a number not finite or another count. */
+    std::vector<double> parseRobotState(const std::string &text, std::size_t dimension, const std::string &where);
+
+    /** \brief The states of a robot problem's .path file: one state a line (parseRobotState(), naming "file:line");
+        blank and '#' lines skipped. Throws meshgap::Exception naming "file" for a missing file or one without
+        states. */
+    std::vector<std::vector<double>> readRobotPathFile(const std::string &file, std::size_t dimension);
 }  // namespace meshgap
 
 #endif

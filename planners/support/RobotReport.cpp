@@ -59,38 +59,6 @@ namespace meshgap
         }
     }  // namespace
 
-    std::vector<std::vector<double>> readRobotPathFile(const std::string &file, std::size_t dimension)
-    {
-        std::ifstream in(file);
-        if (!in)
-            throw Exception(file, "no such file");
-        std::vector<std::vector<double>> states;
-        std::string line;
-        for (int number = 1; std::getline(in, line); ++number)
-        {
-            const std::size_t first = line.find_first_not_of(" \t\r");
-            if (first == std::string::npos || line[first] == '#')
-                continue;
-            const std::string where = file + ":" + std::to_string(number);
-            std::istringstream words(line);
-            std::vector<double> q;
-            for (std::string word; words >> word;)
-            {
-                double x = 0.0;
-                if (!parseNumber(word, x) || !std::isfinite(x))
-                    throw Exception(where, "'" + word + "' is not a finite number");
-                q.push_back(x);
-            }
-            if (q.size() != dimension)
-                throw Exception(where, "a state has " + std::to_string(q.size()) + " numbers; this robot's have " +
-                                           std::to_string(dimension));
-            states.push_back(std::move(q));
-        }
-        if (states.empty())
-            throw Exception(file, "no states");
-        return states;
-    }
-
     PlanReportData robotReportFromPath(const RobotScene &scene, const std::vector<std::vector<double>> &states,
                                        unsigned dense, std::vector<std::pair<std::string, std::string>> summary)
     {

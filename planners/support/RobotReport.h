@@ -10,12 +10,6 @@
 
 namespace meshgap
 {
-    /** \brief The states of a robot problem's .path file: one state a line, \e dimension numbers (as start.joints:
-        a floating base's pose first, then the joints; per body its pose for several bodies); blank and '#' lines
-        skipped. Throws meshgap::Exception naming "file:line" for a line with another count of numbers, a
-        non-number or a number not finite, and "file" for a missing file or one without states. */
-    std::vector<std::vector<double>> readRobotPathFile(const std::string &file, std::size_t dimension);
-
     /** \brief The report of a robot's path: \e states interpolated in the robot's state space (robotStateSpace(),
         so continuous joints and rotations take the short way) with \e dense states per OMPL validity-check
         segment, and at every dense state every link's pose and the exact answer of every pair

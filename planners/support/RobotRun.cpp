@@ -10,6 +10,7 @@
 #include "meshgap/ompl/RobotStateSpace.h"
 #include "meshgap/robot/MultiBodyRobot.h"
 #include "meshgap/robot/UrdfRobot.h"
+#include "support/PathFile.h"
 #include "support/PlanOutputs.h"
 #include "support/PlanRun.h"
 #include "support/RobotReport.h"
@@ -238,41 +239,6 @@ namespace meshgap
 
         namespace
         {
-            /** \brief The numbers of one state in \e text, \e dimension of them; throws naming \e where. */
-            std::vector<double> parseState(const std::string &text, std::size_t dimension, const std::string &where)
-            {
-                std::istringstream fields(text);
-                std::vector<double> q;
-                std::string token;
-                while (fields >> token)
-                    q.push_back(parseFiniteNumber(token, where, "a state of " + std::to_string(dimension) +
-                                                                    " numbers"));
-                if (q.size() != dimension)
-                    throw Exception(where, "a state of this problem has " + std::to_string(dimension) +
-                                               " numbers (as start.joints, or the bodies' states one after the "
-                                               "other), found " + std::to_string(q.size()));
-                return q;
-            }
-
-            /** \brief The states of \e file, one a line ('#' lines and blank lines skipped). */
-            std::vector<std::vector<double>> readStates(const std::string &file, std::size_t dimension)
-            {
-                std::ifstream in(file);
-                if (!in)
-                    throw Exception(file, "no such file, or it cannot be read");
-                std::vector<std::vector<double>> states;
-                std::string text;
-                for (std::size_t number = 1; std::getline(in, text); ++number)
-                {
-                    const auto first = text.find_first_not_of(" \t\r");
-                    if (first != std::string::npos && text[first] != '#')
-                        states.push_back(parseState(text, dimension, file + ":" + std::to_string(number)));
-                }
-                if (states.empty())
-                    throw Exception(file, "no states in the file");
-                return states;
-            }
-
             /** \brief One state's answer: the clearance, its pair and witnesses, every link's clearance. */
             void printAnswer(const RobotScene &scene, const RobotResult &r, std::size_t index, std::ostream &out)
             {
@@ -299,9 +265,9 @@ namespace meshgap
             const std::size_t n = p.robot->dimension();
             std::vector<std::vector<double>> states = {p.start};
             if (!stateText.empty())
-                states = {parseState(stateText, n, "--pose")};
+                states = {parseRobotState(stateText, n, "--pose")};
             if (!statesFile.empty())
-                states = readStates(statesFile, n);
+                states = readRobotPathFile(statesFile, n);
             RobotRequest request;
             request.everyPair = true;
             RobotWarmStart warm;

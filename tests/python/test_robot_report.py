@@ -73,10 +73,11 @@ def test_robot_report_bad_path(files, tmp_path):  # noqa: F811
     out = tmp_path / "r.html"
     (tmp_path / "bad.path").write_text("0.5 1.0\n0.5 1.0 2.0\n")
     assert cli_error([cli, "--cfg", cfg, "--path", str(tmp_path / "bad.path"), "--out", str(out)]) == \
-        str(tmp_path / "bad.path") + ":2: a state has 3 numbers; this robot's have 2"
+        str(tmp_path / "bad.path") + ":2: a state of this problem has 2 numbers (as start.joints, or the bodies' " \
+        "states one after the other), found 3"
     (tmp_path / "nan.path").write_text("0.5 nan\n")
     assert "'nan' is not a finite number" in cli_error([cli, "--cfg", cfg, "--path", str(tmp_path / "nan.path"),
                                                         "--out", str(out)])
     assert cli_error([cli, "--cfg", cfg, "--path", str(tmp_path / "none.path"), "--out", str(out)]).endswith(
-        "none.path: no such file")
+        "none.path: no such file, or it cannot be read")
     assert sorted(os.listdir(tmp_path)) == ["bad.path", "nan.path"]
