@@ -95,18 +95,23 @@ static int run(int argc, char **argv)
         for (int t = 0; t < threads; ++t)
             workers.emplace_back([&, t] {
                 const std::size_t stride = 2 * static_cast<std::size_t>(t) + 1;  // odd: visits the whole pool
+                std::size_t mine = 0;  // added to the shared count once, so the threads share nothing while querying
                 for (std::size_t q = static_cast<std::size_t>(t); q < tenth; q += static_cast<std::size_t>(threads))
                 {
                     const ob::State *s = pool[(q * stride + static_cast<std::size_t>(k)) % pool.size()];
+                    // The kind of query from this thread's own count, so every thread asks the same mix (from q,
+                    // with an even number of threads, one thread would ask every distance and another none).
+                    const std::size_t i = q / static_cast<std::size_t>(threads);
                     double d = 0.0;
-                    if (fastEvery > 0 && q % fastEvery == 0)
+                    if (fastEvery > 0 && i % fastEvery == 0)
                         d = fast.clearance(s);
-                    else if (q % 2 == 0)
-                        collisions += !certified.isValid(s, d);
+                    else if (i % 2 == 0)
+                        mine += !certified.isValid(s, d);
                     else
-                        collisions += !certified.isValid(s);
+                        mine += !certified.isValid(s);
                     (void)d;
                 }
+                collisions += mine;
             });
         for (std::thread &w : workers)
             w.join();

@@ -92,6 +92,12 @@ namespace meshgap
             return warm.try_emplace(id, CERTIFICATES_PER_WARM_START).first->second;
         }
 
+        std::uint64_t nanosecondsSince(std::chrono::steady_clock::time_point start)
+        {
+            return static_cast<std::uint64_t>(
+                std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
+        }
+
         /** \brief A seed from the pose's bits: the same state always gets the same node-level answer. */
         std::uint64_t seedOf(const Eigen::Isometry3d &X)
         {
@@ -123,9 +129,9 @@ namespace meshgap
     bool ClearanceChecker::isValid(const ompl::base::State *state) const
     {
         const auto start = std::chrono::steady_clock::now();
-        ++validityCalls_;
+        counts_.add(VALIDITY_CALLS, 1);
         const bool valid = si_->satisfiesBounds(state) && !scene_->inCollision(poseFromState(*si_->getStateSpace(), state));
-        nanoseconds_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+        counts_.add(NANOSECONDS, nanosecondsSince(start));
         return valid;
     }
 
@@ -133,7 +139,7 @@ namespace meshgap
     {
         if (!si_->satisfiesBounds(state))
         {
-            ++validityCalls_;
+            counts_.add(VALIDITY_CALLS, 1);
             dist = 0.0;
             return false;
         }
@@ -219,7 +225,7 @@ namespace meshgap
                                         SceneRequest request) const
     {
         const auto start = std::chrono::steady_clock::now();
-        ++(countAsValidity ? validityCalls_ : clearanceCalls_);
+        counts_.add(countAsValidity ? VALIDITY_CALLS : CLEARANCE_CALLS, 1);
         const Eigen::Isometry3d X = poseFromState(*si_->getStateSpace(), state);
         request.exact = mode_ == Mode::CERTIFIED;
         request.solver = fastSolver_;
@@ -229,32 +235,33 @@ namespace meshgap
         {
             scene_->distance(X, request, warmStartFor(id_), result);
             if (request.exact)
-                ++(result.warmStartUse == SceneWarmStart::Use::CARRY   ? carried_
-                   : result.warmStartUse == SceneWarmStart::Use::WRITE ? written_
-                                                                        : cold_);
+                counts_.add(result.warmStartUse == SceneWarmStart::Use::CARRY   ? CARRIED
+                            : result.warmStartUse == SceneWarmStart::Use::WRITE ? WRITTEN
+                                                                                 : COLD,
+                            1);
         }
         else
         {
             request.seed = seedOf(X);
             scene_->distance(X, request, result);  // fast mode is a pure function of the state: no history
         }
-        evaluations_ += result.evaluations;
-        warmHits_ += result.warmStartHit;
-        nanoseconds_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+        counts_.add(EVALUATIONS, result.evaluations);
+        counts_.add(WARM_HITS, result.warmStartHit ? 1 : 0);
+        counts_.add(NANOSECONDS, nanosecondsSince(start));
         return result;
     }
 
     CheckerStats ClearanceChecker::stats() const
     {
         CheckerStats s;
-        s.validityCalls = validityCalls_;
-        s.clearanceCalls = clearanceCalls_;
-        s.evaluations = evaluations_;
-        s.warmStartHits = warmHits_;
-        s.carried = carried_;
-        s.written = written_;
-        s.cold = cold_;
-        s.seconds = 1e-9 * static_cast<double>(nanoseconds_.load());
+        s.validityCalls = counts_.sum(VALIDITY_CALLS);
+        s.clearanceCalls = counts_.sum(CLEARANCE_CALLS);
+        s.evaluations = counts_.sum(EVALUATIONS);
+        s.warmStartHits = counts_.sum(WARM_HITS);
+        s.carried = counts_.sum(CARRIED);
+        s.written = counts_.sum(WRITTEN);
+        s.cold = counts_.sum(COLD);
+        s.seconds = 1e-9 * static_cast<double>(counts_.sum(NANOSECONDS));
         return s;
     }
 }  // namespace meshgap

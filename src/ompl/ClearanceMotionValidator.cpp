@@ -31,7 +31,7 @@ namespace meshgap
         for (;;)
         {
             space.interpolate(s1, s2, f, state);
-            ++queries_;
+            counts_.add(QUERIES, 1);
             const SceneResult r = checker_->query(state);
             if (r.inCollision || !(r.distance > 0.0))  // signed: never step on a zero or negative clearance
                 break;
@@ -70,7 +70,7 @@ namespace meshgap
             if (i > 0 && k == middle)
                 continue;
             space.interpolate(s1, s2, static_cast<double>(k) / n, state);
-            ++probes_;
+            counts_.add(PROBES, 1);
             collides = !checker_->isValid(state);
         }
         si_->freeState(state);

@@ -90,7 +90,7 @@ namespace meshgap
         CachedClearance &slot = threadCache()[slotOf(checker.id(), pose)];
         if (slot.checker == checker.id() && slot.pose == pose)
             return slot.clearance;
-        ++queried_;
+        counts_.add(QUERIED, 1);
         slot.checker = checker.id();
         slot.pose = pose;
         slot.clearance = checker.clearanceOrContact(s);
@@ -116,7 +116,7 @@ namespace meshgap
         const int n = static_cast<int>(space.validSegmentCount(s1, s2));
         if (n < 2)
             return ompl::base::Cost(lowest);
-        gridStates_ += n - 1;
+        counts_.add(GRID_STATES, n - 1);
         const double step = sweepBound(space, s1, s2, checker->scene().robot().radiusAboutOrigin()) / n;
         if (!(step > 0.0))
             return ompl::base::Cost(lowest);  // every grid state is s1's pose
@@ -147,7 +147,7 @@ namespace meshgap
                 continue;
             const int k = l + (r - l) / 2;
             space.interpolate(s1, s2, static_cast<double>(k) / n, state);
-            ++queried_;
+            counts_.add(QUERIED, 1);
             const double c = checker->clearanceBelow(state, lowest);
             if (!(c > 0.0))
             {

@@ -1,10 +1,10 @@
 #ifndef MESHGAP_OMPL_CLEARANCE_CHECKER_H
 #define MESHGAP_OMPL_CLEARANCE_CHECKER_H
 
-#include <atomic>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/StateValidityChecker.h>
 
+#include "meshgap/ThreadCounters.h"
 #include "meshgap/scene/Scene.h"
 
 namespace meshgap
@@ -64,7 +64,7 @@ namespace meshgap
        as the scene computes it, which in collision is the penetration depth as a negative number (or 0 where the
        scene computes no depth). clearance(state, validState, validStateAvailable) (specs: hasValidDirectionComputation)
        also proposes a valid state away from the nearest obstacle (validStateAway()). Thread-safe: the scene is
-       immutable, warm starts live per thread, counters are atomic.
+       immutable, warm starts live per thread, counters are per thread (ThreadCounters).
     */
     class ClearanceChecker : public ompl::base::StateValidityChecker
     {
@@ -135,9 +135,20 @@ namespace meshgap
         std::string fastSolver_;
         bool computeDepth_{true};
         std::uint64_t id_;  ///< unique per checker: keys this checker's per-thread warm starts
-        mutable std::atomic<std::uint64_t> validityCalls_{0}, clearanceCalls_{0}, evaluations_{0}, warmHits_{0};
-        mutable std::atomic<std::uint64_t> carried_{0}, written_{0}, cold_{0};
-        mutable std::atomic<std::uint64_t> nanoseconds_{0};
+        /** \brief What stats() sums, counted per thread (ThreadCounters): indices are the Count values. */
+        enum Count : std::size_t
+        {
+            VALIDITY_CALLS,
+            CLEARANCE_CALLS,
+            EVALUATIONS,
+            WARM_HITS,
+            CARRIED,
+            WRITTEN,
+            COLD,
+            NANOSECONDS,
+            COUNTS
+        };
+        mutable ThreadCounters<COUNTS> counts_;
     };
 }  // namespace meshgap
 

@@ -1,9 +1,9 @@
 #ifndef MESHGAP_OMPL_CLEARANCE_MOTION_VALIDATOR_H
 #define MESHGAP_OMPL_CLEARANCE_MOTION_VALIDATOR_H
 
-#include <atomic>
 #include <ompl/base/MotionValidator.h>
 
+#include "meshgap/ThreadCounters.h"
 #include "meshgap/ompl/ClearanceChecker.h"
 
 namespace meshgap
@@ -35,10 +35,10 @@ namespace meshgap
         double getMinStepFraction() const { return minStepFraction_; }
 
         /** \brief Clearance queries made, over all threads. */
-        std::uint64_t queries() const { return queries_; }
+        std::uint64_t queries() const { return counts_.sum(QUERIES); }
         /** \brief Collision checks of states between s1 and s2 made before advancing (not counting s2), over all
             threads. */
-        std::uint64_t probes() const { return probes_; }
+        std::uint64_t probes() const { return counts_.sum(PROBES); }
 
     private:
         /** \brief Advance from s1 towards s2; returns true if s2 is reached, else the last fraction proven free. */
@@ -50,7 +50,13 @@ namespace meshgap
 
         ClearanceCheckerPtr checker_;
         double minStepFraction_{1e-4};
-        mutable std::atomic<std::uint64_t> queries_{0}, probes_{0};
+        enum Count : std::size_t
+        {
+            QUERIES,
+            PROBES,
+            COUNTS
+        };
+        mutable ThreadCounters<COUNTS> counts_;  ///< per thread: threads sharing the validator share no cache line
     };
 }  // namespace meshgap
 

@@ -3,11 +3,11 @@
 
 #include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
 #include <ompl/base/objectives/StateCostIntegralObjective.h>
-#include <atomic>
 #include <string>
 #include <vector>
 
 #include "meshgap/ClassForward.h"
+#include "meshgap/ThreadCounters.h"
 
 namespace meshgap
 {
@@ -74,15 +74,21 @@ namespace meshgap
 
         /** \brief Grid states OMPL's objective would have queried, and states this one did query (cache misses
             and grid states), over all threads. */
-        std::uint64_t gridStates() const { return gridStates_; }
-        std::uint64_t queriedStates() const { return queried_; }
+        std::uint64_t gridStates() const { return counts_.sum(GRID_STATES); }
+        std::uint64_t queriedStates() const { return counts_.sum(QUERIED); }
 
     private:
         /** \brief The clearance of \e s (clearanceOrContact()), from this thread's cache if \e checker gave it
             recently. */
         double cachedClearance(const ClearanceChecker &checker, const ompl::base::State *s) const;
 
-        mutable std::atomic<std::uint64_t> gridStates_{0}, queried_{0};
+        enum Count : std::size_t
+        {
+            GRID_STATES,
+            QUERIED,
+            COUNTS
+        };
+        mutable ThreadCounters<COUNTS> counts_;  ///< per thread: threads sharing the objective share no cache line
     };
 
     /** \brief The objective names allocObjective() knows: length, clearance, max_min_clearance, weighted. */
