@@ -373,7 +373,8 @@ namespace
             std::cout << "  " << json(result, o.algorithm) << (i + 1 < count ? ",\n" : "\n");
         else
             std::printf("%zu,%.17g,%zu,%.3f,%s,%s,%s,%d,%d,%.17g\n", i, result.distance, result.evaluations,
-                        result.seconds * 1e6, nodes.c_str(), vec(result.onA, ",").c_str(), vec(result.onB, ",").c_str(), result.inCollision ? 1 : 0, result.certified ? 1 : 0,
+                        result.seconds * 1e6, nodes.c_str(), vec(result.onA, ",").c_str(), vec(result.onB, ",").c_str(),
+                        result.inCollision ? 1 : 0, result.certified ? 1 : 0,
                         std::isfinite(result.nodeDistance) ? result.nodeDistance : result.distance);
     }
 
