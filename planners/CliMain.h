@@ -6,6 +6,7 @@
 // status 1, never a crash.
 
 #include <boost/program_options.hpp>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -35,6 +36,25 @@ namespace meshgap
 
         /** \brief Declare \e renamed's old flags (each with the text to write instead) in \e options, hidden from
             --help: parseCommandLine() refuses each with one error naming the new spelling. */
+        /** \brief The longest time limit a tool takes, in seconds (about 11.6 days): beyond it OMPL's clock, which
+            counts microseconds in 64 bits from now, overflows at 1e13 s and a run that solves is recorded as not
+            solved; nobody means a limit that long. */
+        constexpr double MAX_SECONDS = 1e6;
+
+        /** \brief Throws meshgap::Exception naming \e what ("--time") unless \e seconds is a positive finite number
+            of at most MAX_SECONDS. */
+        inline void checkSeconds(double seconds, const std::string &what)
+        {
+            if (!(seconds > 0.0) || !std::isfinite(seconds))
+                throw Exception(what, "must be positive and finite");
+            if (seconds > MAX_SECONDS)
+            {
+                char found[32];
+                std::snprintf(found, sizeof found, "%g", seconds);
+                throw Exception(what, std::string("must be at most 1e6 seconds (11.6 days), found ") + found);
+            }
+        }
+
         inline void addRenamedOptions(boost::program_options::options_description &options,
                                       const std::vector<std::pair<std::string, std::string>> &renamed)
         {
@@ -65,7 +85,7 @@ namespace meshgap
 
         /** \brief The one command-line preamble: parse \e argv against \e options (and \e positional, if given);
             on --help print \e visible (default: \e options) to stdout and return false, before any required option
-            is checked; otherwise run the notifiers and set OMPL's log level: LOG_WARN with --quiet, and where the
+            is checked; otherwise run the notifiers and set OMPL's log level: LOG_ERROR with --quiet, and where the
             options declare --verbose, LOG_INFO with it and LOG_WARN without. A flag declared by addRenamedOptions()
             throws meshgap::Exception naming the new spelling. */
         inline bool parseCommandLine(int argc, char **argv, const boost::program_options::options_description &options,
@@ -94,7 +114,7 @@ namespace meshgap
             if (options.find_nothrow("verbose", false) != nullptr)
                 ompl::msg::setLogLevel(vm.count("verbose") ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
             if (vm.count("quiet"))
-                ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+                ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
             return true;
         }
 

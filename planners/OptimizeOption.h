@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "CliMain.h"
 #include "meshgap/Exception.h"
 #include "meshgap/ompl/ClearancePathOptimizer.h"
 
@@ -30,8 +31,7 @@ namespace meshgap::cli
             throw Exception("--optimize", "unknown optimiser '" + optimize + "'; valid: " + optimizerNames());
         if (timeGiven && optimize.empty())
             throw Exception("--optimize-time", "applies to --optimize only");
-        if (!(seconds > 0.0) || !std::isfinite(seconds))
-            throw Exception("--optimize-time", "must be positive and finite");
+        checkSeconds(seconds, "--optimize-time");
         if (!optimize.empty() && mode != "certified")
             throw Exception("--optimize", "clearance needs --checker certified (it follows the exact clearance gradient)");
     }

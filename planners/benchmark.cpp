@@ -144,8 +144,9 @@ namespace
         if (vm.count("out"))
             settings.outDir = vm["out"].as<std::string>();
         settings.simplify = !vm.count("no-simplify");
-        if (settings.runs == 0 || !(settings.time > 0.0) || !(settings.memory > 0.0))
+        if (settings.runs == 0 || !(settings.memory > 0.0))
             throw Exception("command line", "runs, time and memory must be positive");
+        cli::checkSeconds(settings.time, vm.count("time") ? "--time" : config.file + ": [benchmark] time_limit");
         return settings;
     }
 

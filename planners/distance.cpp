@@ -109,12 +109,22 @@ namespace
         }
     }
 
+    /** \brief The exact solver searches the surfaces, not the nodes: its answer has no node pair. */
+    bool hasNodePair(const std::string &algorithm)
+    {
+        return algorithm != "exact";
+    }
+
     std::string json(const DistanceResult &r, const std::string &algorithm)
     {
         std::ostringstream out;
         out.precision(17);
-        out << "{\"algorithm\": \"" << algorithm << "\", \"distance\": " << r.distance << ", \"nodes\": [" << r.nodes.a
-            << ", " << r.nodes.b << "], \"witness_a\": [" << vec(r.onA, ", ") << "], \"witness_b\": ["
+        out << "{\"algorithm\": \"" << algorithm << "\", \"distance\": " << r.distance << ", \"nodes\": ";
+        if (hasNodePair(algorithm))
+            out << "[" << r.nodes.a << ", " << r.nodes.b << "]";
+        else
+            out << "null";
+        out << ", \"witness_a\": [" << vec(r.onA, ", ") << "], \"witness_b\": ["
             << vec(r.onB, ", ") << "], \"evaluations\": " << r.evaluations << ", \"time_us\": " << r.seconds * 1e6
             << ", \"node_optimal\": " << (r.nodeOptimal ? "true" : "false") << ", \"in_collision\": "
             << (r.inCollision ? "true" : "false") << ", \"certified\": " << (r.certified ? "true" : "false")
@@ -253,7 +263,7 @@ namespace
             ("cold", "with --cfg and no --algorithm: a cold query at every pose, no warm start (default: one carried along)")
             ("no-depth", "with --cfg and no --algorithm: in collision the verdict alone (distance -2.2e-308, a zero below zero, as FCL answers 0), no penetration depth")
             ("json", "print JSON instead of text or CSV")
-            ("quiet,q", "print warnings and errors only");
+            ("quiet,q", "print errors only (no log, no warnings such as a mesh's open surface)");
         po::options_description hidden;
         hidden.add_options()("mesh", po::value(&o.meshes));
         po::options_description all;
@@ -341,9 +351,12 @@ namespace
                                        : "node to node: an upper bound");
         if (result.certified && std::isfinite(result.nodeDistance))
             std::printf("node distance  %.10g\n", result.nodeDistance);
-        std::printf("in collision   %s\nnode pair      A %u, B %u\nwitness on A   %s\nwitness on B   %s\n"
+        const std::string nodes = hasNodePair(o.algorithm) ? "A " + std::to_string(result.nodes.a) + ", B " +
+                                                                 std::to_string(result.nodes.b)
+                                                           : "none (the exact solver searches the surfaces)";
+        std::printf("in collision   %s\nnode pair      %s\nwitness on A   %s\nwitness on B   %s\n"
                     "evaluations    %zu\ntime           %.3f ms\n",
-                    result.inCollision ? "yes" : "no", result.nodes.a, result.nodes.b, vec(result.onA, " ").c_str(),
+                    result.inCollision ? "yes" : "no", nodes.c_str(), vec(result.onA, " ").c_str(),
                     vec(result.onB, " ").c_str(), result.evaluations, result.seconds * 1e3);
         if (result.openBody)
             std::printf("%s", OPEN_BODY_LINE);
@@ -352,12 +365,16 @@ namespace
     /** \brief One solver answer as a CSV row or a JSON array entry (--poses). */
     void printRow(const DistanceResult &result, const Options &o, std::size_t i, std::size_t count)
     {
+        // The exact solver's rows leave node_a and node_b empty: it has no node pair.
+        const std::string nodes = hasNodePair(o.algorithm)
+                                      ? std::to_string(result.nodes.a) + "," + std::to_string(result.nodes.b)
+                                      : ",";
         if (o.json)
             std::cout << "  " << json(result, o.algorithm) << (i + 1 < count ? ",\n" : "\n");
         else
-            std::printf("%zu,%.17g,%zu,%.3f,%u,%u,%s,%s,%d,%d,%.17g\n", i, result.distance, result.evaluations,
-                        result.seconds * 1e6, result.nodes.a, result.nodes.b, vec(result.onA, ",").c_str(),
-                        vec(result.onB, ",").c_str(), result.inCollision ? 1 : 0, result.certified ? 1 : 0,
+            std::printf("%zu,%.17g,%zu,%.3f,%s,%s,%s,%d,%d,%.17g\n", i, result.distance, result.evaluations,
+                        result.seconds * 1e6, nodes.c_str(), vec(result.onA, ",").c_str(), vec(result.onB, ",").c_str(),
+                        result.inCollision ? 1 : 0, result.certified ? 1 : 0,
                         std::isfinite(result.nodeDistance) ? result.nodeDistance : result.distance);
     }
 

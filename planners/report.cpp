@@ -7,8 +7,9 @@
 // The path (OMPL's .path format: x y z qx qy qz qw, or x y theta for a 2D problem) is interpolated with --dense
 // states per OMPL validity-check segment and the exact clearance computed at each state, as meshgap_plan does; the
 // report shows the scene with the robot along it (a slider), the closest-point segment, clearance against arc length
-// and a summary table (see planners/support/PlanReport.h). Exit status 0, or 1 with one error line for bad input
-// (nothing is written then).
+// and a summary table (see planners/support/PlanReport.h). Exit status 0; 2 when the path collides with the world
+// (or the robot with itself) at some dense state: the report is written, showing where, and one "warning: ..." line
+// on stderr says so; 1 with one error line for bad input (nothing is written then).
 
 #include <boost/program_options.hpp>
 #include <algorithm>
@@ -30,12 +31,25 @@ using namespace meshgap;
 
 namespace
 {
+    /** \brief The exit status: 0 for a free path; 2, with a warning on stderr, when \e collisions of the \e states
+        dense states collide. */
+    int pathVerdict(std::size_t collisions, std::size_t states, double least, const std::string &pathFile)
+    {
+        if (collisions == 0)
+            return 0;
+        std::fprintf(stderr,
+                     "warning: %s: the path collides at %zu of its %zu dense states (min clearance %g); the report "
+                     "shows where\n",
+                     pathFile.c_str(), collisions, states, least);
+        return 2;
+    }
+
     /** \brief The report of a robot problem (robot.urdf or robot.1 ...): every link along the path. */
     int robotReport(const std::string &cfg, const std::string &pathFile, const std::string &out, unsigned dense)
     {
         const RobotProblem problem = readRobotProblem(cfg);
         const RobotScene scene(problem.robot, problem.obstacles);
-        const std::vector<std::vector<double>> states = readRobotPathFile(pathFile, problem.robot->dimension());
+        const std::vector<std::vector<double>> states = readRobotPathFile(pathFile, *problem.robot);
         const PlanReportData data =
             robotReportFromPath(scene, states, dense,
                                 {{"problem", problem.name + " (" + std::to_string(scene.links().size()) + " links, " +
@@ -48,7 +62,10 @@ namespace
             least = std::min(least, c);
         std::printf("report written  %s (%zu dense states, %zu links, min clearance %g)\n", out.c_str(),
                     data.clearance.size(), scene.links().size(), least);
-        return 0;
+        std::size_t collisions = 0;
+        for (char c : data.inCollision)
+            collisions += c != 0;
+        return pathVerdict(collisions, data.clearance.size(), least, pathFile);
     }
 
     int run(int argc, char **argv)
@@ -60,7 +77,7 @@ namespace
             "path", po::value(&pathFile), "the path (.path: one state a line)")(
             "out", po::value(&out), "write the HTML report here")(
             "dense", po::value(&dense), "states per OMPL validity-check segment of the dense path (default 4)")(
-            "quiet,q", "print warnings and errors only");
+            "quiet,q", "print errors only, and the warning of a colliding path (no log, no mesh warnings)");
         po::variables_map vm;
         if (!cli::parseCommandLine(argc, argv, options, vm))
             return 0;
@@ -88,7 +105,7 @@ namespace
         writePlanReport(*problem.scene, reportFromDense(d, rows), out);
         std::printf("report written  %s (%zu dense states, min clearance %g)\n", out.c_str(), d.path.getStateCount(),
                     d.minClearance);
-        return 0;
+        return pathVerdict(d.collisions, d.path.getStateCount(), d.minClearance, pathFile);
     }
 }  // namespace
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "meshgap/Exception.h"
+#include "meshgap/InputFile.h"
 #include "meshgap/Text.h"
 #include "meshgap/ompl/ClearanceChecker.h"
 #include "meshgap/scene/Pose.h"
@@ -15,8 +16,7 @@ namespace meshgap
     ompl::geometric::PathGeometric readPathFile(const std::string &file, const ompl::base::SpaceInformationPtr &si)
     {
         namespace ob = ompl::base;
-        if (!std::filesystem::exists(file))
-            throw Exception(file, "no such file");
+        checkInputFile(file);
         std::ifstream in(file);
         if (!in)
             throw Exception(file, "cannot open the path file");
@@ -64,8 +64,9 @@ namespace meshgap
         return path;
     }
 
-    std::vector<double> parseRobotState(const std::string &text, std::size_t dimension, const std::string &where)
+    std::vector<double> parseRobotState(const std::string &text, const RobotModel &robot, const std::string &where)
     {
+        const std::size_t dimension = robot.dimension();
         std::istringstream fields(text);
         std::vector<double> q;
         std::string token;
@@ -75,21 +76,30 @@ namespace meshgap
             throw Exception(where, "a state of this problem has " + std::to_string(dimension) +
                                        " numbers (as start.joints, or the bodies' states one after the other), "
                                        "found " + std::to_string(q.size()));
+        try
+        {
+            robot.checkState(q.data(), q.size());
+        }
+        catch (const Exception &e)
+        {
+            throw Exception(where, e.what());
+        }
         return q;
     }
 
-    std::vector<std::vector<double>> readRobotPathFile(const std::string &file, std::size_t dimension)
+    std::vector<std::vector<double>> readRobotPathFile(const std::string &file, const RobotModel &robot)
     {
+        checkInputFile(file);
         std::ifstream in(file);
         if (!in)
-            throw Exception(file, "no such file, or it cannot be read");
+            throw Exception(file, "cannot be read");
         std::vector<std::vector<double>> states;
         std::string text;
         for (std::size_t number = 1; std::getline(in, text); ++number)
         {
             const auto first = text.find_first_not_of(" \t\r");
             if (first != std::string::npos && text[first] != '#')
-                states.push_back(parseRobotState(text, dimension, file + ":" + std::to_string(number)));
+                states.push_back(parseRobotState(text, robot, file + ":" + std::to_string(number)));
         }
         if (states.empty())
             throw Exception(file, "no states in the file");

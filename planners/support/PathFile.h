@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "meshgap/robot/RobotModel.h"
+
 namespace meshgap
 {
     /** \brief Read a path in OMPL's .path format (what meshgap_plan --out and OMPL.app write: one state a line, x y z
@@ -13,15 +15,16 @@ namespace meshgap
         non-number, NaN, or a quaternion not of unit length, and "file" for a missing file or one without states. */
     ompl::geometric::PathGeometric readPathFile(const std::string &file, const ompl::base::SpaceInformationPtr &si);
 
-    /** \brief One state of a robot problem from \e text: \e dimension finite numbers (as start.joints: a floating
+    /** \brief One state of \e robot from \e text: robot.dimension() finite numbers (as start.joints: a floating
         base's pose first, then the joints; per body its pose for several bodies). Throws meshgap::Exception naming
-        \e where for a non-number, a number not finite or another count. */
-    std::vector<double> parseRobotState(const std::string &text, std::size_t dimension, const std::string &where);
+        \e where for a non-number, a number not finite, another count, or a state RobotModel::checkState() refuses
+        (a joint outside its limits, a number beyond MAX_MAGNITUDE). */
+    std::vector<double> parseRobotState(const std::string &text, const RobotModel &robot, const std::string &where);
 
     /** \brief The states of a robot problem's .path file: one state a line (parseRobotState(), naming "file:line");
         blank and '#' lines skipped. Throws meshgap::Exception naming "file" for a missing file or one without
         states. */
-    std::vector<std::vector<double>> readRobotPathFile(const std::string &file, std::size_t dimension);
+    std::vector<std::vector<double>> readRobotPathFile(const std::string &file, const RobotModel &robot);
 }  // namespace meshgap
 
 #endif

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "CliMain.h"
 #include "OptimizeOption.h"
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
@@ -69,7 +70,7 @@ namespace meshgap
                 {"sampler", 0, K::TEXT, &O::sampler,
                  "valid-state sampler of planners that use one (PRM, EST, ...; default: the cfg's sampler, else "
                  "uniform): " + joinNames(validStateSamplerNames())},
-                {"quiet", 'q', K::SWITCH, &O::quiet, "print warnings and errors only (no OMPL messages, no progress)"}};
+                {"quiet", 'q', K::SWITCH, &O::quiet, "print errors only (no OMPL messages, no warnings, no progress)"}};
             return table;
         }
 
@@ -84,8 +85,7 @@ namespace meshgap
             if (o.motion == "clearance" && o.checker != "certified")
                 throw Exception(o.label("motion"), "clearance needs " + o.label("checker") +
                                                        " certified (it steps by exact clearance)");
-            if (!(o.time > 0.0) || !std::isfinite(o.time))
-                throw Exception(o.label("time"), "must be positive and finite");
+            checkSeconds(o.time, o.label("time"));
             if (o.dense < 1)
                 throw Exception(o.label("dense"), "must be at least 1");
             if (o.exportStates < 1)

@@ -40,6 +40,8 @@ namespace meshgap
             /** \brief "link 'a' and obstacle 3" or "links 'a' and 'b'": the pair \e r names. */
             std::string pairText(const RobotScene &scene, const RobotResult &r)
             {
+                if (r.link >= scene.links().size() || (scene.obstacles().empty() && scene.selfPairs().empty()))
+                    return "no pair (the robot has neither obstacles nor self pairs to check)";
                 const std::string link = "'" + scene.links()[r.link].name + "'";
                 return r.selfPair ? "links " + link + " and '" + scene.links()[r.other].name + "'" :
                                     "link " + link + " and obstacle " + std::to_string(r.other);
@@ -152,6 +154,9 @@ namespace meshgap
             auto run = std::make_unique<RobotPlanRun>();
             run->problem = readRobotProblem(o.cfg);
             const RobotProblem &p = run->problem;
+            if (p.robot->dimension() == 0)
+                throw Exception(p.file, "the robot has no movable joint (a fixed robot): there is nothing to plan; "
+                                        "meshgap_distance --cfg gives its clearance");
             if (!p.goal)
                 throw Exception(p.file, "no goal (goal.joints, or goal.N.x ... for each body)");
             run->scene = std::make_shared<RobotScene>(p.robot, p.obstacles);
@@ -265,9 +270,9 @@ namespace meshgap
             const std::size_t n = p.robot->dimension();
             std::vector<std::vector<double>> states = {p.start};
             if (!stateText.empty())
-                states = {parseRobotState(stateText, n, "--pose")};
+                states = {parseRobotState(stateText, *p.robot, "--pose")};
             if (!statesFile.empty())
-                states = readRobotPathFile(statesFile, n);
+                states = readRobotPathFile(statesFile, *p.robot);
             RobotRequest request;
             request.everyPair = true;
             RobotWarmStart warm;

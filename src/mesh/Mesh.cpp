@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Limits.h"
 
 namespace meshgap
 {
@@ -31,8 +32,13 @@ namespace meshgap
         if (triangles.empty())
             throw Exception(where, "no triangles (an empty scene, a point cloud or only lines?)");
         for (std::size_t i = 0; i < vertices.size(); ++i)
+        {
             if (!vertices[i].allFinite())
                 throw Exception(where, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
+            if (vertices[i].cwiseAbs().maxCoeff() > MAX_MAGNITUDE)
+                throw Exception(where, "vertex " + std::to_string(i) + " has a coordinate beyond 1e12 in magnitude, "
+                                       "the largest meshgap's geometry answers reliably");
+        }
         for (std::size_t t = 0; t < triangles.size(); ++t)
             for (std::uint32_t index : triangles[t])
                 if (index >= vertices.size())

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "meshgap/Exception.h"
+#include "meshgap/InputFile.h"
 
 namespace meshgap
 {
@@ -123,12 +124,7 @@ namespace meshgap
     {
         namespace fs = std::filesystem;
         std::error_code ec;
-        if (!fs::exists(path, ec))
-            throw Exception(path, "no such file");
-        if (!fs::is_regular_file(path, ec))
-            throw Exception(path, "not a regular file");
-        if (!std::ifstream(path).good())
-            throw Exception(path, "cannot open the file for reading");
+        checkInputFile(path);
         if (fs::file_size(path, ec) == 0)
             throw Exception(path, "the file is empty");
         if (hasExtension(path, ".ply"))

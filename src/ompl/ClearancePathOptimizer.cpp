@@ -154,6 +154,13 @@ namespace meshgap
 
     bool ClearancePathOptimizer::optimize(og::PathGeometric &path)
     {
+        deadline_ = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                            std::chrono::duration<double>(timeLimit_));
+        struct ClearDeadline
+        {
+            std::optional<std::chrono::steady_clock::time_point> &deadline;
+            ~ClearDeadline() { deadline.reset(); }
+        } clear{deadline_};
         return optimize(path, ob::timedPlannerTerminationCondition(timeLimit_));
     }
 
@@ -503,16 +510,24 @@ namespace meshgap
             const ob::PlannerTerminationCondition *&ptc;
             ~ClearPtc() { ptc = nullptr; }
         } clearPtc{ptc_};
-        Work w(*this, path.getStates(), ptc);
+        // With a deadline, the rounds end while there is time left to measure the output (reserve: twice what the
+        // input's measurement took, for a path that may have grown).
+        std::chrono::steady_clock::duration reserve{0};
+        const ob::PlannerTerminationCondition late(
+            [this, &reserve] { return deadline_ && std::chrono::steady_clock::now() + reserve >= *deadline_; });
+        const ob::PlannerTerminationCondition rounds = ob::plannerOrTerminationCondition(ptc, late);
+        Work w(*this, path.getStates(), rounds);
         w.c.resize(n0);
         for (std::size_t i = 0; i < n0; ++i)
             w.c[i] = checker_->clearance(w.states[i]);
         w.tolerance = tolerance_ > 0.0 ? tolerance_ : defaultTolerance(w.c);
         // The input measured now (before the clock matters), the output at the end, the same way.
+        const auto measuring = std::chrono::steady_clock::now();
         const double inputMeasure = minClearance(input, w.tolerance);
+        reserve = 2 * (std::chrono::steady_clock::now() - measuring);
         w.start(stats_);
         w.candidate = si_->allocState();
-        ptc_ = &ptc;
+        ptc_ = &rounds;
         improve(w);
         ptc_ = nullptr;
         si_->freeState(w.candidate);

@@ -172,7 +172,8 @@ namespace meshgap
         else
             throw Exception("robot state space", "a robot model of unknown kind");
         if (space->getSubspaceCount() == 0)
-            throw Exception("robot state space", "the robot has no state (no movable joint)");
+            throw Exception("robot state space", "the robot has no movable joint (a fixed robot): there is nothing "
+                                                   "to plan; its clearance can still be asked");
         if (countOf(*space) != robot.dimension())
             throw Exception("robot state space", "the space's numbers do not match the robot's state");
         space->lock();

@@ -1,8 +1,10 @@
 #include "meshgap/robot/RobotModel.h"
 
 #include <cmath>
+#include <sstream>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Limits.h"
 
 namespace meshgap
 {
@@ -22,14 +24,29 @@ namespace meshgap
         return NONE;
     }
 
-    void RobotModel::framePoses(const double *state, std::size_t size, std::vector<Eigen::Isometry3d> &frames) const
+    void RobotModel::checkState(const double *state, std::size_t size) const
     {
         if (size != dimension_)
             throw Exception(where_, "a state of " + std::to_string(size) + " numbers, where this robot has " +
                                         std::to_string(dimension_));
         for (std::size_t i = 0; i < size; ++i)
+        {
             if (!std::isfinite(state[i]))
                 throw Exception(where_, "state number " + std::to_string(i) + " is not finite");
+            if (std::abs(state[i]) > MAX_MAGNITUDE)
+            {
+                std::ostringstream text;
+                text << "state number " << i << " = " << state[i] << " is beyond 1e12 in magnitude, the largest "
+                     << "meshgap's geometry answers reliably";
+                throw Exception(where_, text.str());
+            }
+        }
+        checkStateLimits(state, where_);
+    }
+
+    void RobotModel::framePoses(const double *state, std::size_t size, std::vector<Eigen::Isometry3d> &frames) const
+    {
+        checkState(state, size);
         frames.resize(frames_.size());
         computeFrames(state, frames.data());
     }

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "meshgap/Exception.h"
+#include "meshgap/InputFile.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/mesh/MeshOperations.h"
 #include "meshgap/robot/MultiBodyRobot.h"
@@ -70,8 +71,16 @@ namespace meshgap
             fs::path p(text);
             if (p.is_relative())
                 p = folder / p;
-            if (!fs::is_regular_file(p))
+            if (!fs::exists(p))
                 throw Exception(keys.where(key), key + " file '" + p.string() + "' does not exist");
+            try
+            {
+                checkInputFile(p.string());
+            }
+            catch (const Exception &e)
+            {
+                throw Exception(keys.where(key), key + " file " + e.what());
+            }
             return p.lexically_normal().string();
         }
 
@@ -184,13 +193,14 @@ namespace meshgap
         void readUrdfProblem(const ConfigKeys &keys, const fs::path &folder, const BodyOptions &options,
                              RobotProblem &problem)
         {
-            keys.require("start.joints");
             UrdfOptions urdfOptions;
             urdfOptions.packagePath = packagePath(keys, folder);
             urdfOptions.body = options;
             const std::string urdf = existingFile(keys, "robot.urdf", keys.value("robot.urdf"), folder);
             const std::vector<double> start = keys.numbers("start.joints");
             UrdfRobotPtr robot = naming(keys, "robot.urdf", [&] { return UrdfRobot::load(urdf, urdfOptions); });
+            if (robot->dimension() > 0)
+                keys.require("start.joints");  // a fixed robot (no movable joint) has a state of no numbers
             if (start.size() == robot->dimension() + 7)
             {
                 urdfOptions.floatingBase = true;
@@ -203,13 +213,14 @@ namespace meshgap
                 problem.goal = keys.numbers("goal.joints");
                 checkJoints(keys, "goal.joints", *problem.goal, *robot);
             }
+            // The payload first, so that the SRDF can name it.
+            if (keys.has("attach"))
+                attachPayload(keys, folder, options, *robot);
             if (keys.has("robot.srdf"))
             {
                 const std::string srdf = existingFile(keys, "robot.srdf", keys.value("robot.srdf"), folder);
                 naming(keys, "robot.srdf", [&] { return (readSrdf(*robot, srdf), 0); });
             }
-            if (keys.has("attach"))
-                attachPayload(keys, folder, options, *robot);
             problem.robot = robot;
             problem.urdf = true;
         }

@@ -37,6 +37,9 @@ namespace meshgap
         if (!robot_)
             throw Exception("RobotScene", "no robot");
         links_ = robot_->links();
+        if (links_.empty())
+            throw Exception("RobotScene", "the robot has no collision geometry (no link with a body, no payload): "
+                                          "there is nothing to check");
         selfPairs_ = robot_->selfPairs();
         for (const RobotLink &link : links_)
             scenes_.push_back(std::make_shared<Scene>(link.body, obstacles_));

@@ -3,13 +3,15 @@
 #include <tinyxml2.h>
 
 #include "meshgap/Exception.h"
+#include "meshgap/InputFile.h"
 
 namespace meshgap
 {
     std::vector<SrdfDisabledPair> readSrdfDisabledCollisions(const std::string &path)
     {
+        const std::string xml = readInputFile(path);
         tinyxml2::XMLDocument document;
-        if (document.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS)
+        if (document.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
         {
             const int line = document.ErrorLineNum();
             throw Exception(line > 0 ? path + ":" + std::to_string(line) : path,

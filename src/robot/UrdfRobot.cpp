@@ -4,6 +4,7 @@
 #include <tinyxml2.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,9 @@
 #include <sstream>
 
 #include "meshgap/Exception.h"
+#include "meshgap/InputFile.h"
+#include "meshgap/Limits.h"
+#include "meshgap/Text.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/mesh/MeshOperations.h"
 #include "meshgap/robot/PackagePath.h"
@@ -53,6 +57,124 @@ namespace meshgap
             std::string errors_;
         };
 
+        /** \brief Where in a URDF a check is: the file and the link or joint being read ("link 'upper'"). */
+        struct XmlPlace
+        {
+            const std::string &path;
+            std::string context;
+
+            /** \brief Throws "path:line: context: <box size="0.5 0.06">: problem" for element \e e. */
+            [[noreturn]] void fail(const tinyxml2::XMLElement *e, const std::string &problem) const
+            {
+                std::string text = "<" + std::string(e->Name());
+                for (const tinyxml2::XMLAttribute *a = e->FirstAttribute(); a; a = a->Next())
+                {
+                    const std::string value = a->Value();
+                    text += " " + std::string(a->Name()) + "=\"" +
+                            (value.size() > 60 ? value.substr(0, 60) + "..." : value) + "\"";
+                }
+                throw Exception(path + ":" + std::to_string(e->GetLineNum()), context + ": " + text + ">: " + problem);
+            }
+        };
+
+        /** \brief The \e count numbers of attribute \e name of \e e ("0.25 0 0.1"), or none when it is absent and
+            not \e required. Each must be a finite number, within MAX_MAGNITUDE unless \e direction (an axis), and
+            above zero if \e positive. Throws naming the file, line, element and problem. */
+        std::vector<double> xmlNumbers(const XmlPlace &place, const tinyxml2::XMLElement *e, const char *name,
+                                       std::size_t count, bool required, bool positive = false, bool direction = false)
+        {
+            const char *text = e->Attribute(name);
+            if (!text)
+            {
+                if (required)
+                    place.fail(e, std::string("no ") + name + " attribute");
+                return {};
+            }
+            std::istringstream fields(text);
+            std::vector<double> values;
+            std::string token;
+            while (fields >> token)
+            {
+                double x = 0.0;
+                if (!parseNumber(token, x) || !std::isfinite(x))
+                    place.fail(e, std::string(name) + " has '" + token + "', not a finite number");
+                if (!direction && std::abs(x) > MAX_MAGNITUDE)
+                    place.fail(e, std::string(name) + " has " + token + ", beyond 1e12 in magnitude (the largest "
+                                                                         "meshgap's geometry answers reliably)");
+                if (positive && !(x > 0.0))
+                    place.fail(e, std::string(name) + " must be positive, found " + token);
+                values.push_back(x);
+            }
+            if (values.size() != count)
+                place.fail(e, std::string(name) + " needs " + std::to_string(count) +
+                                  (count == 1 ? " number" : " numbers") + ", found " + std::to_string(values.size()));
+            return values;
+        }
+
+        /** \brief Checks one <collision> or <visual> element of link \e link where urdfdom would drop a bad one
+            with only a log message: its origin's numbers, one <geometry> holding one box, cylinder, sphere or mesh,
+            and that shape's numbers (finite, sizes positive, three where three are due) and file name. */
+        void checkGeometryElement(const tinyxml2::XMLElement *element, const std::string &path,
+                                  const std::string &link)
+        {
+            const XmlPlace place{path, "link '" + link + "'"};
+            if (const tinyxml2::XMLElement *origin = element->FirstChildElement("origin"))
+            {
+                xmlNumbers(place, origin, "xyz", 3, false);
+                xmlNumbers(place, origin, "rpy", 3, false);
+            }
+            const tinyxml2::XMLElement *geometry = element->FirstChildElement("geometry");
+            const tinyxml2::XMLElement *shape = geometry ? geometry->FirstChildElement() : nullptr;
+            if (!shape)
+                place.fail(element, "no <geometry> with a shape in it");
+            if (shape->NextSiblingElement())
+                place.fail(geometry, "more than one shape in one <geometry>");
+            const std::string kind = shape->Name();
+            if (kind == "box")
+                xmlNumbers(place, shape, "size", 3, true, true);
+            else if (kind == "cylinder")
+            {
+                xmlNumbers(place, shape, "radius", 1, true, true);
+                xmlNumbers(place, shape, "length", 1, true, true);
+            }
+            else if (kind == "sphere")
+                xmlNumbers(place, shape, "radius", 1, true, true);
+            else if (kind == "mesh")
+            {
+                if (!shape->Attribute("filename") || std::string(shape->Attribute("filename")).empty())
+                    place.fail(shape, "a mesh without a filename");
+                for (double x : xmlNumbers(place, shape, "scale", 3, false))
+                    if (x == 0.0)
+                        place.fail(shape, "a scale of zero");
+            }
+            else
+                place.fail(shape, "an unknown shape (box, cylinder, sphere, mesh)");
+        }
+
+        /** \brief Checks the numbers of a joint element that urdfdom takes without a range: its origin and limits
+            within MAX_MAGNITUDE, its axis finite, its mimic's multiplier and offset finite. */
+        void checkJointNumbers(const tinyxml2::XMLElement *joint, const std::string &path, const std::string &name)
+        {
+            const XmlPlace place{path, "joint '" + name + "'"};
+            if (const tinyxml2::XMLElement *origin = joint->FirstChildElement("origin"))
+            {
+                xmlNumbers(place, origin, "xyz", 3, false);
+                xmlNumbers(place, origin, "rpy", 3, false);
+            }
+            if (const tinyxml2::XMLElement *axis = joint->FirstChildElement("axis"))
+                xmlNumbers(place, axis, "xyz", 3, false, false, true);
+            if (const tinyxml2::XMLElement *limit = joint->FirstChildElement("limit"))
+            {
+                xmlNumbers(place, limit, "lower", 1, false);
+                xmlNumbers(place, limit, "upper", 1, false);
+            }
+            if (const tinyxml2::XMLElement *mimic = joint->FirstChildElement("mimic"))
+            {
+                xmlNumbers(place, mimic, "multiplier", 1, false);
+                xmlNumbers(place, mimic, "offset", 1, false);
+            }
+        }
+
         /** \brief A joint element as the file writes it, for the checks urdfdom does not make (or makes silently). */
         struct XmlJoint
         {
@@ -68,7 +190,12 @@ namespace meshgap
             if (!robot || std::string(robot->Name()) != "robot")
                 throw Exception(path, "not a URDF: its root element is not <robot>");
             for (const tinyxml2::XMLElement *e = robot->FirstChildElement("link"); e; e = e->NextSiblingElement("link"))
+            {
                 links.push_back(e->Attribute("name") ? e->Attribute("name") : "");
+                for (const tinyxml2::XMLElement *g = e->FirstChildElement(); g; g = g->NextSiblingElement())
+                    if (std::string(g->Name()) == "collision" || std::string(g->Name()) == "visual")
+                        checkGeometryElement(g, path, links.back());
+            }
             for (const tinyxml2::XMLElement *e = robot->FirstChildElement("joint"); e;
                  e = e->NextSiblingElement("joint"))
             {
@@ -82,6 +209,7 @@ namespace meshgap
                 XmlJoint j{attribute(e, "name", "a name"), attribute(e, "type", "a type"),
                            attribute(e->FirstChildElement("parent"), "link", "a parent link"),
                            attribute(e->FirstChildElement("child"), "link", "a child link"), e->GetLineNum()};
+                checkJointNumbers(e, path, j.name);
                 if (j.type == "floating" || j.type == "planar")
                     throw Exception(where, "joint '" + j.name + "' is of type '" + j.type +
                                                "', which is not supported (revolute, continuous, prismatic, fixed)");
@@ -208,15 +336,6 @@ namespace meshgap
             return parts.empty() ? Mesh() : mergeMeshes(parts, link.name);
         }
 
-        std::string readFile(const std::string &path)
-        {
-            std::ifstream in(path, std::ios::binary);
-            if (!in)
-                throw Exception(path, "cannot open the URDF");
-            std::ostringstream text;
-            text << in.rdbuf();
-            return text.str();
-        }
     }  // namespace
 
     /** \brief Builds a UrdfRobot, step by step. */
@@ -357,7 +476,7 @@ namespace meshgap
 
     UrdfRobotPtr UrdfRobot::load(const std::string &path, const UrdfOptions &options)
     {
-        const std::string xml = readFile(path);
+        const std::string xml = readInputFile(path);
         tinyxml2::XMLDocument document;
         if (document.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
             throw Exception(path + ":" + std::to_string(document.ErrorLineNum()),
@@ -371,7 +490,8 @@ namespace meshgap
         {
             ConsoleCapture capture;
             model = urdf::parseURDF(xml);
-            if (!model)
+            // urdfdom drops an element it cannot read, logs why and returns the rest: an error all the same.
+            if (!model || !capture.errors().empty())
                 throw Exception(path, "urdfdom rejects the URDF: " +
                                           (capture.errors().empty() ? std::string("(no reason given)")
                                                                     : capture.errors()));
@@ -384,8 +504,28 @@ namespace meshgap
         UrdfBuilder::addJoints(*robot, *model, order, path);
         UrdfBuilder::resolveMimics(*robot, *model, path);
         UrdfBuilder::addLinks(*robot, *model, options, path);
+        if (robot->links().empty())
+            throw Exception(path, "robot '" + robot->name_ + "' has no collision geometry: none of its links has a "
+                                  "<collision> or <visual> element, so there is nothing to check");
         robot->setDimension(robot->jointOffset() + robot->variables_.size());
         return robot;
+    }
+
+    void UrdfRobot::checkStateLimits(const double *state, const std::string &where) const
+    {
+        for (std::size_t k = 0; k < variables_.size(); ++k)
+        {
+            const UrdfJoint &joint = joints_[variables_[k]];
+            const double value = state[joint.variable];
+            const double slack = 1e-9 * std::max({1.0, std::abs(joint.lower), std::abs(joint.upper)});
+            if (value < joint.lower - slack || value > joint.upper + slack)
+            {
+                std::ostringstream text;
+                text << "joint '" << joint.name << "' = " << value
+                     << " is outside its limits [" << joint.lower << ", " << joint.upper << "]";
+                throw Exception(where, text.str());
+            }
+        }
     }
 
     void UrdfRobot::computeFrames(const double *state, Eigen::Isometry3d *frames) const

@@ -1,6 +1,7 @@
 // boost::program_options::parse_config_file reads this format too, but it reports neither the line of a bad entry
 // nor keeps the [planner] order, so this small reader does; the grammar is the same INI subset OMPL.app uses
-// ("key = value", "[section]", '#' comments).
+// ("key = value", "[section]", '#' comments). As in boost, a '#' anywhere starts a comment that runs to the end of the
+// line ("robot.urdf = arm.urdf   # the arm" gives "arm.urdf"), so no value can hold a '#'.
 
 #include "meshgap/scene/ConfigFile.h"
 
@@ -11,6 +12,8 @@
 #include <sstream>
 
 #include "meshgap/Exception.h"
+#include "meshgap/InputFile.h"
+#include "meshgap/Limits.h"
 #include "meshgap/Text.h"
 
 namespace meshgap
@@ -29,9 +32,13 @@ namespace meshgap
         double number(const std::string &value, const std::string &where, const std::string &key)
         {
             double x = 0.0;
-            if (parseNumber(value, x) && std::isfinite(x))
-                return x;
-            throw Exception(where, key + " = '" + value + "' is not a finite number");
+            if (!parseNumber(value, x) || !std::isfinite(x))
+                throw Exception(where, key + " = '" + value + "' is not a finite number");
+            // An axis is a direction (normalised): any magnitude; every other number is a position, an angle, a size.
+            if (std::abs(x) > MAX_MAGNITUDE && key.find("axis") == std::string::npos)
+                throw Exception(where, key + " = '" + value + "' is beyond 1e12 in magnitude, the largest meshgap's "
+                                                              "geometry answers reliably");
+            return x;
         }
 
         /** \brief True for "robot.N", "start.N.x", "goal.N.theta", ...: a key of a numbered body. */
@@ -51,8 +58,7 @@ namespace meshgap
 
     ConfigFile readConfigFile(const std::string &path)
     {
-        if (!std::filesystem::exists(path))
-            throw Exception(path, "no such file");
+        checkInputFile(path);
         std::ifstream in(path);
         if (!in)
             throw Exception(path, "cannot open the problem file");
@@ -62,7 +68,7 @@ namespace meshgap
         for (std::size_t number = 1; std::getline(in, line); ++number)
         {
             const std::string where = path + ":" + std::to_string(number);
-            line = trim(line);
+            line = trim(line.substr(0, line.find('#')));
             if (line.empty() || line[0] == '#' || line[0] == ';')
                 continue;
             if (line.front() == '[')

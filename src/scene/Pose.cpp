@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "meshgap/Exception.h"
+#include "meshgap/InputFile.h"
+#include "meshgap/Limits.h"
 #include "meshgap/Text.h"
 
 namespace meshgap
@@ -27,6 +29,14 @@ namespace meshgap
         for (double x : v)
             if (!std::isfinite(x))
                 throw Exception(where, "pose has a NaN or infinite number");
+        for (int k = 0; k < 3; ++k)
+            if (std::abs(v[k]) > MAX_MAGNITUDE)
+            {
+                std::ostringstream problem;
+                problem << "position " << "xyz"[k] << " = " << v[k] << " is beyond 1e12 in magnitude, the largest "
+                        << "meshgap's geometry answers reliably";
+                throw Exception(where, problem.str());
+            }
         Eigen::Quaterniond q(v[6], v[3], v[4], v[5]);  // Eigen takes w first
         const double norm = q.norm();
         if (std::abs(norm - 1.0) > 1e-3)
@@ -40,6 +50,7 @@ namespace meshgap
 
     std::vector<Eigen::Isometry3d> readPoses(const std::string &path)
     {
+        checkInputFile(path);
         std::ifstream in(path);
         if (!in)
             throw Exception(path, "cannot open the pose file");

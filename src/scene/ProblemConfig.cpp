@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "meshgap/Exception.h"
+#include "meshgap/InputFile.h"
 #include "meshgap/scene/ConfigFile.h"
 #include "meshgap/scene/Pose.h"
 
@@ -34,6 +35,14 @@ namespace meshgap
                 p = folder / p;
             if (!std::filesystem::exists(p))
                 throw Exception(problem.where(key), key + " mesh '" + p.string() + "' does not exist");
+            try
+            {
+                checkInputFile(p.string());
+            }
+            catch (const Exception &e)
+            {
+                throw Exception(problem.where(key), key + " mesh " + e.what());
+            }
             return p.lexically_normal().string();
         }
 

@@ -16,6 +16,7 @@
 #include <boost/geometry/index/rtree.hpp>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Limits.h"
 #include "meshgap/ThreadScratch.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/PenetrationDepth.h"
@@ -370,13 +371,27 @@ namespace meshgap
         return nullptr;
     }
 
+    namespace
+    {
+        /** \brief Throws unless \e X_WR is finite, its position within MAX_MAGNITUDE: beyond it the geometry's
+            arithmetic overflows and answers wrong, where an error is the right answer. */
+        void checkPose(const Eigen::Isometry3d &X_WR)
+        {
+            if (!X_WR.matrix().allFinite() || X_WR.translation().cwiseAbs().maxCoeff() > MAX_MAGNITUDE)
+                throw Exception("Scene", "the robot's pose is not finite or its position is beyond 1e12 in "
+                                         "magnitude, the largest meshgap's geometry answers reliably");
+        }
+    }  // namespace
+
     bool Scene::inCollision(const Eigen::Isometry3d &X_WR) const
     {
+        checkPose(X_WR);
         return firstCollision(X_WR) < obstacles_.size();
     }
 
     bool Scene::inCollision(const Eigen::Isometry3d &X_WR, SceneWarmStart &warm) const
     {
+        checkPose(X_WR);
         SceneWarmStart *carried = choose(X_WR, warm);
         const bool hit = firstCollision(X_WR, carried) < obstacles_.size();
         if (carried)
@@ -398,6 +413,7 @@ namespace meshgap
     void Scene::query(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart *warm,
                       SceneResult &result) const
     {
+        checkPose(X_WR);
         result = SceneResult();
         if (obstacles_.empty())
         {

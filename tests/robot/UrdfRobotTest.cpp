@@ -131,11 +131,18 @@ namespace meshgap
         EXPECT_EQ(robot->frames().size(), 11u);
 
         std::mt19937 rng(7);
-        std::uniform_real_distribution<double> u(-3.0, 3.0);
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
         double worst = 0.0;
         for (int trial = 0; trial < 200; ++trial)
         {
-            const std::vector<double> q = {u(rng), u(rng), u(rng) / 10, u(rng), u(rng)};
+            // Anywhere within each joint's limits (framePoses() refuses a state beyond them), [-3, 3] when unbounded.
+            std::vector<double> q;
+            for (std::size_t k : robot->variables())
+            {
+                const UrdfJoint &j = robot->joints()[k];
+                const double lo = std::isfinite(j.lower) ? j.lower : -3.0, hi = std::isfinite(j.upper) ? j.upper : 3.0;
+                q.push_back(lo + (hi - lo) * unit(rng));
+            }
             std::vector<Eigen::Isometry3d> frames;
             robot->framePoses(q.data(), q.size(), frames);
             const auto hand = handFrames(q);
@@ -322,7 +329,7 @@ namespace meshgap
         EXPECT_NE(message.find("link 'body'"), std::string::npos) << message;
         EXPECT_NE(message.find("no such file"), std::string::npos) << message;
         EXPECT_NE(message.find("no_such_mesh.stl"), std::string::npos) << message;
-        EXPECT_NE(errorOf([] { UrdfRobot::load("/no/such/robot.urdf"); }).find("cannot open"), std::string::npos);
+        EXPECT_NE(errorOf([] { UrdfRobot::load("/no/such/robot.urdf"); }).find("no such file"), std::string::npos);
     }
 
     TEST(UrdfRobot, BadSrdfStateAndPayloadGetOneClearErrorEach)

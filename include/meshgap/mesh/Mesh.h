@@ -27,8 +27,9 @@ namespace meshgap
             size are relative. */
         double size() const;
 
-        /** \brief Throws meshgap::Exception naming \e source if the mesh has no triangles, a NaN/Inf coordinate or
-            an index out of range. Degenerate triangles are not checked here (see removeDegenerate()). */
+        /** \brief Throws meshgap::Exception naming \e source if the mesh has no triangles, a NaN/Inf coordinate, a
+            coordinate beyond MAX_MAGNITUDE (meshgap/Limits.h) or an index out of range. Degenerate triangles are not
+            checked here (see removeDegenerate()). */
         void validate() const;
     };
 

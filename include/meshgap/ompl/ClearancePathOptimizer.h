@@ -5,7 +5,9 @@
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/geometric/PathGeometric.h>
 
+#include <chrono>
 #include <functional>
+#include <optional>
 
 #include "meshgap/ompl/CertifiedPathRepair.h"
 #include "meshgap/ompl/ClearanceMotionValidator.h"
@@ -79,7 +81,9 @@ namespace meshgap
 
         ClearancePathOptimizer(const ompl::base::SpaceInformationPtr &si, ClearanceCheckerPtr checker);
 
-        /** \brief Optimise \e path in place within time_limit. Returns true if its minimum clearance rose. */
+        /** \brief Optimise \e path in place within time_limit, the whole call included: the rounds stop early enough
+            to leave the final measurement of the path (twice as long as the input's took) its time. Returns true if
+            its minimum clearance rose. */
         bool optimize(ompl::geometric::PathGeometric &path);
         /** \brief Optimise \e path in place until \e ptc (or max_rounds, target_clearance, convergence). */
         bool optimize(ompl::geometric::PathGeometric &path, const ompl::base::PlannerTerminationCondition &ptc);
@@ -158,6 +162,8 @@ namespace meshgap
         const ompl::base::PlannerTerminationCondition *ptc_{nullptr};
 
         double timeLimit_{5.0};
+        /** \brief When the timed optimize() must be done by; none for a caller's own termination condition. */
+        std::optional<std::chrono::steady_clock::time_point> deadline_;
         double target_{std::numeric_limits<double>::infinity()};
         double maxLengthFactor_{3.0};
         unsigned long seed_{1};

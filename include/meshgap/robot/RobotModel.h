@@ -63,9 +63,14 @@ namespace meshgap
         /** \brief Index of the link body named \e name, or NONE. */
         std::size_t findLink(const std::string &name) const;
 
+        /** \brief Throws meshgap::Exception unless \e state (\e size numbers) is a state of this robot: dimension()
+            numbers, each finite and within MAX_MAGNITUDE (meshgap/Limits.h), and what the kind of robot requires
+            more (a UrdfRobot: every joint within its limits, naming the joint and the limits). */
+        void checkState(const double *state, std::size_t size) const;
+
         /** \brief Every frame's world pose at \e state (\e size numbers, dimension()) into \e frames (resized to
-            frames().size(); no allocation once it has that size). Throws meshgap::Exception for a state of the
-            wrong dimension or a non-finite number. */
+            frames().size(); no allocation once it has that size). Throws meshgap::Exception for a state checkState()
+            refuses. */
         void framePoses(const double *state, std::size_t size, std::vector<Eigen::Isometry3d> &frames) const;
         /** \brief Every link body's world pose at \e state into \e links, the frame poses into \e frames (both
             resized; no allocation once they have their size). Throws as framePoses(). */
@@ -99,6 +104,12 @@ namespace meshgap
 
     protected:
         RobotModel() = default;
+
+        /** \brief Throws meshgap::Exception naming \e where for a state (dimension() numbers, finite) this kind of
+            robot does not take; by default none. */
+        virtual void checkStateLimits(const double * /*state*/, const std::string & /*where*/) const
+        {
+        }
 
         /** \brief Every frame's world pose at \e state (dimension() numbers, finite, checked by the caller). */
         virtual void computeFrames(const double *state, Eigen::Isometry3d *frames) const = 0;

@@ -15,7 +15,8 @@ namespace meshgap
     /** \brief A planning problem for a robot of many bodies, read from an OMPL.app-style .cfg (readRobotProblem()).
 
         A URDF robot: [problem] keys
-        - robot.urdf = FILE; robot.srdf = FILE (optional: its disable_collisions pairs are allowed);
+        - robot.urdf = FILE; robot.srdf = FILE (optional: its disable_collisions pairs are allowed; they may name the
+          payload);
           robot.package_path = DIR:DIR (optional; else ROS_PACKAGE_PATH; the URDF's folder and its parents are
           searched after either);
         - world = FILE (the obstacles: the mesh's connected parts, in the world frame, as for a single body);
@@ -23,7 +24,8 @@ namespace meshgap
           that pose; it becomes the link named "payload";
         - start.joints = v1 v2 ... and goal.joints = ... (goal optional): the URDF's movable joints (revolute,
           continuous, prismatic; not fixed, not mimic) in its order; seven more numbers first, "x y z qx qy qz qw",
-          make the base float in SE(3) (its pose).
+          make the base float in SE(3) (its pose). A robot without movable joints needs no start.joints (its state
+          has no numbers): its clearance can be asked, there is nothing to plan.
         Several rigid bodies (OMPL.app's multi-body problems): robot.1 = FILE, robot.2 = FILE, ... (numbered from 1,
         no gaps), world, and per body start.N.x, start.N.y, start.N.z, start.N.theta, start.N.axis.x/y/z (the same
         for goal.N): each body a mesh centred as OMPL.app centres a robot, its state its pose; an SE(2) body (x y

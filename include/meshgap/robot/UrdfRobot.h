@@ -67,7 +67,11 @@ namespace meshgap
             type other than revolute, continuous, prismatic or fixed (floating and planar joints included), joints
             that do not form one tree (a cycle, a link with two parent joints, several roots, an unknown link), a
             mimic joint of an unknown or fixed joint, a zero axis, a mesh that cannot be found or read, a bad
-            primitive, and whatever else urdfdom rejects. */
+            primitive, and whatever else urdfdom rejects. Throws also for what urdfdom drops with a message and
+            reads on without: a <collision> or <visual> element whose origin or shape has a number that is not one,
+            not finite, beyond MAX_MAGNITUDE (meshgap/Limits.h), not positive where a size must be, or too few or too
+            many of them, an unknown shape or a mesh without a file name (naming file:line and the element); a joint
+            origin or limit beyond MAX_MAGNITUDE; and a robot without any collision geometry. */
         static UrdfRobotPtr load(const std::string &path, const UrdfOptions &options = UrdfOptions());
 
         /** \brief Every joint, parent before child (the order of the forward kinematics). */
@@ -82,6 +86,10 @@ namespace meshgap
 
     protected:
         void computeFrames(const double *state, Eigen::Isometry3d *frames) const override;
+        /** \brief Every movable joint's value within its limits (to 1e-9 of the larger of 1 and the limit: the
+            roundoff of an interpolation between two states at the limits passes); throws naming the joint, its
+            value and limits. */
+        void checkStateLimits(const double *state, const std::string &where) const override;
 
     private:
         UrdfRobot() = default;

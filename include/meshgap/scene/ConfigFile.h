@@ -16,7 +16,8 @@ namespace meshgap
     };
 
     /** \brief The sections of an OMPL.app-style problem file (.cfg): the INI subset OMPL.app uses ("key = value",
-        "[section]", '#' and ';' comments), [problem] entries with their lines, [benchmark] and [planner] entries in
+        "[section]", '#' comments to the end of any line as boost::program_options reads them, ';' comment lines),
+        [problem] entries with their lines, [benchmark] and [planner] entries in
         file order. */
     struct ConfigFile
     {
@@ -50,7 +51,8 @@ namespace meshgap
         /** \brief "file:line" of \e key, or the file when it is not given. */
         std::string where(const std::string &key) const;
         /** \brief The finite number \e key gives, or \e fallback when it is absent; throws meshgap::Exception naming
-            "file:line" for a value that is not a finite number. */
+            "file:line" for a value that is not a finite number, or beyond MAX_MAGNITUDE (meshgap/Limits.h) for a key
+            other than an axis's. */
         double num(const std::string &key, double fallback) const;
         /** \brief The whitespace-separated finite numbers \e key gives (throws as num()). */
         std::vector<double> numbers(const std::string &key) const;

@@ -206,7 +206,9 @@ namespace meshgap
         std::uint64_t id() const { return id_; }
         const std::vector<BodyConstPtr> &obstacles() const { return obstacles_; }
 
-        /** \brief Exact collision test of the robot at \e X_WR against every obstacle; stops at the first hit. */
+        /** \brief Exact collision test of the robot at \e X_WR against every obstacle; stops at the first hit. Every
+            query here throws meshgap::Exception for a pose that is not finite or whose position is beyond
+            MAX_MAGNITUDE (meshgap/Limits.h): no answer rather than a wrong one. */
         bool inCollision(const Eigen::Isometry3d &X_WR) const;
         /** \brief The same verdict, each obstacle's surface test carried from the caller's last one (the collision
             front of \e warm's pair for that obstacle): along a run of nearby poses most of it is proven without a
