@@ -37,6 +37,8 @@ namespace meshgap
 
     bool RobotChecker::isValid(const ompl::base::State *state) const
     {
+        if (!si_->satisfiesBounds(state))
+            return false;  // outside the joint limits or the volume: invalid, as OMPL expects, never an exception
         ThreadState &t = threadStateFor(id_);
         robotStateToVector(*si_->getStateSpace(), state, t.values);
         return !scene_->inCollision(t.values.data(), t.values.size(), t.warm);
