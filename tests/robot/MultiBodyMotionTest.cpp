@@ -2,7 +2,6 @@
 // displacement bounds against the vertices' real motion along OMPL's interpolation, a swap in which two bodies pass
 // through each other between the states OMPL's discrete validator looks at, and planned paths checked densely by FCL.
 #include <gtest/gtest.h>
-
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/geometric/SimpleSetup.h>
@@ -62,8 +61,7 @@ namespace meshgap
                 }
                 else if (m.kind == FrameMotion::Kind::SE3)
                 {
-                    const Eigen::Quaterniond r =
-                        Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+                    const Eigen::Quaterniond r = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
                     const double v[7] = {3 * u(rng), 2 * u(rng), 2 * u(rng), r.x(), r.y(), r.z(), r.w()};
                     std::copy(v, v + 7, q.begin() + static_cast<long>(m.variable));
                 }
@@ -85,8 +83,7 @@ namespace meshgap
             each: at fraction t no vertex of a link is further than t times the link's bound from where it started,
             and no two links of a checked pair, in their nearest common frame (the world for two bodies), moved more
             than t times the pair's bound together. Returns the largest ratio of a real move to its bound. */
-        double checkBounds(const RobotModel &robot, const std::function<double(std::size_t)> &joints,
-                           unsigned seed)
+        double checkBounds(const RobotModel &robot, const std::function<double(std::size_t)> &joints, unsigned seed)
         {
             const MotionBound bound(robot);
             const ob::StateSpacePtr space = robotStateSpace(robot, box3(4, 4, 4));
@@ -132,8 +129,8 @@ namespace meshgap
                             commonFrame(robot, robot.links()[first].frame, robot.links()[second].frame);
                         const double real = moved(first, c) + moved(second, c);
                         const double pair = bound.pairDisplacement(first, second, a, b);
-                        EXPECT_LE(real, t * pair + 1e-9) << robot.links()[first].name << " "
-                                                         << robot.links()[second].name << " trial " << trial;
+                        EXPECT_LE(real, t * pair + 1e-9)
+                            << robot.links()[first].name << " " << robot.links()[second].name << " trial " << trial;
                         EXPECT_LE(pair, moves[first] + moves[second] + 1e-12);
                         if (c == RobotModel::NONE)  // two bodies: both bounds, added
                         {
@@ -232,7 +229,8 @@ namespace meshgap
     {
         const MultiBodyRobotPtr robot = threeBodies();
         ASSERT_EQ(robot->selfPairs().size(), 5u);  // the payload is allowed against its own body only
-        const double tightest = checkBounds(*robot, [](std::size_t) { return 0.0; }, 3);
+        const double tightest = checkBounds(
+            *robot, [](std::size_t) { return 0.0; }, 3);
         test::Note() << "largest displacement / bound " << tightest;
         EXPECT_GT(tightest, 0.3);  // a bound, not a wild one
     }
@@ -248,9 +246,8 @@ namespace meshgap
         std::mt19937 rng(5);
         std::uniform_real_distribution<double> u(-1.0, 1.0);
         const double scale[5] = {1.5, 2.5, 0.2, 1.5, 1.0}, centre[5] = {0, 0, 0.1, 0, 0};
-        const double tightest =
-            checkBounds(*robot, [&](std::size_t k) { return k < 7 ? 0.0 : centre[k - 7] + scale[k - 7] * u(rng); },
-                        7);
+        const double tightest = checkBounds(
+            *robot, [&](std::size_t k) { return k < 7 ? 0.0 : centre[k - 7] + scale[k - 7] * u(rng); }, 7);
         test::Note() << "largest displacement / bound " << tightest;
         EXPECT_GT(tightest, 0.2);
     }
@@ -317,7 +314,8 @@ namespace meshgap
                 for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i)
                 {
                     const auto n = static_cast<std::size_t>(
-                                       std::ceil(si->distance(path.getState(i), path.getState(i + 1)) / step)) + 1;
+                                       std::ceil(si->distance(path.getState(i), path.getState(i + 1)) / step)) +
+                                   1;
                     for (std::size_t k = 0; k <= n; ++k, ++checked)
                     {
                         si->getStateSpace()->interpolate(path.getState(i), path.getState(i + 1), double(k) / n, s);

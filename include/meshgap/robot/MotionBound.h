@@ -44,12 +44,12 @@ namespace meshgap
         /** \brief What a term measures between the two states. */
         enum class Measure
         {
-            SCALAR,       ///< |b - a| of one state number
-            ARC,          ///< the same along the shorter arc (an angle)
-            PLANE_MOVE,   ///< |dx, dy| of an SE(2) pose
-            PLANE_TURN,   ///< its yaw's change along the shorter arc
-            SPACE_MOVE,   ///< |dx, dy, dz| of an SE(3) pose
-            SPACE_TURN    ///< the angle between its two rotations
+            SCALAR,      ///< |b - a| of one state number
+            ARC,         ///< the same along the shorter arc (an angle)
+            PLANE_MOVE,  ///< |dx, dy| of an SE(2) pose
+            PLANE_TURN,  ///< its yaw's change along the shorter arc
+            SPACE_MOVE,  ///< |dx, dy, dz| of an SE(3) pose
+            SPACE_TURN   ///< the angle between its two rotations
         };
         /** \brief Per link, one move of a frame on its way up, nearest first: what it measures from which state
             number, its factor, and where the frame is on the link's way up (an index into chains_). */
