@@ -1,7 +1,8 @@
 // A robot problem's path checked by FCL 0.7, pair by pair: every link against every obstacle and every self pair the
 // robot checks, the same meshes at the same link poses, at states interpolated densely along each motion (OMPL's
 // interpolation in the problem's state space, at most --step of the space's extent apart). Prints the states
-// checked, those FCL finds colliding, and FCL's least distance; exit status 0 when no state collides, 3 otherwise.
+// checked, those FCL finds colliding, and FCL's least distance, then how many of the path's motions the certified
+// RobotMotionValidator proves free; exit status 0 when no state collides, 3 otherwise.
 //
 //   build/bench/meshgap_bench_robot_path_check --cfg maps/swap_se3/swap_se3.cfg --path solution.path [--step 1e-4]
 
@@ -16,6 +17,7 @@
 #include "FclOracle.h"
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
+#include "meshgap/ompl/RobotMotionValidator.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 #include "meshgap/robot/RobotProblem.h"
 #include "meshgap/robot/RobotScene.h"
@@ -43,7 +45,8 @@ int main(int argc, char **argv)
             return 0;
         ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
         const RobotProblem p = readRobotProblem(cfg);
-        const RobotScene scene(p.robot, p.obstacles);
+        const auto scenePtr = std::make_shared<RobotScene>(p.robot, p.obstacles);
+        const RobotScene &scene = *scenePtr;
         ob::RealVectorBounds bounds(3);
         bounds.setLow(-1e3);
         bounds.setHigh(1e3);
@@ -87,9 +90,25 @@ int main(int argc, char **argv)
         space->freeState(a);
         space->freeState(b);
         space->freeState(s);
+        // The path's motions, each asked of the certified validator anew.
+        auto si = std::make_shared<ob::SpaceInformation>(space);
+        si->setStateValidityChecker(std::make_shared<RobotChecker>(si, scenePtr));
+        si->setup();
+        const RobotMotionValidator validator(si, scenePtr, *p.robot);
+        ob::State *m1 = si->allocState(), *m2 = si->allocState();
+        std::size_t certified = 0;
+        for (std::size_t i = 0; i + 1 < states.size(); ++i)
+        {
+            robotStateFromVector(*space, states[i], m1);
+            robotStateFromVector(*space, states[i + 1], m2);
+            certified += validator.checkMotion(m1, m2);
+        }
+        si->freeState(m1);
+        si->freeState(m2);
         std::printf("%s: %zu states checked (step %g of %g), %zu colliding by FCL, FCL's least link-obstacle "
-                    "distance at the path's states %.6g\n",
-                    pathFile.c_str(), checked, step, extent, colliding, least);
+                    "distance at the path's states %.6g, %zu of %zu motions certified\n",
+                    pathFile.c_str(), checked, step, extent, colliding, least, certified,
+                    states.empty() ? std::size_t(0) : states.size() - 1);
         return colliding == 0 ? 0 : 3;
     });
 #endif

@@ -77,12 +77,9 @@ namespace meshgap
             }
         }  // namespace
 
-        std::vector<std::string> robotCheckerNames(const RobotModel *robot)
+        std::vector<std::string> robotCheckerNames(const RobotModel * /*robot*/)
         {
-            const auto *urdf = dynamic_cast<const UrdfRobot *>(robot);
             std::vector<std::string> names = {"certified", "discrete"};
-            if (robot && (!urdf || urdf->floatingBase()))
-                names.erase(names.begin());
     #ifdef MESHGAP_HAVE_FCL
             names.push_back("fcl");
     #endif
@@ -136,10 +133,8 @@ namespace meshgap
             setup_ = std::make_shared<ompl::geometric::SimpleSetup>(robotStateSpace(*problem.robot, boundsOf(problem)));
             const ompl::base::SpaceInformationPtr si = setup_->getSpaceInformation();
             checker_ = std::make_shared<CountingRobotChecker>(si, scene_);
-            const auto *urdf = dynamic_cast<const UrdfRobot *>(problem.robot.get());
-            if (urdf && !urdf->floatingBase())
-                certified_ = std::make_shared<TimedMotionValidator>(
-                    si, std::make_shared<RobotMotionValidator>(si, scene_, *urdf), checker_);
+            certified_ = std::make_shared<TimedMotionValidator>(
+                si, std::make_shared<RobotMotionValidator>(si, scene_, *problem.robot), checker_);
     #ifdef MESHGAP_HAVE_FCL
             fcl_ = std::make_shared<FclRobotChecker>(si, scene_);
     #endif
@@ -160,12 +155,7 @@ namespace meshgap
             ompl::base::StateValidityCheckerPtr checker = checker_;
             ompl::base::MotionValidatorPtr validator;
             if (name == "certified")
-            {
-                if (!certified_)
-                    throw Exception("--checker", "'certified' motions need a fixed-base URDF robot; " + file_ +
-                                                     " has another kind (use discrete or fcl)");
                 validator = certified_;
-            }
     #ifdef MESHGAP_HAVE_FCL
             else if (name == "fcl")
                 checker = fcl_;

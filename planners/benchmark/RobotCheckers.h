@@ -23,7 +23,7 @@ namespace meshgap
         /** \brief The checkers of a robot problem, in grid order, as --checker spells them: "certified" (RobotChecker,
             RobotMotionValidator: certified motions), "discrete" (RobotChecker, OMPL's DiscreteMotionValidator at its
             default resolution) and, when built with FCL, "fcl" (FclRobotChecker, OMPL's DiscreteMotionValidator).
-            Given \e robot, "certified" only when it is a fixed-base URDF robot (what RobotMotionValidator bounds). */
+            Every kind of robot has all of them (\e robot is not looked at). */
         std::vector<std::string> robotCheckerNames(const RobotModel *robot = nullptr);
 
         /** \brief What the grid reads of a problem file (name, file, objective, [benchmark], [planner]) for a robot
@@ -68,7 +68,7 @@ namespace meshgap
             RobotSceneConstPtr scene_;
             std::shared_ptr<ompl::geometric::SimpleSetup> setup_;
             std::shared_ptr<CountingRobotChecker> checker_;
-            ompl::base::MotionValidatorPtr certified_;  ///< null unless the robot is a fixed-base URDF
+            ompl::base::MotionValidatorPtr certified_;
     #ifdef MESHGAP_HAVE_FCL
             std::shared_ptr<FclRobotChecker> fcl_;
     #endif

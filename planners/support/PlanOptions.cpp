@@ -47,7 +47,7 @@ namespace meshgap
                  "warm-started: APPROXIMATE)"},
                 {"motion", 0, K::TEXT, &O::motion,
                  "motion validator: discrete (OMPL's, sampled; the default) or clearance (conservative advancement, "
-                 "certified)"},
+                 "certified); a robot problem's motions are certified unless discrete is given"},
                 {"seed", 0, K::COUNT, &O::seed, "OMPL's random seed (default 1)"},
                 {"out", 0, K::FILE, &O::out, "write the path here (.path)"},
                 {"clearance-csv", 0, K::FILE, &O::csv,

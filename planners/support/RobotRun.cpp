@@ -24,8 +24,9 @@ namespace meshgap
     {
         namespace
         {
-            /** \brief OMPL's discrete motion check steps this fraction of the state space's extent on a robot
-                problem (its default, 0.01, lets two bodies moving at once pass through each other between steps). */
+            /** \brief OMPL's discrete motion check (--motion discrete; the certified validator is the default)
+                steps this fraction of the state space's extent on a robot problem (its default, 0.01, lets two
+                bodies moving at once pass through each other between steps). */
             constexpr double DISCRETE_RESOLUTION = 0.002;
 
             /** \brief One summary line: "key" padded to 16 columns, then the value. */
@@ -164,13 +165,9 @@ namespace meshgap
             const ob::SpaceInformationPtr si = run->setup->getSpaceInformation();
             run->checker = std::make_shared<RobotChecker>(si, run->scene);
             run->setup->setStateValidityChecker(run->checker);
-            const auto *urdf = dynamic_cast<const UrdfRobot *>(p.robot.get());
-            const bool certifiable = urdf && !urdf->floatingBase();
-            if (o.isGiven("motion") && o.motion == "clearance" && !certifiable)
-                throw Exception(o.label("motion"), "the certified motion validator takes fixed-base URDF robots; use "
-                                                   "discrete");
-            if (certifiable && !(o.isGiven("motion") && o.motion == "discrete"))
-                si->setMotionValidator(run->motion = std::make_shared<RobotMotionValidator>(si, run->scene, *urdf));
+            if (!(o.isGiven("motion") && o.motion == "discrete"))
+                si->setMotionValidator(run->motion =
+                                           std::make_shared<RobotMotionValidator>(si, run->scene, *p.robot));
             else
                 si->setStateValidityCheckingResolution(DISCRETE_RESOLUTION);
             ob::ScopedState<> start(si), goal(si);
@@ -195,7 +192,7 @@ namespace meshgap
             line(summary, "planner", o.planner);
             line(summary, "objective", "length");
             line(summary, "clearance mode", std::string("certified, motion ") +
-                                                (run.motion ? "certified (joint-space displacement bound)" :
+                                                (run.motion ? "certified (displacement bound per pair)" :
                                                               "discrete (OMPL's)"));
             line(summary, "status", run.status.asString());
             line(summary, "solved", !run.havePath ? "no" : run.exact ? "yes (exact)" : "approximate");

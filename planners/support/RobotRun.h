@@ -2,7 +2,7 @@
 #define MESHGAP_PLANNERS_SUPPORT_ROBOT_RUN_H
 
 // meshgap_plan and meshgap_distance on a robot problem (RobotProblem: a URDF robot, its payload, or several bodies):
-// the OMPL setup (robotStateSpace(), RobotChecker, RobotMotionValidator for a fixed-base URDF robot), the run's
+// the OMPL setup (robotStateSpace(), RobotChecker, RobotMotionValidator for every kind of robot), the run's
 // summary and path file, and the per-state whole-robot answers meshgap_distance prints.
 
 #include <memory>
@@ -27,7 +27,7 @@ namespace meshgap
             RobotSceneConstPtr scene;
             ompl::geometric::SimpleSetupPtr setup;
             std::shared_ptr<RobotChecker> checker;
-            /** \brief The certified motion validator (a fixed-base URDF robot, unless --motion discrete); null when
+            /** \brief The certified motion validator (every robot, unless --motion discrete); null when
                 OMPL's discrete one checks motions. */
             std::shared_ptr<RobotMotionValidator> motion;
             ompl::base::PlannerStatus status;

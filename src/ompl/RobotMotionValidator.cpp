@@ -10,7 +10,7 @@
 namespace meshgap
 {
     RobotMotionValidator::RobotMotionValidator(const ompl::base::SpaceInformationPtr &si, RobotSceneConstPtr scene,
-                                               const UrdfRobot &robot)
+                                               const RobotModel &robot)
         : ompl::base::MotionValidator(si), scene_(std::move(scene)), bound_(robot)
     {
         if (!scene_)

@@ -167,7 +167,7 @@ namespace meshgap
         else if (const auto *rigid = dynamic_cast<const RigidBodyRobot *>(&robot))
             space->addSubspace(rigidSpace(rigid->space(), bounds), 1.0);
         else if (const auto *multi = dynamic_cast<const MultiBodyRobot *>(&robot))
-            for (std::size_t i = 0; i < multi->links().size(); ++i)
+            for (std::size_t i = 0; i < multi->frames().size(); ++i)  // one per body (payloads have none)
                 space->addSubspace(rigidSpace(multi->space(i), bounds), 1.0);
         else
             throw Exception("robot state space", "a robot model of unknown kind");

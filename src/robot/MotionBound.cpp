@@ -6,72 +6,94 @@
 
 namespace meshgap
 {
-    namespace
+    MotionBound::MotionBound(const RobotModel &robot)
     {
-        /** \brief The largest |value| joint \e j can take (a prismatic joint's reach along its axis). */
-        double largestValue(const UrdfRobot &robot, const UrdfJoint &j)
-        {
-            const UrdfJoint &source = j.mimics != RobotModel::NONE ? robot.joints()[j.mimics] : j;
-            const double lo = j.multiplier * source.lower + j.offset, hi = j.multiplier * source.upper + j.offset;
-            return std::max(std::abs(lo), std::abs(hi));
-        }
-    }  // namespace
-
-    MotionBound::MotionBound(const UrdfRobot &robot)
-    {
-        if (robot.floatingBase())
-            throw Exception("MotionBound", "a floating base is not bounded (fixed-base robots only)");
-        continuous_.assign(robot.dimension(), false);
-        for (const UrdfJoint &j : robot.joints())
-            if (j.variable != RobotModel::NONE && j.type == JointType::CONTINUOUS)
-                continuous_[j.variable] = true;
-        // The joint whose child each frame is.
-        std::vector<std::size_t> jointOf(robot.frames().size(), RobotModel::NONE);
-        for (std::size_t k = 0; k < robot.joints().size(); ++k)
-            jointOf[robot.joints()[k].child] = k;
+        std::vector<FrameMotion> motions;
+        for (std::size_t f = 0; f < robot.frames().size(); ++f)
+            motions.push_back(robot.frameMotion(f));
         for (const RobotLink &link : robot.links())
         {
-            double reach = 0.0;  // from the current joint's origin to any point of the link
+            double reach = 0.0;  // from the current frame's origin to any point of the link
             for (const Eigen::Vector3d &v : link.body->surface().vertices)
                 reach = std::max(reach, (link.X_FL * v).norm());
             std::vector<Term> terms;
             std::vector<std::size_t> chain;
-            for (std::size_t f = link.frame; f != RobotModel::NONE; f = robot.frames()[f].parent)
-                chain.push_back(f);
-            for (std::size_t f = link.frame, step = 0; jointOf[f] != RobotModel::NONE;
-                 f = robot.frames()[f].parent, ++step)
+            for (std::size_t f = link.frame, step = 0; f != RobotModel::NONE; f = robot.frames()[f].parent, ++step)
             {
-                const UrdfJoint &j = robot.joints()[jointOf[f]];
-                if (j.type != JointType::FIXED)
-                {
-                    const bool mimic = j.mimics != RobotModel::NONE;
-                    const std::size_t variable = mimic ? robot.joints()[j.mimics].variable : j.variable;
-                    const double factor = (j.type == JointType::PRISMATIC ? 1.0 : reach) * std::abs(j.multiplier);
-                    terms.push_back({variable, factor, continuous_[variable], step});
-                }
-                // The child frame's origin lies on the joint's axis (a rotation) or moves along it (a slide):
-                // up to the joint frame, then up to the parent frame.
-                if (j.type == JointType::PRISMATIC)
-                    reach += largestValue(robot, j);
-                reach += j.origin.translation().norm();
+                chain.push_back(f);
+                if (motions[f].kind != FrameMotion::Kind::FIXED && !std::isfinite(reach))
+                    throw Exception("MotionBound", "frame '" + robot.frames()[f].name +
+                                                       "' moves a frame that moves free (no bound on its reach)");
+                addTerms(motions[f], step, reach, terms);
+                // Up to the parent frame: a rotation keeps the distance from the frame's origin, the frame's own
+                // origin lies within its reach of the parent's.
+                reach += motions[f].reach;
             }
             terms_.push_back(terms);
             chains_.push_back(chain);
         }
     }
 
+    void MotionBound::addTerms(const FrameMotion &m, std::size_t step, double reach, std::vector<Term> &terms)
+    {
+        switch (m.kind)
+        {
+            case FrameMotion::Kind::FIXED:
+                break;
+            case FrameMotion::Kind::ROTATION:
+                terms.push_back({m.angle ? Measure::ARC : Measure::SCALAR, m.variable, reach * m.scale, step});
+                break;
+            case FrameMotion::Kind::TRANSLATION:
+                terms.push_back({Measure::SCALAR, m.variable, m.scale, step});
+                break;
+            case FrameMotion::Kind::SE2:
+                terms.push_back({Measure::PLANE_MOVE, m.variable, 1.0, step});
+                terms.push_back({Measure::PLANE_TURN, m.variable + 2, reach, step});
+                break;
+            case FrameMotion::Kind::SE3:
+                terms.push_back({Measure::SPACE_MOVE, m.variable, 1.0, step});
+                terms.push_back({Measure::SPACE_TURN, m.variable + 3, reach, step});
+                break;
+        }
+    }
+
     double MotionBound::termMove(const Term &t, const std::vector<double> &a, const std::vector<double> &b)
     {
-        double change = std::abs(b[t.variable] - a[t.variable]);
-        if (t.angle)
-            change = std::min(change, std::abs(2.0 * M_PI - change));
+        const std::size_t v = t.variable;
+        double change = 0.0;
+        switch (t.measure)
+        {
+            case Measure::SCALAR:
+                change = std::abs(b[v] - a[v]);
+                break;
+            case Measure::ARC:
+            case Measure::PLANE_TURN:
+                change = std::abs(b[v] - a[v]);
+                change = std::min(change, std::abs(2.0 * M_PI - change));
+                break;
+            case Measure::PLANE_MOVE:
+                change = std::hypot(b[v] - a[v], b[v + 1] - a[v + 1]);
+                break;
+            case Measure::SPACE_MOVE:
+                change = (Eigen::Vector3d(b[v], b[v + 1], b[v + 2]) - Eigen::Vector3d(a[v], a[v + 1], a[v + 2])).norm();
+                break;
+            case Measure::SPACE_TURN:
+            {
+                // The relative rotation's angle, 2 atan2(|vec|, |w|): the shorter way, accurate for small angles.
+                const Eigen::Quaterniond qa = Eigen::Quaterniond(a[v + 3], a[v], a[v + 1], a[v + 2]).normalized();
+                const Eigen::Quaterniond qb = Eigen::Quaterniond(b[v + 3], b[v], b[v + 1], b[v + 2]).normalized();
+                const Eigen::Quaterniond r = qa.conjugate() * qb;
+                change = 2.0 * std::atan2(r.vec().norm(), std::abs(r.w()));
+                break;
+            }
+        }
         return t.factor * change;
     }
 
     double MotionBound::pairDisplacement(std::size_t first, std::size_t second, const std::vector<double> &a,
                                          const std::vector<double> &b) const
     {
-        // The nearest common ancestor: its place on each link's way up (the root, at worst, is on both).
+        // The nearest common ancestor: its place on each link's way up (past the end: none, two separate roots).
         const std::vector<std::size_t> &up1 = chains_[first], &up2 = chains_[second];
         std::size_t at1 = up1.size(), at2 = up2.size();
         for (std::size_t i = 0; i < up1.size() && at1 == up1.size(); ++i)

@@ -27,4 +27,9 @@ namespace meshgap
         for (std::size_t i = 0; i < spaces_.size(); ++i)
             frames[i] = rigidPose(spaces_[i], state + offsets_[i]);
     }
+
+    FrameMotion MultiBodyRobot::frameMotion(std::size_t frame) const
+    {
+        return rigidMotion(spaces_[frame], offsets_[frame]);
+    }
 }  // namespace meshgap

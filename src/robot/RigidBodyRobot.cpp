@@ -1,5 +1,8 @@
 #include "meshgap/robot/RigidBodyRobot.h"
 
+#include <cmath>
+#include <limits>
+
 namespace meshgap
 {
     std::size_t rigidSpaceDimension(RigidSpace space)
@@ -12,6 +15,15 @@ namespace meshgap
         return space == RigidSpace::SE2 ? poseFromSE2(state) : poseFromSE3(state);
     }
 
+    FrameMotion rigidMotion(RigidSpace space, std::size_t variable)
+    {
+        FrameMotion m;
+        m.kind = space == RigidSpace::SE2 ? FrameMotion::Kind::SE2 : FrameMotion::Kind::SE3;
+        m.variable = variable;
+        m.reach = std::numeric_limits<double>::infinity();
+        return m;
+    }
+
     RigidBodyRobot::RigidBodyRobot(BodyConstPtr body, RigidSpace space, const std::string &name) : space_(space)
     {
         where_ = "robot '" + name + "'";
@@ -22,5 +34,10 @@ namespace meshgap
     void RigidBodyRobot::computeFrames(const double *state, Eigen::Isometry3d *frames) const
     {
         frames[0] = rigidPose(space_, state);
+    }
+
+    FrameMotion RigidBodyRobot::frameMotion(std::size_t /*frame*/) const
+    {
+        return rigidMotion(space_, 0);
     }
 }  // namespace meshgap

@@ -546,4 +546,37 @@ namespace meshgap
             frames[j.child] = X;
         }
     }
+
+    FrameMotion UrdfRobot::frameMotion(std::size_t frame) const
+    {
+        FrameMotion m;
+        if (frame == 0)  // the root
+        {
+            if (floatingBase_)
+            {
+                m.kind = FrameMotion::Kind::SE3;
+                m.variable = 0;
+                m.reach = std::numeric_limits<double>::infinity();
+            }
+            return m;
+        }
+        const auto at = std::find_if(joints_.begin(), joints_.end(), [&](const UrdfJoint &j) { return j.child == frame; });
+        if (at == joints_.end())
+            throw Exception(where_, "frame " + std::to_string(frame) + " has no joint");
+        const UrdfJoint &j = *at;
+        m.reach = j.origin.translation().norm();
+        if (j.type == JointType::FIXED)
+            return m;
+        const UrdfJoint &source = j.mimics != NONE ? joints_[j.mimics] : j;
+        m.kind = j.type == JointType::PRISMATIC ? FrameMotion::Kind::TRANSLATION : FrameMotion::Kind::ROTATION;
+        m.variable = source.variable;
+        m.scale = std::abs(j.multiplier);
+        m.angle = source.type == JointType::CONTINUOUS;
+        if (j.type == JointType::PRISMATIC)
+        {
+            const double lo = j.multiplier * source.lower + j.offset, hi = j.multiplier * source.upper + j.offset;
+            m.reach += std::max(std::abs(lo), std::abs(hi));
+        }
+        return m;
+    }
 }  // namespace meshgap

@@ -114,6 +114,8 @@ TEST_F(RobotCli, PlanWritesThePathInTheProblemsStateNumbers)
         "meshgap_plan", "--cfg " + MAPS + "/swap_se2/swap_se2.cfg --seed 3 --time 20 -q --out " + path, 120);
     ASSERT_EQ(r.status, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("dense path free yes"), std::string::npos) << r.out;
+    // Two bodies moving at once: every motion certified by default (no resolution lets them pass through).
+    EXPECT_NE(r.out.find("motion certified"), std::string::npos) << r.out;
     const auto rows = readRows(path);
     ASSERT_GE(rows.size(), 2u);
     for (const auto &row : rows)

@@ -47,9 +47,9 @@ def test_robot_benchmark_bad_checker(files):  # noqa: F811
     assert message == "--checker: unknown checker 'fast'; valid names: certified, discrete, fcl", message
 
 
-def test_robot_benchmark_bodies_without_certified_motions(tmp_path):
-    """Several rigid bodies (maps/swap_se2): the certified motion validator bounds fixed-base URDF chains only, so the
-    default grid is discrete and fcl, and asking for certified names the valid checkers."""
+def test_robot_benchmark_bodies_with_certified_motions(tmp_path):
+    """Several rigid bodies (maps/swap_se2): the certified motion validator bounds every kind of robot, so the
+    default grid has it, and its run is solved."""
     from conftest import MAPS
     cfg = str(MAPS / "swap_se2" / "swap_se2.cfg")
     out = tmp_path / "logs"
@@ -58,8 +58,7 @@ def test_robot_benchmark_bodies_without_certified_motions(tmp_path):
                          timeout=600)
     assert run.returncode == 0, run.stderr
     assert sorted(p.name for p in out.iterdir()) == ["swap_se2.RRTConnect.fcl.log",
+                                                     "swap_se2.RRTConnect.meshgap-certified.log",
                                                      "swap_se2.RRTConnect.meshgap-discrete.log"]
     for log in out.iterdir():
         assert log_runs(log)[0]["solved BOOLEAN"] == "1"
-    message = cli_error([executable("benchmark"), "--cfg", cfg, "--planner", "rrtconnect", "--checker", "certified"])
-    assert message == "--checker: unknown checker 'certified'; valid names: discrete, fcl", message

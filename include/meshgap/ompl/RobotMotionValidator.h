@@ -11,11 +11,14 @@ namespace meshgap
     /**
        @anchor mgRobotMotionValidator
        @par Short description
-       A certified motion validator for fixed-base URDF robots in a space made by robotStateSpace(): a motion is
-       valid when it is proven free. Each pair's signed distance is 1-Lipschitz in the displacement of its bodies,
-       and MotionBound bounds that displacement along the motion by lambda = sum_j |dq_j| r_j, linear in the joint
-       steps (for two links, how far either moves in the frame of their nearest common ancestor,
-       MotionBound::pairDisplacement(); a link's own bound for a link against the obstacles). So on a piece
+       A certified motion validator for robots of every kind (URDF trees with a fixed or floating base, one or
+       several rigid bodies in SE(2) or SE(3)) in a space made by robotStateSpace(): a motion is valid when it is
+       proven free. Each pair's signed distance is 1-Lipschitz in the displacement of its bodies, and MotionBound
+       bounds that displacement along the motion by lambda, the sum of each moving frame's step times its lever
+       (|dq_j| r_j for a joint, |dp| + theta r for a free body), which grows linearly along OMPL's interpolation
+       (for two links, how far either moves in the frame of their nearest common ancestor,
+       MotionBound::pairDisplacement(), so both bodies' bounds added for two bodies of several; a link's own bound
+       for a link against the obstacles). So on a piece
        [t0, t1] of the motion every state is within (t1 - t0) lambda / 2 of the piece's middle state, and a pair
        that is more than that apart at the middle (RobotScene::pairApart(), a bounded question: nothing beyond the
        margin is looked at) is free on the whole piece. Pieces are taken breadth first (halves of halves, as OMPL's
@@ -31,7 +34,7 @@ namespace meshgap
     {
     public:
         RobotMotionValidator(const ompl::base::SpaceInformationPtr &si, RobotSceneConstPtr scene,
-                             const UrdfRobot &robot);
+                             const RobotModel &robot);
 
         bool checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const override;
         /** \brief As checkMotion(s1, s2); on failure \e lastValid holds s1 and fraction 0 (no partial motion is

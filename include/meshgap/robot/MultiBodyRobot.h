@@ -30,6 +30,8 @@ namespace meshgap
         /** \brief Where part \e i's numbers start in a state. */
         std::size_t offset(std::size_t i) const { return offsets_[i]; }
         RigidSpace space(std::size_t i) const { return spaces_[i]; }
+        /** \brief Body \e frame's SE2 or SE3, from offset(frame) on. */
+        FrameMotion frameMotion(std::size_t frame) const override;
 
     protected:
         void computeFrames(const double *state, Eigen::Isometry3d *frames) const override;

@@ -19,6 +19,9 @@ namespace meshgap
     /** \brief Numbers in a state of \e space (3 or 7). */
     std::size_t rigidSpaceDimension(RigidSpace space);
 
+    /** \brief How a body free in \e space with its pose at state number \e variable moves: SE2 or SE3. */
+    FrameMotion rigidMotion(RigidSpace space, std::size_t variable);
+
     /** \brief The pose a state of \e space gives (poseFromSE2(), poseFromSE3()). */
     Eigen::Isometry3d rigidPose(RigidSpace space, const double *state);
 
@@ -30,6 +33,8 @@ namespace meshgap
         RigidBodyRobot(BodyConstPtr body, RigidSpace space, const std::string &name = "robot");
 
         RigidSpace space() const { return space_; }
+        /** \brief SE2 or SE3 from state number 0. */
+        FrameMotion frameMotion(std::size_t frame) const override;
 
     protected:
         void computeFrames(const double *state, Eigen::Isometry3d *frames) const override;

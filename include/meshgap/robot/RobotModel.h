@@ -35,6 +35,35 @@ namespace meshgap
         bool payload;           ///< attached with RobotModel::attach()
     };
 
+    /** \brief How a frame moves relative to its parent frame (the world, for a root) along a straight motion
+        between two states, as OMPL's interpolation moves it: what bounds the displacement of the points fixed to
+        it (MotionBound). */
+    struct FrameMotion
+    {
+        enum class Kind
+        {
+            FIXED,        ///< not at all
+            ROTATION,     ///< about an axis through the frame's origin, by scale times the state number's change
+            TRANSLATION,  ///< along a unit axis, by scale times the state number's change
+            SE2,          ///< free in the plane: "x y theta" from \e variable on, x and y linear, theta along the
+                          ///< shorter arc
+            SE3           ///< free: "x y z qx qy qz qw" from \e variable on, the position linear, the rotation along
+                          ///< the shorter great arc (slerp)
+        };
+        Kind kind{Kind::FIXED};
+        /** \brief The state number that drives it (the first of an SE(2) or SE(3) pose). */
+        std::size_t variable{std::numeric_limits<std::size_t>::max()};
+        /** \brief How much the joint moves per unit change of the state number, at most (a mimic joint's
+            |multiplier|; 1 otherwise). */
+        double scale{1.0};
+        /** \brief ROTATION by an unbounded angle (a continuous joint, or one mimicking it): the state number moves
+            along the shorter arc. */
+        bool angle{false};
+        /** \brief The farthest the frame's origin gets from its parent frame's origin, over every state (infinite
+            for SE2 and SE3). */
+        double reach{0.0};
+    };
+
     /** \brief Two links a query checks against each other (first < second, indices in RobotModel::links()). */
     using LinkPair = std::pair<std::size_t, std::size_t>;
 
@@ -97,6 +126,9 @@ namespace meshgap
         bool isAllowed(std::size_t a, std::size_t b) const;
         /** \brief The link pairs checked against each other: every pair not allowed, in increasing order. */
         std::vector<LinkPair> selfPairs() const;
+
+        /** \brief How frame \e frame (an index in frames()) moves relative to its parent as the state changes. */
+        virtual FrameMotion frameMotion(std::size_t frame) const = 0;
 
         /** \brief The link of frame \e frame or, when that frame has none, of its nearest ancestor with one (NONE
             if none has): what a body fixed to that frame is adjacent to. */

@@ -84,6 +84,12 @@ namespace meshgap
         /** \brief The URDF's robot name. */
         const std::string &name() const { return name_; }
 
+        /** \brief The root: SE3 from state number 0 with a floating base, else fixed. Any other frame: its joint's
+            motion (a mimic joint driven by its source's state number, |multiplier| times as far), its reach the
+            joint origin's distance from the parent frame plus, for a prismatic joint, the largest |value| its
+            limits allow. */
+        FrameMotion frameMotion(std::size_t frame) const override;
+
     protected:
         void computeFrames(const double *state, Eigen::Isometry3d *frames) const override;
         /** \brief Every movable joint's value within its limits (to 1e-9 of the larger of 1 and the limit: the
