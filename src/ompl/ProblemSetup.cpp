@@ -50,6 +50,10 @@ namespace meshgap
             throw Exception(config.file, "no volume (volume.min.* and volume.max.*): the planner needs bounds");
         if (!config.goal)
             throw Exception(config.file, "no goal (goal.x, goal.y" + std::string(config.planar ? ")" : ", goal.z)"));
+        if (!config.control.empty())
+            throw Exception(config.file, "control = " + config.control + ": a control problem (OMPL.app's " +
+                                             config.control + " model) is not planned by meshgap; its geometry "
+                                             "answers distance queries (meshgap_distance, Python's Scene)");
         OmplProblem problem;
         problem.scene = Scene::fromMeshes(loadRobotMesh(config.robot, config.planar),
                                           loadMesh(config.world), bodies);

@@ -1,5 +1,6 @@
 #include "meshgap/scene/ProblemConfig.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -7,6 +8,7 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/InputFile.h"
+#include "meshgap/Text.h"
 #include "meshgap/scene/ConfigFile.h"
 #include "meshgap/scene/Pose.h"
 
@@ -19,7 +21,7 @@ namespace meshgap
         bool singleBodyKey(const std::string &key)
         {
             static const std::set<std::string> known = {
-                "name",         "robot",        "world",        "objective",    "objective.threshold", "sampler",
+                "name",         "robot",        "world",        "objective",    "objective.threshold", "sampler", "control",
                 "start.x",      "start.y",      "start.z",      "start.theta",  "start.axis.x",        "start.axis.y",
                 "start.axis.z", "goal.x",       "goal.y",       "goal.z",       "goal.theta",          "goal.axis.x",
                 "goal.axis.y",  "goal.axis.z",  "volume.min.x", "volume.min.y", "volume.min.z",        "volume.max.x",
@@ -117,6 +119,12 @@ namespace meshgap
         }
     }  // namespace
 
+    const std::vector<std::string> &controlModelNames()
+    {
+        static const std::vector<std::string> names = {"kinematic_car", "dynamic_car", "blimp", "quadrotor"};
+        return names;
+    }
+
     ProblemConfig readProblemConfig(const std::string &path)
     {
         namespace fs = std::filesystem;
@@ -150,6 +158,14 @@ namespace meshgap
             config.goal = poseOf(problem, "goal", config.planar);
         readVolume(problem, path, config);
         checkInsideVolume(problem, config);
+        if (problem.has("control"))
+        {
+            config.control = problem.value("control");
+            const std::vector<std::string> &models = controlModelNames();
+            if (std::find(models.begin(), models.end(), config.control) == models.end())
+                throw Exception(problem.where("control"), "unknown control model '" + config.control + "' (" +
+                                                              joinNames(models) + ")");
+        }
         if (problem.has("objective"))
             config.objective = problem.value("objective");
         if (problem.has("objective.threshold"))

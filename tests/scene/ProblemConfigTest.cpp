@@ -162,7 +162,24 @@ TEST(ProblemConfig, ReadsEveryOmplAppProblem)
             EXPECT_TRUE(c.volume.has_value()) << entry.path();
             EXPECT_TRUE(c.goal.has_value()) << entry.path();
             EXPECT_FALSE(c.planners.empty()) << entry.path();
+            // OMPL.app's control problems name their model; its geometric ones do not.
+            EXPECT_EQ(c.control, entry.path().stem() == "BugTrap_dcar" ? "dynamic_car" : "") << entry.path();
             ++read;
         }
     EXPECT_GE(read, 5);
+}
+
+// OMPL.app's "control" key: a known model is kept, an unknown one named with its line and the known ones.
+TEST_F(ProblemConfigTest, ControlModelIsReadAndAnUnknownOneRefused)
+{
+    std::string text = GOOD;
+    text.insert(text.find("start.x"), "control = kinematic_car\n");
+    EXPECT_EQ(readProblemConfig(write(text)).control, "kinematic_car");
+    EXPECT_EQ(readProblemConfig(write(GOOD)).control, "");
+    std::string bad = GOOD;
+    bad.insert(bad.find("start.x"), "control = hovercraft\n");
+    const std::string message = error(bad);
+    EXPECT_NE(message.find("p.cfg:5"), std::string::npos) << message;
+    EXPECT_NE(message.find("unknown control model 'hovercraft'"), std::string::npos) << message;
+    EXPECT_NE(message.find("dynamic_car"), std::string::npos) << message;
 }

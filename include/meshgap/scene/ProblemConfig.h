@@ -30,6 +30,9 @@ namespace meshgap
         std::string objective;  ///< e.g. "length", "max_min_clearance"; empty if absent
         std::optional<double> objectiveThreshold;
         std::string sampler;
+        /** \brief OMPL.app's control model (its "control" key: kinematic_car, dynamic_car, blimp, quadrotor); empty
+            for a geometric problem. */
+        std::string control;
         std::vector<std::pair<std::string, std::string>> benchmark;  ///< [benchmark] entries
         std::vector<std::pair<std::string, std::string>> planners;   ///< [planner] entries
     };
@@ -38,8 +41,12 @@ namespace meshgap
         [problem] key, a value that is not a number where one is needed, a zero rotation axis, a 3D key (goal.z,
         *.axis.*, volume.*.z) in a planar file, and "file" for a missing required key (robot, world, start.x/y, and
         start.z unless planar) or a mesh file that does not exist, and "file:line" for a key of a robot problem
-        (robotProblemKey(): robot.urdf, start.joints, robot.1, ...; those files are read by readRobotProblem()). */
+        (robotProblemKey(): robot.urdf, start.joints, robot.1, ...; those files are read by readRobotProblem()), and a
+        "control" model other than controlModelNames(). */
     ProblemConfig readProblemConfig(const std::string &path);
+
+    /** \brief The control models OMPL.app's "control" key names: kinematic_car, dynamic_car, blimp, quadrotor. */
+    const std::vector<std::string> &controlModelNames();
 }  // namespace meshgap
 
 #endif
