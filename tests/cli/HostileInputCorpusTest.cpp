@@ -39,6 +39,7 @@ namespace
         {"box_two_numbers.cfg", {"box_two_numbers.urdf:8", "link 'b'", "size needs 3 numbers, found 2"}},
         {"capsule.cfg", {"capsule.urdf:8", "<capsule", "unknown shape"}},
         {"mesh_no_filename.cfg", {"mesh_no_filename.urdf:8", "<mesh>", "without a filename"}},
+        {"mesh_is_folder.cfg", {"mesh_is_folder.urdf", "link 'b'", "is a folder, not a file"}},
         {"nan_origin.cfg", {"nan_origin.urdf:8", "<origin", "'nan', not a finite number"}},
         {"nan_size.cfg", {"nan_size.urdf:8", "<box", "'nan', not a finite number"}},
         {"nan_scale.cfg", {"nan_scale.urdf:8", "scale has 'nan'"}},
@@ -47,6 +48,8 @@ namespace
         {"huge_start.cfg", {"huge_start.cfg:5", "start.x", "beyond 1e12"}},
         {"folder_mesh.cfg", {"folder_mesh.cfg:3", "is a folder"}},
         {"devnull_mesh.cfg", {"devnull_mesh.cfg:4", "/dev/null", "is not a regular file"}},
+        {"robot_devnull_world.cfg", {"robot_devnull_world.cfg:4", "/dev/null", "is not a regular file"}},
+        {"robot_folder_payload.cfg", {"robot_folder_payload.cfg:5", "attach", "is a folder"}},
     };
 
     /** \brief Files of the corpus that are no entry: what the entries use, and the valid problem the hostile states
