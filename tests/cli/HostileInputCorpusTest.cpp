@@ -55,7 +55,8 @@ namespace
     /** \brief Files of the corpus that are no entry: what the entries use, and the valid problem the hostile states
         and paths are given to. */
     const std::set<std::string> SUPPORT = {"far_block.obj", "valid_arm.cfg", "valid_arm.urdf",
-                                           "joint_outside_limits.path", "colliding_arm.cfg", "valid_arm.path"};
+                                           "joint_outside_limits.path", "colliding_arm.cfg", "valid_arm.path",
+                                           "huge_time_limit.cfg"};
 
     /** \brief The command lines that read a problem file \e cfg. */
     std::vector<std::pair<std::string, std::string>> commandsFor(const std::string &cfg)
@@ -155,6 +156,8 @@ TEST(HostileInputCorpus, HostileCommandLinesGetOneErrorEach)
         {"meshgap_benchmark", arm + " --planner rrtconnect --runs 1 --time 1e30 --out " + logs,
          {"--time", "at most 1e6 seconds"}},
         {"meshgap_plan", arm + " --time 1e30", {"--time", "at most 1e6 seconds"}},
+        {"meshgap_benchmark", "--cfg '" + HOSTILE + "/huge_time_limit.cfg' --planner rrtconnect --out " + logs,
+         {"huge_time_limit.cfg", "[benchmark] time_limit", "at most 1e6 seconds"}},
     };
     for (const auto &[executable, args, mentions] : lines)
         expectOneClearError(executable + " " + args, meshgap::test::runExecutable(executable, args, 120), mentions);
