@@ -20,6 +20,7 @@
 
 #include "CliRun.h"
 #include "meshgap/Exception.h"
+#include "meshgap/robot/RobotBatch.h"
 #include "meshgap/robot/RobotProblem.h"
 #include "meshgap/robot/RobotScene.h"
 
@@ -340,5 +341,32 @@ TEST(HostileInputCorpus, RobotWithoutGeometryIsRefusedByTheLibrary)
     catch (const meshgap::Exception &e)
     {
         EXPECT_NE(std::string(e.what()).find("no collision geometry"), std::string::npos) << e.what();
+    }
+}
+
+// A batch names the row of the state it refuses (its row in the whole batch, whatever the blocks and threads).
+TEST(HostileInputCorpus, BatchNamesTheRowOfAStateOutsideTheLimits)
+{
+    const meshgap::RobotProblem problem = meshgap::readRobotProblem(HOSTILE + "/valid_arm.cfg");
+    const meshgap::RobotScene scene(problem.robot, problem.obstacles);
+    std::vector<double> states(1000, 0.25);
+    states[700] = 3.0;
+    std::vector<meshgap::RobotResult> results;
+    std::vector<char> collides;
+    for (unsigned threads : {1u, 2u})
+    {
+        try
+        {
+            meshgap::robotDistanceBatch(scene, states.data(), states.size(), meshgap::RobotRequest(), threads,
+                                        results);
+            ADD_FAILURE() << "a state outside the limits was answered";
+        }
+        catch (const meshgap::Exception &e)
+        {
+            EXPECT_EQ(std::string(e.what()).rfind("states[700]: ", 0), 0u) << e.what();
+            EXPECT_NE(std::string(e.what()).find("joint 'j' = 3 is outside its limits"), std::string::npos);
+        }
+        EXPECT_THROW(meshgap::robotInCollisionBatch(scene, states.data(), states.size(), true, threads, collides),
+                     meshgap::Exception);
     }
 }
