@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "meshgap/Exception.h"
+#include "meshgap/InputFile.h"
 
 namespace fs = std::filesystem;
 
@@ -86,8 +87,16 @@ namespace meshgap
         else
             file = fs::path(uri).is_absolute() ? fs::path(uri) : fs::path(baseFolder) / uri;
         std::error_code ignored;
-        if (!fs::is_regular_file(file, ignored))
+        if (!fs::exists(file, ignored))
             throw Exception(uri, "no such file: " + file.string());
+        try
+        {
+            checkInputFile(file.string());  // a folder, a FIFO or a device says what it is
+        }
+        catch (const Exception &e)
+        {
+            throw Exception(uri, e.what());
+        }
         return file.string();
     }
 }  // namespace meshgap

@@ -2,10 +2,29 @@
 
 #include <algorithm>
 
+#include "meshgap/Exception.h"
 #include "meshgap/scene/BatchBlocks.h"
 
 namespace meshgap
 {
+    namespace
+    {
+        /** \brief Run \e f on state \e i; a meshgap::Exception it throws (a state outside the joint limits, say)
+            is rethrown naming the state's row in the batch. */
+        template <typename F>
+        void atRow(std::size_t i, F &&f)
+        {
+            try
+            {
+                f();
+            }
+            catch (const Exception &e)
+            {
+                throw Exception("states[" + std::to_string(i) + "]", e.what());
+            }
+        }
+    }  // namespace
+
     void robotDistanceBatch(const RobotScene &scene, const double *states, std::size_t count,
                             const RobotRequest &request, unsigned threads, std::vector<RobotResult> &results)
     {
@@ -19,7 +38,7 @@ namespace meshgap
                               start.reset();  // ties between pairs aside, answers never depend on it; still afresh
                               for (std::size_t i = b * SCENE_BATCH_BLOCK;
                                    i < std::min(count, (b + 1) * SCENE_BATCH_BLOCK); ++i)
-                                  scene.distance(states + i * dof, dof, request, start, results[i]);
+                                  atRow(i, [&] { scene.distance(states + i * dof, dof, request, start, results[i]); });
                           });
     }
 
@@ -34,9 +53,12 @@ namespace meshgap
                           {
                               for (std::size_t i = b * SCENE_BATCH_BLOCK;
                                    i < std::min(count, (b + 1) * SCENE_BATCH_BLOCK); ++i)
-                                  results[i] = scene.inCollision(states + i * dof, dof, starts[run], selfCollision) ?
-                                                   1 :
-                                                   0;
+                                  atRow(i,
+                                        [&]
+                                        {
+                                            results[i] =
+                                                scene.inCollision(states + i * dof, dof, starts[run], selfCollision);
+                                        });
                           });
     }
 }  // namespace meshgap

@@ -78,10 +78,10 @@ namespace meshgap
         };
 
         /** \brief The \e count numbers of attribute \e name of \e e ("0.25 0 0.1"), or none when it is absent and
-            not \e required. Each must be a finite number, within MAX_MAGNITUDE unless \e direction (an axis), and
+            not \e required. Each must be a finite number, within MAX_MAGNITUDE unless \e anyMagnitude (an axis), and
             above zero if \e positive. Throws naming the file, line, element and problem. */
         std::vector<double> xmlNumbers(const XmlPlace &place, const tinyxml2::XMLElement *e, const char *name,
-                                       std::size_t count, bool required, bool positive = false, bool direction = false)
+                                       std::size_t count, bool required, bool positive = false, bool anyMagnitude = false)
         {
             const char *text = e->Attribute(name);
             if (!text)
@@ -98,7 +98,7 @@ namespace meshgap
                 double x = 0.0;
                 if (!parseNumber(token, x) || !std::isfinite(x))
                     place.fail(e, std::string(name) + " has '" + token + "', not a finite number");
-                if (!direction && std::abs(x) > MAX_MAGNITUDE)
+                if (!anyMagnitude && std::abs(x) > MAX_MAGNITUDE)
                     place.fail(e, std::string(name) + " has " + token + ", beyond 1e12 in magnitude (the largest "
                                                                          "meshgap's geometry answers reliably)");
                 if (positive && !(x > 0.0))
@@ -152,8 +152,10 @@ namespace meshgap
         }
 
         /** \brief Checks the numbers of a joint element that urdfdom takes without a range: its origin and limits
-            within MAX_MAGNITUDE, its axis finite, its mimic's multiplier and offset finite. */
-        void checkJointNumbers(const tinyxml2::XMLElement *joint, const std::string &path, const std::string &name)
+            within MAX_MAGNITUDE (a continuous joint's limits, which bound nothing, only finite), its axis finite, its
+            mimic's multiplier and offset finite. */
+        void checkJointNumbers(const tinyxml2::XMLElement *joint, const std::string &path, const std::string &name,
+                               const std::string &type)
         {
             const XmlPlace place{path, "joint '" + name + "'"};
             if (const tinyxml2::XMLElement *origin = joint->FirstChildElement("origin"))
@@ -165,8 +167,8 @@ namespace meshgap
                 xmlNumbers(place, axis, "xyz", 3, false, false, true);
             if (const tinyxml2::XMLElement *limit = joint->FirstChildElement("limit"))
             {
-                xmlNumbers(place, limit, "lower", 1, false);
-                xmlNumbers(place, limit, "upper", 1, false);
+                xmlNumbers(place, limit, "lower", 1, false, false, type == "continuous");
+                xmlNumbers(place, limit, "upper", 1, false, false, type == "continuous");
             }
             if (const tinyxml2::XMLElement *mimic = joint->FirstChildElement("mimic"))
             {
@@ -209,7 +211,7 @@ namespace meshgap
                 XmlJoint j{attribute(e, "name", "a name"), attribute(e, "type", "a type"),
                            attribute(e->FirstChildElement("parent"), "link", "a parent link"),
                            attribute(e->FirstChildElement("child"), "link", "a child link"), e->GetLineNum()};
-                checkJointNumbers(e, path, j.name);
+                checkJointNumbers(e, path, j.name, j.type);
                 if (j.type == "floating" || j.type == "planar")
                     throw Exception(where, "joint '" + j.name + "' is of type '" + j.type +
                                                "', which is not supported (revolute, continuous, prismatic, fixed)");

@@ -20,6 +20,7 @@
 
 #include "CliRun.h"
 #include "meshgap/Exception.h"
+#include "meshgap/robot/RobotBatch.h"
 #include "meshgap/robot/RobotProblem.h"
 #include "meshgap/robot/RobotScene.h"
 
@@ -39,6 +40,7 @@ namespace
         {"box_two_numbers.cfg", {"box_two_numbers.urdf:8", "link 'b'", "size needs 3 numbers, found 2"}},
         {"capsule.cfg", {"capsule.urdf:8", "<capsule", "unknown shape"}},
         {"mesh_no_filename.cfg", {"mesh_no_filename.urdf:8", "<mesh>", "without a filename"}},
+        {"mesh_is_folder.cfg", {"mesh_is_folder.urdf", "link 'b'", "is a folder, not a file"}},
         {"nan_origin.cfg", {"nan_origin.urdf:8", "<origin", "'nan', not a finite number"}},
         {"nan_size.cfg", {"nan_size.urdf:8", "<box", "'nan', not a finite number"}},
         {"nan_scale.cfg", {"nan_scale.urdf:8", "scale has 'nan'"}},
@@ -47,12 +49,15 @@ namespace
         {"huge_start.cfg", {"huge_start.cfg:5", "start.x", "beyond 1e12"}},
         {"folder_mesh.cfg", {"folder_mesh.cfg:3", "is a folder"}},
         {"devnull_mesh.cfg", {"devnull_mesh.cfg:4", "/dev/null", "is not a regular file"}},
+        {"robot_devnull_world.cfg", {"robot_devnull_world.cfg:4", "/dev/null", "is not a regular file"}},
+        {"robot_folder_payload.cfg", {"robot_folder_payload.cfg:5", "attach", "is a folder"}},
     };
 
     /** \brief Files of the corpus that are no entry: what the entries use, and the valid problem the hostile states
         and paths are given to. */
     const std::set<std::string> SUPPORT = {"far_block.obj", "valid_arm.cfg", "valid_arm.urdf",
-                                           "joint_outside_limits.path", "colliding_arm.cfg", "valid_arm.path"};
+                                           "joint_outside_limits.path", "colliding_arm.cfg", "valid_arm.path",
+                                           "huge_time_limit.cfg"};
 
     /** \brief The command lines that read a problem file \e cfg. */
     std::vector<std::pair<std::string, std::string>> commandsFor(const std::string &cfg)
@@ -152,6 +157,8 @@ TEST(HostileInputCorpus, HostileCommandLinesGetOneErrorEach)
         {"meshgap_benchmark", arm + " --planner rrtconnect --runs 1 --time 1e30 --out " + logs,
          {"--time", "at most 1e6 seconds"}},
         {"meshgap_plan", arm + " --time 1e30", {"--time", "at most 1e6 seconds"}},
+        {"meshgap_benchmark", "--cfg '" + HOSTILE + "/huge_time_limit.cfg' --planner rrtconnect --out " + logs,
+         {"huge_time_limit.cfg", "[benchmark] time_limit", "at most 1e6 seconds"}},
     };
     for (const auto &[executable, args, mentions] : lines)
         expectOneClearError(executable + " " + args, meshgap::test::runExecutable(executable, args, 120), mentions);
@@ -334,5 +341,32 @@ TEST(HostileInputCorpus, RobotWithoutGeometryIsRefusedByTheLibrary)
     catch (const meshgap::Exception &e)
     {
         EXPECT_NE(std::string(e.what()).find("no collision geometry"), std::string::npos) << e.what();
+    }
+}
+
+// A batch names the row of the state it refuses (its row in the whole batch, whatever the blocks and threads).
+TEST(HostileInputCorpus, BatchNamesTheRowOfAStateOutsideTheLimits)
+{
+    const meshgap::RobotProblem problem = meshgap::readRobotProblem(HOSTILE + "/valid_arm.cfg");
+    const meshgap::RobotScene scene(problem.robot, problem.obstacles);
+    std::vector<double> states(1000, 0.25);
+    states[700] = 3.0;
+    std::vector<meshgap::RobotResult> results;
+    std::vector<char> collides;
+    for (unsigned threads : {1u, 2u})
+    {
+        try
+        {
+            meshgap::robotDistanceBatch(scene, states.data(), states.size(), meshgap::RobotRequest(), threads,
+                                        results);
+            ADD_FAILURE() << "a state outside the limits was answered";
+        }
+        catch (const meshgap::Exception &e)
+        {
+            EXPECT_EQ(std::string(e.what()).rfind("states[700]: ", 0), 0u) << e.what();
+            EXPECT_NE(std::string(e.what()).find("joint 'j' = 3 is outside its limits"), std::string::npos);
+        }
+        EXPECT_THROW(meshgap::robotInCollisionBatch(scene, states.data(), states.size(), true, threads, collides),
+                     meshgap::Exception);
     }
 }

@@ -77,7 +77,10 @@ TEST(ReportCli, PageDataIsTheSceneAndTheExactClearanceAlongThePath)
     const std::string html = (dir / "report.html").string();
     const test::CliRun run = test::runExecutable(
         "meshgap_report", "--cfg " + cfg + " --path " + (dir / "line.path").string() + " --out " + html + " -q");
-    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    // The report is written, and the tool says the path collides: one warning line, exit status 2.
+    ASSERT_EQ(run.status, 2) << run.out << run.err;
+    EXPECT_EQ(test::countLines(run.err, "warning: "), 1) << run.err;
+    EXPECT_NE(run.err.find("the path collides"), std::string::npos) << run.err;
     std::stringstream text;
     text << std::ifstream(html).rdbuf();
     const std::string page = text.str();

@@ -13,8 +13,8 @@ namespace meshgap
         SCENE_BATCH_BLOCK consecutive rows by up to \e threads threads (at least 1; the caller's thread is one),
         each block answered with a RobotWarmStart started afresh at its first state and carried along it (nearby
         states pay less), so every answer depends on its block alone and is the same for any number of threads.
-        An exception thrown by a query (a state with a non-finite number, say) is rethrown here once every thread
-        has stopped. */
+        An exception thrown by a query (a state with a non-finite number or outside a joint's limits, say) is
+        rethrown here once every thread has stopped, a meshgap::Exception naming the row ("states[700]: ..."). */
     void robotDistanceBatch(const RobotScene &scene, const double *states, std::size_t count,
                             const RobotRequest &request, unsigned threads, std::vector<RobotResult> &results);
 
