@@ -56,7 +56,7 @@ int main(int argc, char **argv)
             links.push_back(test::fclModel(link.body->surface()));
         for (const BodyConstPtr &o : scene.obstacles())
             obstacles.push_back(test::fclModel(o->surface()));
-        const auto states = readRobotPathFile(pathFile, p.robot->dimension());
+        const auto states = readRobotPathFile(pathFile, *p.robot);
         const double extent = p.volume ? (p.volume->max() - p.volume->min()).norm() : space->getMaximumExtent();
         ob::State *a = space->allocState(), *b = space->allocState(), *s = space->allocState();
         std::vector<double> q;
