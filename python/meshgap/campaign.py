@@ -40,6 +40,7 @@ else on PATH; problems and the executable must be at the same paths on every wor
 Needs Debian's python3-dask and python3-distributed, and ompl-demos for the database.
 """
 import configparser
+import contextlib
 import glob
 import hashlib
 import math
@@ -53,7 +54,6 @@ import tempfile
 
 CAMPAIGN_KEYS = ("problems", "planners", "checkers", "samplers", "runs", "batch", "time", "memory", "seed", "out",
                  "database", "retries", "param")
-_RUNS_LINE = re.compile(r"^(\d+) runs$", re.MULTILINE)
 
 
 def find_executable(executable=None):
@@ -161,21 +161,66 @@ def grid(problems, planners, checkers=("certified",), samplers=(), runs=10, batc
     return cells
 
 
-def log_runs(path):
-    """The number of runs an OMPL .log holds (its "<N> runs" line), or None when it has none."""
+def _read_log(path):
+    """The text of an OMPL .log (bytes that are not UTF-8 replaced)."""
     with open(path, encoding="utf-8", errors="replace") as f:
-        found = _RUNS_LINE.findall(f.read())
-    return int(found[-1]) if len(found) == 1 else None
+        return f.read()
+
+
+def _planner_runs(text):
+    """The run count of each planner of an OMPL .log's text, in order: per planner, its name, "<K> common
+    properties" and K lines, "<P> properties for each run" and P lines, "<N> runs" and N rows of run data, then (an
+    optimizing planner's) "<Q> progress properties for each run", Q lines, "<M> runs" and M rows of progress data,
+    and "."; None when the text is not of that form."""
+    lines = text.splitlines()
+    count = lambda line, tail: int(line[:-len(tail)]) if re.fullmatch(r"\d+" + re.escape(tail), line) else None
+    start = next((k for k, line in enumerate(lines) if count(line, " planners") is not None), None)
+    if start is None:
+        return None
+    i, runs = start + 1, []
+    try:
+        for _ in range(count(lines[start], " planners")):
+            i += 1  # the planner's name
+            for tail in (" common properties", " properties for each run"):
+                n = count(lines[i], tail)
+                if n is None:
+                    return None
+                i += 1 + n
+            n = count(lines[i], " runs")
+            if n is None:
+                return None
+            runs.append(n)
+            i += 1 + n
+            progress = count(lines[i], " progress properties for each run")
+            if progress is not None:
+                i += 1 + progress
+                m = count(lines[i], " runs")
+                if m is None:
+                    return None
+                i += 1 + m
+            if lines[i] != ".":
+                return None
+            i += 1
+    except IndexError:
+        return None
+    return runs
+
+
+def log_runs(path):
+    """The number of runs an OMPL .log holds (each of its planners' run data; the progress data of an optimizing
+    planner, a second "<N> runs" block, is not counted again), or None when it has none, its planners hold
+    different counts, or it is not of OMPL's form."""
+    runs = _planner_runs(_read_log(path))
+    return runs[0] if runs and len(set(runs)) == 1 else None
 
 
 def _log_settings(path):
     """(runs, seed, seconds per run, MB per run) of an OMPL .log, None for what it lacks."""
-    with open(path, encoding="utf-8", errors="replace") as f:
-        text = f.read()
+    text = _read_log(path)
     found = lambda pattern: re.findall(pattern, text, re.MULTILINE)
-    runs, seed = found(r"^(\d+) runs$"), found(r"^(\d+) is the random seed$")
+    runs, seed = _planner_runs(text), found(r"^(\d+) is the random seed$")
     time, memory = found(r"^(\S+) seconds per run$"), found(r"^(\S+) MB per run$")
-    return (int(runs[0]) if len(runs) == 1 else None, int(seed[0]) if seed else None,
+    return (runs[0] if runs and len(set(runs)) == 1 else None, int(seed[0]) if seed else None,
             float(time[0]) if time else None, float(memory[0]) if memory else None)
 
 
@@ -231,7 +276,13 @@ def run_cell(cell, out, executable, time, memory, params):
     if not os.path.isfile(executable):
         raise FileNotFoundError("%s: no such file on worker %s" % (executable, where))
     shutil.rmtree(folder, ignore_errors=True)
-    os.makedirs(folder)
+    for attempt in range(3):  # another cell may remove an empty OUT/.cells between the two mkdirs of makedirs
+        try:
+            os.makedirs(folder)
+            break
+        except FileNotFoundError:
+            if attempt == 2:
+                raise
     try:
         run = subprocess.run(_arguments(executable, cell, time, memory, params, folder), stdout=subprocess.PIPE,
                              stderr=subprocess.PIPE, preexec_fn=_die_with_parent)
@@ -247,6 +298,8 @@ def run_cell(cell, out, executable, time, memory, params):
         os.replace(logs[0], final)  # the folder is in OUT: the same file system, an atomic rename
     finally:
         shutil.rmtree(folder, ignore_errors=True)
+        with contextlib.suppress(OSError):
+            os.rmdir(os.path.dirname(folder))  # OUT/.cells once no cell runs: none left behind by a failed campaign
     return "done"
 
 
@@ -347,17 +400,29 @@ def run(problems, planners, checkers=("certified",), samplers=(), runs=10, batch
     if check:
         _check(cells, executable, params)
     _check_present(cells, out, float(time), float(memory))
+    created = not os.path.exists(out)
     os.makedirs(out, exist_ok=True)
     todo = [c for c in cells if not os.path.isfile(os.path.join(out, c.name + ".log"))]
-    if todo:
-        futures = client.map(run_cell, todo, out=out, executable=executable, time=float(time),
-                             memory=float(memory), params=params, retries=retries, pure=False,
-                             key=["meshgap-cell-%s-%s" % (c.name, os.urandom(4).hex()) for c in todo])
-        if progress:
-            from distributed import progress as show
-            show(futures)
-        client.gather(futures)
-    shutil.rmtree(os.path.join(out, ".cells"), ignore_errors=True)  # the folders of runs killed with their worker
+    futures = []
+    try:
+        if todo:
+            futures = client.map(run_cell, todo, out=out, executable=executable, time=float(time),
+                                 memory=float(memory), params=params, retries=retries, pure=False,
+                                 key=["meshgap-cell-%s-%s" % (c.name, os.urandom(4).hex()) for c in todo])
+            if progress:
+                from distributed import progress as show
+                show(futures)
+            client.gather(futures)
+    except BaseException:
+        client.cancel(futures)  # the cells not run yet; a cell running finishes (its log is complete or absent)
+        raise
+    finally:
+        # The folders of runs killed with their worker, or of a campaign that failed; an out this call made and
+        # left empty goes too.
+        shutil.rmtree(os.path.join(out, ".cells"), ignore_errors=True)
+        if created:
+            with contextlib.suppress(OSError):
+                os.rmdir(out)
     logs = [os.path.join(out, c.name + ".log") for c in cells]
     missing = [path for path in logs if not os.path.isfile(path)]
     if missing:
