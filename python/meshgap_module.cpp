@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <iomanip>
 #include <limits>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
@@ -98,6 +99,25 @@ namespace
         return py::reinterpret_borrow<py::array_t<double>>(h);
     }
 
+    /** \brief Room for \e rows elements in \e v, or a MemoryError naming \e what and how many \e rows (a broadcast
+        view may name more rows than memory holds). */
+    template <typename T>
+    void reserveRows(std::vector<T> &v, py::ssize_t rows, const std::string &what, const std::string &unit)
+    {
+        try
+        {
+            v.reserve(static_cast<std::size_t>(rows));
+        }
+        catch (const std::exception &)  // std::bad_alloc, or std::length_error past max_size()
+        {
+            std::ostringstream text;
+            text << what << ": cannot allocate " << std::setprecision(3) << double(rows) * double(sizeof(T)) / 1e9
+                 << " GB for " << rows << " " << unit;
+            PyErr_SetString(PyExc_MemoryError, text.str().c_str());
+            throw py::error_already_set();
+        }
+    }
+
     /** \brief A mesh from a file path, or from a (V, F) pair: V an (n, 3) float64 array, F an (m, 3) integer
         array of vertex indices. Cleaned as loadMesh() cleans a file's mesh (welded, degenerate triangles dropped). */
     Mesh meshArg(const py::handle &h, const std::string &what)
@@ -126,6 +146,8 @@ namespace
         const auto F = py::array_t<std::int64_t, py::array::forcecast>(Fa);
         Mesh mesh;
         mesh.source = what;
+        reserveRows(mesh.vertices, V.shape(0), what + " V", "vertices");
+        reserveRows(mesh.triangles, F.shape(0), what + " F", "triangles");
         const auto v = V.unchecked<2>();
         for (py::ssize_t i = 0; i < v.shape(0); ++i)
             mesh.vertices.emplace_back(v(i, 0), v(i, 1), v(i, 2));
@@ -161,7 +183,9 @@ namespace
             throw Exception("poses", "expected an array " + expected + ", got shape " + shapeText(a));
         const auto p = a.unchecked<2>();
         const bool planar = a.shape(1) == 3;
-        std::vector<Eigen::Isometry3d> poses(static_cast<std::size_t>(a.shape(0)));
+        std::vector<Eigen::Isometry3d> poses;
+        reserveRows(poses, a.shape(0), "poses", "poses");
+        poses.resize(static_cast<std::size_t>(a.shape(0)));
         for (py::ssize_t i = 0; i < p.shape(0); ++i)
         {
             const std::string where = "poses[" + std::to_string(i) + "]";
@@ -761,7 +785,9 @@ namespace
         const py::array_t<double> a = doubleArray(h, "states", expected);
         if (a.ndim() != 2 || a.shape(1) != static_cast<py::ssize_t>(dof))
             throw Exception("states", "expected an array " + expected + ", got shape " + shapeText(a));
-        const auto s = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+        // Not ensure(): it returns a null array, the error cleared, when the copy cannot be made (a broadcast view
+        // of many rows); the constructor raises numpy's MemoryError naming the shape.
+        const py::array_t<double, py::array::c_style | py::array::forcecast> s(a);
         const auto v = s.unchecked<2>();
         for (py::ssize_t i = 0; i < v.shape(0); ++i)
             for (py::ssize_t k = 0; k < v.shape(1); ++k)
