@@ -118,36 +118,61 @@ namespace
         }
     }
 
-    /** \brief A mesh from a file path, or from a (V, F) pair: V an (n, 3) float64 array, F an (m, 3) integer
-        array of vertex indices. Cleaned as loadMesh() cleans a file's mesh (welded, degenerate triangles dropped). */
+    /** \brief \e h (a numpy array, or what numpy.asarray takes: nested lists, a trimesh TrackedArray) as an array of
+        shape (rows, 3): of real numbers (any float or integer dtype) for vertices, of integers for \e indices; or one
+        ValueError naming \e what. */
+    py::array meshRowsArg(const py::handle &h, const std::string &what, bool indices)
+    {
+        const char *expected = indices ? "an integer array of shape (m, 3)" : "an array of shape (n, 3)";
+        py::array a;
+        try
+        {
+            a = py::module_::import("numpy").attr("asarray")(h);
+        }
+        catch (py::error_already_set &e)
+        {
+            if (e.matches(PyExc_MemoryError))
+                throw;
+            throw Exception(what, std::string("expected ") + expected + ", got " + typeName(h));
+        }
+        const char kind = a.dtype().kind();
+        if (indices ? kind != 'i' && kind != 'u' : kind != 'f' && kind != 'i' && kind != 'u')
+            throw Exception(what, "dtype " + std::string(py::str(a.dtype())) +
+                                      (indices ? ", expected an integer type" : ", expected real numbers"));
+        if (a.ndim() != 2 || a.shape(1) != 3)
+            throw Exception(what, std::string("expected shape ") + (indices ? "(m, 3)" : "(n, 3)") + ", got " +
+                                      shapeText(a));
+        return a;
+    }
+
+    /** \brief A mesh from a file path, from a (V, F) pair, or from an object with .vertices and .faces (a
+        trimesh.Trimesh): V of shape (n, 3), real numbers of any float or integer dtype (taken as float64), F of
+        shape (m, 3), integers, vertex indices. Cleaned as loadMesh() cleans a file's mesh (welded, degenerate
+        triangles dropped). */
     Mesh meshArg(const py::handle &h, const std::string &what)
     {
-        if (!py::isinstance<py::tuple>(h) && !py::isinstance<py::list>(h))
+        const bool file = py::isinstance<py::str>(h) || py::hasattr(h, "__fspath__");
+        const bool arrays = py::isinstance<py::tuple>(h) || py::isinstance<py::list>(h);
+        const bool meshLike = !file && !arrays && py::hasattr(h, "vertices") && py::hasattr(h, "faces");
+        if (!arrays && !meshLike)
         {
             const std::string path = pathArg(h, what);
             py::gil_scoped_release release;
             return loadMesh(path);
         }
-        const py::sequence seq = py::reinterpret_borrow<py::sequence>(h);
-        if (seq.size() != 2)
-            throw Exception(what, "expected a file path or a (V, F) pair of arrays, got a sequence of " +
-                                      std::to_string(seq.size()));
-        const py::array_t<double> V = doubleArray(seq[0], what + " V", "of shape (n, 3)");
-        if (V.ndim() != 2 || V.shape(1) != 3)
-            throw Exception(what + " V", "expected shape (n, 3), got " + shapeText(V));
-        if (!py::isinstance<py::array>(seq[1]))
-            throw Exception(what + " F", "expected a numpy integer array of shape (m, 3)");
-        const py::array Fa = py::reinterpret_borrow<py::array>(seq[1]);
-        const char kind = Fa.dtype().kind();
-        if (kind != 'i' && kind != 'u')
-            throw Exception(what + " F", "dtype " + std::string(py::str(Fa.dtype())) + ", expected an integer type");
-        if (Fa.ndim() != 2 || Fa.shape(1) != 3)
-            throw Exception(what + " F", "expected shape (m, 3), got " + shapeText(Fa));
+        if (arrays && py::len(h) != 2)
+            throw Exception(what, "expected a file path or a (V, F) pair of arrays (or a mesh with .vertices and "
+                                  ".faces), got a sequence of " + std::to_string(py::len(h)));
+        const py::object Vo = meshLike ? h.attr("vertices") : py::reinterpret_borrow<py::object>(h[py::int_(0)]);
+        const py::object Fo = meshLike ? h.attr("faces") : py::reinterpret_borrow<py::object>(h[py::int_(1)]);
+        const std::string vName = what + (meshLike ? ".vertices" : " V"), fName = what + (meshLike ? ".faces" : " F");
+        const py::array_t<double, py::array::forcecast> V(meshRowsArg(Vo, vName, false));
+        const py::array Fa = meshRowsArg(Fo, fName, true);
         const auto F = py::array_t<std::int64_t, py::array::forcecast>(Fa);
         Mesh mesh;
         mesh.source = what;
-        reserveRows(mesh.vertices, V.shape(0), what + " V", "vertices");
-        reserveRows(mesh.triangles, F.shape(0), what + " F", "triangles");
+        reserveRows(mesh.vertices, V.shape(0), vName, "vertices");
+        reserveRows(mesh.triangles, F.shape(0), fName, "triangles");
         const auto v = V.unchecked<2>();
         for (py::ssize_t i = 0; i < v.shape(0); ++i)
             mesh.vertices.emplace_back(v(i, 0), v(i, 1), v(i, 2));
@@ -158,7 +183,7 @@ namespace
             for (int k = 0; k < 3; ++k)
             {
                 if (f(i, k) < 0 || f(i, k) >= v.shape(0))
-                    throw Exception(what + " F", "row " + std::to_string(i) + ": vertex index " +
+                    throw Exception(fName, "row " + std::to_string(i) + ": vertex index " +
                                                      std::to_string(f(i, k)) + " is out of range [0, " +
                                                      std::to_string(v.shape(0)) + ")");
                 t[k] = static_cast<std::uint32_t>(f(i, k));
@@ -308,6 +333,27 @@ namespace
         for (py::ssize_t i = 0; i < o.shape(0); ++i)
             o(i) = results[static_cast<std::size_t>(i)] != 0;
         return out;
+    }
+
+    /** \brief Scene.bounds: the cfg's volume as bounds per pose number, or None. */
+    py::object sceneBounds(const PyScene &s)
+    {
+        if (!s.config || !s.config->volume)
+            return py::none();
+        const Eigen::AlignedBox3d &v = *s.config->volume;
+        const bool planar = s.config->planar;
+        py::array_t<double> out({py::ssize_t(planar ? 3 : 7), py::ssize_t(2)});
+        for (py::ssize_t k = 0; k < (planar ? 2 : 3); ++k)
+        {
+            out.mutable_at(k, 0) = v.min()[k];
+            out.mutable_at(k, 1) = v.max()[k];
+        }
+        for (py::ssize_t k = planar ? 2 : 3; k < out.shape(0); ++k)
+        {
+            out.mutable_at(k, 0) = planar ? -M_PI : -1.0;
+            out.mutable_at(k, 1) = planar ? M_PI : 1.0;
+        }
+        return std::move(out);
     }
 
     PyScene sceneFromCfg(const py::handle &pathObject)
@@ -469,7 +515,16 @@ namespace
             if (keyword == "mode")  // the old spelling, as meshgap_plan refuses --mode
                 throw Exception("mode", "renamed: use checker='certified' or checker='fast'");
             if (keyword == "params")
-                o.plannerParams = paramTexts(value);
+            {
+                // PLANNER.NAME, as --param spells it (the planner checked as meshgap_plan checks it), or NAME.
+                for (const auto &[name, text] : paramTexts(value))
+                {
+                    if (name.find('.') != std::string::npos)
+                        o.params.push_back(name + "=" + text);
+                    else
+                        o.plannerParams.emplace_back(name, text);
+                }
+            }
             else
                 setKeyword(o, *row, value);
         }
@@ -580,8 +635,8 @@ namespace
                        (row.name == "quiet" ? "; True by default here (False: the progress line and OMPL's messages "
                                               "on stderr)\n" :
                                               "\n");
-        doc += "  params: a dict NAME: VALUE of the planner's parameters (a bool as 1 or 0), as param "
-               "PLANNER.NAME=VALUE\n"
+        doc += "  params: a dict of the planner's parameters, NAME: VALUE or PLANNER.NAME: VALUE (a bool as 1 or 0), "
+               "as param PLANNER.NAME=VALUE\n"
                "The old mode= is refused (checker=).";
         return doc;
     }
@@ -1083,7 +1138,8 @@ PYBIND11_MODULE(_meshgap, m)
 
     py::class_<PyScene>(m, "Scene",
                         "A robot among obstacles. Scene(robot, world): each a mesh file (OBJ, STL, PLY, COLLADA, ...) "
-                        "or a (V, F) pair of numpy arrays (V float64 (n, 3), F integer (m, 3)); the robot in its own "
+                        "or a (V, F) pair of arrays (V (n, 3) real numbers, any float or integer dtype, taken as float64; "
+                        "F (m, 3) integers) or a mesh with .vertices and .faces (trimesh.Trimesh); the robot in its own "
                         "frame, the world split into its connected parts, one obstacle each. Scene.from_cfg(path): "
                         "an OMPL.app problem, the robot centred as OMPL.app does, so a pose is the robot's state (a "
                         "robot problem file, robot.urdf or robot.1 and more bodies, is refused with a ValueError "
@@ -1161,6 +1217,10 @@ PYBIND11_MODULE(_meshgap, m)
         .def_property_readonly("planar",
                                [](const PyScene &s) { return s.config ? s.config->planar : false; },
                                "True for a planar (SE(2)) .cfg problem")
+        .def_property_readonly("bounds", &sceneBounds,
+                               "(7, 2) or (3, 2) lower and upper bound of each pose number (as RobotScene.bounds): "
+                               "x y z from the cfg's volume, -1 1 for qx qy qz qw; planar: x y, and -pi pi for "
+                               "theta. None without a cfg or a volume in it")
         .def_property_readonly("start",
                                [](const PyScene &s) -> py::object {
                                    if (!s.config)

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import meshgap
-from conftest import MAPS, box, merged
+from conftest import MAPS, box, merged, write_obj
 
 ARM = MAPS / "arm_fixture" / "arm_fixture.cfg"
 ROWS = 2 ** 56  # a broadcast view of this many rows cannot be copied (2^61 bytes and more) on any machine
@@ -55,3 +55,73 @@ def test_mesh_arrays_too_large_to_copy_raise_memory_error():
         meshgap.Scene((huge, F), box(1, 1, 1, center=(5, 0, 0)))
     with pytest.raises(MemoryError):
         meshgap.Scene((V, np.broadcast_to(F[0], (ROWS, 3))), box(1, 1, 1, center=(5, 0, 0)))
+
+
+HAND_BOWL = MAPS / "hand_bowl" / "hand_bowl.cfg"
+
+
+def test_plan_params_by_planner_dot_name_as_the_cli():
+    """params takes PLANNER.NAME (meshgap_plan --param's spelling) as it takes NAME: the same run; a parameter of
+    another planner is refused as meshgap_plan refuses it."""
+    run = lambda params, planner="rrtconnect": meshgap.plan(HAND_BOWL, planner=planner, time=5.0, seed=3,
+                                                             params=params)
+    bare, bare_summary = run({"range": 40})
+    dotted, dotted_summary = run({"rrtconnect.range": 40})
+    upper, _ = run({"RRTConnect.range": 40})
+    other, _ = run({"range": 400})
+    assert bare_summary["solved"] and dotted_summary["solved"]
+    np.testing.assert_array_equal(bare, dotted)
+    np.testing.assert_array_equal(bare, upper)
+    assert bare.shape != other.shape or not np.array_equal(bare, other)  # the parameter does change the run
+    with pytest.raises(ValueError, match=r"'rrt.range=40': the planner is rrtconnect, not rrt"):
+        run({"rrt.range": 40})
+    with pytest.raises(ValueError, match=r"nosuch"):
+        run({"rrtconnect.nosuch": 1})
+    _, summary = run({"prm.max_nearest_neighbors": 8}, planner="prm")
+    assert summary["planner"] == "prm"
+
+
+class TrimeshLike:
+    """What trimesh.Trimesh offers the module: .vertices (n, 3) and .faces (m, 3)."""
+
+    def __init__(self, V, F):
+        self.vertices, self.faces = V, F
+
+
+def test_meshes_trimesh_like_float32_and_integer_vertices():
+    robot, world = box(0.5, 0.5, 0.5), merged(box(1, 1, 1, center=(4, 0, 0)), box(1, 2, 1, center=(-5, 1, 0)))
+    poses = np.array([[0, 0, 0, 0, 0, 0, 1], [1.5, 0.5, 0, 0, 0, 0.3826834323650898, 0.9238795325112867],
+                      [-3.2, 0, 0.25, 0, 0, 0, 1]], dtype=np.float64)
+    want = meshgap.Scene(robot, world).distance(poses)["distance"]
+    # Every coordinate of these boxes is exact in float32 and as an integer multiple: the same meshes.
+    forms = [(TrimeshLike(*robot), TrimeshLike(*world)),
+             ((robot[0].astype(np.float32), robot[1].astype(np.int32)), (world[0].astype(np.float32), world[1])),
+             ((robot[0].tolist(), robot[1].tolist()), TrimeshLike(world[0].astype(np.float32),
+                                                                  world[1].astype(np.uint32)))]
+    for r, w in forms:
+        np.testing.assert_array_equal(meshgap.Scene(r, w).distance(poses)["distance"], want)
+    doubled = (2 * robot[0]).astype(np.int64), robot[1]
+    np.testing.assert_array_equal(meshgap.Scene(doubled, world).robot_mesh[0], 2 * robot[0])
+    with pytest.raises(ValueError, match=r"^world.vertices: expected shape \(n, 3\), got \(16, 2\)$"):
+        meshgap.Scene(robot, TrimeshLike(world[0][:, :2], world[1]))
+    with pytest.raises(ValueError, match=r"^robot.faces: dtype float64, expected an integer type$"):
+        meshgap.Scene(TrimeshLike(robot[0], robot[1].astype(np.float64)), world)
+    with pytest.raises(ValueError, match=r"^robot V: dtype <U1, expected real numbers$"):
+        meshgap.Scene((np.full((8, 3), "a"), robot[1]), world)
+    with pytest.raises(ValueError, match=r"^robot.faces: row 0: vertex index -1 is out of range \[0, 8\)$"):
+        meshgap.Scene(TrimeshLike(robot[0], np.where(np.arange(12)[:, None] == 0, -1, robot[1])), world)
+
+
+def test_scene_bounds_are_the_cfg_volume(tmp_path):
+    s = meshgap.Scene.from_cfg(HAND_BOWL)
+    np.testing.assert_array_equal(s.bounds, [[-276, 361], [-276, 276], [-126, 234], [-1, 1], [-1, 1], [-1, 1],
+                                             [-1, 1]])
+    write_obj(tmp_path / "wall.obj", box(0.3, 2, 0.5, (0, 3, 0.5)))
+    write_obj(tmp_path / "bar.obj", box(0.6, 0.2, 0.5))
+    (tmp_path / "planar.cfg").write_text("[problem]\nrobot = bar.obj\nworld = wall.obj\nstart.x = -3\nstart.y = 0.5\n"
+                                         "start.theta = 0\nvolume.min.x = -4\nvolume.min.y = -2\nvolume.max.x = 4\n"
+                                         "volume.max.y = 2\n")
+    planar = meshgap.Scene.from_cfg(tmp_path / "planar.cfg")
+    assert planar.planar
+    np.testing.assert_array_equal(planar.bounds, [[-4, 4], [-2, 2], [-np.pi, np.pi]])
+    assert meshgap.Scene(box(1, 1, 1), box(1, 1, 1, center=(5, 0, 0))).bounds is None

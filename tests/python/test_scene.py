@@ -261,8 +261,8 @@ def test_bad_meshes_are_refused(tmp_path):
     V, F = box(1, 1, 1)
     with pytest.raises(ValueError, match=r"^robot F: row 0: vertex index 8 is out of range \[0, 8\)$"):
         meshgap.Scene((V, F + 8 * (np.arange(12) == 0)[:, None]), (V, F))
-    with pytest.raises(ValueError, match=r"^world V: dtype float32"):
-        meshgap.Scene((V, F), (V.astype(np.float32), F))
+    with pytest.raises(ValueError, match=r"^world V: dtype complex128, expected real numbers$"):
+        meshgap.Scene((V, F), (V.astype(np.complex128), F))
     with pytest.raises(ValueError, match=r"^world F: dtype float64, expected an integer type$"):
         meshgap.Scene((V, F), (V, F.astype(np.float64)))
     with pytest.raises(ValueError, match=r"^robot V: expected shape \(n, 3\), got \(8, 2\)$"):
