@@ -430,6 +430,21 @@ namespace
         return params;
     }
 
+    /** \brief An index (a Python int of any size, or what has __index__) into \e size items, or one ValueError
+        naming \e what, the index and the range. */
+    std::size_t indexArg(const py::handle &h, std::size_t size, const std::string &what)
+    {
+        if (py::isinstance<py::bool_>(h) || !PyIndex_Check(h.ptr()))
+            throw Exception(what, "expected an int index, got " + typeName(h));
+        const py::int_ value = py::reinterpret_steal<py::int_>(PyNumber_Index(h.ptr()));
+        if (!value)
+            throw py::error_already_set();
+        if (value < py::int_(0) || value >= py::int_(size))
+            throw Exception(what, "index " + py::str(py::handle(value)).cast<std::string>() + " is out of range [0, " +
+                                      std::to_string(size) + ")");
+        return value.cast<std::size_t>();
+    }
+
     /** \brief A non-negative integer keyword that fits 32 bits. */
     unsigned countArg(const py::handle &h, const std::string &keyword)
     {
@@ -970,11 +985,9 @@ namespace
                     return i;
             throw Exception("link", "no link named '" + name + "'");
         }
-        const std::int64_t i = h.cast<std::int64_t>();
-        if (i < 0 || i >= std::int64_t(links.size()))
-            throw Exception("link", "index " + std::to_string(i) + " is out of range [0, " +
-                                        std::to_string(links.size()) + ")");
-        return std::size_t(i);
+        if (py::isinstance<py::bool_>(h) || !PyIndex_Check(h.ptr()))
+            throw Exception("link", "expected a link's name (str) or index (int), got " + typeName(h));
+        return indexArg(h, links.size(), "link");
     }
 
     /** \brief Every state number's bounds, (dof, 2): a URDF joint's limits (-inf, inf for a continuous joint), -1, 1
@@ -1056,11 +1069,9 @@ namespace
                  { return meshArrays(s.scene->links()[linkIndexArg(s, link)].body->surface()); },
                  py::arg("link"), "(V, F) of a link's surface (by name or index) in its own frame (link_poses)")
             .def("obstacle_mesh",
-                 [](const PyRobotScene &s, std::size_t i)
+                 [](const PyRobotScene &s, const py::handle &index)
                  {
-                     if (i >= s.scene->obstacles().size())
-                         throw Exception("obstacle_mesh", "index " + std::to_string(i) + " is out of range [0, " +
-                                                              std::to_string(s.scene->obstacles().size()) + ")");
+                     const std::size_t i = indexArg(index, s.scene->obstacles().size(), "obstacle_mesh");
                      return meshArrays(s.scene->obstacles()[i]->surface());
                  },
                  py::arg("index"), "(V, F) of obstacle index's surface, world frame")
@@ -1207,10 +1218,8 @@ PYBIND11_MODULE(_meshgap, m)
         .def_property_readonly("robot_mesh", [](const PyScene &s) { return meshArrays(s.scene->robot().surface()); },
                                "(V, F) of the robot's surface in its own frame")
         .def("obstacle_mesh",
-             [](const PyScene &s, std::size_t i) {
-                 if (i >= s.scene->obstacles().size())
-                     throw Exception("obstacle_mesh", "index " + std::to_string(i) + " is out of range [0, " +
-                                                          std::to_string(s.scene->obstacles().size()) + ")");
+             [](const PyScene &s, const py::handle &index) {
+                 const std::size_t i = indexArg(index, s.scene->obstacles().size(), "obstacle_mesh");
                  return meshArrays(s.scene->obstacles()[i]->surface());
              },
              py::arg("index"), "(V, F) of obstacle index's surface, world frame")

@@ -91,6 +91,16 @@ def _dask():
     return distributed
 
 
+def _cut(text, limit=80):
+    """text for an error message, cut to its first limit characters (an input may be megabytes long)."""
+    return text if len(text) <= limit else text[:limit] + "... (%d characters)" % len(text)
+
+
+def _shown(value):
+    """repr(value) for an error message, cut (_cut())."""
+    return _cut(repr(value))
+
+
 def _names(value, what):
     if value is None:
         return []
@@ -98,7 +108,7 @@ def _names(value, what):
         value = [v for v in re.split(r"[,\n]", value)]
     names = [str(v).strip() for v in value if str(v).strip()]
     if len(set(names)) != len(names):
-        raise ValueError("%s: %r names one twice" % (what, value))
+        raise ValueError("%s: %s names one twice" % (what, _shown(value)))
     return names
 
 
@@ -136,7 +146,7 @@ def grid(problems, planners, checkers=("certified",), samplers=(), runs=10, batc
     samplers = _names(samplers, "samplers") or [""]
     for what, value in (("runs", runs), ("batch", runs if batch is None else batch), ("seed", seed)):
         if isinstance(value, bool) or not isinstance(value, int) or value <= 0:
-            raise ValueError("%s: expected a positive integer, got %r" % (what, value))
+            raise ValueError("%s: expected a positive integer, got %s" % (what, _shown(value)))
     if not problems or not planners or not checkers:
         raise ValueError("a campaign needs problems, planners and checkers (got %d, %d, %d)" % (
             len(problems), len(planners), len(checkers)))
@@ -145,7 +155,7 @@ def grid(problems, planners, checkers=("certified",), samplers=(), runs=10, batc
     for path in problems:
         p = _md.problem(path)  # FileNotFoundError naming the cfg or its mesh
         if p.kind != "cfg":
-            raise ValueError("problems: %r is not a .cfg path" % (path,))
+            raise ValueError("problems: %s is not a .cfg path" % _shown(path))
         stem = _safe(_md._read_cfg(p.files[0]).get("name") or os.path.splitext(os.path.basename(p.files[0]))[0])
         if stems.setdefault(stem, p.files[0]) != p.files[0]:
             raise ValueError("problems: %s and %s are both named %s" % (stems[stem], p.files[0], stem))
@@ -389,8 +399,9 @@ def run(problems, planners, checkers=("certified",), samplers=(), runs=10, batch
     "database"}: ran counts the cells this call ran."""
     cells = grid(problems, planners, checkers, samplers, runs, batch, seed)
     params = [str(p) for p in ([params] if isinstance(params, str) else params)]
-    if not (float(time) > 0 and float(memory) > 0):
-        raise ValueError("time and memory: expected positive numbers, got %r, %r" % (time, memory))
+    if not (0 < float(time) < math.inf and 0 < float(memory) < math.inf):
+        raise ValueError("time and memory: expected positive finite numbers, got %s, %s" % (_shown(time),
+                                                                                          _shown(memory)))
     executable = find_executable(executable)
     _statistics()
     client = _dask().connect(client, timeout) if isinstance(client, str) else _dask()._current_client(client)
@@ -436,19 +447,27 @@ def read_file(path):
     the file and the key."""
     path = os.path.abspath(os.fspath(path))
     if not os.path.isfile(path):
-        raise FileNotFoundError("%s: no such file" % path)
+        raise FileNotFoundError("%s: no such file" % _cut(path, 1000))
     parser = configparser.ConfigParser(inline_comment_prefixes=("#", ";"), interpolation=None)
     try:
         parser.read(path, encoding="utf-8")
+    except UnicodeDecodeError as error:
+        raise ValueError("%s: not a campaign file: not UTF-8 text (byte 0x%02x at offset %d)" % (
+            path, error.object[error.start], error.start)) from None
+    except (configparser.ParsingError, configparser.MissingSectionHeaderError) as error:
+        line, text = (error.lineno, error.line) if isinstance(error, configparser.MissingSectionHeaderError) else \
+            error.errors[0]
+        raise ValueError("%s:%d: not a campaign file: %s" % (path, line, _shown(text.strip() if isinstance(
+            text, str) else text))) from None
     except configparser.Error as error:
-        raise ValueError("%s: not a campaign file: %s" % (path, error)) from None
+        raise ValueError("%s: not a campaign file: %s" % (path, _cut(str(error), 200))) from None
     if not parser.has_section("campaign"):
         raise ValueError("%s: no [campaign] section" % path)
     section = parser["campaign"]
     unknown = [k for k in section if k not in CAMPAIGN_KEYS]
     if unknown:
-        raise ValueError("%s: unknown key '%s' in [campaign]; valid keys: %s" % (path, unknown[0],
-                                                                                ", ".join(CAMPAIGN_KEYS)))
+        raise ValueError("%s: unknown key %s in [campaign]; valid keys: %s" % (path, _shown(unknown[0]),
+                                                                              ", ".join(CAMPAIGN_KEYS)))
     for key in ("problems", "planners"):
         if not section.get(key, "").strip():
             raise ValueError("%s: missing required key '%s' in [campaign]" % (path, key))
@@ -464,7 +483,7 @@ def read_file(path):
             try:
                 kwargs[key] = kind(section[key])
             except ValueError:
-                raise ValueError("%s: %s = %r is not a number" % (path, key, section[key])) from None
+                raise ValueError("%s: %s = %s is not a number" % (path, key, _shown(section[key]))) from None
     if "out" in section:
         kwargs["out"] = os.path.join(folder, section["out"])
     else:
