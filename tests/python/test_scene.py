@@ -144,6 +144,20 @@ def test_fast_mode_is_an_upper_bound_with_exact_verdicts(hand_bowl):
     assert not fast["certified"].any() and exact["certified"].all()
 
 
+def test_fast_mode_without_a_run_to_follow_is_the_exact_query(hand_bowl):
+    """Fast mode never starts a node search from scratch (it costs 10 to 100 times the exact query): with no warm
+    start to carry (warm=False), or on the OMPL.app-like unrelated poses where none would help, each pose is answered
+    by the exact query, bit for bit, certified."""
+    rng = np.random.default_rng(11)
+    q = rng.normal(size=(120, 4))
+    poses = np.column_stack([rng.uniform(-276, 361, 120), rng.uniform(-276, 276, 120), rng.uniform(-126, 234, 120),
+                             q / np.linalg.norm(q, axis=1, keepdims=True)])
+    exact, fast = hand_bowl.distance(poses), hand_bowl.distance(poses, exact=False, warm=False)
+    for name in ("distance", "obstacle", "in_collision", "certified", "on_robot", "on_obstacle"):
+        np.testing.assert_array_equal(fast[name], exact[name], err_msg=name)
+    assert fast["certified"].all()
+
+
 def test_depth_skipped_gives_the_verdict_and_the_same_free_answers(hand_bowl):
     poses = path_poses(hand_bowl, 300, seed=7)
     full, verdict = hand_bowl.distance(poses), hand_bowl.distance(poses, depth=False)
