@@ -548,6 +548,41 @@ namespace meshgap
         }
     }
 
+    namespace
+    {
+        /** \brief Whether the robot at \e X_WR moved more than SceneWarmStart::COHERENCE radii from the pose \e from
+            (its bounding sphere's motion bound). */
+        bool movedFar(const Body &robot, const Eigen::Isometry3d &from, const Eigen::Isometry3d &X_WR)
+        {
+            const TriangleBvh::Node &root = robot.bvh().nodes()[0];
+            return nodeMotionBound(root.center, root.radius, from, X_WR) > SceneWarmStart::COHERENCE * root.radius;
+        }
+
+        /** \brief Fast mode with warm-fast: whether the query at \e X_WR starts a run (no pose before it in \e warm,
+            or one it moved far from); records \e X_WR as the last pose. */
+        bool jumped(const Body &robot, const Eigen::Isometry3d &X_WR, SceneWarmStart &warm)
+        {
+            const bool far = !warm.posed || movedFar(robot, warm.pose, X_WR);
+            warm.pose = X_WR;
+            warm.posed = true;
+            return far;
+        }
+
+        /** \brief The corner of surface triangle \e t of \e body (at \e X) nearest to \e point: a node (the node mesh
+            keeps the surface's vertices first). */
+        std::uint32_t nearestCorner(const Body &body, std::uint32_t t, const Eigen::Isometry3d &X,
+                                    const Eigen::Vector3d &point)
+        {
+            const Triangle &triangle = body.surface().triangles[t];
+            std::uint32_t best = triangle[0];
+            for (int c = 1; c < 3; ++c)
+                if ((X * body.surface().vertices[triangle[c]] - point).squaredNorm() <
+                    (X * body.surface().vertices[best] - point).squaredNorm())
+                    best = triangle[c];
+            return best;
+        }
+    }  // namespace
+
     bool Scene::fastCollision(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
                               bool warmValid, SceneResult &result) const
     {
@@ -605,6 +640,14 @@ namespace meshgap
             warm.pairs.resize(obstacles_.size());
             warm.fast.assign(obstacles_.size(), WarmFastState());
             warm.scene = id_;
+            warm.posed = false;
+        }
+        if (request.fallBack && warmFast && jumped(*robot_, X_WR, warm))
+        {
+            // Far from the last pose (or the first of a run): no pair would only climb (SceneRequest::fallBack).
+            exactDistance(X_WR, request, nullptr, result);
+            result.fellBack = true;
+            return;
         }
         const bool warmValid = warm.valid && warm.obstacle < obstacles_.size();
         result.certified = false;  // a node-level answer is never proven
@@ -655,23 +698,6 @@ namespace meshgap
         warm.nodes = best.nodes;
     }
 
-    namespace
-    {
-        /** \brief The corner of surface triangle \e t of \e body (at \e X) nearest to \e point: a node (the node mesh
-            keeps the surface's vertices first). */
-        std::uint32_t nearestCorner(const Body &body, std::uint32_t t, const Eigen::Isometry3d &X,
-                                    const Eigen::Vector3d &point)
-        {
-            const Triangle &triangle = body.surface().triangles[t];
-            std::uint32_t best = triangle[0];
-            for (int c = 1; c < 3; ++c)
-                if ((X * body.surface().vertices[triangle[c]] - point).squaredNorm() <
-                    (X * body.surface().vertices[best] - point).squaredNorm())
-                    best = triangle[c];
-            return best;
-        }
-    }  // namespace
-
     bool Scene::warmFastPair(std::size_t k, const Eigen::Isometry3d &X_WR, const SceneRequest &request,
                              const WarmFast &solver, double bound, WarmFastState &state, DistanceResult &r) const
     {
@@ -682,7 +708,8 @@ namespace meshgap
             return false;
         }
         // warm-fast's own rules for a global search (WarmFast.h): a cold state, the periodic one, the gap test.
-        const bool due = !state.valid || (solver.getGlobalEvery() > 0 && state.sinceGlobal + 1 >= solver.getGlobalEvery());
+        const bool due = !state.valid || movedFar(*robot_, state.X_AB, X_WR) ||
+                         (solver.getGlobalEvery() > 0 && state.sinceGlobal + 1 >= solver.getGlobalEvery());
         if (!due)
         {
             impl_->climber->solveWarm(obstacle, *robot_, X_WR, state, request.seed, r);
