@@ -276,7 +276,6 @@ namespace
         const unsigned t = threadsArg(threads);
         SceneRequest request;
         request.exact = exact;
-        request.solver = "warm-fast";  // fast mode: climbs along a block's run of poses, else the exact query
         request.computeDepth = withDepth;
         std::vector<SceneResult> results;
         {
@@ -1165,10 +1164,11 @@ PYBIND11_MODULE(_meshgap, m)
              "(N, 3) witness points (world frame), obstacle (N,), in_collision (N,), certified (N,), open_body (N,) "
              "(the robot or that obstacle is not a closed surface: it has no inside, so nothing counts as inside "
              "it; see open_obstacles). exact: the "
-             "certified surface distance. exact=False (fast mode): an upper bound, never below the exact distance, "
-             "never dearer than the exact query: along a run of nearby poses (warm) warm-fast climbs from the last "
-             "pose's answer per obstacle; where it would search from scratch (the first pose, a jump, warm=False) "
-             "the exact query answers instead (certified then); the collision verdict is exact either way. warm: carry a warm "
+             "certified surface distance. exact=False (fast mode) is never dearer than the exact query: the paper's "
+             "node-level search from scratch (comb-GA-wl) costs 1.4 to 140 times it per pose and seconds on a body's "
+             "first use (bench/fast_vs_exact.py), so fast mode falls back to the exact query and gives its answer, "
+             "certified (SceneRequest::fallBack; C++ keeps the node-level solvers for the paper's benches). "
+             "warm: carry a warm "
              "start from pose to pose (exact: each thread across its blocks of 256 poses, the answers being the cold "
              "ones bit for bit; fast: afresh at each block). threads: split the blocks over this many threads "
              "(identical answers). depth: in collision, the penetration depth as a negative distance (else the "
