@@ -27,15 +27,15 @@ namespace meshgap
             DistanceRequest::seed (the same seed gives the same answer). */
         std::string solver{"comb-GA-wl"};
         /** \brief Fast mode: never the node search where it costs more than the exact query. A node search started
-            cold (a solver without a warm start carried: every one but "warm-fast" with a SceneWarmStart; or a
-            warm-fast pair whose state is empty, due for its periodic global search, or whose climb lies too far
-            above what its last global answer allows) costs 10 to 100 times the exact query, more on the first use
-            of a body (its mesh distances are built then), measured in bench/README.md ("Fast mode against the
-            exact query"). There the exact answer is given instead: the whole query (SceneResult::fellBack) for a
-            stateless solver, the pair (SceneResult::exactPairs) for warm-fast, whose state it seeds (the closest
-            triangles' corners as the node pair, the exact distance as its global answer), so that warm-fast only
-            climbs. false: the solver's node search as it is (the paper's algorithms, for their benches and
-            tests). */
+            cold (a solver without a warm start carried: every one but "warm-fast" with a SceneWarmStart; a pose far
+            from the last, the robot moved over COHERENCE radii; a warm-fast pair empty, far from its last pose, due
+            for its periodic global search or climbed too far above its last global answer) costs 1.4 to 140 times
+            the exact query, more on a body's first use (its mesh distances are built then): bench/README.md, "Fast
+            mode against the exact query". The exact answer is given instead: the whole query (SceneResult::fellBack)
+            for a stateless solver or a far pose, the pair (SceneResult::exactPairs) for warm-fast, whose state it
+            seeds (the closest triangles' corners as the node pair, the exact distance as its global answer), so that
+            warm-fast only climbs. false: the solver's node search as it is (the paper's algorithms, for their
+            benches and tests). */
         bool fallBack{true};
     };
 
