@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <iomanip>
 #include <limits>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
@@ -98,34 +99,80 @@ namespace
         return py::reinterpret_borrow<py::array_t<double>>(h);
     }
 
-    /** \brief A mesh from a file path, or from a (V, F) pair: V an (n, 3) float64 array, F an (m, 3) integer
-        array of vertex indices. Cleaned as loadMesh() cleans a file's mesh (welded, degenerate triangles dropped). */
+    /** \brief Room for \e rows elements in \e v, or a MemoryError naming \e what and how many \e rows (a broadcast
+        view may name more rows than memory holds). */
+    template <typename T>
+    void reserveRows(std::vector<T> &v, py::ssize_t rows, const std::string &what, const std::string &unit)
+    {
+        try
+        {
+            v.reserve(static_cast<std::size_t>(rows));
+        }
+        catch (const std::exception &)  // std::bad_alloc, or std::length_error past max_size()
+        {
+            std::ostringstream text;
+            text << what << ": cannot allocate " << std::setprecision(3) << double(rows) * double(sizeof(T)) / 1e9
+                 << " GB for " << rows << " " << unit;
+            PyErr_SetString(PyExc_MemoryError, text.str().c_str());
+            throw py::error_already_set();
+        }
+    }
+
+    /** \brief \e h (a numpy array, or what numpy.asarray takes: nested lists, a trimesh TrackedArray) as an array of
+        shape (rows, 3): of real numbers (any float or integer dtype) for vertices, of integers for \e indices; or one
+        ValueError naming \e what. */
+    py::array meshRowsArg(const py::handle &h, const std::string &what, bool indices)
+    {
+        const char *expected = indices ? "an integer array of shape (m, 3)" : "an array of shape (n, 3)";
+        py::array a;
+        try
+        {
+            a = py::module_::import("numpy").attr("asarray")(h);
+        }
+        catch (py::error_already_set &e)
+        {
+            if (e.matches(PyExc_MemoryError))
+                throw;
+            throw Exception(what, std::string("expected ") + expected + ", got " + typeName(h));
+        }
+        const char kind = a.dtype().kind();
+        if (indices ? kind != 'i' && kind != 'u' : kind != 'f' && kind != 'i' && kind != 'u')
+            throw Exception(what, "dtype " + std::string(py::str(a.dtype())) +
+                                      (indices ? ", expected an integer type" : ", expected real numbers"));
+        if (a.ndim() != 2 || a.shape(1) != 3)
+            throw Exception(what, std::string("expected shape ") + (indices ? "(m, 3)" : "(n, 3)") + ", got " +
+                                      shapeText(a));
+        return a;
+    }
+
+    /** \brief A mesh from a file path, from a (V, F) pair, or from an object with .vertices and .faces (a
+        trimesh.Trimesh): V of shape (n, 3), real numbers of any float or integer dtype (taken as float64), F of
+        shape (m, 3), integers, vertex indices. Cleaned as loadMesh() cleans a file's mesh (welded, degenerate
+        triangles dropped). */
     Mesh meshArg(const py::handle &h, const std::string &what)
     {
-        if (!py::isinstance<py::tuple>(h) && !py::isinstance<py::list>(h))
+        const bool file = py::isinstance<py::str>(h) || py::hasattr(h, "__fspath__");
+        const bool arrays = py::isinstance<py::tuple>(h) || py::isinstance<py::list>(h);
+        const bool meshLike = !file && !arrays && py::hasattr(h, "vertices") && py::hasattr(h, "faces");
+        if (!arrays && !meshLike)
         {
             const std::string path = pathArg(h, what);
             py::gil_scoped_release release;
             return loadMesh(path);
         }
-        const py::sequence seq = py::reinterpret_borrow<py::sequence>(h);
-        if (seq.size() != 2)
-            throw Exception(what, "expected a file path or a (V, F) pair of arrays, got a sequence of " +
-                                      std::to_string(seq.size()));
-        const py::array_t<double> V = doubleArray(seq[0], what + " V", "of shape (n, 3)");
-        if (V.ndim() != 2 || V.shape(1) != 3)
-            throw Exception(what + " V", "expected shape (n, 3), got " + shapeText(V));
-        if (!py::isinstance<py::array>(seq[1]))
-            throw Exception(what + " F", "expected a numpy integer array of shape (m, 3)");
-        const py::array Fa = py::reinterpret_borrow<py::array>(seq[1]);
-        const char kind = Fa.dtype().kind();
-        if (kind != 'i' && kind != 'u')
-            throw Exception(what + " F", "dtype " + std::string(py::str(Fa.dtype())) + ", expected an integer type");
-        if (Fa.ndim() != 2 || Fa.shape(1) != 3)
-            throw Exception(what + " F", "expected shape (m, 3), got " + shapeText(Fa));
+        if (arrays && py::len(h) != 2)
+            throw Exception(what, "expected a file path or a (V, F) pair of arrays (or a mesh with .vertices and "
+                                  ".faces), got a sequence of " + std::to_string(py::len(h)));
+        const py::object Vo = meshLike ? h.attr("vertices") : py::reinterpret_borrow<py::object>(h[py::int_(0)]);
+        const py::object Fo = meshLike ? h.attr("faces") : py::reinterpret_borrow<py::object>(h[py::int_(1)]);
+        const std::string vName = what + (meshLike ? ".vertices" : " V"), fName = what + (meshLike ? ".faces" : " F");
+        const py::array_t<double, py::array::forcecast> V(meshRowsArg(Vo, vName, false));
+        const py::array Fa = meshRowsArg(Fo, fName, true);
         const auto F = py::array_t<std::int64_t, py::array::forcecast>(Fa);
         Mesh mesh;
         mesh.source = what;
+        reserveRows(mesh.vertices, V.shape(0), vName, "vertices");
+        reserveRows(mesh.triangles, F.shape(0), fName, "triangles");
         const auto v = V.unchecked<2>();
         for (py::ssize_t i = 0; i < v.shape(0); ++i)
             mesh.vertices.emplace_back(v(i, 0), v(i, 1), v(i, 2));
@@ -136,7 +183,7 @@ namespace
             for (int k = 0; k < 3; ++k)
             {
                 if (f(i, k) < 0 || f(i, k) >= v.shape(0))
-                    throw Exception(what + " F", "row " + std::to_string(i) + ": vertex index " +
+                    throw Exception(fName, "row " + std::to_string(i) + ": vertex index " +
                                                      std::to_string(f(i, k)) + " is out of range [0, " +
                                                      std::to_string(v.shape(0)) + ")");
                 t[k] = static_cast<std::uint32_t>(f(i, k));
@@ -161,7 +208,9 @@ namespace
             throw Exception("poses", "expected an array " + expected + ", got shape " + shapeText(a));
         const auto p = a.unchecked<2>();
         const bool planar = a.shape(1) == 3;
-        std::vector<Eigen::Isometry3d> poses(static_cast<std::size_t>(a.shape(0)));
+        std::vector<Eigen::Isometry3d> poses;
+        reserveRows(poses, a.shape(0), "poses", "poses");
+        poses.resize(static_cast<std::size_t>(a.shape(0)));
         for (py::ssize_t i = 0; i < p.shape(0); ++i)
         {
             const std::string where = "poses[" + std::to_string(i) + "]";
@@ -286,6 +335,27 @@ namespace
         return out;
     }
 
+    /** \brief Scene.bounds: the cfg's volume as bounds per pose number, or None. */
+    py::object sceneBounds(const PyScene &s)
+    {
+        if (!s.config || !s.config->volume)
+            return py::none();
+        const Eigen::AlignedBox3d &v = *s.config->volume;
+        const bool planar = s.config->planar;
+        py::array_t<double> out({py::ssize_t(planar ? 3 : 7), py::ssize_t(2)});
+        for (py::ssize_t k = 0; k < (planar ? 2 : 3); ++k)
+        {
+            out.mutable_at(k, 0) = v.min()[k];
+            out.mutable_at(k, 1) = v.max()[k];
+        }
+        for (py::ssize_t k = planar ? 2 : 3; k < out.shape(0); ++k)
+        {
+            out.mutable_at(k, 0) = planar ? -M_PI : -1.0;
+            out.mutable_at(k, 1) = planar ? M_PI : 1.0;
+        }
+        return std::move(out);
+    }
+
     PyScene sceneFromCfg(const py::handle &pathObject)
     {
         const std::string path = pathArg(pathObject, "cfg");
@@ -358,6 +428,21 @@ namespace
                                 py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "1" : "0") :
                                                                     py::str(value).cast<std::string>());
         return params;
+    }
+
+    /** \brief An index (a Python int of any size, or what has __index__) into \e size items, or one ValueError
+        naming \e what, the index and the range. */
+    std::size_t indexArg(const py::handle &h, std::size_t size, const std::string &what)
+    {
+        if (py::isinstance<py::bool_>(h) || !PyIndex_Check(h.ptr()))
+            throw Exception(what, "expected an int index, got " + typeName(h));
+        const py::int_ value = py::reinterpret_steal<py::int_>(PyNumber_Index(h.ptr()));
+        if (!value)
+            throw py::error_already_set();
+        if (value < py::int_(0) || value >= py::int_(size))
+            throw Exception(what, "index " + py::str(py::handle(value)).cast<std::string>() + " is out of range [0, " +
+                                      std::to_string(size) + ")");
+        return value.cast<std::size_t>();
     }
 
     /** \brief A non-negative integer keyword that fits 32 bits. */
@@ -445,7 +530,16 @@ namespace
             if (keyword == "mode")  // the old spelling, as meshgap_plan refuses --mode
                 throw Exception("mode", "renamed: use checker='certified' or checker='fast'");
             if (keyword == "params")
-                o.plannerParams = paramTexts(value);
+            {
+                // PLANNER.NAME, as --param spells it (the planner checked as meshgap_plan checks it), or NAME.
+                for (const auto &[name, text] : paramTexts(value))
+                {
+                    if (name.find('.') != std::string::npos)
+                        o.params.push_back(name + "=" + text);
+                    else
+                        o.plannerParams.emplace_back(name, text);
+                }
+            }
             else
                 setKeyword(o, *row, value);
         }
@@ -556,8 +650,8 @@ namespace
                        (row.name == "quiet" ? "; True by default here (False: the progress line and OMPL's messages "
                                               "on stderr)\n" :
                                               "\n");
-        doc += "  params: a dict NAME: VALUE of the planner's parameters (a bool as 1 or 0), as param "
-               "PLANNER.NAME=VALUE\n"
+        doc += "  params: a dict of the planner's parameters, NAME: VALUE or PLANNER.NAME: VALUE (a bool as 1 or 0), "
+               "as param PLANNER.NAME=VALUE\n"
                "The old mode= is refused (checker=).";
         return doc;
     }
@@ -761,7 +855,9 @@ namespace
         const py::array_t<double> a = doubleArray(h, "states", expected);
         if (a.ndim() != 2 || a.shape(1) != static_cast<py::ssize_t>(dof))
             throw Exception("states", "expected an array " + expected + ", got shape " + shapeText(a));
-        const auto s = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+        // Not ensure(): it returns a null array, the error cleared, when the copy cannot be made (a broadcast view
+        // of many rows); the constructor raises numpy's MemoryError naming the shape.
+        const py::array_t<double, py::array::c_style | py::array::forcecast> s(a);
         const auto v = s.unchecked<2>();
         for (py::ssize_t i = 0; i < v.shape(0); ++i)
             for (py::ssize_t k = 0; k < v.shape(1); ++k)
@@ -889,11 +985,9 @@ namespace
                     return i;
             throw Exception("link", "no link named '" + name + "'");
         }
-        const std::int64_t i = h.cast<std::int64_t>();
-        if (i < 0 || i >= std::int64_t(links.size()))
-            throw Exception("link", "index " + std::to_string(i) + " is out of range [0, " +
-                                        std::to_string(links.size()) + ")");
-        return std::size_t(i);
+        if (py::isinstance<py::bool_>(h) || !PyIndex_Check(h.ptr()))
+            throw Exception("link", "expected a link's name (str) or index (int), got " + typeName(h));
+        return indexArg(h, links.size(), "link");
     }
 
     /** \brief Every state number's bounds, (dof, 2): a URDF joint's limits (-inf, inf for a continuous joint), -1, 1
@@ -975,11 +1069,9 @@ namespace
                  { return meshArrays(s.scene->links()[linkIndexArg(s, link)].body->surface()); },
                  py::arg("link"), "(V, F) of a link's surface (by name or index) in its own frame (link_poses)")
             .def("obstacle_mesh",
-                 [](const PyRobotScene &s, std::size_t i)
+                 [](const PyRobotScene &s, const py::handle &index)
                  {
-                     if (i >= s.scene->obstacles().size())
-                         throw Exception("obstacle_mesh", "index " + std::to_string(i) + " is out of range [0, " +
-                                                              std::to_string(s.scene->obstacles().size()) + ")");
+                     const std::size_t i = indexArg(index, s.scene->obstacles().size(), "obstacle_mesh");
                      return meshArrays(s.scene->obstacles()[i]->surface());
                  },
                  py::arg("index"), "(V, F) of obstacle index's surface, world frame")
@@ -1057,7 +1149,8 @@ PYBIND11_MODULE(_meshgap, m)
 
     py::class_<PyScene>(m, "Scene",
                         "A robot among obstacles. Scene(robot, world): each a mesh file (OBJ, STL, PLY, COLLADA, ...) "
-                        "or a (V, F) pair of numpy arrays (V float64 (n, 3), F integer (m, 3)); the robot in its own "
+                        "or a (V, F) pair of arrays (V (n, 3) real numbers, any float or integer dtype, taken as float64; "
+                        "F (m, 3) integers) or a mesh with .vertices and .faces (trimesh.Trimesh); the robot in its own "
                         "frame, the world split into its connected parts, one obstacle each. Scene.from_cfg(path): "
                         "an OMPL.app problem, the robot centred as OMPL.app does, so a pose is the robot's state (a "
                         "robot problem file, robot.urdf or robot.1 and more bodies, is refused with a ValueError "
@@ -1071,7 +1164,11 @@ PYBIND11_MODULE(_meshgap, m)
              "(N, 3) witness points (world frame), obstacle (N,), in_collision (N,), certified (N,), open_body (N,) "
              "(the robot or that obstacle is not a closed surface: it has no inside, so nothing counts as inside "
              "it; see open_obstacles). exact: the "
-             "certified surface distance (else the paper's node distance; collision still exact). warm: carry a warm "
+             "certified surface distance. exact=False (fast mode) is never dearer than the exact query: the paper's "
+             "node-level search from scratch (comb-GA-wl) costs 1.4 to 140 times it per pose and seconds on a body's "
+             "first use (bench/fast_vs_exact.py), so fast mode falls back to the exact query and gives its answer, "
+             "certified (SceneRequest::fallBack; C++ keeps the node-level solvers for the paper's benches). "
+             "warm: carry a warm "
              "start from pose to pose (exact: each thread across its blocks of 256 poses, the answers being the cold "
              "ones bit for bit; fast: afresh at each block). threads: split the blocks over this many threads "
              "(identical answers). depth: in collision, the penetration depth as a negative distance (else the "
@@ -1125,16 +1222,18 @@ PYBIND11_MODULE(_meshgap, m)
         .def_property_readonly("robot_mesh", [](const PyScene &s) { return meshArrays(s.scene->robot().surface()); },
                                "(V, F) of the robot's surface in its own frame")
         .def("obstacle_mesh",
-             [](const PyScene &s, std::size_t i) {
-                 if (i >= s.scene->obstacles().size())
-                     throw Exception("obstacle_mesh", "index " + std::to_string(i) + " is out of range [0, " +
-                                                          std::to_string(s.scene->obstacles().size()) + ")");
+             [](const PyScene &s, const py::handle &index) {
+                 const std::size_t i = indexArg(index, s.scene->obstacles().size(), "obstacle_mesh");
                  return meshArrays(s.scene->obstacles()[i]->surface());
              },
              py::arg("index"), "(V, F) of obstacle index's surface, world frame")
         .def_property_readonly("planar",
                                [](const PyScene &s) { return s.config ? s.config->planar : false; },
                                "True for a planar (SE(2)) .cfg problem")
+        .def_property_readonly("bounds", &sceneBounds,
+                               "(7, 2) or (3, 2) lower and upper bound of each pose number (as RobotScene.bounds): "
+                               "x y z from the cfg's volume, -1 1 for qx qy qz qw; planar: x y, and -pi pi for "
+                               "theta. None without a cfg or a volume in it")
         .def_property_readonly("start",
                                [](const PyScene &s) -> py::object {
                                    if (!s.config)

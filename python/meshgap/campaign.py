@@ -40,6 +40,7 @@ else on PATH; problems and the executable must be at the same paths on every wor
 Needs Debian's python3-dask and python3-distributed, and ompl-demos for the database.
 """
 import configparser
+import contextlib
 import glob
 import hashlib
 import math
@@ -53,7 +54,6 @@ import tempfile
 
 CAMPAIGN_KEYS = ("problems", "planners", "checkers", "samplers", "runs", "batch", "time", "memory", "seed", "out",
                  "database", "retries", "param")
-_RUNS_LINE = re.compile(r"^(\d+) runs$", re.MULTILINE)
 
 
 def find_executable(executable=None):
@@ -91,6 +91,16 @@ def _dask():
     return distributed
 
 
+def _cut(text, limit=80):
+    """text for an error message, cut to its first limit characters (an input may be megabytes long)."""
+    return text if len(text) <= limit else text[:limit] + "... (%d characters)" % len(text)
+
+
+def _shown(value):
+    """repr(value) for an error message, cut (_cut())."""
+    return _cut(repr(value))
+
+
 def _names(value, what):
     if value is None:
         return []
@@ -98,7 +108,7 @@ def _names(value, what):
         value = [v for v in re.split(r"[,\n]", value)]
     names = [str(v).strip() for v in value if str(v).strip()]
     if len(set(names)) != len(names):
-        raise ValueError("%s: %r names one twice" % (what, value))
+        raise ValueError("%s: %s names one twice" % (what, _shown(value)))
     return names
 
 
@@ -136,7 +146,7 @@ def grid(problems, planners, checkers=("certified",), samplers=(), runs=10, batc
     samplers = _names(samplers, "samplers") or [""]
     for what, value in (("runs", runs), ("batch", runs if batch is None else batch), ("seed", seed)):
         if isinstance(value, bool) or not isinstance(value, int) or value <= 0:
-            raise ValueError("%s: expected a positive integer, got %r" % (what, value))
+            raise ValueError("%s: expected a positive integer, got %s" % (what, _shown(value)))
     if not problems or not planners or not checkers:
         raise ValueError("a campaign needs problems, planners and checkers (got %d, %d, %d)" % (
             len(problems), len(planners), len(checkers)))
@@ -145,7 +155,7 @@ def grid(problems, planners, checkers=("certified",), samplers=(), runs=10, batc
     for path in problems:
         p = _md.problem(path)  # FileNotFoundError naming the cfg or its mesh
         if p.kind != "cfg":
-            raise ValueError("problems: %r is not a .cfg path" % (path,))
+            raise ValueError("problems: %s is not a .cfg path" % _shown(path))
         stem = _safe(_md._read_cfg(p.files[0]).get("name") or os.path.splitext(os.path.basename(p.files[0]))[0])
         if stems.setdefault(stem, p.files[0]) != p.files[0]:
             raise ValueError("problems: %s and %s are both named %s" % (stems[stem], p.files[0], stem))
@@ -161,21 +171,66 @@ def grid(problems, planners, checkers=("certified",), samplers=(), runs=10, batc
     return cells
 
 
-def log_runs(path):
-    """The number of runs an OMPL .log holds (its "<N> runs" line), or None when it has none."""
+def _read_log(path):
+    """The text of an OMPL .log (bytes that are not UTF-8 replaced)."""
     with open(path, encoding="utf-8", errors="replace") as f:
-        found = _RUNS_LINE.findall(f.read())
-    return int(found[-1]) if len(found) == 1 else None
+        return f.read()
+
+
+def _planner_runs(text):
+    """The run count of each planner of an OMPL .log's text, in order: per planner, its name, "<K> common
+    properties" and K lines, "<P> properties for each run" and P lines, "<N> runs" and N rows of run data, then (an
+    optimizing planner's) "<Q> progress properties for each run", Q lines, "<M> runs" and M rows of progress data,
+    and "."; None when the text is not of that form."""
+    lines = text.splitlines()
+    count = lambda line, tail: int(line[:-len(tail)]) if re.fullmatch(r"\d+" + re.escape(tail), line) else None
+    start = next((k for k, line in enumerate(lines) if count(line, " planners") is not None), None)
+    if start is None:
+        return None
+    i, runs = start + 1, []
+    try:
+        for _ in range(count(lines[start], " planners")):
+            i += 1  # the planner's name
+            for tail in (" common properties", " properties for each run"):
+                n = count(lines[i], tail)
+                if n is None:
+                    return None
+                i += 1 + n
+            n = count(lines[i], " runs")
+            if n is None:
+                return None
+            runs.append(n)
+            i += 1 + n
+            progress = count(lines[i], " progress properties for each run")
+            if progress is not None:
+                i += 1 + progress
+                m = count(lines[i], " runs")
+                if m is None:
+                    return None
+                i += 1 + m
+            if lines[i] != ".":
+                return None
+            i += 1
+    except IndexError:
+        return None
+    return runs
+
+
+def log_runs(path):
+    """The number of runs an OMPL .log holds (each of its planners' run data; the progress data of an optimizing
+    planner, a second "<N> runs" block, is not counted again), or None when it has none, its planners hold
+    different counts, or it is not of OMPL's form."""
+    runs = _planner_runs(_read_log(path))
+    return runs[0] if runs and len(set(runs)) == 1 else None
 
 
 def _log_settings(path):
     """(runs, seed, seconds per run, MB per run) of an OMPL .log, None for what it lacks."""
-    with open(path, encoding="utf-8", errors="replace") as f:
-        text = f.read()
+    text = _read_log(path)
     found = lambda pattern: re.findall(pattern, text, re.MULTILINE)
-    runs, seed = found(r"^(\d+) runs$"), found(r"^(\d+) is the random seed$")
+    runs, seed = _planner_runs(text), found(r"^(\d+) is the random seed$")
     time, memory = found(r"^(\S+) seconds per run$"), found(r"^(\S+) MB per run$")
-    return (int(runs[0]) if len(runs) == 1 else None, int(seed[0]) if seed else None,
+    return (runs[0] if runs and len(set(runs)) == 1 else None, int(seed[0]) if seed else None,
             float(time[0]) if time else None, float(memory[0]) if memory else None)
 
 
@@ -231,7 +286,13 @@ def run_cell(cell, out, executable, time, memory, params):
     if not os.path.isfile(executable):
         raise FileNotFoundError("%s: no such file on worker %s" % (executable, where))
     shutil.rmtree(folder, ignore_errors=True)
-    os.makedirs(folder)
+    for attempt in range(3):  # another cell may remove an empty OUT/.cells between the two mkdirs of makedirs
+        try:
+            os.makedirs(folder)
+            break
+        except FileNotFoundError:
+            if attempt == 2:
+                raise
     try:
         run = subprocess.run(_arguments(executable, cell, time, memory, params, folder), stdout=subprocess.PIPE,
                              stderr=subprocess.PIPE, preexec_fn=_die_with_parent)
@@ -247,6 +308,8 @@ def run_cell(cell, out, executable, time, memory, params):
         os.replace(logs[0], final)  # the folder is in OUT: the same file system, an atomic rename
     finally:
         shutil.rmtree(folder, ignore_errors=True)
+        with contextlib.suppress(OSError):
+            os.rmdir(os.path.dirname(folder))  # OUT/.cells once no cell runs: none left behind by a failed campaign
     return "done"
 
 
@@ -336,8 +399,9 @@ def run(problems, planners, checkers=("certified",), samplers=(), runs=10, batch
     "database"}: ran counts the cells this call ran."""
     cells = grid(problems, planners, checkers, samplers, runs, batch, seed)
     params = [str(p) for p in ([params] if isinstance(params, str) else params)]
-    if not (float(time) > 0 and float(memory) > 0):
-        raise ValueError("time and memory: expected positive numbers, got %r, %r" % (time, memory))
+    if not (0 < float(time) < math.inf and 0 < float(memory) < math.inf):
+        raise ValueError("time and memory: expected positive finite numbers, got %s, %s" % (_shown(time),
+                                                                                          _shown(memory)))
     executable = find_executable(executable)
     _statistics()
     client = _dask().connect(client, timeout) if isinstance(client, str) else _dask()._current_client(client)
@@ -347,17 +411,29 @@ def run(problems, planners, checkers=("certified",), samplers=(), runs=10, batch
     if check:
         _check(cells, executable, params)
     _check_present(cells, out, float(time), float(memory))
+    created = not os.path.exists(out)
     os.makedirs(out, exist_ok=True)
     todo = [c for c in cells if not os.path.isfile(os.path.join(out, c.name + ".log"))]
-    if todo:
-        futures = client.map(run_cell, todo, out=out, executable=executable, time=float(time),
-                             memory=float(memory), params=params, retries=retries, pure=False,
-                             key=["meshgap-cell-%s-%s" % (c.name, os.urandom(4).hex()) for c in todo])
-        if progress:
-            from distributed import progress as show
-            show(futures)
-        client.gather(futures)
-    shutil.rmtree(os.path.join(out, ".cells"), ignore_errors=True)  # the folders of runs killed with their worker
+    futures = []
+    try:
+        if todo:
+            futures = client.map(run_cell, todo, out=out, executable=executable, time=float(time),
+                                 memory=float(memory), params=params, retries=retries, pure=False,
+                                 key=["meshgap-cell-%s-%s" % (c.name, os.urandom(4).hex()) for c in todo])
+            if progress:
+                from distributed import progress as show
+                show(futures)
+            client.gather(futures)
+    except BaseException:
+        client.cancel(futures)  # the cells not run yet; a cell running finishes (its log is complete or absent)
+        raise
+    finally:
+        # The folders of runs killed with their worker, or of a campaign that failed; an out this call made and
+        # left empty goes too.
+        shutil.rmtree(os.path.join(out, ".cells"), ignore_errors=True)
+        if created:
+            with contextlib.suppress(OSError):
+                os.rmdir(out)
     logs = [os.path.join(out, c.name + ".log") for c in cells]
     missing = [path for path in logs if not os.path.isfile(path)]
     if missing:
@@ -371,19 +447,27 @@ def read_file(path):
     the file and the key."""
     path = os.path.abspath(os.fspath(path))
     if not os.path.isfile(path):
-        raise FileNotFoundError("%s: no such file" % path)
+        raise FileNotFoundError("%s: no such file" % _cut(path, 1000))
     parser = configparser.ConfigParser(inline_comment_prefixes=("#", ";"), interpolation=None)
     try:
         parser.read(path, encoding="utf-8")
+    except UnicodeDecodeError as error:
+        raise ValueError("%s: not a campaign file: not UTF-8 text (byte 0x%02x at offset %d)" % (
+            path, error.object[error.start], error.start)) from None
+    except (configparser.ParsingError, configparser.MissingSectionHeaderError) as error:
+        line, text = (error.lineno, error.line) if isinstance(error, configparser.MissingSectionHeaderError) else \
+            error.errors[0]
+        raise ValueError("%s:%d: not a campaign file: %s" % (path, line, _shown(text.strip() if isinstance(
+            text, str) else text))) from None
     except configparser.Error as error:
-        raise ValueError("%s: not a campaign file: %s" % (path, error)) from None
+        raise ValueError("%s: not a campaign file: %s" % (path, _cut(str(error), 200))) from None
     if not parser.has_section("campaign"):
         raise ValueError("%s: no [campaign] section" % path)
     section = parser["campaign"]
     unknown = [k for k in section if k not in CAMPAIGN_KEYS]
     if unknown:
-        raise ValueError("%s: unknown key '%s' in [campaign]; valid keys: %s" % (path, unknown[0],
-                                                                                ", ".join(CAMPAIGN_KEYS)))
+        raise ValueError("%s: unknown key %s in [campaign]; valid keys: %s" % (path, _shown(unknown[0]),
+                                                                              ", ".join(CAMPAIGN_KEYS)))
     for key in ("problems", "planners"):
         if not section.get(key, "").strip():
             raise ValueError("%s: missing required key '%s' in [campaign]" % (path, key))
@@ -399,7 +483,7 @@ def read_file(path):
             try:
                 kwargs[key] = kind(section[key])
             except ValueError:
-                raise ValueError("%s: %s = %r is not a number" % (path, key, section[key])) from None
+                raise ValueError("%s: %s = %s is not a number" % (path, key, _shown(section[key]))) from None
     if "out" in section:
         kwargs["out"] = os.path.join(folder, section["out"])
     else:

@@ -17,6 +17,7 @@ import contextlib
 import hashlib
 import math
 import os
+import re
 import shutil
 import socket
 import threading
@@ -68,8 +69,18 @@ def _hash_files(paths):
     return digest.hexdigest()
 
 
+def _cut(text, limit=80):
+    """text for an error message, cut to its first limit characters (an input may be megabytes long)."""
+    return text if len(text) <= limit else text[:limit] + "... (%d characters)" % len(text)
+
+
+def _shown(value):
+    """repr(value) for an error message, cut (_cut())."""
+    return _cut(repr(value))
+
+
 def _missing(path, where):
-    return FileNotFoundError("%s: no such file%s" % (path, where))
+    return FileNotFoundError("%s: no such file%s" % (_cut(path, 1000), where))
 
 
 def _read_cfg(path):
@@ -103,7 +114,7 @@ def _robot_problem(cfg, keys):
     for name in named:
         path = os.path.normpath(os.path.join(os.path.dirname(cfg), name))
         if not os.path.isfile(path):
-            raise FileNotFoundError("%s: '%s' does not exist" % (cfg, path))
+            raise FileNotFoundError("%s: '%s' does not exist" % (cfg, _cut(path, 1000)))
         files.append(path)
     robot = _meshgap.RobotScene.from_cfg(cfg)
     shape = (robot.dimension, len(robot.link_names), len(robot.self_pairs))
@@ -128,7 +139,7 @@ def problem(source):
                 raise ValueError("%s: missing required key '%s' in [problem]" % (cfg, role))
             mesh = os.path.join(os.path.dirname(cfg), keys[role])
             if not os.path.isfile(mesh):
-                raise FileNotFoundError("%s: %s mesh '%s' does not exist" % (cfg, role, mesh))
+                raise FileNotFoundError("%s: %s mesh '%s' does not exist" % (cfg, role, _cut(mesh, 1000)))
             files.append(os.path.normpath(mesh))
         planar = "start.z" not in keys
         axes = "xy" if planar else "xyz"
@@ -143,7 +154,7 @@ def problem(source):
             if not os.path.isfile(path):
                 raise _missing(path, "")
         return Problem("meshes", files, _hash_files(files), None, None)
-    raise ValueError("source: expected a .cfg path or a (robot, world) pair of mesh paths, got %r" % (source,))
+    raise ValueError("source: expected a .cfg path or a (robot, world) pair of mesh paths, got %s" % _shown(source))
 
 
 # The worker side: one Scene per problem's content hash in each process, built on first use.
@@ -195,12 +206,31 @@ def _fields(p):
             ("link_obstacle_distance", np.float64, links, True), ("self_pair_distance", np.float64, pairs, True))
 
 
-def _distance_block(block, p, exact, warm, depth):
+_ROW = re.compile(r"^(poses|states)\[(\d+)\]")
+
+
+@contextlib.contextmanager
+def _global_rows(block_info):
+    """A ValueError of Scene or RobotScene naming a row of the block (poses[i], states[i]) names its row of the
+    whole array instead (the block's first row added)."""
+    try:
+        yield
+    except ValueError as error:
+        first = block_info[0]["array-location"][0][0] if block_info and 0 in block_info else 0
+        message = str(error)
+        found = _ROW.match(message)
+        if not found or not first:
+            raise
+        raise ValueError("%s[%d]%s" % (found.group(1), int(found.group(2)) + first, message[found.end():])) from None
+
+
+def _distance_block(block, p, exact, warm, depth, block_info=None):
     block = np.ascontiguousarray(block, dtype=np.float64)
-    if p.kind == "robot":
-        r = scene(p).distance(block)
-    else:
-        r = scene(p).distance(block, exact=exact, warm=warm, depth=depth)
+    with _global_rows(block_info):
+        if p.kind == "robot":
+            r = scene(p).distance(block)
+        else:
+            r = scene(p).distance(block, exact=exact, warm=warm, depth=depth)
     fields = _fields(p)
     packed = np.empty((len(block), sum(width for _, _, width, _ in fields)))
     column = 0
@@ -210,8 +240,9 @@ def _distance_block(block, p, exact, warm, depth):
     return packed
 
 
-def _collision_block(block, p):
-    return scene(p).in_collision(np.ascontiguousarray(block, dtype=np.float64))
+def _collision_block(block, p, block_info=None):
+    with _global_rows(block_info):
+        return scene(p).in_collision(np.ascontiguousarray(block, dtype=np.float64))
 
 
 def _pose_array(poses, p, chunks):
@@ -231,6 +262,8 @@ def _pose_array(poses, p, chunks):
             " or ".join(map(str, columns)),
             "x y theta" if columns == (3,) else "x y z qx qy qz qw" if columns == (7,) else
             "x y z qx qy qz qw, or x y theta", shape))
+    if chunks is not None and (isinstance(chunks, bool) or not isinstance(chunks, (int, np.integer)) or chunks <= 0):
+        raise ValueError("chunks: expected a positive integer (rows per task) or None, got %s" % _shown(chunks))
     rows = chunks if chunks is not None else (poses.chunks[0] if isinstance(poses, da.Array) else DEFAULT_CHUNK)
     if isinstance(poses, da.Array):
         return poses.astype(np.float64).rechunk((rows, -1))
@@ -402,10 +435,14 @@ def _label_chunk(p, out, index, params):
     except Exception as error:  # not on this worker's file system
         raise FileNotFoundError("%s: the Zarr store is not readable%s (label() needs a folder every worker shares): "
                                 "%s" % (out, _where(), error)) from None
-    group["poses"][start:stop] = poses
-    for name, _, _ in FIELDS:
-        group[name][start:stop] = r[name]
-    group["done"][index] = 1  # after the data: a chunk marked done is complete
+    try:
+        group["poses"][start:stop] = poses
+        for name, _, _ in FIELDS:
+            group[name][start:stop] = r[name]
+        group["done"][index] = 1  # after the data: a chunk marked done is complete
+    except (OSError, KeyError) as error:  # Zarr's folder store: KeyError for a chunk file it could not write
+        raise _unwritable(error, "%s: cannot write the data set's rows %d to %d%s: %s" % (
+            out, start, stop, _where(), error.strerror if isinstance(error, OSError) else error)) from None
     return index
 
 
@@ -424,17 +461,31 @@ def _store(out, params, p):
         return group
     temporary = "%s.tmp-%d" % (out, os.getpid())
     shutil.rmtree(temporary, ignore_errors=True)
-    group = zarr.open_group(temporary, mode="w")
-    n, chunk, d = params["n"], params["chunk"], 3 if params["planar"] else 7
-    group.zeros("poses", shape=(n, d), chunks=(chunk, d), dtype=np.float64)
-    for name, dtype, width in FIELDS:
-        group.zeros(name, shape=(n,) if width == 1 else (n, width), chunks=(chunk,) if width == 1 else (chunk, width),
-                    dtype=dtype)
-    group.zeros("done", shape=(-(-n // chunk),), chunks=(1,), dtype=np.uint8)
-    group.attrs["params"] = params
-    group.attrs["files"] = list(p.files)
-    os.rename(temporary, out)
+    try:
+        # Made here first: Zarr's folder store reports a folder it cannot write as a KeyError of its first key.
+        os.makedirs(temporary)
+        group = zarr.open_group(temporary, mode="w")
+        n, chunk, d = params["n"], params["chunk"], 3 if params["planar"] else 7
+        group.zeros("poses", shape=(n, d), chunks=(chunk, d), dtype=np.float64)
+        for name, dtype, width in FIELDS:
+            group.zeros(name, shape=(n,) if width == 1 else (n, width),
+                        chunks=(chunk,) if width == 1 else (chunk, width), dtype=dtype)
+        group.zeros("done", shape=(-(-n // chunk),), chunks=(1,), dtype=np.uint8)
+        group.attrs["params"] = params
+        group.attrs["files"] = list(p.files)
+        os.rename(temporary, out)
+    except (OSError, KeyError) as error:
+        shutil.rmtree(temporary, ignore_errors=True)
+        reason = error.strerror if isinstance(error, OSError) and error.strerror else "cannot write %s" % error
+        raise _unwritable(error, "%s: cannot create the data set in %s: %s" % (out, os.path.dirname(out), reason)) \
+            from None
     return zarr.open_group(out, mode="r+")
+
+
+def _unwritable(error, message):
+    """The OSError to raise for a data set that cannot be written: of error's class when it is one (PermissionError,
+    NotADirectoryError, ...), else PermissionError (Zarr's KeyError for a file it could not write)."""
+    return type(error)(message) if isinstance(error, OSError) else PermissionError(message)
 
 
 def _around(p):
@@ -491,16 +542,16 @@ def label(source, n, out="labels.zarr", sampler="uniform", chunk=DEFAULT_CHUNK, 
         raise ValueError("label: %s is a robot problem; label() draws poses of one rigid robot (distance() takes a "
                          "robot's (N, dof) states)" % p.files[0])
     if sampler not in SAMPLERS:
-        raise ValueError("sampler: %r is not known (%s)" % (sampler, ", ".join(SAMPLERS)))
+        raise ValueError("sampler: %s is not known (%s)" % (_shown(sampler), ", ".join(SAMPLERS)))
     if not (isinstance(n, (int, np.integer)) and n > 0) or not (isinstance(chunk, (int, np.integer)) and chunk > 0):
-        raise ValueError("n and chunk: expected positive integers, got n=%r, chunk=%r" % (n, chunk))
+        raise ValueError("n and chunk: expected positive integers, got n=%s, chunk=%s" % (_shown(n), _shown(chunk)))
     volume = volume if volume is not None else p.volume if p.volume is not None else _around(p)
     planar = bool(p.planar)
     volume = [[float(v) for v in volume[0]], [float(v) for v in volume[1]]]
     if len(volume[0]) != (2 if planar else 3) or len(volume[1]) != len(volume[0]) or any(
             lo >= hi for lo, hi in zip(*volume)):
-        raise ValueError("volume: expected ((min...), (max...)) of %d axes, max above min, got %r" % (
-            2 if planar else 3, volume))
+        raise ValueError("volume: expected ((min...), (max...)) of %d axes, max above min, got %s" % (
+            2 if planar else 3, _shown(volume)))
     out = os.path.abspath(os.fspath(out))
     params = {"n": int(n), "chunk": int(chunk), "seed": int(seed), "sampler": sampler, "planar": planar,
               "volume": volume, "problem": p.key}

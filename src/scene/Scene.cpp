@@ -190,6 +190,16 @@ namespace meshgap
             return all;
         }();
 
+        /** \brief warm-fast that only climbs (no global search: fast mode's fall-back gives the exact pair
+            query instead, SceneRequest::fallBack). */
+        std::shared_ptr<WarmFast> climber = []
+        {
+            auto w = std::make_shared<WarmFast>();
+            w->setGlobalEvery(0);
+            w->setGapTolerance(std::numeric_limits<double>::infinity());
+            return w;
+        }();
+
         const DistanceSolver &solver(const std::string &name) const
         {
             for (const auto &[known, solver] : solvers)
@@ -554,6 +564,41 @@ namespace meshgap
         }
     }
 
+    namespace
+    {
+        /** \brief Whether the robot at \e X_WR moved more than SceneWarmStart::COHERENCE radii from the pose \e from
+            (its bounding sphere's motion bound). */
+        bool movedFar(const Body &robot, const Eigen::Isometry3d &from, const Eigen::Isometry3d &X_WR)
+        {
+            const TriangleBvh::Node &root = robot.bvh().nodes()[0];
+            return nodeMotionBound(root.center, root.radius, from, X_WR) > SceneWarmStart::COHERENCE * root.radius;
+        }
+
+        /** \brief Fast mode with warm-fast: whether the query at \e X_WR starts a run (no pose before it in \e warm,
+            or one it moved far from); records \e X_WR as the last pose. */
+        bool jumped(const Body &robot, const Eigen::Isometry3d &X_WR, SceneWarmStart &warm)
+        {
+            const bool far = !warm.posed || movedFar(robot, warm.pose, X_WR);
+            warm.pose = X_WR;
+            warm.posed = true;
+            return far;
+        }
+
+        /** \brief The corner of surface triangle \e t of \e body (at \e X) nearest to \e point: a node (the node mesh
+            keeps the surface's vertices first). */
+        std::uint32_t nearestCorner(const Body &body, std::uint32_t t, const Eigen::Isometry3d &X,
+                                    const Eigen::Vector3d &point)
+        {
+            const Triangle &triangle = body.surface().triangles[t];
+            std::uint32_t best = triangle[0];
+            for (int c = 1; c < 3; ++c)
+                if ((X * body.surface().vertices[triangle[c]] - point).squaredNorm() <
+                    (X * body.surface().vertices[best] - point).squaredNorm())
+                    best = triangle[c];
+            return best;
+        }
+    }  // namespace
+
     bool Scene::fastCollision(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
                               bool warmValid, SceneResult &result) const
     {
@@ -597,6 +642,13 @@ namespace meshgap
         const DistanceSolver &fastSolver = impl_->solver(request.solver);  // an unknown name throws, whatever the pose
         // warm-fast follows a run of poses per obstacle (WarmFastState) when the caller carries a warm start.
         const auto *warmFast = carried ? dynamic_cast<const WarmFast *>(&fastSolver) : nullptr;
+        if (request.fallBack && !warmFast)
+        {
+            // A node search from scratch: the exact query costs less (SceneRequest::fallBack).
+            exactDistance(X_WR, request, carried ? &warm : nullptr, result);
+            result.fellBack = true;
+            return;
+        }
         if (warmFast && (warm.scene != id_ || warm.fast.size() != obstacles_.size()))
         {
             warm.valid = false;
@@ -604,6 +656,14 @@ namespace meshgap
             warm.pairs.resize(obstacles_.size());
             warm.fast.assign(obstacles_.size(), WarmFastState());
             warm.scene = id_;
+            warm.posed = false;
+        }
+        if (request.fallBack && warmFast && jumped(*robot_, X_WR, warm))
+        {
+            // Far from the last pose (or the first of a run): no pair would only climb (SceneRequest::fallBack).
+            exactDistance(X_WR, request, nullptr, result);
+            result.fellBack = true;
+            return;
         }
         const bool warmValid = warm.valid && warm.obstacle < obstacles_.size();
         result.certified = false;  // a node-level answer is never proven
@@ -625,7 +685,7 @@ namespace meshgap
                 pairRequest.start = warm.nodes;
             DistanceResult r;
             if (warmFast)
-                warmFast->solveWarm(obstacle, *robot_, X_WR, warm.fast[k], request.seed, r);
+                result.exactPairs += warmFastPair(k, X_WR, request, *warmFast, best.distance, warm.fast[k], r);
             else
                 fastSolver.solve(obstacle, *robot_, X_WR, pairRequest, r);
             ++result.pairsChecked;
@@ -652,5 +712,43 @@ namespace meshgap
         warm.valid = true;
         warm.obstacle = bestK;
         warm.nodes = best.nodes;
+    }
+
+    bool Scene::warmFastPair(std::size_t k, const Eigen::Isometry3d &X_WR, const SceneRequest &request,
+                             const WarmFast &solver, double bound, WarmFastState &state, DistanceResult &r) const
+    {
+        const Body &obstacle = *obstacles_[k];
+        if (!request.fallBack)
+        {
+            solver.solveWarm(obstacle, *robot_, X_WR, state, request.seed, r);
+            return false;
+        }
+        // warm-fast's own rules for a global search (WarmFast.h): a cold state, the periodic one, the gap test.
+        const bool due = !state.valid || movedFar(*robot_, state.X_AB, X_WR) ||
+                         (solver.getGlobalEvery() > 0 && state.sinceGlobal + 1 >= solver.getGlobalEvery());
+        if (!due)
+        {
+            impl_->climber->solveWarm(obstacle, *robot_, X_WR, state, request.seed, r);
+            const double lower = state.globalDistance - state.drift;
+            if (!(std::isfinite(solver.getGapTolerance()) && lower < (1.0 - solver.getGapTolerance()) * r.distance))
+                return false;
+        }
+        // The exact pair query instead, below the best answer so far; it seeds the state at its closest triangles.
+        DistanceRequest exact;
+        exact.upperBound = bound;
+        refineExact(obstacle, *robot_, X_WR, r, exact);
+        if (!(r.distance < bound))
+            return true;  // nothing on this obstacle below the bound: its state stays as it was
+        state.valid = true;
+        state.pair = NodePair{nearestCorner(obstacle, r.triangleA, Eigen::Isometry3d::Identity(), r.onA),
+                              nearestCorner(*robot_, r.triangleB, X_WR, r.onB)};
+        state.triangleA = r.triangleA;
+        state.triangleB = r.triangleB;
+        state.X_AB = X_WR;
+        state.globalDistance = r.distance;
+        state.drift = 0.0;
+        state.sinceGlobal = 0;
+        ++state.queries;
+        return true;
     }
 }  // namespace meshgap

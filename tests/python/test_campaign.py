@@ -3,6 +3,7 @@ checkers, two batches of two runs) ends with every cell's complete log, seeded a
 one experiment per problem; a second call, from a campaign file, reruns nothing; a campaign during which a worker is
 killed ends with the same logs as the undisturbed one (timings aside); a failing cell is retried; bad input raises
 one clear exception and writes nothing."""
+import ast
 import hashlib
 import os
 import signal
@@ -20,7 +21,7 @@ except ImportError as error:
                 allow_module_level=True)
 
 import meshgap.campaign as mc
-from conftest import MAPS, cli_error, executable
+from conftest import MAPS, SOURCE_DIR, cli_error, executable
 
 PROBLEMS = [MAPS / "twisted" / "twisted.cfg", MAPS / "hand_bowl" / "hand_bowl.cfg"]
 PLANNERS = ["rrtconnect", "rrt"]
@@ -171,6 +172,73 @@ def test_bad_input_writes_nothing(client, tmp_path):
     assert not out.exists() and not list(tmp_path.glob("campaign*"))
 
 
+def readme_campaign():
+    """The campaign example of README.md: its code block that calls mc.run, parsed."""
+    text = (SOURCE_DIR / "README.md").read_text()
+    blocks = [b.split("\n", 1)[1] for b in text.split("```")[1::2] if b.startswith("python\n")]
+    found = [b for b in blocks if "mc.run(" in b]
+    assert len(found) == 1, "README.md: expected one python block calling mc.run, found %d" % len(found)
+    return ast.parse(found[0])
+
+
+def test_readme_campaign_runs_as_written(client, tmp_path, monkeypatch):
+    """README.md's campaign, run as written from a folder where its paths hold (maps/ the repository's), its grid
+    (problems, planners, checkers, seed, out) the README's own; only its size (runs, batch, seconds per run) is made
+    small. It names rrtstar, an optimizing planner whose logs hold its progress data, a second "<N> runs" block."""
+    tree = readme_campaign()
+    calls = [n for n in ast.walk(tree) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute) and
+             n.func.attr == "run" and isinstance(n.func.value, ast.Name) and n.func.value.id == "mc"]
+    assert len(calls) == 1
+    call = calls[0]
+    written = {k.arg: ast.literal_eval(k.value) for k in call.keywords}
+    problems, planners = (ast.literal_eval(a) for a in call.args)
+    assert set(written) == {"checkers", "runs", "batch", "time", "seed", "out"}, written
+    assert "rrtstar" in planners
+    small = {"runs": 2, "batch": 1, "time": 0.5}
+    for k in call.keywords:
+        if k.arg in small:
+            k.value = ast.Constant(small[k.arg])
+    (tmp_path / "maps").symlink_to(MAPS)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("MESHGAP_BENCHMARK", executable("benchmark"))
+    exec(compile(ast.fix_missing_locations(tree), "README.md", "exec"), {})
+    out = tmp_path / written["out"]
+    cells = len(problems) * len(planners) * len(written["checkers"]) * small["runs"] // small["batch"]
+    logs = sorted(out.glob("*.log"))
+    assert len(logs) == cells == 8 and not (out / ".cells").exists()
+    assert all(mc.log_runs(log) == 1 for log in logs), [(log.name, mc.log_runs(log)) for log in logs]
+    assert any("progress properties for each run" in log.read_text() for log in logs)  # rrtstar's
+    db = sqlite3.connect(str(out / "results.db"))
+    assert db.execute("SELECT COUNT(*) FROM runs").fetchone()[0] == cells
+    db.close()
+
+
+def test_log_runs_counts_run_data_once(tmp_path):
+    """An optimizing planner's log names "<N> runs" twice (run data, then progress data): N runs, not None; a log
+    cut short, or whose planners hold different counts, has no count."""
+    def log(planners):
+        lines = ["Experiment e", "1 is the random seed", "%d planners" % len(planners)]
+        for name, runs, progress in planners:
+            lines += [name, "1 common properties", "range = 1", "2 properties for each run", "time REAL",
+                      "solved BOOLEAN", "%d runs" % runs] + ["0.1; 1; "] * runs
+            if progress is not None:
+                lines += ["1 progress properties for each run", "time REAL", "%d runs" % progress] + \
+                    ["0.05,;0.1,;"] * progress
+            lines.append(".")
+        path = tmp_path / ("%d.log" % len(list(tmp_path.iterdir())))
+        path.write_text("\n".join(lines) + "\n")
+        return path
+
+    assert mc.log_runs(log([("geometric_RRTstar", 3, 3)])) == 3
+    assert mc.log_runs(log([("geometric_RRT", 2, None)])) == 2
+    assert mc.log_runs(log([("a", 2, 2), ("b", 2, None)])) == 2
+    assert mc.log_runs(log([("a", 2, 2), ("b", 3, None)])) is None
+    cut = log([("geometric_RRTstar", 3, 3)])
+    cut.write_text(cut.read_text()[:-20])
+    assert mc.log_runs(cut) is None
+    assert mc._log_settings(log([("geometric_RRTstar", 4, 4)]))[:2] == (4, 1)
+
+
 def flaky(folder, real):
     """A meshgap_benchmark that fails the first time it runs a cell (by its --seed; marked in folder), then runs the
     real one."""
@@ -198,6 +266,12 @@ def test_failed_cell_retried(client, tmp_path):
                                            r"\(exit 1\): a simulated failure"):
         mc.run(out=out, client=client, executable=script, retries=0, progress=False, **settings)
     assert not (out / "results.db").exists()
+    # Nothing left behind: no OUT/.cells, and the folder this call made, empty, removed (a cell still running when
+    # the campaign failed removes its own folder as it ends: waited for, up to a bound).
+    deadline = time.monotonic() + 60
+    while out.exists() and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not (out / ".cells").exists() and not out.exists()
     # One retry: every cell fails once, then runs; the logs are the real executable's.
     script = flaky(tmp_path / "b", executable("benchmark"))
     out = tmp_path / "retried"

@@ -47,20 +47,20 @@ namespace meshgap
        proven by a BVH traversal (specs: EXACT), with a warm start per thread (the last answer of the same thread,
        paper III-D). In FAST mode it is an upper bound from a node-level solver (specs: APPROXIMATE; never below the
        exact value). FAST mode's default solver is "warm-fast" (WarmFast.h, the paper's warm start, III-D/E): per
-       obstacle it climbs from this thread's last node pair, searches globally only on a cold start, a jump or at a
-       fixed rate, and reports the exact distance of the nearest surface triangles it reached, so its answer
-       depends on the thread's history (one state asked twice may get two answers, both at or above the exact
-       one). Any other SolverFactory name (e.g. "comb-GA-wl", the paper's solver) runs from scratch per state,
-       seeded from the state's coordinates: a pure function of the state, at several times the certified query's
-       cost. Which to use when (measured in bench/paper/README.md, "Warm-fast"): CERTIFIED by default and wherever the
-       clearance is a guarantee (ClearanceMotionValidator, a clearance constraint, a proven path clearance), and
-       wherever queries jump between unrelated states (RRT*'s costs: warm-fast's global searches made its mean query
-       7-20 times the certified one there) or the certified query is already a few microseconds (the OMPL.app
-       problems: warm-fast's median along paths 0.65-0.74 of it, its mean 3.3-11 times). FAST with "warm-fast"
-       along runs of nearby states near large contact areas, where the certified query costs tens to hundreds of
+       obstacle it climbs from this thread's last node pair and reports the exact distance of the nearest surface
+       triangles it reached, so its answer depends on the thread's history (one state asked twice may get two
+       answers, both at or above the exact one). It never searches from scratch (SceneRequest::fallBack): a state
+       far from the thread's last one gets the exact query, a pair due for a global search the exact pair query,
+       which seeds its climb. Any other SolverFactory name (e.g. "comb-GA-wl", the paper's solver) has no run to
+       follow: those states get the exact query (the node search from scratch costs 1.4-140 times it). Which to
+       use when (bench/README.md, "Fast mode against the exact query"; bench/paper/README.md, "Warm-fast"):
+       CERTIFIED by default and wherever the clearance is a guarantee (ClearanceMotionValidator, a clearance
+       constraint, a proven path clearance), and where the certified query is already a few microseconds (the
+       OMPL.app problems: along paths the climbs cost about what the warm certified query costs). FAST along
+       runs of nearby states near large contact areas, where the certified query costs tens to hundreds of
        microseconds (the paper's maps: median 0.004-0.12, mean 0.16-0.43 of the certified query on battery_fixture,
-       hand_bowl, slotted_wall), and only the collision verdict must be exact. FAST with "comb-GA-wl" only where a
-       pure function of the state matters more than time. clearance() is signed: it returns SceneResult::distance
+       hand_bowl, slotted_wall), and only the collision verdict must be exact; the checker's jumps cost what
+       certified queries cost. clearance() is signed: it returns SceneResult::distance
        as the scene computes it, which in collision is the penetration depth as a negative number (or 0 where the
        scene computes no depth). clearance(state, validState, validStateAvailable) (specs: hasValidDirectionComputation)
        also proposes a valid state away from the nearest obstacle (validStateAway()). Thread-safe: the scene is

@@ -26,6 +26,17 @@ namespace meshgap
         /** \brief The node-level solver of fast mode (exact == false), by its SolverFactory name; its seed is
             DistanceRequest::seed (the same seed gives the same answer). */
         std::string solver{"comb-GA-wl"};
+        /** \brief Fast mode: never the node search where it costs more than the exact query. A node search started
+            cold (a solver without a warm start carried: every one but "warm-fast" with a SceneWarmStart; a pose far
+            from the last, the robot moved over COHERENCE radii; a warm-fast pair empty, far from its last pose, due
+            for its periodic global search or climbed too far above its last global answer) costs 1.4 to 140 times
+            the exact query, more on a body's first use (its mesh distances are built then): bench/README.md, "Fast
+            mode against the exact query". The exact answer is given instead: the whole query (SceneResult::fellBack)
+            for a stateless solver or a far pose, the pair (SceneResult::exactPairs) for warm-fast, whose state it
+            seeds (the closest triangles' corners as the node pair, the exact distance as its global answer), so that
+            warm-fast only climbs. false: the solver's node search as it is (the paper's algorithms, for their
+            benches and tests). */
+        bool fallBack{true};
     };
 
     /** \brief One certificate: what a query left for the next one near its pose (paper III-D): the obstacle of its
@@ -180,6 +191,10 @@ namespace meshgap
             that does not depend on the machine's load. */
         std::size_t triangleTests{0}, boxTests{0};
         bool warmStartHit{false};     ///< the minimum was at the warm start's obstacle
+        /** \brief Fast mode (SceneRequest::fallBack): the query was answered by the exact query (the answer is
+            then exact mode's, certified as it is), or this many obstacle pairs by the exact pair query. */
+        bool fellBack{false};
+        std::size_t exactPairs{0};
         /** \brief Exact mode with a warm start: whether it carried a certificate, wrote a fresh one, or the query
             was answered cold (SceneWarmStart::choose()); COLD without a warm start. */
         SceneWarmStart::Use warmStartUse{SceneWarmStart::Use::COLD};
@@ -258,6 +273,11 @@ namespace meshgap
                            SceneResult &result) const;
         void fastDistance(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
                           bool carried, SceneResult &result) const;
+        /** \brief Fast mode with warm-fast along a run: obstacle \e k's answer into \e r, warm-fast's from \e state,
+            or (request.fallBack, where warm-fast would search globally) the exact pair query's below \e bound,
+            which seeds \e state; returns true for the latter. */
+        bool warmFastPair(std::size_t k, const Eigen::Isometry3d &X_WR, const SceneRequest &request,
+                          const WarmFast &solver, double bound, WarmFastState &state, DistanceResult &r) const;
         /** \brief Fast mode's exact collision verdict: true (and \e result filled as exact mode would) when the
             robot at \e X_WR collides. */
         bool fastCollision(const Eigen::Isometry3d &X_WR, const SceneRequest &request, SceneWarmStart &warm,
