@@ -43,7 +43,7 @@ int main(int argc, char **argv)
             return 0;
         ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
         const RobotProblem p = readRobotProblem(cfg);
-        const RobotScene scene(p.robot, p.obstacles);
+        const RobotScene scene(p.robot, p.obstacles, p.allowedObstacles);
         ob::RealVectorBounds bounds(3);
         bounds.setLow(-1e3);
         bounds.setHigh(1e3);

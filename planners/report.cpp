@@ -34,7 +34,7 @@ namespace
     int robotReport(const std::string &cfg, const std::string &pathFile, const std::string &out, unsigned dense)
     {
         const RobotProblem problem = readRobotProblem(cfg);
-        const RobotScene scene(problem.robot, problem.obstacles);
+        const RobotScene scene(problem.robot, problem.obstacles, problem.allowedObstacles);
         const std::vector<std::vector<double>> states = readRobotPathFile(pathFile, problem.robot->dimension());
         const PlanReportData data =
             robotReportFromPath(scene, states, dense,

@@ -129,7 +129,8 @@ namespace meshgap
         }
 
         RobotCheckers::RobotCheckers(const RobotProblem &problem, const std::string &objective)
-          : scene_(std::make_shared<RobotScene>(problem.robot, problem.obstacles)), file_(problem.file)
+          : scene_(std::make_shared<RobotScene>(problem.robot, problem.obstacles, problem.allowedObstacles)),
+            file_(problem.file)
         {
             if (!problem.goal)
                 throw Exception(problem.file, "no goal (goal.joints, or goal.N.* for every body)");

@@ -154,7 +154,7 @@ namespace meshgap
             const RobotProblem &p = run->problem;
             if (!p.goal)
                 throw Exception(p.file, "no goal (goal.joints, or goal.N.x ... for each body)");
-            run->scene = std::make_shared<RobotScene>(p.robot, p.obstacles);
+            run->scene = std::make_shared<RobotScene>(p.robot, p.obstacles, p.allowedObstacles);
             run->setup = std::make_shared<og::SimpleSetup>(robotStateSpace(*p.robot, bounds(p)));
             const ob::SpaceInformationPtr si = run->setup->getSpaceInformation();
             run->checker = std::make_shared<RobotChecker>(si, run->scene);
@@ -261,7 +261,7 @@ namespace meshgap
                            std::ostream &out)
         {
             const RobotProblem p = readRobotProblem(cfg);
-            const RobotScene scene(p.robot, p.obstacles);
+            const RobotScene scene(p.robot, p.obstacles, p.allowedObstacles);
             const std::size_t n = p.robot->dimension();
             std::vector<std::vector<double>> states = {p.start};
             if (!stateText.empty())
