@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -58,10 +59,10 @@ namespace meshgap
             {
                 throw Exception(node ? at(node.Mark()) : path_, entry + ": " + what);
             }
-            /** \brief \e node[key] when it is a map with that key, else a null node. */
+            /** \brief \e node[key] when it is a map with that key, else an undefined node (false). */
             static YAML::Node child(const YAML::Node &node, const char *key)
             {
-                return node && node.IsMap() && node[key] ? node[key] : YAML::Node();
+                return node && node.IsMap() && node[key] ? node[key] : YAML::Node(YAML::NodeType::Undefined);
             }
             double number(const YAML::Node &node, const std::string &entry) const
             {
@@ -363,9 +364,9 @@ namespace meshgap
                 for (int k = 0; k < 3; ++k)
                 {
                     if (!(i[k] >= 0 && i[k] < out.vertices.size() && i[k] == std::floor(i[k])))
-                        file_.fail(indices, entry + ".triangles", "vertex index " + std::to_string(i[k]) +
-                                                                      " is not one of the " +
-                                                                      std::to_string(out.vertices.size()) + " vertices");
+                        file_.fail(indices, entry + ".triangles",
+                                   "vertex index " + std::to_string(static_cast<long long>(i[k])) +
+                                       " is not one of the " + std::to_string(out.vertices.size()) + " vertices");
                     tri[k] = static_cast<std::uint32_t>(i[k]);
                 }
                 out.triangles.push_back(tri);
@@ -427,7 +428,8 @@ namespace meshgap
             {
                 bool b = false;
                 if (!v.IsScalar() || !YAML::convert<bool>::decode(v, b))
-                    file.fail(v, entry, "'" + (v.IsScalar() ? v.Scalar() : std::string("?")) + "' is not true or false");
+                    file.fail(v, entry, "'" + (v.IsScalar() ? v.Scalar() : std::string("?")) +
+                                            "' is not true or false");
                 out.push_back(b);
             }
             return out;
@@ -461,7 +463,8 @@ namespace meshgap
             std::vector<std::string> names;
             for (const YAML::Node &n : file.list(YamlFile::child(acm, "entry_names"), entry + ".entry_names"))
                 names.push_back(file.text(n, entry + ".entry_names[]"));
-            const std::vector<YAML::Node> rows = file.list(YamlFile::child(acm, "entry_values"), entry + ".entry_values");
+            const std::vector<YAML::Node> rows =
+                file.list(YamlFile::child(acm, "entry_values"), entry + ".entry_values");
             if (rows.size() != names.size())
                 file.fail(acm, entry, std::to_string(names.size()) + " entry_names but " +
                                           std::to_string(rows.size()) + " rows of entry_values");
@@ -495,6 +498,9 @@ namespace meshgap
                     for (const std::string &o : objects)
                         allowPair(robot, problem, everything[k], o);
                 }
+            std::vector<LinkPair> &pairs = problem.allowedObstacles;
+            std::sort(pairs.begin(), pairs.end());
+            pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
         }
 
         /** \brief The request's start and goal over the scene's state \e q. */

@@ -408,8 +408,8 @@ namespace meshgap
         }
         else
         {
-            for (const char *key : {"robot.srdf", "robot.package_path", "attach", "start.joints", "goal.joints", "scene",
-                                    "request"})
+            for (const char *key :
+                 {"robot.srdf", "robot.package_path", "attach", "start.joints", "goal.joints", "scene", "request"})
                 if (keys.has(key))
                     throw Exception(keys.where(key), std::string(key) + " applies to a URDF robot (robot.urdf)");
             readBodies(file, keys, folder, options, problem);
