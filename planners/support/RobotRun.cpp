@@ -1,3 +1,4 @@
+#include "support/MoveItOptions.h"
 #include "support/RobotRun.h"
 
 #include <cstdio>
@@ -150,7 +151,7 @@ namespace meshgap
             checkPlanOptions(o);
             checkRobotOptions(o);
             auto run = std::make_unique<RobotPlanRun>();
-            run->problem = readRobotProblem(o.cfg);
+            run->problem = readToolRobotProblem(o.cfg, o.moveit);
             const RobotProblem &p = run->problem;
             if (!p.goal)
                 throw Exception(p.file, "no goal (goal.joints, or goal.N.x ... for each body)");
@@ -257,10 +258,10 @@ namespace meshgap
             }
         }  // namespace
 
-        void robotDistance(const std::string &cfg, const std::string &stateText, const std::string &statesFile,
-                           std::ostream &out)
+        void robotDistance(const std::string &cfg, const MoveItFiles &moveit, const std::string &stateText,
+                           const std::string &statesFile, std::ostream &out)
         {
-            const RobotProblem p = readRobotProblem(cfg);
+            const RobotProblem p = readToolRobotProblem(cfg, moveit);
             const RobotScene scene(p.robot, p.obstacles, p.allowedObstacles);
             const std::size_t n = p.robot->dimension();
             std::vector<std::vector<double>> states = {p.start};
