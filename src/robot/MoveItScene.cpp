@@ -535,7 +535,7 @@ namespace meshgap
         }
     }  // namespace
 
-    RobotProblem readMoveItProblem(const MoveItFiles &files, const BodyOptions &options)
+    UrdfRobotPtr readMoveItRobot(const MoveItFiles &files, const BodyOptions &options)
     {
         if (files.urdf.empty())
             throw Exception("MoveIt problem", "needs a URDF");
@@ -546,8 +546,17 @@ namespace meshgap
         const UrdfRobotPtr robot = UrdfRobot::load(files.urdf, urdfOptions);
         if (!files.srdf.empty())
             readSrdf(*robot, files.srdf);
+        return robot;
+    }
+
+    RobotProblem readMoveItProblem(const MoveItFiles &files, const BodyOptions &options)
+    {
+        const UrdfRobotPtr robot =
+            files.robot ? std::make_shared<UrdfRobot>(*files.robot) : readMoveItRobot(files, options);
         RobotProblem problem;
         problem.file = !files.request.empty() ? files.request : !files.scene.empty() ? files.scene : files.urdf;
+        if (problem.file.empty())
+            throw Exception("MoveIt problem", "no files");
         problem.name = fs::path(problem.file).stem().string();
         problem.scene = files.scene;
         problem.request = files.request;

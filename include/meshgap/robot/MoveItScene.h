@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "meshgap/robot/RobotProblem.h"
+#include "meshgap/robot/UrdfRobot.h"
 
 namespace meshgap
 {
@@ -21,7 +22,14 @@ namespace meshgap
         std::vector<std::string> packagePath;
         /** \brief Facets around a cylinder, a sphere and a cone (circumscribed: cylinderMesh(), ...). */
         unsigned int segments{32};
+        /** \brief When set, a copy of this robot (the URDF and SRDF read once, for many problems of one robot) is
+            used instead of reading urdf and srdf again. */
+        UrdfRobotConstPtr robot;
     };
+
+    /** \brief The robot of \e files: its URDF (fixed base) with its SRDF read. Throws as UrdfRobot::load() and
+        readSrdf(). */
+    UrdfRobotPtr readMoveItRobot(const MoveItFiles &files, const BodyOptions &options = BodyOptions());
 
     /** \brief Read a problem from MoveIt's formats into the RobotProblem a robot .cfg gives (a fixed-base
         UrdfRobot, the obstacles, start and goal joints).
