@@ -101,7 +101,8 @@ namespace
         if (!parseCommandLine(argc, argv, all, o.vm, nullptr, &options))
             return false;
         if (o.cfg.empty() && o.moveit.urdf.empty())
-            throw Exception("command line", "--cfg FILE (or --urdf with --scene and --request) is required; see --help");
+            throw Exception("command line",
+                            "--cfg FILE (or --urdf with --scene and --request) is required; see --help");
         return true;
     }
 

@@ -10,11 +10,11 @@ run by meshgap_benchmark for planners x checkers x runs, then one table per scen
         --srdf ../shared/data/mbm/ur5/ur5.srdf [--planners rrtconnect] [--checkers certified,discrete,fcl] \\
         [--scenarios box_ur5,cage_ur5] [--limit 10] [--time 10] [--runs 1] [--seed 1] [--out suite]
 
-Also runs as a file, without the compiled package: python3 python/meshgap/suite.py ... --executable
-build/planners/meshgap_benchmark. Writes OUT/<scenario>/<NNNN>/*.log (OMPL's .log files, one per planner[checker]; ompl_benchmark_statistics loads them
+Writes OUT/<scenario>/<NNNN>/*.log (OMPL's .log files, one per planner[checker]; ompl_benchmark_statistics loads them
 into Planner Arena's database) and OUT/summary.md (the table, also printed). --urdf and --srdf default to the only
 *.urdf and *.srdf beside the archive or folder. meshgap_benchmark is found as meshgap.campaign finds it
-($MESHGAP_BENCHMARK, beside the package, or on PATH). Progress goes to stderr, one line a problem.
+($MESHGAP_BENCHMARK, beside the package, or on PATH). Progress goes to stderr, one line a problem. Also runs as a
+file, without the compiled package: python3 python/meshgap/suite.py ... --executable build/planners/meshgap_benchmark.
 """
 import argparse
 import glob
