@@ -254,6 +254,33 @@ goal_constraints:
         EXPECT_TRUE(near(p.obstacles[4]->surface().vertices[0], origin, 1e-12));
     }
 
+    TEST_F(MoveItFilesTest, ARobotCfgTakesTheSceneAndRequestKeys)
+    {
+        write("s.yaml", SCENE);
+        write("r.yaml", REQUEST);
+        const std::string lines = "[problem]\nrobot.urdf = " + ARM + "\nrobot.srdf = " + ARM_SRDF +
+                                  "\nscene = s.yaml\nrequest = r.yaml\n";
+        const RobotProblem p = readRobotProblem(write("p.cfg", lines));
+        EXPECT_EQ(p.obstacles.size(), 5u);
+        EXPECT_EQ(p.start, (std::vector<double>{0.5, 0.2}));
+        ASSERT_TRUE(p.goal);
+        EXPECT_EQ(*p.goal, (std::vector<double>{1.0, 0.2}));
+        EXPECT_EQ(p.allowedObstacles.size(), 1u);
+        EXPECT_TRUE(isRobotProblemFile((dir_ / "p.cfg").string()));
+        // start.joints replaces the request's start; a missing scene is named by its key.
+        const RobotProblem q = readRobotProblem(write("q.cfg", lines + "start.joints = 0.1 0.3\n"));
+        EXPECT_EQ(q.start, (std::vector<double>{0.1, 0.3}));
+        try
+        {
+            readRobotProblem(write("m.cfg", "[problem]\nrobot.urdf = " + ARM + "\nscene = none.yaml\n"));
+            ADD_FAILURE() << "no error";
+        }
+        catch (const Exception &e)
+        {
+            EXPECT_NE(std::string(e.what()).find("m.cfg:3: scene file"), std::string::npos) << e.what();
+        }
+    }
+
     TEST(MoveItBenchMaker, Ur5ProblemsReadWithAValidStartAndGoal)
     {
         const fs::path folder = fs::path(MESHGAP_SHARED_DATA_DIR) / "mbm" / "ur5";
