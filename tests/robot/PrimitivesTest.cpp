@@ -8,9 +8,11 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/geometry/Body.h"
+#include "meshgap/distance/ExactDistance.h"
 #include "meshgap/geometry/TriangleDistance.h"
 #include "meshgap/mesh/MeshOperations.h"
 #include "meshgap/robot/Primitives.h"
+#include "FclOracle.h"
 #include "TestMeshes.h"
 
 namespace meshgap
@@ -183,6 +185,69 @@ namespace meshgap
                 EXPECT_GE(depthInside(m, p), -1e-15) << n << " " << p.transpose();
             }
         }
+    }
+
+    TEST(Primitives, AgainstFclsTrueCylinderAndSphereTheMeshesAreSafeAndWithinTheirExcess)
+    {
+#ifndef MESHGAP_HAVE_FCL
+        GTEST_SKIP() << "FCL not found: no oracle";
+#else
+        // A small box at 10,000 random poses about each shape: where FCL's true primitive touches the box, the
+        // circumscribed mesh does too (safe); apart, the mesh's exact distance is FCL's less at most the excess.
+        std::mt19937 random(17);
+        std::uniform_real_distribution<double> unit(-1.0, 1.0);
+        const double r = 0.2, h = 0.6;
+        const BodyConstPtr box = Body::build(boxMesh(Eigen::Vector3d(0.1, 0.05, 0.08)));
+        const auto boxModel = test::fclModel(box->surface());
+        struct Shape
+        {
+            BodyConstPtr mesh;
+            std::shared_ptr<fcl::CollisionGeometryd> exact;
+            double excess;
+        };
+        const std::vector<Shape> shapes = {
+            {Body::build(cylinderMesh(r, h, 32)), std::make_shared<fcl::Cylinderd>(r, h),
+             r * (1.0 / std::cos(M_PI / 32) - 1.0)},
+            {Body::build(sphereMesh(r, 32)), std::make_shared<fcl::Sphered>(r), sphereExcess(r, 32)}};
+        for (const Shape &shape : shapes)
+        {
+            std::size_t touching = 0, apart = 0;
+            for (int k = 0; k < 10000; ++k)
+            {
+                Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+                X.translation() = 0.45 * Eigen::Vector3d(unit(random), unit(random), unit(random));
+                X.linear() = Eigen::Quaterniond(unit(random), unit(random), unit(random), unit(random))
+                                 .normalized()
+                                 .toRotationMatrix();
+                fcl::CollisionObjectd a(shape.exact, fcl::Transform3d::Identity()),
+                    b(boxModel, fcl::Transform3d(X.matrix()));
+                fcl::CollisionRequestd collideRequest;
+                fcl::CollisionResultd collideResult;
+                fcl::collide(&a, &b, collideRequest, collideResult);
+                if (collideResult.isCollision())
+                {
+                    ++touching;
+                    EXPECT_TRUE(inCollision(*shape.mesh, *box, X)) << X.translation().transpose();
+                    continue;
+                }
+                // GJK to a tight tolerance: at its default it stops up to 1e-4 above the true distance.
+                fcl::DistanceRequestd request(true);
+                request.gjk_solver_type = fcl::GST_INDEP;
+                request.distance_tolerance = 1e-12;
+                fcl::DistanceResultd fclResult;
+                fcl::distance(&a, &b, request, fclResult);
+                DistanceResult mine;
+                refineExact(*shape.mesh, *box, X, mine);
+                if (fclResult.min_distance < 1e-4)
+                    continue;  // GJK's tolerance near contact
+                ++apart;
+                EXPECT_LE(mine.distance, fclResult.min_distance + 1e-6);
+                EXPECT_GE(mine.distance, fclResult.min_distance - shape.excess - 1e-6) << (&shape - shapes.data());
+            }
+            EXPECT_GT(touching, 500u);
+            EXPECT_GT(apart, 500u);
+        }
+#endif
     }
 
     TEST(Primitives, BadSizesGetOneClearErrorEach)
