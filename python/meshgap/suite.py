@@ -10,8 +10,9 @@ run by meshgap_benchmark for planners x checkers x runs, then one table per scen
         --srdf ../shared/data/mbm/ur5/ur5.srdf [--planners rrtconnect] [--checkers certified,discrete,fcl] \\
         [--scenarios box_ur5,cage_ur5] [--limit 10] [--time 10] [--runs 1] [--seed 1] [--out suite]
 
-Writes OUT/<scenario>/<NNNN>/*.log (OMPL's .log files, one per planner[checker]; ompl_benchmark_statistics loads them
-into Planner Arena's database) and OUT/summary.md (the table, also printed). --urdf and --srdf default to the only
+Writes OUT/<scenario>/<NNNN>/*.log (OMPL's .log files, one per planner[checker]), OUT/summary.md (the table, also
+printed) and OUT/results.db (every .log loaded by ompl_benchmark_statistics, for Planner Arena; skipped with a note
+when ompl-demos is missing). --urdf and --srdf default to the only
 *.urdf and *.srdf beside the archive or folder. meshgap_benchmark is found as meshgap.campaign finds it
 ($MESHGAP_BENCHMARK, beside the package, or on PATH). Progress goes to stderr, one line a problem. Also runs as a
 file, without the compiled package: python3 python/meshgap/suite.py ... --executable build/planners/meshgap_benchmark.
@@ -164,12 +165,15 @@ def main(argv=None):
     parser.add_argument("--seed", type=int, default=1, help="OMPL's seed (default 1)")
     parser.add_argument("--out", default="suite", help="folder of the .log files and summary.md (default suite)")
     parser.add_argument("--executable", help="meshgap_benchmark (default: as meshgap.campaign finds it)")
+    parser.add_argument("--database", default="results.db",
+                        help="the SQLite database of every .log, in --out (default results.db; needs ompl-demos' "
+                             "ompl_benchmark_statistics, else skipped with a note; '' for none)")
     args = parser.parse_args(argv)
     try:
-        from .campaign import find_executable
+        from .campaign import find_executable, load_database
     except ImportError:  # run as a file (python3 python/meshgap/suite.py), without the package
         sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-        from campaign import find_executable
+        from campaign import find_executable, load_database
     try:
         args.planners = [p for p in args.planners.split(",") if p]
         args.checkers = [c for c in args.checkers.split(",") if c]
@@ -201,6 +205,13 @@ def main(argv=None):
         with open(os.path.join(args.out, "summary.md"), "w", encoding="utf-8") as f:
             f.write(text + "\n")
         print(text)
+        if args.database:
+            try:
+                # One experiment per .log: problems of different scenarios share their file names.
+                load_database(sorted(glob.glob(os.path.join(args.out, "*", "*", "*.log"))),
+                              os.path.join(args.out, args.database), merge=False)
+            except FileNotFoundError as e:
+                print("note: no database: %s" % e, file=sys.stderr)
         return 0
     except (ValueError, RuntimeError, OSError, tarfile.TarError) as e:
         print("error: %s" % e, file=sys.stderr)

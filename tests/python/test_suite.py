@@ -69,6 +69,10 @@ def test_table_from_a_folder_and_from_its_archive(benchmark, tmp_path):
         assert (int(r[2]), int(r[3])) == (2, 2)  # runs, solved
         assert r[7].strip() in ("0 of 2", "0 of 0")  # none colliding under the dense check (FCL, when built)
         assert float(r[8]) > 0.0  # the least exact clearance along the paths
+    if os.path.exists(str(tmp_path / "a" / "results.db")):  # ompl_benchmark_statistics (ompl-demos) found
+        import sqlite3
+        with sqlite3.connect(str(tmp_path / "a" / "results.db")) as db:
+            assert db.execute("SELECT COUNT(*) FROM runs").fetchone()[0] == 4
     for n in ("0001", "0002"):
         logs = os.listdir(str(tmp_path / "a" / "block_arm2" / n))
         assert sorted(logs) == ["request%s.RRTConnect.meshgap-certified.log" % n,
