@@ -64,6 +64,14 @@ namespace meshgap
             {
                 return node && node.IsMap() && node[key] ? node[key] : YAML::Node(YAML::NodeType::Undefined);
             }
+            /** \brief \e node[key] as child() gives it, checked to be a map when it is given (\e entry names it). */
+            YAML::Node section(const YAML::Node &node, const char *key, const std::string &entry) const
+            {
+                const YAML::Node found = child(node, key);
+                if (found && !found.IsNull() && !found.IsMap())
+                    fail(found, entry, "is not a map");
+                return found;
+            }
             double number(const YAML::Node &node, const std::string &entry) const
             {
                 if (!node || !node.IsScalar())
@@ -224,7 +232,7 @@ namespace meshgap
 
             void read()
             {
-                const YAML::Node world = YamlFile::child(file_.root(), "world");
+                const YAML::Node world = file_.section(file_.root(), "world", "world");
                 const YAML::Node octomap = YamlFile::child(YamlFile::child(world, "octomap"), "octomap");
                 if (YamlFile::child(octomap, "data") && YamlFile::child(octomap, "data").size() > 0)
                     file_.fail(octomap, "world.octomap", "an octomap is not read (give the obstacles as objects)");
@@ -382,7 +390,7 @@ namespace meshgap
                 file_.fail(object, where, "is not a collision object");
             const std::string id = file_.text(YamlFile::child(object, "id"), where + ".id");
             const std::string entry = where + " ('" + id + "')";
-            const YAML::Node header = YamlFile::child(object, "header");
+            const YAML::Node header = file_.section(object, "header", entry + ".header");
             const YAML::Node frameId = YamlFile::child(header, "frame_id");
             const Eigen::Isometry3d X_WO =
                 frame(frameId ? file_.text(frameId, entry + ".header.frame_id") : "", frameId, entry) *
@@ -458,8 +466,8 @@ namespace meshgap
         /** \brief The allowed collision matrix. */
         void readAcm(const YamlFile &file, UrdfRobot &robot, RobotProblem &problem)
         {
-            const YAML::Node acm = YamlFile::child(file.root(), "allowed_collision_matrix");
             const std::string entry = "allowed_collision_matrix";
+            const YAML::Node acm = file.section(file.root(), "allowed_collision_matrix", entry);
             std::vector<std::string> names;
             for (const YAML::Node &n : file.list(YamlFile::child(acm, "entry_names"), entry + ".entry_names"))
                 names.push_back(file.text(n, entry + ".entry_names[]"));
@@ -507,8 +515,10 @@ namespace meshgap
         void readRequest(const std::string &path, const UrdfRobot &robot, RobotProblem &problem)
         {
             const YamlFile file(path);
-            const YAML::Node start = YamlFile::child(file.root(), "start_state");
-            applyJoints(robot, jointState(file, YamlFile::child(start, "joint_state"), "start_state.joint_state"),
+            const YAML::Node start = file.section(file.root(), "start_state", "start_state");
+            applyJoints(robot,
+                        jointState(file, file.section(start, "joint_state", "start_state.joint_state"),
+                                   "start_state.joint_state"),
                         problem.start);
             const std::vector<YAML::Node> goals =
                 file.list(YamlFile::child(file.root(), "goal_constraints"), "goal_constraints");
@@ -564,7 +574,8 @@ namespace meshgap
         if (!files.scene.empty())
         {
             const YamlFile file(files.scene);
-            const YAML::Node state = YamlFile::child(YamlFile::child(file.root(), "robot_state"), "joint_state");
+            const YAML::Node state = file.section(file.section(file.root(), "robot_state", "robot_state"),
+                                                  "joint_state", "robot_state.joint_state");
             applyJoints(*robot, jointState(file, state, "robot_state.joint_state"), problem.start);
             WorldReader(file, *robot, problem.start, files, options, problem).read();
             readAcm(file, *robot, problem);

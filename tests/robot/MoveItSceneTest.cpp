@@ -212,6 +212,7 @@ goal_constraints:
     {
         const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
             {"world:\n  collision_objects: [\n", "s.yaml:", "cannot read the YAML"},
+            {"world: 5\n", "s.yaml:1", "world: is not a map"},
             {edit(SCENE, "name: [yaw, elbow, wrist]", "name: [yaw, knee, wrist]"), "s.yaml:5", "no joint 'knee'"},
             {edit(SCENE, "position: [0.5, 0.1, 0]", "position: [0.5, 9, 0]"), "s.yaml:5", "outside its limits"},
             {edit(SCENE, "position: [0.5, 0.1, 0]", "position: [0.5, 0.1, 0.3]"), "s.yaml:5", "fixed in the URDF"},
