@@ -45,7 +45,7 @@ int main(int argc, char **argv)
             return 0;
         ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
         const RobotProblem p = readRobotProblem(cfg);
-        const auto scenePtr = std::make_shared<RobotScene>(p.robot, p.obstacles);
+        const auto scenePtr = std::make_shared<RobotScene>(p.robot, p.obstacles, p.allowedObstacles);
         const RobotScene &scene = *scenePtr;
         ob::RealVectorBounds bounds(3);
         bounds.setLow(-1e3);
@@ -75,8 +75,8 @@ int main(int argc, char **argv)
                 p.robot->linkPoses(q.data(), q.size(), frames, poses);
                 bool hit = false;
                 for (std::size_t l = 0; l < links.size(); ++l)
-                    for (const auto &o : obstacles)
-                        hit = hit || test::fclCollide(o, links[l], poses[l]);
+                    for (std::size_t o : scene.linkObstacles(l))
+                        hit = hit || test::fclCollide(obstacles[o], links[l], poses[l]);
                 for (const auto &[x, y] : scene.selfPairs())
                     hit = hit || test::fclCollide(links[x], links[y], poses[x].inverse() * poses[y]);
                 colliding += hit;

@@ -14,7 +14,8 @@
 // results.db). --sampler makes the valid-state sampler a dimension too: each checker runs once per sampler, as
 // "<planner>[<checker>,<sampler>]".
 //
-// On a robot problem (robot.urdf = ..., robot.1 = ...: RobotProblem.h) the grid runs in joint space with the checkers
+// On a robot problem (robot.urdf = ..., robot.1 = ...: RobotProblem.h; or --urdf R.urdf --srdf R.srdf --scene S.yaml
+// --request Q.yaml, a problem in MoveIt's files: MoveItScene.h) the grid runs in joint space with the checkers
 // of benchmark/RobotCheckers.h: meshgap's whole-robot checker with its certified motion validator ("certified") or
 // OMPL's discrete one ("discrete"), and FCL on the same pairs at the same link poses with OMPL's discrete one
 // ("fcl"). After each slice a line gives its valid paths per minute: runs solved whose path FCL finds free, densely
@@ -40,6 +41,7 @@
 #include "benchmark/Checkers.h"
 #include "benchmark/MeasuredPlanner.h"
 #include "benchmark/RobotCheckers.h"
+#include "support/MoveItOptions.h"
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
 #include "meshgap/ompl/PlannerFactory.h"
@@ -59,6 +61,7 @@ namespace
         std::string cfg, plannerList, checkerList, samplerList, objective, shardText = "1/1";
         std::vector<std::string> params;
         std::uint32_t seed = 0;
+        MoveItFiles moveit;  ///< --urdf, --srdf, --scene, --request instead of --cfg
         po::variables_map vm;
     };
 
@@ -88,6 +91,7 @@ namespace
             "shard", po::value(&o.shardText), "run the i-th of n slices of the grid (default 1/1)")(
             "no-simplify", "record the planner's path as it is (default: simplified, as OMPL's Benchmark does)")(
             "verbose,v", "OMPL's informational messages too");
+        addMoveItOptions(options, o.moveit);
         po::options_description all;
         all.add(options);
         addRenamedOptions(all, {{"planners", "--planner"},
@@ -96,8 +100,9 @@ namespace
                                 {"out-dir", "--out"}});
         if (!parseCommandLine(argc, argv, all, o.vm, nullptr, &options))
             return false;
-        if (o.cfg.empty())
-            throw Exception("command line", "--cfg FILE is required; see --help");
+        if (o.cfg.empty() && o.moveit.urdf.empty())
+            throw Exception("command line",
+                            "--cfg FILE (or --urdf with --scene and --request) is required; see --help");
         return true;
     }
 
@@ -365,10 +370,10 @@ namespace
         if (!parseOptions(argc, argv, o))
             return 0;
         const auto [shard, shards] = parseShard(o.shardText);
-        const bool robot = isRobotProblemFile(o.cfg);
+        const bool robot = isToolRobotProblem(o.cfg, o.moveit);
         std::optional<RobotProblem> robotProblem;
         if (robot)
-            robotProblem = readRobotProblem(o.cfg);
+            robotProblem = readToolRobotProblem(o.cfg, o.moveit);
         const std::vector<std::pair<std::string, std::string>> setups =
             checkerSetups(o, robot ? robotCheckerNames(robotProblem->robot.get()) : checkerNames());
         const ProblemConfig config = robot ? benchmarkConfigOf(*robotProblem) : readProblemConfig(o.cfg);

@@ -40,6 +40,7 @@
 #include "meshgap/scene/ProblemConfig.h"
 #include "meshgap/scene/RobotMesh.h"
 #include "meshgap/scene/Scene.h"
+#include "support/MoveItOptions.h"
 #include "support/RobotRun.h"
 #include "support/SurfaceText.h"
 
@@ -240,6 +241,8 @@ namespace
         /** \brief With --cfg and no --algorithm: the checker's answer (the scene), not a node-level solver. */
         bool scene() const { return !cfg.empty() && !algorithmGiven; }
         bool many() const { return !posesFile.empty(); }
+        /** \brief --urdf, --srdf, --scene, --request: a robot problem in MoveIt's files. */
+        MoveItFiles moveit;
     };
 
     /** \brief Parse the command line; false after --help. */
@@ -264,6 +267,7 @@ namespace
             ("no-depth", "with --cfg and no --algorithm: in collision the verdict alone (distance -2.2e-308, a zero below zero, as FCL answers 0), no penetration depth")
             ("json", "print JSON instead of text or CSV")
             ("quiet,q", "print errors only (no log, no warnings such as a mesh's open surface)");
+        cli::addMoveItOptions(visible, o.moveit);
         po::options_description hidden;
         hidden.add_options()("mesh", po::value(&o.meshes));
         po::options_description all;
@@ -435,13 +439,14 @@ namespace
         Options o;
         if (!parseOptions(argc, argv, o))
             return 0;
-        if (!o.cfg.empty() && isRobotProblemFile(o.cfg))
+        if (cli::isToolRobotProblem(o.cfg, o.moveit))
         {
-            if (o.algorithmGiven || o.cold || o.json || !o.settings.empty())
-                throw Exception("command line", "a robot problem (" + o.cfg + ") is answered by the exact "
+            if (o.algorithmGiven || o.cold || o.json || !o.settings.empty() || !o.meshes.empty())
+                throw Exception("command line", "a robot problem (" + o.cfg + o.moveit.urdf +
+                                                ") is answered by the exact "
                                                 "whole-robot scene: --algorithm, --param, --cold and --json apply to "
                                                 "single bodies");
-            cli::robotDistance(o.cfg, o.poseText, o.posesFile, std::cout);
+            cli::robotDistance(o.cfg, o.moveit, o.poseText, o.posesFile, std::cout);
             return 0;
         }
         const DistanceSolverPtr solver = solverOf(o);

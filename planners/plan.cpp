@@ -33,6 +33,7 @@
 #include <variant>
 
 #include "CliMain.h"
+#include "support/MoveItOptions.h"
 #include "support/PlanOptions.h"
 #include "support/PlanRun.h"
 #include "support/RobotRun.h"
@@ -66,6 +67,7 @@ namespace
         options.add_options()("help,h", "print this help");
         for (const PlanOption &row : planOptionTable())
             declareOption(options, row, o);
+        addMoveItOptions(options, o.moveit);
         po::options_description all;
         all.add(options);
         addRenamedOptions(all, {{"mode", "--checker certified|fast"}});
@@ -106,7 +108,7 @@ namespace
         if (!parseOptions(argc, argv, o))
             return 0;
         ompl::RNG::setSeed(o.seed);
-        if (isRobotProblemFile(o.cfg))
+        if (isToolRobotProblem(o.cfg, o.moveit))
             return runRobot(o);
         const std::unique_ptr<PlanRun> p = setUpPlan(o);
         OMPL_INFORM("%s: %s, %zu obstacles, planner %s, objective %s, clearance %s, motion %s", p->config.name.c_str(),

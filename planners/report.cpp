@@ -21,6 +21,7 @@
 #include "meshgap/Exception.h"
 #include "meshgap/ompl/ProblemSetup.h"
 #include "support/DenseClearance.h"
+#include "support/MoveItOptions.h"
 #include "support/PathFile.h"
 #include "meshgap/robot/RobotProblem.h"
 #include "support/PlanReport.h"
@@ -45,10 +46,9 @@ namespace
     }
 
     /** \brief The report of a robot problem (robot.urdf or robot.1 ...): every link along the path. */
-    int robotReport(const std::string &cfg, const std::string &pathFile, const std::string &out, unsigned dense)
+    int robotReport(const RobotProblem &problem, const std::string &pathFile, const std::string &out, unsigned dense)
     {
-        const RobotProblem problem = readRobotProblem(cfg);
-        const RobotScene scene(problem.robot, problem.obstacles);
+        const RobotScene scene(problem.robot, problem.obstacles, problem.allowedObstacles);
         const std::vector<std::vector<double>> states = readRobotPathFile(pathFile, *problem.robot);
         const PlanReportData data =
             robotReportFromPath(scene, states, dense,
@@ -71,6 +71,7 @@ namespace
     int run(int argc, char **argv)
     {
         std::string cfg, pathFile, out;
+        MoveItFiles moveit;
         unsigned dense = 4;
         po::options_description options("meshgap_report --cfg FILE --path FILE --out FILE [options]\n\nOptions");
         options.add_options()("help,h", "print this help")("cfg", po::value(&cfg), "OMPL.app problem file (.cfg)")(
@@ -78,16 +79,18 @@ namespace
             "out", po::value(&out), "write the HTML report here")(
             "dense", po::value(&dense), "states per OMPL validity-check segment of the dense path (default 4)")(
             "quiet,q", "print errors only, and the warning of a colliding path (no log, no mesh warnings)");
+        cli::addMoveItOptions(options, moveit);
         po::variables_map vm;
         if (!cli::parseCommandLine(argc, argv, options, vm))
             return 0;
-        if (cfg.empty() || pathFile.empty() || out.empty())
-            throw Exception("command line", "--cfg FILE, --path FILE and --out FILE are required; see --help");
+        if ((cfg.empty() && moveit.urdf.empty()) || pathFile.empty() || out.empty())
+            throw Exception("command line", "--cfg FILE (or --urdf with --scene and --request), --path FILE and "
+                                            "--out FILE are required; see --help");
         if (dense < 1)
             throw Exception("--dense", "must be at least 1");
 
-        if (isRobotProblemFile(cfg))
-            return robotReport(cfg, pathFile, out, dense);
+        if (cli::isToolRobotProblem(cfg, moveit))
+            return robotReport(cli::readToolRobotProblem(cfg, moveit), pathFile, out, dense);
         const ProblemConfig config = readProblemConfig(cfg);
         const OmplProblem problem = setupProblem(config, ClearanceChecker::Mode::CERTIFIED);
         problem.setup->getSpaceInformation()->setup();  // the longest valid segment, which the dense path uses

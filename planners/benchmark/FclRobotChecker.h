@@ -24,10 +24,11 @@ namespace meshgap
        @par Short description
        A state validity checker for a robot of many bodies in a space made by robotStateSpace(), by FCL: every link
        of \e scene an FCL BVHModel<OBBRSS> of its mesh (its own frame) placed at the link pose the model gives, every
-       obstacle one too (world frame), and the pairs RobotScene checks: every link against every obstacle, then the
-       model's self pairs (RobotScene::selfPairs()). isValid() runs fcl::collide pair by pair up to the first
-       contact; clearance() fcl::distance on every pair, the least kept (0 in collision, as FCL answers). A state out
-       of the space's bounds is invalid. Counts its queries and their time; thread-safe.
+       obstacle one too (world frame), and the pairs RobotScene checks: every link against every obstacle not allowed
+       with it (RobotScene::linkObstacles()), then the model's self pairs (RobotScene::selfPairs()). isValid() runs
+       fcl::collide pair by pair up to the first contact; clearance() fcl::distance on every pair, the least kept (0
+       in collision, as FCL answers). A state out of the space's bounds is invalid. Counts its queries and their time;
+       thread-safe.
     */
     class FclRobotChecker : public FclTimedChecker<FclRobotChecker>
     {
@@ -62,8 +63,8 @@ namespace meshgap
                 return result.isCollision();
             };
             for (std::size_t i = 0; i < links_.size(); ++i)
-                for (const std::shared_ptr<Model> &o : obstacles_)
-                    if (collide(links_[i].get(), X[i], o.get(), Eigen::Isometry3d::Identity()))
+                for (std::size_t o : scene_->linkObstacles(i))
+                    if (collide(links_[i].get(), X[i], obstacles_[o].get(), Eigen::Isometry3d::Identity()))
                         return true;
             for (const LinkPair &p : scene_->selfPairs())
                 if (collide(links_[p.first].get(), X[p.first], links_[p.second].get(), X[p.second]))
@@ -83,8 +84,8 @@ namespace meshgap
                 least = std::min(least, std::max(0.0, result.min_distance));
             };
             for (std::size_t i = 0; i < links_.size(); ++i)
-                for (const std::shared_ptr<Model> &o : obstacles_)
-                    pair(links_[i].get(), X[i], o.get(), Eigen::Isometry3d::Identity());
+                for (std::size_t o : scene_->linkObstacles(i))
+                    pair(links_[i].get(), X[i], obstacles_[o].get(), Eigen::Isometry3d::Identity());
             for (const LinkPair &p : scene_->selfPairs())
                 pair(links_[p.first].get(), X[p.first], links_[p.second].get(), X[p.second]);
             return least;

@@ -61,7 +61,7 @@ namespace meshgap
             void checkProblem(const fs::path &cfg)
             {
                 const RobotProblem p = readRobotProblem(cfg.string());
-                const RobotScene scene(p.robot, p.obstacles);
+                const RobotScene scene(p.robot, p.obstacles, p.allowedObstacles);
                 RobotRequest request;
                 for (const auto *state : {&p.start, &*p.goal})
                 {

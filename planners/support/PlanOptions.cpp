@@ -76,8 +76,9 @@ namespace meshgap
 
         void checkPlanOptions(const PlanOptions &o)
         {
-            if (o.cfg.empty())
-                throw Exception(o.keywords ? "cfg" : "command line", "--cfg FILE is required; see --help");
+            if (o.cfg.empty() && o.moveit.urdf.empty())
+                throw Exception(o.keywords ? "cfg" : "command line",
+                                "--cfg FILE (or --urdf with --scene and --request) is required; see --help");
             if (o.checker != "certified" && o.checker != "fast")
                 throw Exception(o.label("checker"), "'" + o.checker + "' is not certified or fast");
             if (o.motion != "discrete" && o.motion != "clearance")

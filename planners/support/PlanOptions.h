@@ -11,6 +11,8 @@
 #include <variant>
 #include <vector>
 
+#include "meshgap/robot/MoveItScene.h"
+
 namespace meshgap
 {
     namespace cli
@@ -27,6 +29,9 @@ namespace meshgap
             std::vector<std::pair<std::string, std::string>> plannerParams;
             unsigned dense = 4, exportStates = 8, seed = 1;
             bool quiet = false;
+            /** \brief --urdf, --srdf, --scene, --request: a robot problem in MoveIt's files instead of --cfg
+                (support/MoveItOptions.h; meshgap_plan's, not in the table). */
+            MoveItFiles moveit;
             /** \brief The names (as in the table) of the options set explicitly. */
             std::set<std::string> given;
             /** \brief Whether errors name options as Python keywords (checker) rather than flags (--checker). */

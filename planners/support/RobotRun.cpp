@@ -1,3 +1,4 @@
+#include "support/MoveItOptions.h"
 #include "support/RobotRun.h"
 
 #include <cstdio>
@@ -153,14 +154,14 @@ namespace meshgap
             checkPlanOptions(o);
             checkRobotOptions(o);
             auto run = std::make_unique<RobotPlanRun>();
-            run->problem = readRobotProblem(o.cfg);
+            run->problem = readToolRobotProblem(o.cfg, o.moveit);
             const RobotProblem &p = run->problem;
             if (p.robot->dimension() == 0)
                 throw Exception(p.file, "the robot has no movable joint (a fixed robot): there is nothing to plan; "
                                         "meshgap_distance --cfg gives its clearance");
             if (!p.goal)
                 throw Exception(p.file, "no goal (goal.joints, or goal.N.x ... for each body)");
-            run->scene = std::make_shared<RobotScene>(p.robot, p.obstacles);
+            run->scene = std::make_shared<RobotScene>(p.robot, p.obstacles, p.allowedObstacles);
             run->setup = std::make_shared<og::SimpleSetup>(robotStateSpace(*p.robot, bounds(p)));
             const ob::SpaceInformationPtr si = run->setup->getSpaceInformation();
             run->checker = std::make_shared<RobotChecker>(si, run->scene);
@@ -259,11 +260,11 @@ namespace meshgap
             }
         }  // namespace
 
-        void robotDistance(const std::string &cfg, const std::string &stateText, const std::string &statesFile,
-                           std::ostream &out)
+        void robotDistance(const std::string &cfg, const MoveItFiles &moveit, const std::string &stateText,
+                           const std::string &statesFile, std::ostream &out)
         {
-            const RobotProblem p = readRobotProblem(cfg);
-            const RobotScene scene(p.robot, p.obstacles);
+            const RobotProblem p = readToolRobotProblem(cfg, moveit);
+            const RobotScene scene(p.robot, p.obstacles, p.allowedObstacles);
             const std::size_t n = p.robot->dimension();
             std::vector<std::vector<double>> states = {p.start};
             if (!stateText.empty())

@@ -35,9 +35,10 @@ namespace meshgap
             std::string summary;
         };
 
-        /** \brief Read the robot problem o.cfg and set up the planner; throws meshgap::Exception naming the option
-            that does not apply to robot problems, a problem without a goal (or, for rigid bodies, a volume), and a
-            start or goal out of bounds or in collision (the pair and its distance). */
+        /** \brief Read the robot problem o.cfg (or o.moveit's files) and set up the planner; throws
+            meshgap::Exception naming the option that does not apply to robot problems, a problem without a goal (or,
+            for rigid bodies, a volume), and a start or goal out of bounds or in collision (the pair and its
+            distance). */
         std::unique_ptr<RobotPlanRun> setUpRobotPlan(const PlanOptions &o);
 
         /** \brief Solve, then the summary: the path's length and the exact minimum clearance over it densely
@@ -49,13 +50,13 @@ namespace meshgap
             along the path, as meshgap_report writes it). */
         void writeRobotPlanFiles(const RobotPlanRun &run, const PlanOptions &o, std::ostream &log);
 
-        /** \brief meshgap_distance on a robot problem: at the start (\e stateText empty and \e statesFile empty),
-            at the state \e stateText, or at every state of \e statesFile (one a line, as a .path of the problem),
-            print the whole robot's exact signed clearance, the pair that attains it (a link and an obstacle, or
-            two links) and every link's clearance. Throws meshgap::Exception naming file:line for a state of the
-            wrong dimension or a malformed number. */
-        void robotDistance(const std::string &cfg, const std::string &stateText, const std::string &statesFile,
-                           std::ostream &out);
+        /** \brief meshgap_distance on a robot problem (\e cfg, or the MoveIt files \e moveit): at the start
+            (\e stateText empty and \e statesFile empty), at the state \e stateText, or at every state of
+            \e statesFile (one a line, as a .path of the problem), print the whole robot's exact signed clearance, the
+            pair that attains it (a link and an obstacle, or two links) and every link's clearance. Throws
+            meshgap::Exception naming file:line for a state of the wrong dimension or a malformed number. */
+        void robotDistance(const std::string &cfg, const MoveItFiles &moveit, const std::string &stateText,
+                           const std::string &statesFile, std::ostream &out);
     }  // namespace cli
 }  // namespace meshgap
 

@@ -10,6 +10,7 @@
 #include "meshgap/InputFile.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/mesh/MeshOperations.h"
+#include "meshgap/robot/MoveItScene.h"
 #include "meshgap/robot/MultiBodyRobot.h"
 #include "meshgap/robot/Srdf.h"
 #include "meshgap/robot/UrdfRobot.h"
@@ -47,7 +48,7 @@ namespace meshgap
         bool robotKey(const std::string &key)
         {
             static const std::set<std::string> known = {
-                "name",         "world",        "objective",    "objective.threshold", "sampler",
+                "name",         "world",        "objective",    "objective.threshold", "sampler", "scene", "request",
                 "robot.urdf",   "robot.srdf",   "robot.package_path", "attach", "start.joints",
                 "goal.joints",  "volume.min.x", "volume.min.y", "volume.min.z", "volume.max.x",
                 "volume.max.y", "volume.max.z"};
@@ -116,6 +117,8 @@ namespace meshgap
         void readWorld(const ConfigKeys &keys, const fs::path &folder, const BodyOptions &options,
                        RobotProblem &problem)
         {
+            if (!keys.has("world") && !problem.scene.empty())
+                return;  // the scene's obstacles alone
             keys.require("world");
             problem.world = existingFile(keys, "world", keys.value("world"), folder);
             naming(keys, "world",
@@ -189,9 +192,9 @@ namespace meshgap
             naming(keys, "attach", [&] { return robot.attach("payload", loadMesh(path), link, X, options); });
         }
 
-        /** \brief robot.urdf, robot.srdf, attach, start.joints and goal.joints. */
-        void readUrdfProblem(const ConfigKeys &keys, const fs::path &folder, const BodyOptions &options,
-                             RobotProblem &problem)
+        /** \brief robot.urdf, robot.srdf, start.joints and goal.joints. */
+        void readUrdfKeys(const ConfigKeys &keys, const fs::path &folder, RobotProblem &problem,
+                          const BodyOptions &options)
         {
             UrdfOptions urdfOptions;
             urdfOptions.packagePath = packagePath(keys, folder);
@@ -222,6 +225,52 @@ namespace meshgap
                 naming(keys, "robot.srdf", [&] { return (readSrdf(*robot, srdf), 0); });
             }
             problem.robot = robot;
+        }
+
+        /** \brief robot.urdf, robot.srdf, scene and request: the robot, obstacles, start and goal MoveIt's files
+            give. */
+        void readMoveItKeys(const ConfigKeys &keys, const fs::path &folder, const BodyOptions &options,
+                            RobotProblem &problem)
+        {
+            MoveItFiles files;
+            files.urdf = existingFile(keys, "robot.urdf", keys.value("robot.urdf"), folder);
+            if (keys.has("robot.srdf"))
+                files.srdf = existingFile(keys, "robot.srdf", keys.value("robot.srdf"), folder);
+            for (const char *key : {"scene", "request"})
+                if (keys.has(key))
+                    (key[0] == 's' ? files.scene : files.request) = existingFile(keys, key, keys.value(key), folder);
+            files.packagePath = packagePath(keys, folder);
+            const std::string key = keys.has("request") ? "request" : "scene";
+            RobotProblem read = naming(keys, key, [&] { return readMoveItProblem(files, options); });
+            problem.robot = read.robot;
+            problem.obstacles = std::move(read.obstacles);
+            problem.obstacleNames = std::move(read.obstacleNames);
+            problem.allowedObstacles = std::move(read.allowedObstacles);
+            problem.scene = files.scene;
+            problem.request = files.request;
+            problem.start = read.start;
+            problem.goal = read.goal;
+        }
+
+        /** \brief robot.urdf, robot.srdf, attach, start.joints and goal.joints (or scene and request). */
+        void readUrdfProblem(const ConfigKeys &keys, const fs::path &folder, const BodyOptions &options,
+                             RobotProblem &problem)
+        {
+            if (keys.has("scene") || keys.has("request"))
+            {
+                readMoveItKeys(keys, folder, options, problem);
+                const auto &robot = static_cast<const UrdfRobot &>(*problem.robot);
+                for (const char *key : {"start.joints", "goal.joints"})
+                    if (keys.has(key))
+                    {
+                        checkJoints(keys, key, keys.numbers(key), robot);
+                        (key[0] == 's' ? problem.start : problem.goal.emplace()) = keys.numbers(key);
+                    }
+            }
+            else
+                readUrdfKeys(keys, folder, problem, options);
+            if (keys.has("attach"))
+                attachPayload(keys, folder, options, *problem.robot);
             problem.urdf = true;
         }
 
@@ -372,7 +421,8 @@ namespace meshgap
         }
         else
         {
-            for (const char *key : {"robot.srdf", "robot.package_path", "attach", "start.joints", "goal.joints"})
+            for (const char *key :
+                 {"robot.srdf", "robot.package_path", "attach", "start.joints", "goal.joints", "scene", "request"})
                 if (keys.has(key))
                     throw Exception(keys.where(key), std::string(key) + " applies to a URDF robot (robot.urdf)");
             readBodies(file, keys, folder, options, problem);

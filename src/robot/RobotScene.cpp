@@ -31,7 +31,8 @@ namespace meshgap
         }
     }  // namespace
 
-    RobotScene::RobotScene(RobotModelConstPtr robot, std::vector<BodyConstPtr> obstacles)
+    RobotScene::RobotScene(RobotModelConstPtr robot, std::vector<BodyConstPtr> obstacles,
+                           const std::vector<LinkPair> &allowedObstacles)
         : robot_(std::move(robot)), obstacles_(std::move(obstacles)), id_(nextRobotSceneId++)
     {
         if (!robot_)
@@ -41,8 +42,28 @@ namespace meshgap
             throw Exception("RobotScene", "the robot has no collision geometry (no link with a body, no payload): "
                                           "there is nothing to check");
         selfPairs_ = robot_->selfPairs();
-        for (const RobotLink &link : links_)
-            scenes_.push_back(std::make_shared<Scene>(link.body, obstacles_));
+        std::vector<std::vector<bool>> allowed(links_.size(), std::vector<bool>(obstacles_.size(), false));
+        for (const auto &[link, obstacle] : allowedObstacles)
+        {
+            if (link >= links_.size() || obstacle >= obstacles_.size())
+                throw Exception("RobotScene", "an allowed pair names link " + std::to_string(link) + " and obstacle " +
+                                                  std::to_string(obstacle) + ", but there are " +
+                                                  std::to_string(links_.size()) + " links and " +
+                                                  std::to_string(obstacles_.size()) + " obstacles");
+            allowed[link][obstacle] = true;
+        }
+        for (std::size_t i = 0; i < links_.size(); ++i)
+        {
+            std::vector<BodyConstPtr> checked;
+            linkObstacles_.emplace_back();
+            for (std::size_t o = 0; o < obstacles_.size(); ++o)
+                if (!allowed[i][o])
+                {
+                    checked.push_back(obstacles_[o]);
+                    linkObstacles_.back().push_back(o);
+                }
+            scenes_.push_back(std::make_shared<Scene>(links_[i].body, std::move(checked)));
+        }
     }
 
     void RobotScene::prepare(const double *state, std::size_t size, RobotWarmStart &warm) const
@@ -136,13 +157,14 @@ namespace meshgap
         scenes_[i]->distance(warm.poses[i], sceneRequest, warm.links[i], s);
         best.pairsChecked += s.pairsChecked > 0 ? 1 : 0;
         complete = complete && s.certified;
+        const std::size_t obstacle = s.obstacle < linkObstacles_[i].size() ? linkObstacles_[i][s.obstacle] : 0;
         answer = {s.distance, s.atLeast ? RobotPairAnswer::Status::AT_LEAST : RobotPairAnswer::Status::EXACT,
-                  s.obstacle};
+                  obstacle};
         if (s.atLeast || !(s.distance < best.distance))
             return false;
         best.selfPair = false;
         best.link = i;
-        best.other = s.obstacle;
+        best.other = obstacle;
         best.onLink = s.onRobot;
         best.onOther = s.onObstacle;
         best.inCollision = s.inCollision;

@@ -20,6 +20,9 @@ namespace meshgap
           robot.package_path = DIR:DIR (optional; else ROS_PACKAGE_PATH; the URDF's folder and its parents are
           searched after either);
         - world = FILE (the obstacles: the mesh's connected parts, in the world frame, as for a single body);
+        - scene = FILE, request = FILE (optional, instead of or beside world and the joints): a MoveIt planning
+          scene and motion plan request in YAML, read as readMoveItProblem() reads them (obstacles, allowed
+          collision matrix, start and goal); start.joints and goal.joints, when given too, replace theirs;
         - attach = MESH LINK x y z qx qy qz qw (optional): the payload MESH (in its own frame) fixed to link LINK at
           that pose; it becomes the link named "payload";
         - start.joints = v1 v2 ... and goal.joints = ... (goal optional): the URDF's movable joints (revolute,
@@ -43,7 +46,13 @@ namespace meshgap
         bool urdf{false};     ///< robot is a UrdfRobot
         bool planar{false};   ///< a multi-body problem in SE(2)
         std::string world;    ///< world mesh path, resolved
-        std::vector<BodyConstPtr> obstacles;  ///< the world's connected parts
+        std::vector<BodyConstPtr> obstacles;  ///< the world's connected parts (a MoveIt scene's shapes)
+        /** \brief Per obstacle, the collision object it belongs to (a MoveIt scene's); empty for a world mesh. */
+        std::vector<std::string> obstacleNames;
+        /** \brief (link, obstacle) pairs never checked (a MoveIt scene's allowed collision matrix): give them to
+            RobotScene. */
+        std::vector<LinkPair> allowedObstacles;
+        std::string scene, request;  ///< the MoveIt scene and request (scene = FILE, request = FILE), resolved
         std::vector<double> start;            ///< robot->dimension() numbers
         std::optional<std::vector<double>> goal;
         std::optional<Eigen::AlignedBox3d> volume;

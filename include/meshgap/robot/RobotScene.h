@@ -112,15 +112,21 @@ namespace meshgap
     {
     public:
         /** \brief \e robot as it is now (its links and pairs are copied: later attach() calls are not seen); the
-            obstacles in the world frame. */
-        RobotScene(RobotModelConstPtr robot, std::vector<BodyConstPtr> obstacles);
+            obstacles in the world frame; \e allowedObstacles, (link, obstacle) pairs never checked (a MoveIt
+            scene's allowed collision matrix, RobotProblem::allowedObstacles). Throws meshgap::Exception for a pair
+            naming a link or obstacle that is not there. */
+        RobotScene(RobotModelConstPtr robot, std::vector<BodyConstPtr> obstacles,
+                   const std::vector<LinkPair> &allowedObstacles = {});
 
         const RobotModel &robot() const { return *robot_; }
         const std::vector<RobotLink> &links() const { return links_; }
         const std::vector<LinkPair> &selfPairs() const { return selfPairs_; }
         const std::vector<BodyConstPtr> &obstacles() const { return obstacles_; }
-        /** \brief Link \e i's scene (the link as the robot, the obstacles as the world). */
+        /** \brief Link \e i's scene (the link as the robot, the obstacles it is checked against as the world: every
+            obstacle but those allowed with it, in obstacles()' order; linkObstacles() maps their indices). */
         const Scene &linkScene(std::size_t i) const { return *scenes_[i]; }
+        /** \brief For link \e i, the index in obstacles() of each obstacle of its scene. */
+        const std::vector<std::size_t> &linkObstacles(std::size_t i) const { return linkObstacles_[i]; }
         /** \brief Number of pairs: one per link (against the obstacles), then one per self pair. */
         std::size_t numPairs() const { return links_.size() + selfPairs_.size(); }
         /** \brief Unique per robot scene (keys the warm starts made with it). */
@@ -176,6 +182,7 @@ namespace meshgap
         std::vector<LinkPair> selfPairs_;
         std::vector<BodyConstPtr> obstacles_;
         std::vector<ScenePtr> scenes_;
+        std::vector<std::vector<std::size_t>> linkObstacles_;
         std::uint64_t id_;
     };
 }  // namespace meshgap
