@@ -30,6 +30,7 @@
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/mesh/MeshOperations.h"
 #include "meshgap/robot/RobotBatch.h"
+#include "meshgap/robot/MoveItScene.h"
 #include "meshgap/robot/RobotProblem.h"
 #include "meshgap/robot/RobotScene.h"
 #include "meshgap/robot/Srdf.h"
@@ -818,6 +819,33 @@ namespace
         return s;
     }
 
+    /** \brief A URDF robot (and its SRDF) in a MoveIt planning scene, with a motion plan request's start and goal
+        (MoveItScene.h). */
+    PyRobotScene robotSceneFromMoveIt(const py::handle &urdf, const py::handle &srdf, const py::handle &scene,
+                                      const py::handle &request, const py::handle &packagePath)
+    {
+        MoveItFiles files;
+        files.urdf = pathArg(urdf, "urdf");
+        files.srdf = srdf.is_none() ? std::string() : pathArg(srdf, "srdf");
+        files.scene = scene.is_none() ? std::string() : pathArg(scene, "scene");
+        files.request = request.is_none() ? std::string() : pathArg(request, "request");
+        files.packagePath = packagePathArg(packagePath);
+        PyRobotScene s;
+        {
+            py::gil_scoped_release release;
+            RobotProblem problem = readMoveItProblem(files);
+            s.model = problem.robot;
+            s.scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles, problem.allowedObstacles);
+            s.name = problem.name;
+            s.start = problem.start;
+            s.goal = problem.goal;
+        }
+        s.stateNames = genericStateNames(*s.model);
+        if (const auto *robot = dynamic_cast<const UrdfRobot *>(s.model.get()))
+            s.stateNames = urdfStateNames(*robot);
+        return s;
+    }
+
     /** \brief A robot problem file (RobotProblem.h): its robot among its world, its start and goal. */
     PyRobotScene robotSceneFromCfg(const py::handle &pathObject)
     {
@@ -831,7 +859,7 @@ namespace
                 throw Exception(path, "a single-body problem (robot = FILE): open it with meshgap.Scene.from_cfg");
             RobotProblem problem = readRobotProblem(path);
             s.model = problem.robot;
-            s.scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles);
+            s.scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles, problem.allowedObstacles);
             s.name = problem.name;
             s.start = problem.start;
             s.goal = problem.goal;
@@ -1036,6 +1064,14 @@ namespace
                         "start.joints and goal.joints; or several bodies robot.1 = FILE, ...): its robot among its "
                         "world; start and goal its states. A single-body OMPL.app file is refused (meshgap.Scene."
                         "from_cfg reads those, and refuses robot problems).")
+            .def_static("from_moveit", &robotSceneFromMoveIt, py::arg("urdf"), py::arg("srdf") = py::none(),
+                        py::arg("scene") = py::none(), py::kw_only(), py::arg("request") = py::none(),
+                        py::arg("package_path") = py::none(),
+                        "A URDF robot (srdf: its disable_collisions pairs allowed) in a MoveIt planning scene YAML "
+                        "(moveit_msgs/PlanningScene: its collision objects the obstacles, its allowed collision "
+                        "matrix honoured, its robot state the start), and a motion plan request YAML "
+                        "(moveit_msgs/MotionPlanRequest: start state, goal joint constraints). MotionBenchMaker's "
+                        "problems read as shipped.")
             .def_static("from_urdf", &robotSceneFromUrdf, py::arg("urdf"), py::kw_only(),
                         py::arg("world") = py::none(), py::arg("srdf") = py::none(),
                         py::arg("package_path") = py::none(), py::arg("attach") = py::none(),
