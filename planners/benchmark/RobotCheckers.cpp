@@ -1,11 +1,10 @@
 #include "benchmark/RobotCheckers.h"
 
 #include <chrono>
-#include <ompl/base/DiscreteMotionValidator.h>
 
 #include "meshgap/Exception.h"
+#include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/Objectives.h"
-#include "meshgap/ompl/RobotMotionValidator.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 #include "meshgap/robot/UrdfRobot.h"
 
@@ -136,10 +135,9 @@ namespace meshgap
             setup_ = std::make_shared<ompl::geometric::SimpleSetup>(robotStateSpace(*problem.robot, boundsOf(problem)));
             const ompl::base::SpaceInformationPtr si = setup_->getSpaceInformation();
             checker_ = std::make_shared<CountingRobotChecker>(si, scene_);
-            const auto *urdf = dynamic_cast<const UrdfRobot *>(problem.robot.get());
-            if (urdf && !urdf->floatingBase())
+            if (robotHasCertifiedMotions(*problem.robot))
                 certified_ = std::make_shared<TimedMotionValidator>(
-                    si, std::make_shared<RobotMotionValidator>(si, scene_, *urdf), checker_);
+                    si, allocMotionValidator("clearance", si, scene_, "--checker"), checker_);
     #ifdef MESHGAP_HAVE_FCL
             fcl_ = std::make_shared<FclRobotChecker>(si, scene_);
     #endif
@@ -174,7 +172,7 @@ namespace meshgap
                 throw Exception("--checker", "unknown checker '" + name + "'");
             active_ = name;
             si->setStateValidityChecker(checker);
-            si->setMotionValidator(validator ? validator : std::make_shared<ompl::base::DiscreteMotionValidator>(si));
+            si->setMotionValidator(validator ? validator : allocMotionValidator("discrete", si, scene_, "--checker"));
         }
 
         CheckerStats RobotCheckers::stats() const
