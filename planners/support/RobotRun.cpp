@@ -7,6 +7,7 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
+#include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 #include "meshgap/robot/MultiBodyRobot.h"
 #include "meshgap/robot/UrdfRobot.h"
@@ -159,14 +160,14 @@ namespace meshgap
             const ob::SpaceInformationPtr si = run->setup->getSpaceInformation();
             run->checker = std::make_shared<RobotChecker>(si, run->scene);
             run->setup->setStateValidityChecker(run->checker);
-            const auto *urdf = dynamic_cast<const UrdfRobot *>(p.robot.get());
-            const bool certifiable = urdf && !urdf->floatingBase();
-            if (o.isGiven("motion") && o.motion == "clearance" && !certifiable)
-                throw Exception(o.label("motion"), "the certified motion validator takes fixed-base URDF robots; use "
-                                                   "discrete");
-            if (certifiable && !(o.isGiven("motion") && o.motion == "discrete"))
-                si->setMotionValidator(run->motion = std::make_shared<RobotMotionValidator>(si, run->scene, *urdf));
-            else
+            // Certified motions by default where the robot has them.
+            const std::string motion = o.isGiven("motion")                 ? o.motion :
+                                       robotHasCertifiedMotions(*p.robot) ? "clearance" :
+                                                                            "discrete";
+            const ob::MotionValidatorPtr validator = allocMotionValidator(motion, si, run->scene, o.label("motion"));
+            si->setMotionValidator(validator);
+            run->motion = std::dynamic_pointer_cast<RobotMotionValidator>(validator);
+            if (!run->motion)
                 si->setStateValidityCheckingResolution(DISCRETE_RESOLUTION);
             ob::ScopedState<> start(si), goal(si);
             checkEnd(*run, p.start, "start", start);
@@ -255,6 +256,41 @@ namespace meshgap
                     out << name << " " << r.linkClearance[i] << "\n";
                 }
             }
+
+            /** \brief \e text as one CSV field: quoted (quotes doubled) when it holds a comma, quote or line end. */
+            std::string csvField(const std::string &text)
+            {
+                if (text.find_first_of(",\"\n\r") == std::string::npos)
+                    return text;
+                std::string quoted = "\"";
+                for (char c : text)
+                    quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+                return quoted + "\"";
+            }
+
+            /** \brief The header of --poses' CSV (ROBOT_CSV_COLUMNS, then a clearance column per link). */
+            void printCsvHeader(const RobotScene &scene, std::ostream &out)
+            {
+                out << ROBOT_CSV_COLUMNS;
+                for (const RobotLink &link : scene.links())
+                    out << "," << csvField("clearance_" + link.name);
+                out << "\n";
+            }
+
+            /** \brief One state's answer as a CSV row: index, clearance, collision, certified, the pair (a link and an
+                obstacle index, or two links), its witnesses, every link's clearance. */
+            void printCsvRow(const RobotScene &scene, const RobotResult &r, std::size_t index, std::ostream &out)
+            {
+                out << index << "," << r.distance << "," << (r.inCollision ? 1 : 0) << "," << (r.certified ? 1 : 0)
+                    << "," << csvField(scene.links()[r.link].name) << ","
+                    << (r.selfPair ? csvField(scene.links()[r.other].name) : std::string()) << ","
+                    << (r.selfPair ? std::string() : std::to_string(r.other));
+                for (const Eigen::Vector3d *v : {&r.onLink, &r.onOther})
+                    out << "," << v->x() << "," << v->y() << "," << v->z();
+                for (double c : r.linkClearance)
+                    out << "," << c;
+                out << "\n";
+            }
         }  // namespace
 
         void robotDistance(const std::string &cfg, const std::string &stateText, const std::string &statesFile,
@@ -266,17 +302,23 @@ namespace meshgap
             std::vector<std::vector<double>> states = {p.start};
             if (!stateText.empty())
                 states = {parseRobotState(stateText, n, "--pose")};
-            if (!statesFile.empty())
+            const bool many = !statesFile.empty();
+            if (many)
                 states = readRobotPathFile(statesFile, n);
             RobotRequest request;
             request.everyPair = true;
             RobotWarmStart warm;
             RobotResult r;
-            out << std::setprecision(10);
+            out << std::setprecision(many ? 17 : 10);
+            if (many)
+                printCsvHeader(scene, out);
             for (std::size_t i = 0; i < states.size(); ++i)
             {
                 scene.distance(states[i].data(), n, request, warm, r);
-                printAnswer(scene, r, i + 1, out);
+                if (many)
+                    printCsvRow(scene, r, i, out);
+                else
+                    printAnswer(scene, r, i + 1, out);
             }
         }
     }  // namespace cli
