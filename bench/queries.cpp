@@ -958,6 +958,12 @@ int main(int argc, char **argv)
             data = vm.count("data") ? data : "";
             maps = vm.count("maps") ? maps : "";
         }
+        if (!vm.count("data") && !data.empty() && !fs::is_directory(data))
+        {
+            // The default folder is optional (a clone without ../shared): the maps alone, said so.
+            std::fprintf(stderr, "no OMPL.app problems: %s is not a folder (--data names another)\n", data.c_str());
+            data.clear();
+        }
         if (!loadCsvFile.empty() && !pairs)
             throw Exception("--load-csv", "load and build are measured on --robot and --world only");
         chooseColumns(skipList, columnList, streamList, pairs, options);

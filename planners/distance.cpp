@@ -13,10 +13,10 @@
 // CSV with --poses, or JSON with --json); the log, and with --poses the time per query (median and mean), go to
 // stderr. In collision (always decided exactly) the distance is signed: negative, minus a penetration depth estimate.
 //
-// On a robot problem (meshgap/robot/RobotProblem.h) --cfg F [--pose "v1 v2 ..."] [--poses STATES] [--exact] prints,
+// On a robot problem (meshgap/robot/RobotProblem.h) --cfg F [--pose "v1 v2 ..."] [--poses STATES] [--exact] gives,
 // per state (the numbers of start.joints; default the start), the whole robot's exact signed clearance, the pair
-// that attains it (a link and an obstacle, or two links) with its witness points, and every link's clearance
-// (support/RobotRun.h).
+// that attains it (a link and an obstacle, or two links) with its witness points, and every link's clearance: a
+// text block for one state, CSV with a header for --poses (support/RobotRun.h, ROBOT_CSV_COLUMNS).
 
 #include <ompl/util/Console.h>
 
@@ -252,7 +252,8 @@ namespace
         visible.add_options()("help,h", "print this help")
             ("cfg", po::value(&o.cfg), "OMPL.app problem file: A = its world, B = its robot (pose = robot state)")
             ("pose", po::value(&o.poseText), "pose of B in A's frame: \"x y z qx qy qz qw\" (default: identity, or the cfg's start)")
-            ("poses", po::value(&o.posesFile), "file of poses, one per line (OMPL.app .path format); prints CSV")
+            ("poses", po::value(&o.posesFile), "file of poses (a robot problem: states), one per line (OMPL.app .path format); prints CSV "
+                                           "with a header")
             ("algorithm,a", po::value(&o.algorithm), "solver name (unknown names list the valid ones)")
             ("seed", po::value(&o.seed), "random seed (same seed, same answer)")
             ("param", po::value(&o.settings), "ALGORITHM.NAME=VALUE: a parameter of the --algorithm, e.g. comb-GA-wl.population=200 (repeatable)")

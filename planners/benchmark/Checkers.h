@@ -6,7 +6,6 @@
 
 #include <limits>
 #include <memory>
-#include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/tools/benchmark/Benchmark.h>
 #include <string>
 #include <vector>
@@ -15,7 +14,7 @@
 #include "benchmark/BenchmarkLog.h"
 #include "meshgap/Exception.h"
 #include "meshgap/mesh/MeshLoader.h"
-#include "meshgap/ompl/ClearanceMotionValidator.h"
+#include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/ProblemSetup.h"
 #include "meshgap/scene/RobotMesh.h"
 
@@ -92,7 +91,7 @@ namespace meshgap
                     if (!cmvChecker_)
                     {
                         cmvChecker_ = std::make_shared<ClearanceChecker>(si_, problem_.scene, ClearanceChecker::Mode::CERTIFIED);
-                        cmv_ = std::make_shared<ClearanceMotionValidator>(si_, cmvChecker_);
+                        cmv_ = allocMotionValidator("clearance", si_, cmvChecker_, "--checker");
                     }
                     checker = cmvChecker_;
                     validator = cmv_;
@@ -105,7 +104,8 @@ namespace meshgap
                     throw Exception("--checker", "unknown checker '" + name + "'");
                 active_ = name;
                 si_->setStateValidityChecker(checker);
-                si_->setMotionValidator(validator ? validator : std::make_shared<ompl::base::DiscreteMotionValidator>(si_));
+                si_->setMotionValidator(validator ? validator :
+                                                    allocMotionValidator("discrete", si_, problem_.checker, "--checker"));
             }
 
             CheckerStats stats() const override
@@ -151,7 +151,7 @@ namespace meshgap
             OmplProblem problem_;
             ompl::base::SpaceInformationPtr si_;
             ClearanceCheckerPtr fast_, cmvChecker_;
-            std::shared_ptr<ClearanceMotionValidator> cmv_;
+            ompl::base::MotionValidatorPtr cmv_;
     #ifdef MESHGAP_HAVE_FCL
             std::shared_ptr<FclChecker> fcl_;
     #endif

@@ -7,8 +7,8 @@
 
 #include "benchmark/BenchmarkLog.h"
 #include "meshgap/Exception.h"
+#include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/Objectives.h"
-#include "meshgap/ompl/RobotMotionValidator.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 #include "meshgap/robot/UrdfRobot.h"
 
@@ -138,7 +138,7 @@ namespace meshgap
             const ompl::base::SpaceInformationPtr si = setup_->getSpaceInformation();
             checker_ = std::make_shared<CountingRobotChecker>(si, scene_);
             certified_ = std::make_shared<TimedMotionValidator>(
-                si, std::make_shared<RobotMotionValidator>(si, scene_, *problem.robot), checker_);
+                si, allocMotionValidator("clearance", si, scene_, "--checker"), checker_);
     #ifdef MESHGAP_HAVE_FCL
             fcl_ = std::make_shared<FclRobotChecker>(si, scene_);
     #endif
@@ -168,7 +168,7 @@ namespace meshgap
                 throw Exception("--checker", "unknown checker '" + name + "'");
             active_ = name;
             si->setStateValidityChecker(checker);
-            si->setMotionValidator(validator ? validator : std::make_shared<ompl::base::DiscreteMotionValidator>(si));
+            si->setMotionValidator(validator ? validator : allocMotionValidator("discrete", si, scene_, "--checker"));
         }
 
         CheckerStats RobotCheckers::stats() const

@@ -7,6 +7,7 @@
 #include "OptimizeOption.h"
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
+#include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/SamplerFactory.h"
 
@@ -81,8 +82,7 @@ namespace meshgap
                                 "--cfg FILE (or --urdf with --scene and --request) is required; see --help");
             if (o.checker != "certified" && o.checker != "fast")
                 throw Exception(o.label("checker"), "'" + o.checker + "' is not certified or fast");
-            if (o.motion != "discrete" && o.motion != "clearance")
-                throw Exception(o.label("motion"), "'" + o.motion + "' is not discrete or clearance");
+            checkMotionValidatorName(o.motion, o.label("motion"));
             if (o.motion == "clearance" && o.checker != "certified")
                 throw Exception(o.label("motion"), "clearance needs " + o.label("checker") +
                                                        " certified (it steps by exact clearance)");

@@ -8,6 +8,7 @@
 #include "CliMain.h"
 #include "OptimizeOption.h"
 #include "meshgap/Exception.h"
+#include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/SamplerFactory.h"
@@ -163,8 +164,10 @@ namespace meshgap
             const ob::SpaceInformationPtr si = p->problem.setup->getSpaceInformation();
             if (!o.sampler.empty())
                 setValidStateSampler(*si, o.sampler, o.label("sampler"));
-            if (o.motion == "clearance")
-                si->setMotionValidator(p->cmv = std::make_shared<ClearanceMotionValidator>(si, p->problem.checker));
+            const ob::MotionValidatorPtr motion = allocMotionValidator(o.motion, si, p->problem.checker,
+                                                                       o.label("motion"));
+            si->setMotionValidator(motion);
+            p->cmv = std::dynamic_pointer_cast<ClearanceMotionValidator>(motion);
             p->problem.setup->setPlanner(planner(o, si));
             p->problem.setup->setup();
             return p;

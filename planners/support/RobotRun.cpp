@@ -8,6 +8,7 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
+#include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 #include "meshgap/robot/MultiBodyRobot.h"
 #include "meshgap/robot/UrdfRobot.h"
@@ -166,10 +167,12 @@ namespace meshgap
             const ob::SpaceInformationPtr si = run->setup->getSpaceInformation();
             run->checker = std::make_shared<RobotChecker>(si, run->scene);
             run->setup->setStateValidityChecker(run->checker);
-            if (!(o.isGiven("motion") && o.motion == "discrete"))
-                si->setMotionValidator(run->motion =
-                                           std::make_shared<RobotMotionValidator>(si, run->scene, *p.robot));
-            else
+            // Certified motions by default, for every kind of robot.
+            const std::string motion = o.isGiven("motion") ? o.motion : "clearance";
+            const ob::MotionValidatorPtr validator = allocMotionValidator(motion, si, run->scene, o.label("motion"));
+            si->setMotionValidator(validator);
+            run->motion = std::dynamic_pointer_cast<RobotMotionValidator>(validator);
+            if (!run->motion)
                 si->setStateValidityCheckingResolution(DISCRETE_RESOLUTION);
             ob::ScopedState<> start(si), goal(si);
             checkEnd(*run, p.start, "start", start);
@@ -258,6 +261,41 @@ namespace meshgap
                     out << name << " " << r.linkClearance[i] << "\n";
                 }
             }
+
+            /** \brief \e text as one CSV field: quoted (quotes doubled) when it holds a comma, quote or line end. */
+            std::string csvField(const std::string &text)
+            {
+                if (text.find_first_of(",\"\n\r") == std::string::npos)
+                    return text;
+                std::string quoted = "\"";
+                for (char c : text)
+                    quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+                return quoted + "\"";
+            }
+
+            /** \brief The header of --poses' CSV (ROBOT_CSV_COLUMNS, then a clearance column per link). */
+            void printCsvHeader(const RobotScene &scene, std::ostream &out)
+            {
+                out << ROBOT_CSV_COLUMNS;
+                for (const RobotLink &link : scene.links())
+                    out << "," << csvField("clearance_" + link.name);
+                out << "\n";
+            }
+
+            /** \brief One state's answer as a CSV row: index, clearance, collision, certified, the pair (a link and an
+                obstacle index, or two links), its witnesses, every link's clearance. */
+            void printCsvRow(const RobotScene &scene, const RobotResult &r, std::size_t index, std::ostream &out)
+            {
+                out << index << "," << r.distance << "," << (r.inCollision ? 1 : 0) << "," << (r.certified ? 1 : 0)
+                    << "," << csvField(scene.links()[r.link].name) << ","
+                    << (r.selfPair ? csvField(scene.links()[r.other].name) : std::string()) << ","
+                    << (r.selfPair ? std::string() : std::to_string(r.other));
+                for (const Eigen::Vector3d *v : {&r.onLink, &r.onOther})
+                    out << "," << v->x() << "," << v->y() << "," << v->z();
+                for (double c : r.linkClearance)
+                    out << "," << c;
+                out << "\n";
+            }
         }  // namespace
 
         void robotDistance(const std::string &cfg, const MoveItFiles &moveit, const std::string &stateText,
@@ -269,17 +307,23 @@ namespace meshgap
             std::vector<std::vector<double>> states = {p.start};
             if (!stateText.empty())
                 states = {parseRobotState(stateText, *p.robot, "--pose")};
-            if (!statesFile.empty())
+            const bool many = !statesFile.empty();
+            if (many)
                 states = readRobotPathFile(statesFile, *p.robot);
             RobotRequest request;
             request.everyPair = true;
             RobotWarmStart warm;
             RobotResult r;
-            out << std::setprecision(10);
+            out << std::setprecision(many ? 17 : 10);
+            if (many)
+                printCsvHeader(scene, out);
             for (std::size_t i = 0; i < states.size(); ++i)
             {
                 scene.distance(states[i].data(), n, request, warm, r);
-                printAnswer(scene, r, i + 1, out);
+                if (many)
+                    printCsvRow(scene, r, i, out);
+                else
+                    printAnswer(scene, r, i + 1, out);
             }
         }
     }  // namespace cli

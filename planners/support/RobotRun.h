@@ -50,11 +50,21 @@ namespace meshgap
             along the path, as meshgap_report writes it). */
         void writeRobotPlanFiles(const RobotPlanRun &run, const PlanOptions &o, std::ostream &log);
 
+        /** \brief The first columns of meshgap_distance --poses on a robot problem, one row per state (index from
+            0): the whole robot's exact signed clearance, whether it is in collision, whether certified, the pair
+            that attains it (link, and other_link for two links or obstacle, the obstacle's index, for a link
+            against the world; the other one empty), its witness points (world frame); then clearance_LINK, each
+            link's clearance, in the order of the robot's links. */
+        inline constexpr const char *ROBOT_CSV_COLUMNS =
+            "index,distance,in_collision,certified,link,other_link,obstacle,witness_link_x,witness_link_y,"
+            "witness_link_z,witness_other_x,witness_other_y,witness_other_z";
+
         /** \brief meshgap_distance on a robot problem (\e cfg, or the MoveIt files \e moveit): at the start
-            (\e stateText empty and \e statesFile empty), at the state \e stateText, or at every state of
-            \e statesFile (one a line, as a .path of the problem), print the whole robot's exact signed clearance, the
-            pair that attains it (a link and an obstacle, or two links) and every link's clearance. Throws
-            meshgap::Exception naming file:line for a state of the wrong dimension or a malformed number. */
+            (\e stateText empty and \e statesFile empty) or at the state \e stateText, a text block of the whole
+            robot's exact signed clearance, the pair that attains it (a link and an obstacle, or two links), its
+            witnesses and every link's clearance; at every state of \e statesFile (one a line, as a .path of the
+            problem), the same as CSV (ROBOT_CSV_COLUMNS). Throws meshgap::Exception naming file:line for a state of
+            the wrong dimension or a malformed number. */
         void robotDistance(const std::string &cfg, const MoveItFiles &moveit, const std::string &stateText,
                            const std::string &statesFile, std::ostream &out);
     }  // namespace cli

@@ -12,6 +12,9 @@
 #include <sstream>
 
 #include "CliRun.h"
+#include "meshgap/robot/RobotProblem.h"
+#include "meshgap/robot/RobotScene.h"
+#include "support/RobotRun.h"
 
 namespace fs = std::filesystem;
 
@@ -86,6 +89,25 @@ namespace
         }
         return rows;
     }
+
+    /** \brief The lines of \e text split at commas (no quoted fields expected). */
+    std::vector<std::vector<std::string>> csvTable(const std::string &text)
+    {
+        std::vector<std::vector<std::string>> table;
+        std::istringstream in(text);
+        std::string line;
+        while (std::getline(in, line))
+        {
+            std::vector<std::string> fields(1);
+            for (char c : line)
+                if (c == ',')
+                    fields.emplace_back();
+                else
+                    fields.back() += c;
+            table.push_back(fields);
+        }
+        return table;
+    }
 }  // namespace
 
 TEST_F(RobotCli, DistanceGivesTheWholeRobotsClearanceItsPairAndEveryLink)
@@ -105,6 +127,75 @@ TEST_F(RobotCli, DistanceGivesTheWholeRobotsClearanceItsPairAndEveryLink)
     EXPECT_NEAR(valueAfter(far.out, "state 1: clearance"), 1.5, 1e-9) << far.out;
     EXPECT_NE(far.out.find("closest pair   link 'robot.1' and obstacle 0"), std::string::npos) << far.out;
     EXPECT_NEAR(valueAfter(far.out, "link robot.2"), std::hypot(1.5, 3.5), 1e-9) << far.out;
+}
+
+TEST_F(RobotCli, DistancePosesWritesCsvRowsThatAreTheLibrarysExactAnswers)
+{
+    // The arm with its payload (links against the fixture, and self pairs) at states from start to goal and past
+    // them: some free, some in collision.
+    const std::string cfg = MAPS + "/arm_fixture/arm_fixture.cfg";
+    const meshgap::RobotProblem problem = meshgap::readRobotProblem(cfg);
+    const meshgap::RobotScene scene(problem.robot, problem.obstacles);
+    std::vector<std::vector<double>> states;
+    std::ostringstream text;
+    text.precision(17);
+    for (int k = -4; k <= 14; ++k)
+    {
+        std::vector<double> q = problem.start;
+        for (std::size_t j = 0; j < q.size(); ++j)
+            q[j] += (k / 10.0) * ((*problem.goal)[j] - problem.start[j]);
+        states.push_back(q);
+        for (std::size_t j = 0; j < q.size(); ++j)
+            text << (j ? " " : "") << q[j];
+        text << "\n";
+    }
+    const CliRun d = meshgap::test::runExecutable("meshgap_distance", "--cfg " + cfg + " --exact --poses " +
+                                                                         file("arm.path", text.str()));
+    ASSERT_EQ(d.status, 0) << d.err;
+    const auto table = csvTable(d.out);
+    ASSERT_EQ(table.size(), states.size() + 1) << d.out;
+    std::string header = meshgap::cli::ROBOT_CSV_COLUMNS;
+    for (const meshgap::RobotLink &link : scene.links())
+        header += ",clearance_" + link.name;
+    EXPECT_EQ(d.out.substr(0, d.out.find('\n')), header);
+    const std::size_t columns = 13 + scene.links().size();
+    int colliding = 0;
+    for (std::size_t i = 0; i < states.size(); ++i)
+    {
+        const std::vector<std::string> &row = table[i + 1];
+        ASSERT_EQ(row.size(), columns) << "row " << i;
+        // The oracle: a fresh (cold) whole-robot query, every pair answered exactly.
+        meshgap::RobotRequest request;
+        request.everyPair = true;
+        meshgap::RobotResult r;
+        scene.distance(states[i], request, r);
+        double least = INFINITY;
+        for (const meshgap::RobotPairAnswer &pair : r.pairs)
+        {
+            ASSERT_EQ(pair.status, meshgap::RobotPairAnswer::Status::EXACT);
+            least = std::min(least, pair.distance);
+        }
+        EXPECT_EQ(std::stoul(row[0]), i);
+        EXPECT_NEAR(std::stod(row[1]), least, 1e-9) << "row " << i;
+        EXPECT_EQ(row[2], r.inCollision ? "1" : "0") << "row " << i;
+        EXPECT_EQ(row[3], "1") << "row " << i;
+        EXPECT_EQ(row[4], scene.links()[r.link].name) << "row " << i;
+        EXPECT_EQ(row[5], r.selfPair ? scene.links()[r.other].name : "") << "row " << i;
+        EXPECT_EQ(row[6], r.selfPair ? "" : std::to_string(r.other)) << "row " << i;
+        const Eigen::Vector3d onLink(std::stod(row[7]), std::stod(row[8]), std::stod(row[9]));
+        const Eigen::Vector3d onOther(std::stod(row[10]), std::stod(row[11]), std::stod(row[12]));
+        EXPECT_LT((onLink - r.onLink).norm(), 1e-9) << "row " << i;
+        EXPECT_LT((onOther - r.onOther).norm(), 1e-9) << "row " << i;
+        if (!r.inCollision)
+        {
+            EXPECT_NEAR((onLink - onOther).norm(), least, 1e-9) << "row " << i;  // the witnesses attain it
+        }
+        for (std::size_t l = 0; l < scene.links().size(); ++l)
+            EXPECT_NEAR(std::stod(row[13 + l]), r.linkClearance[l], 1e-9) << "row " << i << " link " << l;
+        colliding += r.inCollision ? 1 : 0;
+    }
+    EXPECT_GT(colliding, 0);
+    EXPECT_LT(colliding, int(states.size()));
 }
 
 TEST_F(RobotCli, PlanWritesThePathInTheProblemsStateNumbers)
@@ -132,7 +223,10 @@ TEST_F(RobotCli, PlanWritesThePathInTheProblemsStateNumbers)
                                                                          "/swap_se2/swap_se2.cfg --exact --poses " +
                                                                          path);
     ASSERT_EQ(d.status, 0) << d.err;
-    EXPECT_EQ(d.out.find("IN COLLISION"), std::string::npos) << d.out;
+    const auto table = csvTable(d.out);
+    ASSERT_EQ(table.size(), rows.size() + 1) << d.out;
+    for (std::size_t i = 1; i < table.size(); ++i)
+        EXPECT_EQ(table[i][2], "0") << "state " << i - 1 << " in collision:\n" << d.out;
 }
 
 TEST_F(RobotCli, PlanWritesTheReportWithEveryLink)

@@ -9,7 +9,9 @@ import pytest
 
 SOURCE_DIR = pathlib.Path(__file__).resolve().parents[2]
 MAPS = SOURCE_DIR / "maps"
-OMPLAPP = (SOURCE_DIR / ".." / "shared" / "data" / "omplapp").resolve()
+# The optional shared data folder (CMake's MESHGAP_SHARED_DATA_DIR, ../shared/data by default).
+SHARED_DATA = pathlib.Path(os.environ.get("MESHGAP_SHARED_DATA_DIR", SOURCE_DIR / ".." / "shared" / "data"))
+OMPLAPP = (SHARED_DATA / "omplapp").resolve()
 RESOURCES = SOURCE_DIR / "tests" / "resources"
 
 

@@ -2,7 +2,6 @@
 per-link and per-pair clearances checked against analytic box distances (quarter turns keep every box axis-aligned),
 threads, payloads, and bad input (one clear exception)."""
 import math
-import re
 
 import numpy as np
 import pytest
@@ -333,19 +332,32 @@ def test_batch_equals_meshgap_distance_cli(files, tmp_path):
     run = subprocess.run([cli, "--cfg", str(cfg), "--poses", str(path), "--exact"], capture_output=True, text=True,
                          timeout=300)
     assert run.returncode == 0, run.stderr
-    blocks = re.split(r"^state (\d+): ", run.stdout, flags=re.M)[1:]
-    assert len(blocks) == 2 * len(states)
+    rows = distance_csv(run.stdout, scene)
+    assert len(rows) == len(states)
     r = scene.distance(states)
-    for i in range(len(states)):
-        assert int(blocks[2 * i]) == i + 1
-        text = blocks[2 * i + 1]
-        printed = float(re.match(r"clearance (\S+)", text).group(1))
-        assert printed == pytest.approx(r["distance"][i], rel=1e-9, abs=1e-12), (i, text)
-        assert ("IN COLLISION" in text) == bool(r["in_collision"][i])
-        links = dict((name, float(value)) for name, value in re.findall(r"^  link (\S+)\s+(\S+)$", text, re.M))
-        assert list(links) == scene.link_names
-        np.testing.assert_allclose([links[n] for n in scene.link_names], r["link_clearance"][i], rtol=1e-9,
-                                   atol=1e-12)
+    for i, row in enumerate(rows):
+        assert int(row["index"]) == i
+        assert float(row["distance"]) == pytest.approx(r["distance"][i], rel=1e-9, abs=1e-12), (i, row)
+        assert int(row["in_collision"]) == int(r["in_collision"][i])
+        assert row["link"] == scene.link_names[r["link"][i]]
+        assert row["other_link"] == (scene.link_names[r["other_link"][i]] if r["self_pair"][i] else "")
+        assert row["obstacle"] == ("" if r["self_pair"][i] else str(r["obstacle"][i]))
+        for side, key in (("link", "on_link"), ("other", "on_other")):
+            np.testing.assert_allclose([float(row["witness_%s_%s" % (side, c)]) for c in "xyz"], r[key][i],
+                                       rtol=1e-9, atol=1e-12)
+        np.testing.assert_allclose([float(row["clearance_" + n]) for n in scene.link_names], r["link_clearance"][i],
+                                   rtol=1e-9, atol=1e-12)
+
+
+def distance_csv(text, scene):
+    """The rows of meshgap_distance --poses on a robot problem, as dicts; the header checked against the link names."""
+    import csv
+    import io
+    reader = csv.DictReader(io.StringIO(text))
+    assert reader.fieldnames[:7] == ["index", "distance", "in_collision", "certified", "link", "other_link",
+                                     "obstacle"]
+    assert reader.fieldnames[13:] == ["clearance_" + n for n in scene.link_names]
+    return list(reader)
 
 
 @pytest.mark.parametrize("name, dimension", [("arm_fixture", 4), ("swap_se2", 6), ("swap_se3", 14)])
@@ -369,10 +381,9 @@ def test_maps_batch_equals_meshgap_distance_cli(tmp_path, name, dimension):
     run = subprocess.run([cli, "--cfg", str(cfg), "--poses", str(path), "--exact"], capture_output=True, text=True,
                          timeout=300)
     assert run.returncode == 0, run.stderr
-    printed = [float(x) for x in re.findall(r"^state \d+: clearance (\S+)", run.stdout, re.M)]
+    rows = distance_csv(run.stdout, scene)
     r = scene.distance(states)
     assert not r["in_collision"][[0, -1]].any()  # start and goal are free
-    np.testing.assert_allclose(printed, r["distance"], rtol=1e-9, atol=1e-12)
-    links = re.findall(r"^  link (\S+)\s+(\S+)$", run.stdout, re.M)
-    np.testing.assert_allclose(np.array([float(v) for _, v in links]).reshape(len(states), -1), r["link_clearance"],
-                               rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose([float(row["distance"]) for row in rows], r["distance"], rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose([[float(row["clearance_" + n]) for n in scene.link_names] for row in rows],
+                               r["link_clearance"], rtol=1e-9, atol=1e-12)

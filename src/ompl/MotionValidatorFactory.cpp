@@ -1,0 +1,78 @@
+#include "meshgap/ompl/MotionValidatorFactory.h"
+
+#include <ompl/base/DiscreteMotionValidator.h>
+
+#include <functional>
+
+#include "meshgap/Exception.h"
+#include "meshgap/Registry.h"
+#include "meshgap/ompl/ClearanceMotionValidator.h"
+#include "meshgap/ompl/RobotMotionValidator.h"
+
+namespace meshgap
+{
+    namespace
+    {
+        /** \brief What a validator is made for: one rigid body (checker) or a robot (scene); discrete needs
+            neither. */
+        struct Target
+        {
+            ompl::base::SpaceInformationPtr si;
+            ClearanceCheckerPtr checker;
+            RobotSceneConstPtr scene;
+            std::string where;
+        };
+
+        using Make = std::function<ompl::base::MotionValidatorPtr(const Target &)>;
+
+        ompl::base::MotionValidatorPtr certified(const Target &t)
+        {
+            if (t.checker)
+            {
+                if (t.checker->mode() != ClearanceChecker::Mode::CERTIFIED)
+                    throw Exception(t.where, "the clearance motion validator needs the certified checker (exact "
+                                             "clearance), not the fast one");
+                return std::make_shared<ClearanceMotionValidator>(t.si, t.checker);
+            }
+            if (!t.scene)
+                throw Exception(t.where, "the clearance motion validator needs a validity checker or robot scene");
+            return std::make_shared<RobotMotionValidator>(t.si, t.scene, t.scene->robot());
+        }
+
+        const Registry<Make> &registry()
+        {
+            static const Registry<Make> validators(
+                "motion validator",
+                {
+                    {"discrete",
+                     [](const Target &t) { return std::make_shared<ompl::base::DiscreteMotionValidator>(t.si); }},
+                    {"clearance", certified},
+                });
+            return validators;
+        }
+    }  // namespace
+
+    std::vector<std::string> motionValidatorNames()
+    {
+        return registry().names();
+    }
+
+    void checkMotionValidatorName(const std::string &name, const std::string &where)
+    {
+        registry().at(name, where);
+    }
+
+    ompl::base::MotionValidatorPtr allocMotionValidator(const std::string &name,
+                                                        const ompl::base::SpaceInformationPtr &si,
+                                                        const ClearanceCheckerPtr &checker, const std::string &where)
+    {
+        return registry().at(name, where)(Target{si, checker, nullptr, where});
+    }
+
+    ompl::base::MotionValidatorPtr allocMotionValidator(const std::string &name,
+                                                        const ompl::base::SpaceInformationPtr &si,
+                                                        const RobotSceneConstPtr &scene, const std::string &where)
+    {
+        return registry().at(name, where)(Target{si, nullptr, scene, where});
+    }
+}  // namespace meshgap
