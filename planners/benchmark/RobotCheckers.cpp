@@ -4,6 +4,7 @@
 #include <ompl/base/DiscreteMotionValidator.h>
 
 #include "meshgap/Exception.h"
+#include "meshgap/ompl/CertifiedAnswerPlanner.h"
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/RobotMotionValidator.h"
 #include "meshgap/ompl/RobotStateSpace.h"
@@ -80,9 +81,9 @@ namespace meshgap
         std::vector<std::string> robotCheckerNames(const RobotModel *robot)
         {
             const auto *urdf = dynamic_cast<const UrdfRobot *>(robot);
-            std::vector<std::string> names = {"certified", "discrete"};
+            std::vector<std::string> names = {"certified", "certified-search", "discrete"};
             if (robot && (!urdf || urdf->floatingBase()))
-                names.erase(names.begin());
+                names.erase(names.begin(), names.begin() + 2);
     #ifdef MESHGAP_HAVE_FCL
             names.push_back("fcl");
     #endif
@@ -159,10 +160,10 @@ namespace meshgap
             const ompl::base::SpaceInformationPtr si = setup_->getSpaceInformation();
             ompl::base::StateValidityCheckerPtr checker = checker_;
             ompl::base::MotionValidatorPtr validator;
-            if (name == "certified")
+            if (name == "certified" || name == "certified-search")
             {
                 if (!certified_)
-                    throw Exception("--checker", "'certified' motions need a fixed-base URDF robot; " + file_ +
+                    throw Exception("--checker", "'" + name + "' motions need a fixed-base URDF robot; " + file_ +
                                                      " has another kind (use discrete or fcl)");
                 validator = certified_;
             }
@@ -175,6 +176,19 @@ namespace meshgap
             active_ = name;
             si->setStateValidityChecker(checker);
             si->setMotionValidator(validator ? validator : std::make_shared<ompl::base::DiscreteMotionValidator>(si));
+        }
+
+        ompl::base::PlannerPtr RobotCheckers::allocPlanner(
+            const std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr &)> &allocate)
+        {
+            if (active_ == "certified")
+            {
+                auto p = std::make_shared<CertifiedAnswerPlanner>(setup_->getSpaceInformation(), allocate);
+                if (const char *r = std::getenv("MESHGAP_SEARCH_RES"))  // EXPERIMENT
+                    p->setSearchResolution(std::atof(r));
+                return p;
+            }
+            return allocate(setup_->getSpaceInformation());
         }
 
         CheckerStats RobotCheckers::stats() const

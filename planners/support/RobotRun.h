@@ -11,6 +11,7 @@
 #include <ostream>
 #include <string>
 
+#include "meshgap/ompl/CertifiedAnswerPlanner.h"
 #include "meshgap/ompl/RobotChecker.h"
 #include "meshgap/ompl/RobotMotionValidator.h"
 #include "meshgap/robot/RobotProblem.h"
@@ -30,6 +31,8 @@ namespace meshgap
             /** \brief The certified motion validator (a fixed-base URDF robot, unless --motion discrete); null when
                 OMPL's discrete one checks motions. */
             std::shared_ptr<RobotMotionValidator> motion;
+            /** \brief With the certified validator, the planner: a sampled search, its answer certified. */
+            std::shared_ptr<CertifiedAnswerPlanner> answer;
             ompl::base::PlannerStatus status;
             bool exact = false, havePath = false;
             std::string summary;
