@@ -182,12 +182,7 @@ namespace meshgap
             const std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr &)> &allocate)
         {
             if (active_ == "certified")
-            {
-                auto p = std::make_shared<CertifiedAnswerPlanner>(setup_->getSpaceInformation(), allocate);
-                if (const char *r = std::getenv("MESHGAP_SEARCH_RES"))  // EXPERIMENT
-                    p->setSearchResolution(std::atof(r));
-                return p;
-            }
+                return std::make_shared<CertifiedAnswerPlanner>(setup_->getSpaceInformation(), allocate);
             return allocate(setup_->getSpaceInformation());
         }
 

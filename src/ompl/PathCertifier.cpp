@@ -4,7 +4,6 @@
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 
 #include <chrono>
-#include <cstdlib>
 
 #include "meshgap/Exception.h"
 
@@ -19,6 +18,13 @@ namespace meshgap
             throw Exception("PathCertifier", "no space information");
     }
 
+    void PathCertifier::setRepairRange(double fraction)
+    {
+        if (!(fraction > 0.0 && fraction <= 1.0))
+            throw Exception("PathCertifier", "the repair range must be in (0, 1] (a fraction of the motion's length)");
+        repairRange_ = fraction;
+    }
+
     bool PathCertifier::replan(const ob::State *a, const ob::State *b, std::vector<ob::State *> &out,
                                const ob::PlannerTerminationCondition &ptc)
     {
@@ -27,8 +33,8 @@ namespace meshgap
         auto pdef = std::make_shared<ob::ProblemDefinition>(si_);
         pdef->setStartAndGoalStates(a, b);
         auto planner = std::make_shared<og::RRTConnect>(si_);
-        if (const char *f = std::getenv("MESHGAP_REPAIR_RANGE"))  // EXPERIMENT
-            planner->setRange(std::atof(f) * si_->distance(a, b));
+        // Short steps: the detour stays near the motion it replaces, and each certified step is cheap to prove.
+        planner->setRange(repairRange_ * si_->distance(a, b));
         planner->setProblemDefinition(pdef);
         planner->setup();
         unsigned calls = 0;

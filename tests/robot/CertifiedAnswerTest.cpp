@@ -18,6 +18,7 @@
 #include <random>
 #include <sstream>
 
+#include "meshgap/Exception.h"
 #include "meshgap/ompl/CertifiedAnswerPlanner.h"
 #include "meshgap/ompl/PathCertifier.h"
 #include "meshgap/ompl/RobotChecker.h"
@@ -239,7 +240,9 @@ namespace meshgap
             EXPECT_EQ(coarse.solved, seeds);
             EXPECT_EQ(fine.collidingStates, 0u);
             EXPECT_EQ(coarse.collidingStates, 0u);
-            // The coarse search lets colliding motions through: the certification has work to do.
+            // The coarse search lets colliding motions through (its own paths collide): the certification has work
+            // to do.
+            EXPECT_GT(unchecked.collidingPaths, 0u);
             EXPECT_GT(coarse.refused, 0u);
             EXPECT_EQ(coarse.refused, coarse.repaired + coarse.rejected);
             test::Note() << name << ", " << seeds << " seeds: certified answers (search at 1 %) " << fine.solved
@@ -289,5 +292,28 @@ namespace meshgap
             << "goal.joints = 0 0 0 0 0 0\n";
         cfg.close();
         expectCertifiedAnswersFree(ArmSetup((dir / "fanuc_payload.cfg").string()), "fanuc + payload", 3);
+    }
+}  // namespace meshgap
+
+namespace meshgap
+{
+    TEST(CertifiedAnswerPlanner, RefusesAMissingOrMisplacedSearchPlannerAndBadSettings)
+    {
+        const ArmSetup arm(ARM_FIXTURE);
+        EXPECT_THROW(CertifiedAnswerPlanner(arm.si, nullptr), Exception);
+        EXPECT_THROW(CertifiedAnswerPlanner(arm.si, [](const ob::SpaceInformationPtr &) { return nullptr; }),
+                     Exception);
+        // A planner on the problem's own SpaceInformation would search with the certified validator.
+        EXPECT_THROW(CertifiedAnswerPlanner(arm.si, [&arm](const ob::SpaceInformationPtr &)
+                                            { return std::make_shared<og::RRTConnect>(arm.si); }),
+                     Exception);
+        CertifiedAnswerPlanner planner(arm.si, [](const ob::SpaceInformationPtr &s)
+                                       { return std::make_shared<og::RRTConnect>(s); });
+        EXPECT_EQ(planner.getName(), "RRTConnect");
+        EXPECT_TRUE(planner.params().hasParam("range"));
+        EXPECT_THROW(planner.setSearchResolution(-0.1), Exception);
+        EXPECT_THROW(planner.setSearchResolution(std::nan("")), Exception);
+        EXPECT_THROW(planner.certifier().setRepairRange(0.0), Exception);
+        EXPECT_THROW(PathCertifier(nullptr), Exception);
     }
 }  // namespace meshgap

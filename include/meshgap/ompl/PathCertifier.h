@@ -17,8 +17,8 @@ namespace meshgap
        path is put to that validator once; a motion it refuses (one that a sampled check let through, which cuts an
        obstacle between two checked states or passes too close to be proven free) is replanned between its two
        states with RRTConnect in that same SpaceInformation, so that every motion of the detour is one the
-       validator accepted, for at most repairIterations() iterations of the planner (and until the termination
-       condition). The path's own states are never moved, only states inserted between them.
+       validator accepted, in steps of repairRange() of the motion's length, for at most repairIterations()
+       iterations of the planner (and until the termination condition). The path's own states are never moved, only states inserted between them.
        Unlike CertifiedPathRepair (one rigid body, bisection up the exact clearance gradient first), it needs
        nothing but the validator: any state space, any robot. Not thread-safe (one path at a time).
     */
@@ -51,6 +51,10 @@ namespace meshgap
             (default 2000; 0: no repair, a refused motion fails the path). */
         void setRepairIterations(unsigned n) { repairIterations_ = n; }
         unsigned repairIterations() const { return repairIterations_; }
+        /** \brief The repairing RRTConnect's range, a fraction of the refused motion's length (default 0.1; OMPL's
+            own, a fifth of the space's extent, makes each step a long motion, costly to prove). */
+        void setRepairRange(double fraction);
+        double repairRange() const { return repairRange_; }
 
     private:
         /** \brief The interior states of a certified path from \e a to \e b, appended to \e out (every one
@@ -61,6 +65,7 @@ namespace meshgap
         ompl::base::SpaceInformationPtr si_;
         Stats stats_;
         unsigned repairIterations_{2000};
+        double repairRange_{0.1};
     };
 }  // namespace meshgap
 
