@@ -2,8 +2,9 @@
 #define MESHGAP_PLANNERS_SUPPORT_ROBOT_RUN_H
 
 // meshgap_plan and meshgap_distance on a robot problem (RobotProblem: a URDF robot, its payload, or several bodies):
-// the OMPL setup (robotStateSpace(), RobotChecker, RobotMotionValidator for a fixed-base URDF robot), the run's
-// summary and path file, and the per-state whole-robot answers meshgap_distance prints.
+// the OMPL setup (robotStateSpace(), RobotChecker, RobotMotionValidator proving the answer of a sampled search,
+// CertifiedAnswerPlanner, for a fixed-base URDF robot), the run's summary and path file, and the per-state
+// whole-robot answers meshgap_distance prints.
 
 #include <memory>
 #include <ompl/base/PlannerStatus.h>
