@@ -22,7 +22,9 @@ namespace meshgap
        the answer's few are proven. When a refused motion cannot be repaired, the search starts again (cleared) and
        its next path is certified in turn, until the termination condition. So what solve() adds to the problem
        definition is certified whatever the sampled check let through; an approximate solution of the search is
-       certified the same way and reported approximate. The planner takes the inner planner's name, parameters and
+       certified the same way and reported approximate. A planner that searches until the termination condition
+       (RRT* and the other optimizing planners) leaves no time to repair: its answer is proven after the condition,
+       and one refused motion then means no solution. The planner takes the inner planner's name, parameters and
        specs; getPlannerData() gives the search's graph and, as properties, what the certification did (the last
        solve()'s searches, motions certified, refused, repaired and states inserted, and its time).
     */
