@@ -175,8 +175,10 @@ namespace meshgap
             run->setup->setStartAndGoalStates(start, goal);
             // Certified: the planner searches with a sampled motion check; every motion of its answer is certified.
             if (run->motion)
-                run->setup->setPlanner(run->answer = std::make_shared<CertifiedAnswerPlanner>(
-                                           si, [&o](const ob::SpaceInformationPtr &s) { return allocPlanPlanner(o, s); }));
+            {
+                auto search = [&o](const ob::SpaceInformationPtr &s) { return allocPlanPlanner(o, s); };
+                run->setup->setPlanner(run->answer = std::make_shared<CertifiedAnswerPlanner>(si, search));
+            }
             else
                 run->setup->setPlanner(allocPlanPlanner(o, si));
             run->setup->setup();

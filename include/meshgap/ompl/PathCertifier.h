@@ -18,8 +18,8 @@ namespace meshgap
        obstacle between two checked states or passes too close to be proven free) is replanned between its two
        states with RRTConnect in that same SpaceInformation, so that every motion of the detour is one the
        validator accepted, in steps of repairRange() of the motion's length, for at most repairIterations()
-       iterations of the planner (and until the termination condition). The path's own states are never moved, only states inserted between them.
-       Unlike CertifiedPathRepair (one rigid body, bisection up the exact clearance gradient first), it needs
+       iterations of the planner (and until the termination condition). The path's own states are never moved,
+       only states inserted between them. Unlike CertifiedPathRepair (one rigid body, bisection up the exact clearance gradient first), it needs
        nothing but the validator: any state space, any robot. Not thread-safe (one path at a time).
     */
     class PathCertifier
