@@ -16,10 +16,11 @@
 //
 // On a robot problem (robot.urdf = ..., robot.1 = ...: RobotProblem.h; or --urdf R.urdf --srdf R.srdf --scene S.yaml
 // --request Q.yaml, a problem in MoveIt's files: MoveItScene.h) the grid runs in joint space with the checkers
-// of benchmark/RobotCheckers.h: meshgap's whole-robot checker with its certified motion validator ("certified") or
-// OMPL's discrete one ("discrete"), and FCL on the same pairs at the same link poses with OMPL's discrete one
-// ("fcl"). After each slice a line gives its valid paths per minute: runs solved whose path FCL finds free, densely
-// interpolated, per minute of planning.
+// of benchmark/RobotCheckers.h: meshgap's whole-robot checker searching with a sampled motion check, every motion of
+// the answer certified and refused ones replanned ("certified"), or with its certified motion validator on every
+// motion the search tries ("certified-search"), or with OMPL's discrete one ("discrete"), and FCL on the same pairs at
+// the same link poses with OMPL's discrete one ("fcl"). After each slice a line gives its valid paths per minute: runs
+// solved whose path FCL finds free, densely interpolated, per minute of planning.
 //
 // The parts: benchmark/Checkers.h (the checkers by name), benchmark/MeasuredPlanner.h (reads the checker's counters
 // when solve() returns), benchmark/BenchmarkLog.h (the .log files), benchmark/BenchmarkConfig.h (the cfg's sections).
@@ -304,7 +305,8 @@ namespace
         problem.install(checker);
         if (!sampler.empty())
             setValidStateSampler(*si, sampler, "--sampler");
-        const ob::PlannerPtr inner = allocate(spec, si);
+        const ob::PlannerPtr inner =
+            problem.allocPlanner([&spec](const ob::SpaceInformationPtr &space) { return allocate(spec, space); });
         const std::string label = checkerLabel(checker);
         const std::string name = inner->getName() + "[" + label + (sampler.empty() ? "" : "," + sampler) + "]";
         CheckerStats before, after;

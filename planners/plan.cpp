@@ -17,8 +17,9 @@
 // ClearancePathOptimizer on the planner's path (its uncertified motions repaired first) before any of this.
 //
 // On a robot problem (robot.urdf, or robot.1, robot.2, ...: meshgap/robot/RobotProblem.h) it plans in the robot's
-// joint space (support/RobotRun.h): exact whole-robot checks, the certified motion validator for every kind of robot
-// (OMPL's discrete one with --motion discrete); the summary and the .path (one state a line, the
+// joint space (support/RobotRun.h): exact whole-robot checks, every motion of the answer proven by the certified
+// motion validator, for every kind of robot (a sampled search, its path certified: CertifiedAnswerPlanner; OMPL's
+// discrete validator with --motion discrete); the summary and the .path (one state a line, the
 // numbers of start.joints); the options that write scenes, reports or optimise are for single bodies.
 //
 // Its options are support/PlanOptions.h's table (the Python module's plan() takes the same ones as keywords), and a

@@ -4,6 +4,7 @@
 // The checkers meshgap_benchmark compares, by name: meshgap's (certified, fast, certified with the clearance motion
 // validator) and, when built with FCL, a checker built the way OMPL.app builds its own.
 
+#include <functional>
 #include <limits>
 #include <memory>
 #include <ompl/tools/benchmark/Benchmark.h>
@@ -49,6 +50,13 @@ namespace meshgap
             virtual ompl::geometric::SimpleSetup &setup() = 0;
             /** \brief Make \e name the problem's validity checker and motion validator. */
             virtual void install(const std::string &name) = 0;
+            /** \brief The planner a run of the installed checker uses, made by \e allocate on the SpaceInformation it
+                is given: by default \e allocate on the problem's own. */
+            virtual ompl::base::PlannerPtr
+            allocPlanner(const std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr &)> &allocate)
+            {
+                return allocate(setup().getSpaceInformation());
+            }
             /** \brief Counters of the installed checker (cumulative). */
             virtual CheckerStats stats() const = 0;
             virtual bool isMeshgap() const = 0;

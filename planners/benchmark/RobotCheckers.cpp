@@ -7,6 +7,7 @@
 
 #include "benchmark/BenchmarkLog.h"
 #include "meshgap/Exception.h"
+#include "meshgap/ompl/CertifiedAnswerPlanner.h"
 #include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/RobotStateSpace.h"
@@ -82,7 +83,7 @@ namespace meshgap
 
         std::vector<std::string> robotCheckerNames(const RobotModel * /*robot*/)
         {
-            std::vector<std::string> names = {"certified", "discrete"};
+            std::vector<std::string> names = {"certified", "certified-search", "discrete"};
     #ifdef MESHGAP_HAVE_FCL
             names.push_back("fcl");
     #endif
@@ -158,7 +159,7 @@ namespace meshgap
             const ompl::base::SpaceInformationPtr si = setup_->getSpaceInformation();
             ompl::base::StateValidityCheckerPtr checker = checker_;
             ompl::base::MotionValidatorPtr validator;
-            if (name == "certified")
+            if (name == "certified" || name == "certified-search")
                 validator = certified_;
     #ifdef MESHGAP_HAVE_FCL
             else if (name == "fcl")
@@ -169,6 +170,14 @@ namespace meshgap
             active_ = name;
             si->setStateValidityChecker(checker);
             si->setMotionValidator(validator ? validator : allocMotionValidator("discrete", si, scene_, "--checker"));
+        }
+
+        ompl::base::PlannerPtr RobotCheckers::allocPlanner(
+            const std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr &)> &allocate)
+        {
+            if (active_ == "certified")
+                return std::make_shared<CertifiedAnswerPlanner>(setup_->getSpaceInformation(), allocate);
+            return allocate(setup_->getSpaceInformation());
         }
 
         CheckerStats RobotCheckers::stats() const

@@ -20,10 +20,12 @@ namespace meshgap
 {
     namespace cli
     {
-        /** \brief The checkers of a robot problem, in grid order, as --checker spells them: "certified" (RobotChecker,
-            RobotMotionValidator: certified motions), "discrete" (RobotChecker, OMPL's DiscreteMotionValidator at its
-            default resolution) and, when built with FCL, "fcl" (FclRobotChecker, OMPL's DiscreteMotionValidator).
-            Every kind of robot has all of them (\e robot is not looked at). */
+        /** \brief The checkers of a robot problem, in grid order, as --checker spells them: "certified" (RobotChecker;
+            the planner searches with a sampled motion check and every motion of its answer is certified by
+            RobotMotionValidator, refused ones replanned: CertifiedAnswerPlanner), "certified-search" (RobotChecker,
+            RobotMotionValidator on every motion the search tries), "discrete" (RobotChecker, OMPL's
+            DiscreteMotionValidator at its default resolution) and, when built with FCL, "fcl" (FclRobotChecker,
+            OMPL's DiscreteMotionValidator). Every kind of robot has all of them (\e robot is not looked at). */
         std::vector<std::string> robotCheckerNames(const RobotModel *robot = nullptr);
 
         /** \brief What the grid reads of a problem file (name, file, objective, [benchmark], [planner]) for a robot
@@ -57,6 +59,10 @@ namespace meshgap
 
             ompl::geometric::SimpleSetup &setup() override { return *setup_; }
             void install(const std::string &name) override;
+            /** \brief Under "certified", a CertifiedAnswerPlanner around the planner \e allocate makes. */
+            ompl::base::PlannerPtr
+            allocPlanner(const std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr &)> &allocate)
+                override;
             CheckerStats stats() const override;
             bool isMeshgap() const override { return active_ != "fcl"; }
             /** \brief FCL's verdict on \e path densely interpolated, as Checkers gives it, without the least

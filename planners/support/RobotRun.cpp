@@ -8,6 +8,7 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
+#include "meshgap/ompl/CertifiedAnswerPlanner.h"
 #include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 #include "meshgap/robot/MultiBodyRobot.h"
@@ -178,7 +179,14 @@ namespace meshgap
             checkEnd(*run, p.start, "start", start);
             checkEnd(*run, *p.goal, "goal", goal);
             run->setup->setStartAndGoalStates(start, goal);
-            run->setup->setPlanner(allocPlanPlanner(o, si));
+            // Certified: the planner searches with a sampled motion check; every motion of its answer is certified.
+            if (run->motion)
+            {
+                auto search = [&o](const ob::SpaceInformationPtr &s) { return allocPlanPlanner(o, s); };
+                run->setup->setPlanner(run->answer = std::make_shared<CertifiedAnswerPlanner>(si, search));
+            }
+            else
+                run->setup->setPlanner(allocPlanPlanner(o, si));
             run->setup->setup();
             return run;
         }
@@ -196,7 +204,8 @@ namespace meshgap
             line(summary, "planner", o.planner);
             line(summary, "objective", "length");
             line(summary, "clearance mode", std::string("certified, motion ") +
-                                                (run.motion ? "certified (displacement bound per pair)" :
+                                                (run.motion ? "certified (displacement bound per pair; the search "
+                                                              "sampled, every motion of the answer proven)" :
                                                               "discrete (OMPL's)"));
             line(summary, "status", run.status.asString());
             line(summary, "solved", !run.havePath ? "no" : run.exact ? "yes (exact)" : "approximate");
@@ -204,9 +213,20 @@ namespace meshgap
             line(summary, "planning time", std::to_string(run.setup->getLastPlanComputationTime()) + " s");
             if (run.havePath)
                 summarizePath(run, o, summary);
-            const ob::MotionValidatorPtr &mv = run.setup->getSpaceInformation()->getMotionValidator();
+            // The search's checks (sampled when the answer is certified afterwards).
+            const ob::MotionValidatorPtr &mv = (run.answer ? run.answer->searchSpaceInformation() :
+                                                             run.setup->getSpaceInformation())->getMotionValidator();
             line(summary, "motion checks", std::to_string(mv->getValidMotionCount() + mv->getInvalidMotionCount()) +
-                                               " (" + std::to_string(mv->getValidMotionCount()) + " free)");
+                                               " (" + std::to_string(mv->getValidMotionCount()) + " free" +
+                                               (run.answer ? ", sampled)" : ")"));
+            if (run.answer)
+            {
+                const CertifiedAnswerPlanner::Stats &a = run.answer->lastStats();
+                line(summary, "certified path", std::to_string(a.motions) + " motions proven, " +
+                                                    std::to_string(a.refused) + " refused, " +
+                                                    std::to_string(a.repaired) + " of them replanned, " +
+                                                    std::to_string(a.searches) + " searches");
+            }
             run.summary = summary.str();
         }
 

@@ -2,8 +2,9 @@
 #define MESHGAP_PLANNERS_SUPPORT_ROBOT_RUN_H
 
 // meshgap_plan and meshgap_distance on a robot problem (RobotProblem: a URDF robot, its payload, or several bodies):
-// the OMPL setup (robotStateSpace(), RobotChecker, RobotMotionValidator for every kind of robot), the run's
-// summary and path file, and the per-state whole-robot answers meshgap_distance prints.
+// the OMPL setup (robotStateSpace(), RobotChecker, RobotMotionValidator proving the answer of a sampled search,
+// CertifiedAnswerPlanner, for every kind of robot), the run's summary and path file, and the per-state whole-robot
+// answers meshgap_distance prints.
 
 #include <memory>
 #include <ompl/base/PlannerStatus.h>
@@ -11,6 +12,7 @@
 #include <ostream>
 #include <string>
 
+#include "meshgap/ompl/CertifiedAnswerPlanner.h"
 #include "meshgap/ompl/RobotChecker.h"
 #include "meshgap/ompl/RobotMotionValidator.h"
 #include "meshgap/robot/RobotProblem.h"
@@ -30,6 +32,8 @@ namespace meshgap
             /** \brief The certified motion validator (every robot, unless --motion discrete); null when
                 OMPL's discrete one checks motions. */
             std::shared_ptr<RobotMotionValidator> motion;
+            /** \brief With the certified validator, the planner: a sampled search, its answer certified. */
+            std::shared_ptr<CertifiedAnswerPlanner> answer;
             ompl::base::PlannerStatus status;
             bool exact = false, havePath = false;
             std::string summary;

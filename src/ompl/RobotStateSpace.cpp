@@ -5,6 +5,8 @@
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/base/spaces/SO2StateSpace.h>
 
+#include <typeinfo>
+
 #include "meshgap/Exception.h"
 #include "meshgap/robot/MultiBodyRobot.h"
 #include "meshgap/robot/UrdfRobot.h"
@@ -71,9 +73,53 @@ namespace meshgap
             flush();
         }
 
+        enum class Kind
+        {
+            SE3,
+            SE2,
+            SO2,
+            VECTOR,
+            COMPOUND,
+            OTHER
+        };
+
+        /** \brief What \e space is: OMPL's type tag (what OMPL's own code switches on) or, for a plain compound,
+            its exact type, before any dynamic_cast (a state is walked at every validity check: the casts cost a
+            tenth of a sampled check's instructions). */
+        Kind kindOf(const ob::StateSpace &space)
+        {
+            switch (space.getType())
+            {
+                case ob::STATE_SPACE_SE3:
+                    return Kind::SE3;
+                case ob::STATE_SPACE_SE2:
+                    return Kind::SE2;
+                case ob::STATE_SPACE_SO2:
+                    return Kind::SO2;
+                case ob::STATE_SPACE_REAL_VECTOR:
+                    return Kind::VECTOR;
+                default:
+                    break;
+            }
+            if (typeid(space) == typeid(ob::CompoundStateSpace))
+                return Kind::COMPOUND;
+            if (dynamic_cast<const ob::SE3StateSpace *>(&space))
+                return Kind::SE3;
+            if (dynamic_cast<const ob::SE2StateSpace *>(&space))
+                return Kind::SE2;
+            if (dynamic_cast<const ob::SO2StateSpace *>(&space))
+                return Kind::SO2;
+            if (dynamic_cast<const ob::RealVectorStateSpace *>(&space))
+                return Kind::VECTOR;
+            if (dynamic_cast<const ob::CompoundStateSpace *>(&space))
+                return Kind::COMPOUND;
+            return Kind::OTHER;
+        }
+
         /** \brief Walk \e space's leaves in order, copying numbers out (\e out non-null) or in. */
         std::size_t walk(const ob::StateSpace &space, ob::State *state, double *out, const double *in)
         {
+            const Kind kind = kindOf(space);
             auto copy = [&](double &value, std::size_t k)
             {
                 if (out)
@@ -81,7 +127,7 @@ namespace meshgap
                 else
                     value = in[k];
             };
-            if (dynamic_cast<const ob::SE3StateSpace *>(&space))
+            if (kind == Kind::SE3)
             {
                 auto *s = state->as<ob::SE3StateSpace::StateType>();
                 double *v[7] = {&s->as<ob::RealVectorStateSpace::StateType>(0)->values[0],
@@ -92,7 +138,7 @@ namespace meshgap
                     copy(*v[k], k);
                 return 7;
             }
-            if (dynamic_cast<const ob::SE2StateSpace *>(&space))
+            if (kind == Kind::SE2)
             {
                 auto *s = state->as<ob::SE2StateSpace::StateType>();
                 if (out)
@@ -108,20 +154,22 @@ namespace meshgap
                 }
                 return 3;
             }
-            if (dynamic_cast<const ob::SO2StateSpace *>(&space))
+            if (kind == Kind::SO2)
             {
                 copy(state->as<ob::SO2StateSpace::StateType>()->value, 0);
                 return 1;
             }
-            if (const auto *vector = dynamic_cast<const ob::RealVectorStateSpace *>(&space))
+            if (kind == Kind::VECTOR)
             {
+                const auto *vector = space.as<ob::RealVectorStateSpace>();
                 double *values = state->as<ob::RealVectorStateSpace::StateType>()->values;
                 for (unsigned int k = 0; k < vector->getDimension(); ++k)
                     copy(values[k], k);
                 return vector->getDimension();
             }
-            if (const auto *compound = dynamic_cast<const ob::CompoundStateSpace *>(&space))
+            if (kind == Kind::COMPOUND)
             {
+                const auto *compound = space.as<ob::CompoundStateSpace>();
                 std::size_t count = 0;
                 for (unsigned int i = 0; i < compound->getSubspaceCount(); ++i)
                     count += walk(*compound->getSubspace(i), state->as<ob::CompoundState>()->components[i],
@@ -135,16 +183,18 @@ namespace meshgap
         /** \brief Numbers in a state of \e space (walk()'s count, without a state). */
         std::size_t countOf(const ob::StateSpace &space)
         {
-            if (dynamic_cast<const ob::SE3StateSpace *>(&space))
+            const Kind kind = kindOf(space);
+            if (kind == Kind::SE3)
                 return 7;
-            if (dynamic_cast<const ob::SE2StateSpace *>(&space))
+            if (kind == Kind::SE2)
                 return 3;
-            if (dynamic_cast<const ob::SO2StateSpace *>(&space))
+            if (kind == Kind::SO2)
                 return 1;
-            if (const auto *vector = dynamic_cast<const ob::RealVectorStateSpace *>(&space))
-                return vector->getDimension();
-            if (const auto *compound = dynamic_cast<const ob::CompoundStateSpace *>(&space))
+            if (kind == Kind::VECTOR)
+                return space.as<ob::RealVectorStateSpace>()->getDimension();
+            if (kind == Kind::COMPOUND)
             {
+                const auto *compound = space.as<ob::CompoundStateSpace>();
                 std::size_t count = 0;
                 for (unsigned int i = 0; i < compound->getSubspaceCount(); ++i)
                     count += countOf(*compound->getSubspace(i));

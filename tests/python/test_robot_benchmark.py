@@ -1,6 +1,7 @@
-"""meshgap_benchmark on a robot problem file: the checkers of a robot (certified, discrete, fcl) each run and write
-OMPL's .log, every solved path is checked by FCL on every pair along the densely interpolated path, and the valid
-paths per minute it prints agree with the runs the .log files record."""
+"""meshgap_benchmark on a robot problem file: the checkers of a robot (certified, certified-search, discrete, fcl) each
+run and write OMPL's .log, every solved path is checked by FCL on every pair along the densely interpolated path, and
+the valid paths per minute it prints agree with the runs the .log files record; certified's runs record what the
+certification of the answer did."""
 import re
 import subprocess
 
@@ -30,7 +31,7 @@ def test_robot_benchmark_grid(files, tmp_path):  # noqa: F811
                           "--time", "20", "--seed", "3", "--out", str(out)], capture_output=True, text=True,
                          timeout=600)
     assert run.returncode == 0, run.stderr
-    for checker in ("meshgap-certified", "meshgap-discrete", "fcl"):
+    for checker in ("meshgap-certified", "meshgap-certified-search", "meshgap-discrete", "fcl"):
         runs = log_runs(out / ("boxarm_problem.RRTConnect.%s.log" % checker))
         assert len(runs) == 2
         solved = [r for r in runs if r["solved BOOLEAN"] == "1"]
@@ -39,12 +40,20 @@ def test_robot_benchmark_grid(files, tmp_path):  # noqa: F811
         line = re.search(r"RRTConnect\[%s\]: 2 runs, (\d+) solved, (\d+) free by FCL's dense check" % checker,
                          run.stderr)
         assert line and (int(line.group(1)), int(line.group(2))) == (len(solved), len(free)), run.stderr
+        if checker == "meshgap-certified":
+            for r in solved:
+                refused = int(r["certified answer motions refused INTEGER"])
+                assert int(r["certified answer motions INTEGER"]) >= 1, r
+                assert int(r["certified answer searches INTEGER"]) >= 1, r
+                assert refused == int(r["certified answer motions repaired INTEGER"]) + \
+                    int(r["certified answer paths rejected INTEGER"]), r
 
 
 def test_robot_benchmark_bad_checker(files):  # noqa: F811
     cfg = str(write_cfg(files))
     message = cli_error([executable("benchmark"), "--cfg", cfg, "--planner", "rrtconnect", "--checker", "fast"])
-    assert message == "--checker: unknown checker 'fast'; valid names: certified, discrete, fcl", message
+    assert message == ("--checker: unknown checker 'fast'; valid names: certified, certified-search, discrete, "
+                       "fcl"), message
 
 
 def test_robot_benchmark_bodies_with_certified_motions(tmp_path):

@@ -1,0 +1,101 @@
+#include "meshgap/ompl/PathCertifier.h"
+
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+
+#include <chrono>
+
+#include "meshgap/Exception.h"
+
+namespace meshgap
+{
+    namespace ob = ompl::base;
+    namespace og = ompl::geometric;
+
+    PathCertifier::PathCertifier(ob::SpaceInformationPtr si) : si_(std::move(si))
+    {
+        if (!si_)
+            throw Exception("PathCertifier", "no space information");
+    }
+
+    void PathCertifier::setRepairRange(double fraction)
+    {
+        if (!(fraction > 0.0 && fraction <= 1.0))
+            throw Exception("PathCertifier", "the repair range must be in (0, 1] (a fraction of the motion's length)");
+        repairRange_ = fraction;
+    }
+
+    bool PathCertifier::replan(const ob::State *a, const ob::State *b, std::vector<ob::State *> &out,
+                               const ob::PlannerTerminationCondition &ptc)
+    {
+        if (repairIterations_ == 0 || ptc())
+            return false;
+        auto pdef = std::make_shared<ob::ProblemDefinition>(si_);
+        pdef->setStartAndGoalStates(a, b);
+        auto planner = std::make_shared<og::RRTConnect>(si_);
+        // Short steps: the detour stays near the motion it replaces, and each certified step is cheap to prove.
+        planner->setRange(repairRange_ * si_->distance(a, b));
+        planner->setProblemDefinition(pdef);
+        planner->setup();
+        unsigned calls = 0;
+        const unsigned budget = repairIterations_;
+        const ob::PlannerTerminationCondition local([&ptc, &calls, budget] { return ++calls > budget || ptc(); });
+        if (planner->solve(local) != ob::PlannerStatus::EXACT_SOLUTION)
+            return false;
+        const auto &path = *pdef->getSolutionPath()->as<og::PathGeometric>();
+        const std::size_t n = path.getStateCount();
+        // The planner's path runs from copies of a and b (its goal region's tolerance is 0 for a single state, but
+        // the ends are checked rather than assumed); every motion of it was accepted by the certified validator.
+        if (n < 2 || si_->distance(path.getState(0), a) != 0.0 || si_->distance(path.getState(n - 1), b) != 0.0)
+            return false;
+        for (std::size_t k = 1; k + 1 < n; ++k)
+            out.push_back(si_->cloneState(path.getState(k)));
+        return true;
+    }
+
+    bool PathCertifier::certify(og::PathGeometric &path, const ob::PlannerTerminationCondition &ptc)
+    {
+        const auto start = std::chrono::steady_clock::now();
+        stats_ = Stats();
+        std::vector<ob::State *> &states = path.getStates();
+        std::vector<ob::State *> certified, between;
+        certified.reserve(states.size());
+        bool free = true;
+        for (std::size_t i = 0; free && i + 1 < states.size(); ++i)
+        {
+            certified.push_back(states[i]);
+            ++stats_.motions;
+            if (si_->checkMotion(states[i], states[i + 1]))
+                continue;
+            ++stats_.refused;
+            between.clear();
+            const auto repairStart = std::chrono::steady_clock::now();
+            free = replan(states[i], states[i + 1], between, ptc);
+            stats_.repairSeconds +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - repairStart).count();
+            if (free)
+            {
+                ++stats_.repaired;
+                stats_.inserted += static_cast<unsigned>(between.size());
+                certified.insert(certified.end(), between.begin(), between.end());
+            }
+        }
+        if (free)
+        {
+            if (!states.empty())
+                certified.push_back(states.back());
+            states.swap(certified);
+        }
+        else  // the path keeps its own states; what was inserted is freed
+        {
+            std::size_t own = 0;
+            for (ob::State *s : certified)
+                if (own < states.size() && s == states[own])
+                    ++own;
+                else
+                    si_->freeState(s);
+        }
+        stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return free;
+    }
+}  // namespace meshgap
