@@ -58,7 +58,7 @@ def test_robot_benchmark_bad_checker(files):  # noqa: F811
 
 def test_robot_benchmark_bodies_with_certified_motions(tmp_path):
     """Several rigid bodies (maps/swap_se2): the certified motion validator bounds every kind of robot, so the
-    default grid has it, and its run is solved."""
+    default grid has both certified checkers, and every run is solved."""
     from conftest import MAPS
     cfg = str(MAPS / "swap_se2" / "swap_se2.cfg")
     out = tmp_path / "logs"
@@ -67,6 +67,7 @@ def test_robot_benchmark_bodies_with_certified_motions(tmp_path):
                          timeout=600)
     assert run.returncode == 0, run.stderr
     assert sorted(p.name for p in out.iterdir()) == ["swap_se2.RRTConnect.fcl.log",
+                                                     "swap_se2.RRTConnect.meshgap-certified-search.log",
                                                      "swap_se2.RRTConnect.meshgap-certified.log",
                                                      "swap_se2.RRTConnect.meshgap-discrete.log"]
     for log in out.iterdir():
