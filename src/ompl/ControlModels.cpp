@@ -128,6 +128,7 @@ namespace meshgap
         else
             throw Exception("control = " + model, "not a modelled control problem (modelled: kinematic_car, "
                                                   "dynamic_car)");
+        si->getStateSpace()->setup();  // the ODE solver reads a state's reals through the locations setup() finds
         si->setMinMaxControlDuration(1, 10);
         si->setPropagationStepSize(si->getStateValidityCheckingResolution() * si->getStateSpace()->getMaximumExtent());
         return si;
