@@ -16,6 +16,10 @@
 // collision: the message says which, the obstacle and the distance). --optimize clearance runs the
 // ClearancePathOptimizer on the planner's path (its uncertified motions repaired first) before any of this.
 //
+// On a control problem (a "control" key: kinematic_car, dynamic_car) it plans with OMPL's control planners
+// (kpiece, the default, rrt, est, pdst, sst) over the model's propagated motions (support/ControlRun.h); the .path
+// holds the states one propagation step apart, as OMPL.app writes a control path.
+//
 // On a robot problem (robot.urdf, or robot.1, robot.2, ...: meshgap/robot/RobotProblem.h) it plans in the robot's
 // joint space (support/RobotRun.h): exact whole-robot checks, every motion of the answer proven by the certified
 // motion validator, for every kind of robot (a sampled search, its path certified: CertifiedAnswerPlanner; OMPL's
@@ -34,6 +38,7 @@
 #include <variant>
 
 #include "CliMain.h"
+#include "support/ControlRun.h"
 #include "support/MoveItOptions.h"
 #include "support/PlanOptions.h"
 #include "support/PlanRun.h"
@@ -103,6 +108,23 @@ namespace
         return p->exact ? 0 : 2;
     }
 
+    /** \brief A control problem (a "control" key): support/ControlRun.h. */
+    int runControl(const PlanOptions &o, ProblemConfig config)
+    {
+        const std::unique_ptr<ControlPlanRun> p = setUpControlPlan(o, std::move(config));
+        OMPL_INFORM("%s: control %s, %zu obstacles, planner %s", p->config.name.c_str(), p->config.control.c_str(),
+                    p->problem.scene->obstacles().size(), p->planner.c_str());
+        solveControlPlan(*p, o);
+        std::cout << p->summary;
+        writeControlPlanFiles(*p, o, std::cout);
+        if (!p->havePath)
+        {
+            std::fprintf(stderr, "no path found within %g s\n", o.time);
+            return 2;
+        }
+        return p->exact ? 0 : 2;
+    }
+
     int run(int argc, char **argv)
     {
         PlanOptions o;
@@ -111,6 +133,8 @@ namespace
         ompl::RNG::setSeed(o.seed);
         if (isToolRobotProblem(o.cfg, o.moveit))
             return runRobot(o);
+        if (ProblemConfig config = readProblemConfig(o.cfg); !config.control.empty())
+            return runControl(o, std::move(config));
         const std::unique_ptr<PlanRun> p = setUpPlan(o);
         OMPL_INFORM("%s: %s, %zu obstacles, planner %s, objective %s, clearance %s, motion %s", p->config.name.c_str(),
                     p->config.planar ? "SE(2)" : "SE(3)", p->problem.scene->obstacles().size(), o.planner.c_str(),

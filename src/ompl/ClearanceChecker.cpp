@@ -13,8 +13,25 @@
 
 namespace meshgap
 {
+    namespace
+    {
+        /** \brief A control model's state (ControlModels.h): a compound space whose subspace 0 is the pose, the rest
+            velocities; null for any other space. */
+        const ompl::base::CompoundStateSpace *withPoseSubspace(const ompl::base::StateSpace &space)
+        {
+            if (space.getType() == ompl::base::STATE_SPACE_SE2 || space.getType() == ompl::base::STATE_SPACE_SE3 ||
+                !space.isCompound())
+                return nullptr;
+            const auto *compound = space.as<ompl::base::CompoundStateSpace>();
+            const int pose = compound->getSubspaceCount() > 0 ? compound->getSubspace(0)->getType() : -1;
+            return pose == ompl::base::STATE_SPACE_SE2 || pose == ompl::base::STATE_SPACE_SE3 ? compound : nullptr;
+        }
+    }  // namespace
+
     Eigen::Isometry3d poseFromState(const ompl::base::StateSpace &space, const ompl::base::State *state)
     {
+        if (const auto *compound = withPoseSubspace(space))
+            return poseFromState(*compound->getSubspace(0), state->as<ompl::base::CompoundState>()->components[0]);
         Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
         if (space.getType() == ompl::base::STATE_SPACE_SE3)
         {
@@ -36,6 +53,8 @@ namespace meshgap
 
     void stateFromPose(const ompl::base::StateSpace &space, const Eigen::Isometry3d &X, ompl::base::State *state)
     {
+        if (const auto *compound = withPoseSubspace(space))
+            return stateFromPose(*compound->getSubspace(0), X, state->as<ompl::base::CompoundState>()->components[0]);
         if (space.getType() == ompl::base::STATE_SPACE_SE3)
         {
             auto *s = state->as<ompl::base::SE3StateSpace::StateType>();

@@ -5,6 +5,7 @@
 #include <ompl/base/spaces/SE3StateSpace.h>
 
 #include "meshgap/Exception.h"
+#include "meshgap/ompl/ControlModels.h"
 #include "meshgap/ompl/SamplerFactory.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/RobotMesh.h"
@@ -40,31 +41,100 @@ namespace meshgap
                 text << ": the surfaces touch or cross (signed distance 0; no penetration depth computed)";
             return text.str();
         }
+
+        /** \brief The cfg's volume as pose bounds: x, y (and z unless planar). */
+        ompl::base::RealVectorBounds poseBounds(const ProblemConfig &config)
+        {
+            const int dimensions = config.planar ? 2 : 3;
+            ompl::base::RealVectorBounds bounds(dimensions);
+            for (int k = 0; k < dimensions; ++k)
+            {
+                bounds.setLow(k, config.volume->min()[k]);
+                bounds.setHigh(k, config.volume->max()[k]);
+            }
+            return bounds;
+        }
+
+        /** \brief The cfg's start and goal poses in \e space (its other components zero), each checked in bounds
+            and free. */
+        std::pair<ompl::base::ScopedState<>, ompl::base::ScopedState<>>
+        startAndGoal(const ProblemConfig &config, const ompl::base::SpaceInformation &si, const Scene &scene,
+                     const ClearanceChecker &checker)
+        {
+            const ompl::base::StateSpacePtr &space = si.getStateSpace();
+            ompl::base::ScopedState<> start(space), goal(space);
+            start = 0.0;
+            goal = 0.0;
+            stateFromPose(*space, config.start, start.get());
+            stateFromPose(*space, *config.goal, goal.get());
+            for (const auto &[label, state] : {std::make_pair("start", &start), std::make_pair("goal", &goal)})
+            {
+                if (!si.satisfiesBounds(state->get()))
+                    throw Exception(config.file, std::string(label) + " lies outside the volume");
+                if (!checker.isValid(state->get()))
+                {
+                    // Exact answer for the message, whatever the checker's mode.
+                    SceneRequest request;
+                    SceneResult r;
+                    scene.distance(poseFromState(*space, state->get()), request, r);
+                    throw Exception(config.file, std::string(label) + " " + collisionReport(scene, r));
+                }
+            }
+            return {start, goal};
+        }
+
+        void checkVolumeAndGoal(const ProblemConfig &config)
+        {
+            if (!config.volume)
+                throw Exception(config.file, "no volume (volume.min.* and volume.max.*): the planner needs bounds");
+            if (!config.goal)
+                throw Exception(config.file,
+                                "no goal (goal.x, goal.y" + std::string(config.planar ? ")" : ", goal.z)"));
+        }
     }  // namespace
+
+    OmplControlProblem setupControlProblem(const ProblemConfig &config, ClearanceChecker::Mode mode,
+                                           const BodyOptions &bodies)
+    {
+        checkVolumeAndGoal(config);
+        if (config.control.empty())
+            throw Exception(config.file, "no control key: a geometric problem (setupProblem())");
+        ompl::control::SpaceInformationPtr si;
+        try
+        {
+            si = controlSpaceInformation(config.control, poseBounds(config));
+        }
+        catch (const Exception &e)
+        {
+            throw Exception(config.file, e.what());
+        }
+        if (!config.planar)  // every modelled vehicle drives in the plane
+            throw Exception(config.file, "control = " + config.control +
+                                             " is a planar model (x, y, theta): the problem must be planar "
+                                             "(no start.z)");
+        OmplControlProblem problem;
+        problem.scene = Scene::fromMeshes(loadRobotMesh(config.robot, config.planar), loadMesh(config.world), bodies);
+        problem.setup = std::make_shared<ompl::control::SimpleSetup>(si);
+        problem.checker = std::make_shared<ClearanceChecker>(si, problem.scene, mode);
+        problem.setup->setStateValidityChecker(problem.checker);
+        const auto [start, goal] = startAndGoal(config, *si, *problem.scene, *problem.checker);
+        problem.setup->setStartAndGoalStates(start, goal);
+        return problem;
+    }
 
     OmplProblem setupProblem(const ProblemConfig &config, ClearanceChecker::Mode mode, const std::string &objective,
                              const BodyOptions &bodies, const ObjectiveOptions &objectiveOptions)
     {
         namespace ob = ompl::base;
-        if (!config.volume)
-            throw Exception(config.file, "no volume (volume.min.* and volume.max.*): the planner needs bounds");
-        if (!config.goal)
-            throw Exception(config.file, "no goal (goal.x, goal.y" + std::string(config.planar ? ")" : ", goal.z)"));
+        checkVolumeAndGoal(config);
         if (!config.control.empty())
             throw Exception(config.file, "control = " + config.control + ": a control problem (OMPL.app's " +
-                                             config.control + " model) is not planned by meshgap; its geometry "
-                                             "answers distance queries (meshgap_distance, Python's Scene)");
+                                             config.control + " model), set up by setupControlProblem()");
         OmplProblem problem;
         problem.scene = Scene::fromMeshes(loadRobotMesh(config.robot, config.planar),
                                           loadMesh(config.world), bodies);
 
-        const int dimensions = config.planar ? 2 : 3;
-        ob::RealVectorBounds bounds(dimensions);
-        for (int k = 0; k < dimensions; ++k)
-        {
-            bounds.setLow(k, config.volume->min()[k]);
-            bounds.setHigh(k, config.volume->max()[k]);
-        }
+        const ob::RealVectorBounds bounds = poseBounds(config);
         ob::StateSpacePtr space;
         if (config.planar)
         {
@@ -83,22 +153,7 @@ namespace meshgap
         problem.checker = std::make_shared<ClearanceChecker>(si, problem.scene, mode);
         problem.setup->setStateValidityChecker(problem.checker);
 
-        ob::ScopedState<> start(space), goal(space);
-        stateFromPose(*space, config.start, start.get());
-        stateFromPose(*space, *config.goal, goal.get());
-        for (const auto &[label, state] : {std::make_pair("start", &start), std::make_pair("goal", &goal)})
-        {
-            if (!si->satisfiesBounds(state->get()))
-                throw Exception(config.file, std::string(label) + " lies outside the volume");
-            if (!problem.checker->isValid(state->get()))
-            {
-                // Exact answer for the message, whatever the checker's mode.
-                SceneRequest request;
-                SceneResult r;
-                problem.scene->distance(poseFromState(*space, state->get()), request, r);
-                throw Exception(config.file, std::string(label) + " " + collisionReport(*problem.scene, r));
-            }
-        }
+        const auto [start, goal] = startAndGoal(config, *si, *problem.scene, *problem.checker);
         problem.setup->setStartAndGoalStates(start, goal);
 
         problem.objective = !objective.empty() ? objective : (config.objective.empty() ? "length" : config.objective);

@@ -12,12 +12,14 @@ namespace meshgap
     MESHGAP_CLASS_FORWARD(ClearanceChecker);
 
     /** \brief The robot's world pose for an SE(3) state (x y z, quaternion) or an SE(2) state (x y, yaw about z: a
-        planar problem is a 3D scene with the robot moving in the plane, as OMPL.app does). Throws for other
+        planar problem is a 3D scene with the robot moving in the plane, as OMPL.app does), or a compound state whose
+        component 0 is one of these (a control model's pose with its velocities: ControlModels.h). Throws for other
         spaces. */
     Eigen::Isometry3d poseFromState(const ompl::base::StateSpace &space, const ompl::base::State *state);
 
     /** \brief The inverse of poseFromState(): set an SE(3) state to \e X, or an SE(2) state to X's x, y and its yaw
-        (the rotation's angle about z; any z translation or tilt is dropped). Throws for other spaces. */
+        (the rotation's angle about z; any z translation or tilt is dropped); of a compound state, component 0 (the
+        others are left as they are). Throws for other spaces. */
     void stateFromPose(const ompl::base::StateSpace &space, const Eigen::Isometry3d &X, ompl::base::State *state);
 
     /** \brief The farthest any point within \e radius of the robot's origin moves along OMPL's interpolation from

@@ -1,6 +1,7 @@
 #ifndef MESHGAP_OMPL_PROBLEM_SETUP_H
 #define MESHGAP_OMPL_PROBLEM_SETUP_H
 
+#include <ompl/control/SimpleSetup.h>
 #include <ompl/geometric/SimpleSetup.h>
 
 #include "meshgap/ompl/ClearanceChecker.h"
@@ -29,6 +30,22 @@ namespace meshgap
     OmplProblem setupProblem(const ProblemConfig &config, ClearanceChecker::Mode mode, const std::string &objective = "",
                              const BodyOptions &bodies = BodyOptions(),
                              const ObjectiveOptions &objectiveOptions = ObjectiveOptions());
+
+    /** \brief A control problem (an OMPL.app .cfg with a "control" key) in OMPL.app's conventions: the model's
+        space information (controlSpaceInformation(), its pose bounded by the cfg's volume), the scene as
+        setupProblem() loads it, a ClearanceChecker in \e mode as the validity checker (it reads the pose part of the
+        state), and the cfg's start and goal poses with zero velocities. The goal threshold is OMPL's default, as in
+        OMPL.app: control planners mostly end with an approximate solution. Throws meshgap::Exception as
+        setupProblem() does, for a cfg without a control key, and for a model not modelled (naming the file). */
+    struct OmplControlProblem
+    {
+        ompl::control::SimpleSetupPtr setup;
+        ClearanceCheckerPtr checker;
+        ScenePtr scene;
+    };
+
+    OmplControlProblem setupControlProblem(const ProblemConfig &config, ClearanceChecker::Mode mode,
+                                           const BodyOptions &bodies = BodyOptions());
 }  // namespace meshgap
 
 #endif

@@ -1,0 +1,52 @@
+#ifndef MESHGAP_PLANNERS_SUPPORT_CONTROL_RUN_H
+#define MESHGAP_PLANNERS_SUPPORT_CONTROL_RUN_H
+
+// meshgap_plan on a control problem (an OMPL.app .cfg with a "control" key): OMPL's control planners over the
+// model's space (meshgap/ompl/ControlModels.h), the certified ClearanceChecker as validity checker, the summary and
+// the path as OMPL.app writes a control path (its states, one propagation step apart, in OMPL's matrix format).
+
+#include <memory>
+#include <ompl/base/PlannerStatus.h>
+#include <string>
+#include <vector>
+
+#include "meshgap/ompl/ProblemSetup.h"
+#include "meshgap/scene/ProblemConfig.h"
+#include "support/PlanOptions.h"
+
+namespace meshgap
+{
+    namespace cli
+    {
+        /** \brief A control planning run: the problem, what the planner found, the summary. */
+        struct ControlPlanRun
+        {
+            ProblemConfig config;
+            OmplControlProblem problem;
+            std::string planner;
+            ompl::base::PlannerStatus status;
+            bool exact = false, havePath = false;
+            std::string summary;
+        };
+
+        /** \brief The control planners meshgap_plan runs: kpiece, rrt, est, pdst, sst. */
+        const std::vector<std::string> &controlPlannerNames();
+
+        /** \brief Set up \e config (a control problem) as \e o says: the planner (kpiece unless --planner names one
+            of controlPlannerNames(); --param as for a geometric problem), the checker (--checker), the seed. Throws
+            meshgap::Exception naming the option at fault, including an option that applies to geometric problems
+            only (--objective, --motion clearance, --optimize, --sampler, --export-glb, --report, --clearance-csv). */
+        std::unique_ptr<ControlPlanRun> setUpControlPlan(const PlanOptions &o, ProblemConfig config);
+
+        /** \brief Solve for o.time seconds (progress line unless o.quiet), then the summary: status, solved (yes
+            (exact), approximate or no), the distance to the goal, the path's states and duration, and the least
+            certified clearance over its states. */
+        void solveControlPlan(ControlPlanRun &run, const PlanOptions &o);
+
+        /** \brief Write --summary and, with a path, --out: the path's states one propagation step apart
+            (PathControl::interpolate(), then asGeometric()), one per line, at full precision. */
+        void writeControlPlanFiles(const ControlPlanRun &run, const PlanOptions &o, std::ostream &log);
+    }  // namespace cli
+}  // namespace meshgap
+
+#endif
