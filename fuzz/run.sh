@@ -19,7 +19,9 @@ if [ $# -gt 0 ]; then targets=("$@"); else targets=(mesh config pose distance); 
 build=${BUILD_DIR:-$root/build-fuzz}
 out=${OUT:-$build/fuzz-out}
 
-CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DMESHGAP_FUZZ=ON -DBUILD_TESTING=OFF -DMESHGAP_BUILD_BENCH=OFF \
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+CC=clang CXX=clang++ cmake -S "$root" -B "$build" "${launcher[@]}" -DMESHGAP_FUZZ=ON -DBUILD_TESTING=OFF -DMESHGAP_BUILD_BENCH=OFF \
     -DMESHGAP_BUILD_PLANNERS=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer" >/dev/null || exit 2
 nice cmake --build "$build" -j"${JOBS:-2}" --target "${targets[@]/#/meshgap_fuzz_}" || exit 2
@@ -34,8 +36,10 @@ for t in "${targets[@]}"; do
     maxlen=4096
     [ "$t" = loader ] && maxlen=16384
     echo "== $t: ${seconds} s"
+    dict=()
+    [ -f "$here/$t.dict" ] && dict=(-dict="$here/$t.dict")
     nice "$build/fuzz/meshgap_fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=$maxlen \
-        -print_final_stats=1 -artifact_prefix="$crashes/" "$corpus" "$here/corpus/$t" >"$out/$t.log" 2>&1
+        "${dict[@]}" -print_final_stats=1 -artifact_prefix="$crashes/" "$corpus" "$here/corpus/$t" >"$out/$t.log" 2>&1
     rc=$?
     grep -E "^#[0-9]+[[:space:]]+(INITED|DONE)|^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)" "$out/$t.log"
     if [ $rc -ne 0 ] || [ -n "$(ls -A "$crashes")" ]; then
