@@ -140,6 +140,23 @@ namespace meshgap
             }
         }
 
+        /** \brief Largest magnitude of a joint's origin coordinate, limit, mimic multiplier and mimic offset (metres,
+            radians): far beyond any robot, and small enough that every frame of every state within the limits stays
+            finite. */
+        constexpr double MAX_JOINT_MAGNITUDE = 1e9;
+
+        /** \brief Throws unless \e value (what joint \e joint of \e path gives as \e what) is at most
+            MAX_JOINT_MAGNITUDE in magnitude (so not NaN). */
+        void checkJointNumber(const std::string &path, const std::string &joint, const std::string &what, double value)
+        {
+            if (std::abs(value) <= MAX_JOINT_MAGNITUDE)
+                return;
+            std::ostringstream text;
+            text << "joint '" << joint << "': " << what << " " << value << " is not a number of magnitude at most "
+                 << MAX_JOINT_MAGNITUDE;
+            throw Exception(path, text.str());
+        }
+
         Eigen::Isometry3d toIsometry(const urdf::Pose &pose)
         {
             Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
@@ -263,6 +280,10 @@ namespace meshgap
             j.parent = robot.frames()[f].parent;
             j.child = f;
             j.origin = toIsometry(joint->parent_to_joint_origin_transform);
+            if (!j.origin.linear().allFinite())
+                throw Exception(path, "joint '" + j.name + "': its origin's rotation is not finite");
+            for (int k = 0; k < 3; ++k)
+                checkJointNumber(path, j.name, "the origin's coordinate", j.origin.translation()[k]);
             j.axis = Eigen::Vector3d(joint->axis.x, joint->axis.y, joint->axis.z);
             if (j.type != JointType::FIXED && !(j.axis.norm() > 0.0 && j.axis.allFinite()))
                 throw Exception(path, "joint '" + j.name + "' has a zero or non-finite axis");
@@ -272,6 +293,9 @@ namespace meshgap
             j.upper = bounded && joint->limits ? joint->limits->upper : std::numeric_limits<double>::infinity();
             if (bounded && !(j.lower <= j.upper))
                 throw Exception(path, "joint '" + j.name + "': its lower limit is above its upper limit");
+            if (bounded)
+                for (const double limit : {j.lower, j.upper})
+                    checkJointNumber(path, j.name, "the limit", limit);
             j.variable = RobotModel::NONE;
             j.mimics = RobotModel::NONE;
             j.multiplier = 1.0;
@@ -323,6 +347,8 @@ namespace meshgap
                 at = model.getJoint(at->mimic->joint_name);
                 j.mimics = k;
             }
+            checkJointNumber(path, j.name, "the mimic multiplier (along its chain of mimic joints)", multiplier);
+            checkJointNumber(path, j.name, "the mimic offset (along its chain of mimic joints)", offset);
             j.multiplier = multiplier;
             j.offset = offset;
         }
