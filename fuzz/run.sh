@@ -2,12 +2,18 @@
 # Build the libFuzzer targets (clang, library instrumented with ASan + UBSan) and run each for a while on its seed
 # corpus. Exit status 1 if any target crashed, hung or broke an invariant; the inputs are in $OUT/crashes/<target>/.
 #
-#   fuzz/run.sh [SECONDS_PER_TARGET (default 60)] [TARGET ...]   targets: mesh config pose distance (default), loader
+#   fuzz/run.sh [SECONDS_PER_TARGET (default 60)] [TARGET ...]
+#
+# targets: mesh config pose distance urdf srdf robot_problem (default), loader. urdf, srdf and robot_problem read
+# the bytes as a URDF, an SRDF or a robot problem .cfg in a folder that holds a fixture robot (arm.urdf, arm.srdf),
+# meshes (robot.obj, world.obj) and a package (pkg/meshes/cube.obj); see FuzzTargets.h. A target's dictionary,
+# fuzz/<target>.dict, is passed when there is one.
 #
 # loader (assimp on the bytes as .obj/.stl/.ply) is not run by default: assimp is not instrumented, so the fuzzer is
 # blind inside it, and Debian's assimp 5.2.5 hangs on a PLY header with non-ASCII bytes in a property name
 # (fuzz/known/assimp_ply_header_hang.bin, found in the first minute). Run it by name: fuzz/run.sh 60 loader.
-# Environment: BUILD_DIR (default build-fuzz), OUT (default $BUILD_DIR/fuzz-out), JOBS (build jobs, default 2).
+# Environment: BUILD_DIR (default build-fuzz), OUT (default $BUILD_DIR/fuzz-out), JOBS (build jobs, default 2). The
+# build uses ccache when there is one.
 # New corpus entries go to $OUT/corpus/<target>/; the seeds in fuzz/corpus/ are read, never changed. To keep a crash
 # as a regression test, copy its input to tests/resources/fuzz/<target>/ (FuzzRegressionTest replays it).
 set -uo pipefail
@@ -15,7 +21,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
 seconds=${1:-60}
 shift || true
-if [ $# -gt 0 ]; then targets=("$@"); else targets=(mesh config pose distance); fi
+if [ $# -gt 0 ]; then targets=("$@"); else targets=(mesh config pose distance urdf srdf robot_problem); fi
 build=${BUILD_DIR:-$root/build-fuzz}
 out=${OUT:-$build/fuzz-out}
 
