@@ -140,6 +140,31 @@ namespace meshgap
             }
         }
 
+        /** \brief Throws unless urdfdom's \e model has the links and joints the file's XML names (\e links, \e joints),
+            joined the same way: the two XML readers can differ (urdfdom changes a name with an unknown entity such
+            as "&nt" that tinyxml2 keeps). */
+        void checkSameTree(const std::string &path, const urdf::ModelInterface &model,
+                           const std::vector<std::string> &links, const std::vector<XmlJoint> &joints)
+        {
+            auto differs = [&path](const std::string &what)
+            {
+                return Exception(path, "urdfdom reads " + what +
+                                           " differently from the XML (an unknown entity or a character reference in a "
+                                           "name?)");
+            };
+            if (model.links_.size() != links.size() || model.joints_.size() != joints.size())
+                throw differs("the links and joints");
+            for (const std::string &l : links)
+                if (!model.getLink(l))
+                    throw differs("link '" + l + "'");
+            for (const XmlJoint &j : joints)
+            {
+                const urdf::JointConstSharedPtr joint = model.getJoint(j.name);
+                if (!joint || joint->parent_link_name != j.parent || joint->child_link_name != j.child)
+                    throw differs("joint '" + j.name + "'");
+            }
+        }
+
         /** \brief Largest magnitude of a joint's origin coordinate, limit, mimic multiplier and mimic offset (metres,
             radians): far beyond any robot, and small enough that every frame of every state within the limits stays
             finite. */
@@ -402,6 +427,7 @@ namespace meshgap
                                           (capture.errors().empty() ? std::string("(no reason given)")
                                                                     : capture.errors()));
         }
+        checkSameTree(path, *model, linkNames, order);
         UrdfRobotPtr robot(new UrdfRobot());
         robot->where_ = path;
         robot->name_ = model->getName();

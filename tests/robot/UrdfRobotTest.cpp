@@ -368,17 +368,17 @@ namespace meshgap
         { return "<mimic joint=\"" + of + "\" multiplier=\"" + multiplier + "\"/>"; };
         auto load = [&](const std::string &xyz, const std::string &limit, const std::string &multiplier)
         {
-            const std::string path = writeFile("big.urdf", head + joint("j1", "a", "b", xyz, limit, "") +
-                                                               joint("j2", "b", "c", xyz, "1", mimic("j1", multiplier)) +
-                                                               joint("j3", "c", "d", "0 0 0", "1", mimic("j2", multiplier)) +
-                                                               "</robot>");
+            const std::string text = head + joint("j1", "a", "b", xyz, limit, "") +
+                                     joint("j2", "b", "c", xyz, "1", mimic("j1", multiplier)) +
+                                     joint("j3", "c", "d", "0 0 0", "1", mimic("j2", multiplier)) + "</robot>";
+            const std::string path = writeFile("big.urdf", text);
             return errorOf([&] { UrdfRobot::load(path); });
         };
         // At the bound: accepted, and the frames at the limits are finite.
         EXPECT_EQ(load("1e9 0 -1e9", "1e9", "3e4"), "");
         const std::string atBound = head + joint("j1", "a", "b", "1e9 0 0", "1e9", "") +
-                                    joint("j2", "b", "c", "1e9 0 0", "1e9", "") + joint("j3", "c", "d", "0 0 0", "1", "") +
-                                    "</robot>";
+                                    joint("j2", "b", "c", "1e9 0 0", "1e9", "") +
+                                    joint("j3", "c", "d", "0 0 0", "1", "") + "</robot>";
         const std::vector<double> state = {1e9, 1e9, 1};
         std::vector<Eigen::Isometry3d> frames;
         UrdfRobot::load(writeFile("big.urdf", atBound))->framePoses(state.data(), state.size(), frames);
@@ -393,5 +393,27 @@ namespace meshgap
         EXPECT_NE(load("0 0 0", "1", "1e5").find("joint 'j3': the mimic multiplier (along its chain of mimic joints) "
                                                  "1e+10"),
                   std::string::npos);
+    }
+
+    // tinyxml2 keeps an unknown entity in a name ("&nt") where urdfdom changes it, so the two readers saw different
+    // joints (a null joint dereferenced; tests/resources/fuzz/urdf/unknown_entity_in_joint_name.urdf): refused.
+    TEST(UrdfRobot, NamesTheXmlReadersReadDifferentlyAreRefused)
+    {
+        const std::string tail = "<axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>"
+                                 "</joint></robot>";
+        const std::string path = writeFile("entity.urdf", "<robot name=\"e\"><link name=\"a\"/><link name=\"b\"/>"
+                                                          "<joint name=\"j&nt\" type=\"revolute\"><parent link=\"a\"/>"
+                                                          "<child link=\"b\"/>" + tail);
+        const std::string message = errorOf([&] { UrdfRobot::load(path); });
+        EXPECT_NE(message.find(path + ": urdfdom reads joint 'j&nt' differently"), std::string::npos) << message;
+        // A known entity is read alike by both.
+        const std::string known =
+            writeFile("entity.urdf", "<robot name=\"e\"><link name=\"a\"/><link name=\"b&amp;c\"/><joint "
+                                     "name=\"j&amp;k\" type=\"revolute\"><parent link=\"a\"/>"
+                                     "<child link=\"b&amp;c\"/>" + tail);
+        const UrdfRobotPtr robot = UrdfRobot::load(known);
+        ASSERT_EQ(robot->joints().size(), 1u);
+        EXPECT_EQ(robot->joints()[0].name, "j&k");
+        EXPECT_NE(robot->findFrame("b&c"), RobotModel::NONE);
     }
 }  // namespace meshgap
