@@ -310,9 +310,10 @@ namespace meshgap
             for (int k = 0; k < 3; ++k)
                 checkJointNumber(path, j.name, "the origin's coordinate", j.origin.translation()[k]);
             j.axis = Eigen::Vector3d(joint->axis.x, joint->axis.y, joint->axis.z);
-            if (j.type != JointType::FIXED && !(j.axis.norm() > 0.0 && j.axis.allFinite()))
+            if (j.type != JointType::FIXED && !(j.axis.cwiseAbs().maxCoeff() > 0.0 && j.axis.allFinite()))
                 throw Exception(path, "joint '" + j.name + "' has a zero or non-finite axis");
-            j.axis = j.type == JointType::FIXED ? Eigen::Vector3d::UnitX() : j.axis.normalized();
+            // Stable: the norm of "1 0 1e300" overflows and that of "1e-200 0 0" underflows, not their direction.
+            j.axis = j.type == JointType::FIXED ? Eigen::Vector3d::UnitX() : j.axis.stableNormalized();
             const bool bounded = j.type == JointType::REVOLUTE || j.type == JointType::PRISMATIC;
             j.lower = bounded && joint->limits ? joint->limits->lower : -std::numeric_limits<double>::infinity();
             j.upper = bounded && joint->limits ? joint->limits->upper : std::numeric_limits<double>::infinity();

@@ -416,4 +416,21 @@ namespace meshgap
         EXPECT_EQ(robot->joints()[0].name, "j&k");
         EXPECT_NE(robot->findFrame("b&c"), RobotModel::NONE);
     }
+
+    // An axis whose norm overflows ("1 0 1e300") or underflows ("1e-200 0 0") still has a direction; the plain
+    // normalisation made the first the zero vector (tests/resources/fuzz/urdf/axis_norm_overflow.urdf).
+    TEST(UrdfRobot, AxesOfHugeOrTinyLengthKeepTheirDirection)
+    {
+        for (const auto &[xyz, unit] : {std::make_pair(std::string("1 0 1e300"), Eigen::Vector3d(0, 0, 1)),
+                                        std::make_pair(std::string("1e-200 0 0"), Eigen::Vector3d(1, 0, 0)),
+                                        std::make_pair(std::string("3e-170 0 4e-170"), Eigen::Vector3d(0.6, 0, 0.8))})
+        {
+            const std::string path = writeFile("axis.urdf", "<robot name=\"x\"><link name=\"a\"/><link name=\"b\"/>"
+                                                            "<joint name=\"j\" type=\"continuous\"><parent link=\"a\"/>"
+                                                            "<child link=\"b\"/><axis xyz=\"" +
+                                                                xyz + "\"/></joint></robot>");
+            const UrdfRobotPtr robot = UrdfRobot::load(path);
+            EXPECT_LT((robot->joints()[0].axis - unit).norm(), 1e-15) << xyz;
+        }
+    }
 }  // namespace meshgap
