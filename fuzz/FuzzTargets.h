@@ -34,6 +34,9 @@
 #include "meshgap/geometry/Body.h"
 #include "meshgap/mesh/Mesh.h"
 #include "meshgap/mesh/MeshLoader.h"
+#include "meshgap/robot/RobotProblem.h"
+#include "meshgap/robot/Srdf.h"
+#include "meshgap/robot/UrdfRobot.h"
 #include "meshgap/scene/Pose.h"
 #include "meshgap/scene/ProblemConfig.h"
 
@@ -622,6 +625,328 @@ namespace meshgap
             return Outcome::Accepted;
         }
 
+        /** \brief The robot every robot fixture folder holds as arm.urdf: revolute, continuous, fixed and mimic
+            prismatic joints, a box, a mesh found through package://pkg/, a visual-only cylinder and a frame without
+            geometry ("hand"). Its state: yaw, elbow. */
+        inline const char *fixtureUrdf()
+        {
+            return R"(<?xml version="1.0"?>
+<robot name="arm">
+  <link name="base">
+    <collision><origin xyz="0 0 0.05" rpy="0 0 0"/><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+  </link>
+  <link name="upper">
+    <collision><origin xyz="0.25 0 0" rpy="0 0 0"/><geometry><box size="0.5 0.05 0.05"/></geometry></collision>
+  </link>
+  <link name="fore">
+    <collision><geometry><mesh filename="package://pkg/meshes/cube.obj" scale="0.1 0.1 0.1"/></geometry></collision>
+  </link>
+  <link name="hand"/>
+  <link name="finger">
+    <visual><geometry><cylinder radius="0.01" length="0.05"/></geometry></visual>
+  </link>
+  <joint name="yaw" type="revolute">
+    <origin xyz="0 0 0.2" rpy="0 0 0"/><parent link="base"/><child link="upper"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/>
+  </joint>
+  <joint name="elbow" type="continuous">
+    <origin xyz="0.5 0 0" rpy="0 0 0"/><parent link="upper"/><child link="fore"/><axis xyz="0 1 0"/>
+  </joint>
+  <joint name="wrist" type="fixed">
+    <origin xyz="0.4 0 0" rpy="0 0 0"/><parent link="fore"/><child link="hand"/>
+  </joint>
+  <joint name="slide" type="prismatic">
+    <parent link="hand"/><child link="finger"/><axis xyz="1 0 0"/>
+    <limit lower="-0.1" upper="0.1" effort="1" velocity="1"/><mimic joint="yaw" multiplier="0.01" offset="0"/>
+  </joint>
+</robot>
+)";
+        }
+
+        inline std::string writeFile(const std::filesystem::path &path, const std::string &bytes)
+        {
+            std::ofstream out(path, std::ios::binary | std::ios::trunc);
+            out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+            return path.string();
+        }
+
+        /** \brief A folder \e name in scratchDir() (one per target, so that no target reads another's input) that
+            holds arm.urdf (fixtureUrdf()), arm.srdf, robot.obj and world.obj (tetrahedra) and the package
+            pkg/meshes/cube.obj. */
+        inline std::filesystem::path robotFolder(const std::string &name)
+        {
+            namespace fs = std::filesystem;
+            const fs::path dir = scratchDir() / name;
+            if (fs::exists(dir / "arm.urdf"))
+                return dir;
+            fs::create_directories(dir / "pkg" / "meshes");
+            const std::string tetra = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+            writeFile(dir / "robot.obj", tetra);
+            writeFile(dir / "world.obj", "v 2 2 2\nv 3 2 2\nv 2 3 2\nv 2 2 3\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+            writeFile(dir / "pkg" / "meshes" / "cube.obj",
+                      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n"
+                      "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n");
+            writeFile(dir / "arm.srdf", "<robot name=\"arm\"><disable_collisions link1=\"base\" link2=\"fore\" "
+                                        "reason=\"Never\"/></robot>\n");
+            writeFile(dir / "arm.urdf", fixtureUrdf());
+            return dir;
+        }
+
+        /** \brief Bodies without refinement and with a small mesh-distance table: reading is what is fuzzed. */
+        inline BodyOptions robotBodyOptions()
+        {
+            BodyOptions o;
+            o.gridSize = 0.0;
+            o.distances.threads = 1;
+            o.distances.memoryBudgetBytes = MeshDistances::denseTableBytes(64);
+            return o;
+        }
+
+        /** \brief Every frame and link pose of \e robot at \e state is a finite rigid pose. */
+        inline void checkPosesAt(const RobotModel &robot, const std::vector<double> &state, const std::string &what)
+        {
+            std::vector<Eigen::Isometry3d> frames, links;
+            try
+            {
+                robot.linkPoses(state.data(), state.size(), frames, links);
+            }
+            catch (const Exception &error)
+            {
+                violation(what + ": a valid state is refused: " + error.what());
+            }
+            for (const Eigen::Isometry3d &X : frames)
+                check(isPose(X), what + ": a frame pose is not a finite rigid pose");
+            for (const Eigen::Isometry3d &X : links)
+                check(isPose(X), what + ": a link pose is not a finite rigid pose");
+        }
+
+        /** \brief What every robot model must be: frames a forest in order with unique names, links in existing
+            frames with unique names, finite surfaces and rigid offsets, self pairs in order and not allowed. */
+        inline void checkRobotModel(const RobotModel &robot, const std::string &what)
+        {
+            const std::vector<RobotFrame> &frames = robot.frames();
+            for (std::size_t f = 0; f < frames.size(); ++f)
+                check(robot.findFrame(frames[f].name) == f &&
+                          (frames[f].parent == RobotModel::NONE || frames[f].parent < f),
+                      what + ": frame '" + frames[f].name + "': duplicated name or parent after it");
+            const std::vector<RobotLink> &links = robot.links();
+            for (std::size_t l = 0; l < links.size(); ++l)
+            {
+                const RobotLink &link = links[l];
+                check(robot.findLink(link.name) == l && link.frame < frames.size() && link.body && isPose(link.X_FL),
+                      what + ": link '" + link.name + "': duplicated name, bad frame, no body or a bad offset");
+                check(!link.body->surface().triangles.empty(), what + ": link '" + link.name + "' has no triangles");
+                for (const Eigen::Vector3d &v : link.body->surface().vertices)
+                    check(v.allFinite(), what + ": link '" + link.name + "' has a non-finite vertex");
+            }
+            LinkPair last{0, 0};
+            bool first = true;
+            for (const LinkPair &p : robot.selfPairs())
+            {
+                check(p.first < p.second && p.second < links.size() && !robot.isAllowed(p.first, p.second) &&
+                          (first || last < p),
+                      what + ": selfPairs() out of order, out of range or allowed");
+                last = p;
+                first = false;
+            }
+        }
+
+        /** \brief A state of \e robot: the floating base at the origin, each joint at 0 moved into its limits. */
+        inline std::vector<double> referenceState(const UrdfRobot &robot)
+        {
+            std::vector<double> q(robot.dimension(), 0.0);
+            if (robot.floatingBase())
+                q[6] = 1.0;
+            for (std::size_t k = 0; k < robot.variables().size(); ++k)
+            {
+                const UrdfJoint &j = robot.joints()[robot.variables()[k]];
+                q[robot.jointOffset() + k] = std::min(std::max(0.0, j.lower), j.upper);
+            }
+            return q;
+        }
+
+        /** \brief A UrdfRobot's joints: one per frame but the root, parent before child, rigid origins, unit axes,
+            ordered limits; movable joints are the state's variables in order, mimic joints follow a movable one;
+            every frame is a finite rigid pose at the reference state. */
+        inline void checkUrdfRobot(const UrdfRobot &robot, const std::string &what)
+        {
+            checkRobotModel(robot, what);
+            const std::vector<UrdfJoint> &joints = robot.joints();
+            check(!robot.frames().empty() && robot.frames()[0].parent == RobotModel::NONE &&
+                      joints.size() + 1 == robot.frames().size(),
+                  what + ": not one joint for every frame but the root");
+            for (std::size_t k = 0; k < joints.size(); ++k)
+            {
+                const UrdfJoint &j = joints[k];
+                const std::string at = what + ": joint '" + j.name + "'";
+                check(j.child == k + 1 && j.parent == robot.frames()[j.child].parent, at + ": frames out of order");
+                check(isPose(j.origin), at + ": its origin is not a finite rigid pose");
+                check(j.axis.allFinite() && std::abs(j.axis.norm() - 1.0) < 1e-12, at + ": axis not of unit length");
+                check(!(j.lower > j.upper) && !std::isnan(j.lower) && !std::isnan(j.upper), at + ": limits");
+                const bool fixed = j.type == JointType::FIXED;
+                if (fixed || j.mimics != RobotModel::NONE)
+                {
+                    check(j.variable == RobotModel::NONE, at + ": a fixed or mimic joint has a variable");
+                    check(fixed || (j.mimics < joints.size() && joints[j.mimics].variable != RobotModel::NONE &&
+                                    std::isfinite(j.multiplier) && std::isfinite(j.offset)),
+                          at + ": mimics no movable joint, or by a non-finite map");
+                }
+                else
+                    check(j.variable != RobotModel::NONE, at + ": a movable joint without a variable");
+            }
+            check(robot.jointOffset() + robot.variables().size() == robot.dimension(), what + ": dimension");
+            for (std::size_t i = 0; i < robot.variables().size(); ++i)
+                check(robot.variables()[i] < joints.size() &&
+                          joints[robot.variables()[i]].variable == robot.jointOffset() + i,
+                      what + ": variables() and the joints' variable disagree");
+            checkPosesAt(robot, referenceState(robot), what);
+        }
+
+        /** \brief First byte: options (bit 0 a floating base, then facets for cylinders and spheres); the rest as a
+            URDF, beside arm.urdf, robot.obj and package pkg (robotFolder()), through UrdfRobot::load(). */
+        inline Outcome urdf(const std::uint8_t *data, std::size_t size)
+        {
+            QuietLog quiet;
+            Bytes in(data, size);
+            const std::uint8_t options = in.u8();
+            const std::filesystem::path dir = robotFolder("urdf");
+            const std::string path = writeFile(dir / "input.urdf", in.rest());
+            UrdfOptions o;
+            o.packagePath = {dir.string()};
+            o.floatingBase = options & 1;
+            o.segments = 3 + (options >> 1) % 6;
+            o.body = robotBodyOptions();
+            try
+            {
+                checkUrdfRobot(*UrdfRobot::load(path, o), "UrdfRobot::load");
+                return Outcome::Accepted;
+            }
+            catch (const Exception &)
+            {
+                return Outcome::Rejected;
+            }
+        }
+
+        /** \brief The bytes as an SRDF through readSrdf() on a copy of arm.urdf with a payload on "hand": an
+            accepted SRDF names only links and frames the robot has, allows every pair it names and nothing else. */
+        inline Outcome srdf(const std::uint8_t *data, std::size_t size)
+        {
+            QuietLog quiet;
+            const std::filesystem::path dir = robotFolder("srdf");
+            static const UrdfRobotPtr base = [&dir] {
+                UrdfOptions o;
+                o.packagePath = {dir.string()};
+                o.body = robotBodyOptions();
+                UrdfRobotPtr r = UrdfRobot::load((dir / "arm.urdf").string(), o);
+                r->attach("payload", loadMesh((dir / "robot.obj").string()), "hand", Eigen::Isometry3d::Identity(),
+                          o.body);
+                return r;
+            }();
+            UrdfRobot robot(*base);
+            const std::string path =
+                writeFile(dir / "input.srdf", std::string(reinterpret_cast<const char *>(data), size));
+            try
+            {
+                readSrdf(robot, path);
+            }
+            catch (const Exception &)
+            {
+                return Outcome::Rejected;
+            }
+            checkUrdfRobot(robot, "readSrdf");
+            check(robot.links().size() == base->links().size() && robot.frames().size() == base->frames().size(),
+                  "readSrdf: links or frames changed");
+            // The links a name stands for: the link of that name, else every link but a payload in the frame of
+            // that name (RobotModel::allowCollision()).
+            auto linksOf = [&robot](const std::string &name) {
+                const std::size_t link = robot.findLink(name), frame = robot.findFrame(name);
+                std::vector<std::size_t> found;
+                for (std::size_t l = 0; l < robot.links().size(); ++l)
+                    if (link != RobotModel::NONE ? l == link
+                                                 : robot.links()[l].frame == frame && !robot.links()[l].payload)
+                        found.push_back(l);
+                return found;
+            };
+            std::vector<std::vector<bool>> listed(robot.links().size(), std::vector<bool>(robot.links().size()));
+            try
+            {
+                for (const SrdfDisabledPair &pair : readSrdfDisabledCollisions(path))
+                {
+                    for (const std::string &name : {pair.link1, pair.link2})
+                        check(robot.findLink(name) != RobotModel::NONE || robot.findFrame(name) != RobotModel::NONE,
+                              "readSrdf: accepted an unknown link '" + name + "'");
+                    for (std::size_t a : linksOf(pair.link1))
+                        for (std::size_t b : linksOf(pair.link2))
+                        {
+                            check(robot.isAllowed(a, b), "readSrdf: a disabled pair is still checked");
+                            listed[a][b] = listed[b][a] = true;
+                        }
+                }
+            }
+            catch (const Exception &error)
+            {
+                violation(std::string("readSrdfDisabledCollisions refuses what readSrdf accepted: ") + error.what());
+            }
+            for (std::size_t a = 0; a < robot.links().size(); ++a)
+                for (std::size_t b = a + 1; b < robot.links().size(); ++b)
+                    check(robot.isAllowed(a, b) == (base->isAllowed(a, b) || listed[a][b]),
+                          "readSrdf: allowed a pair the SRDF does not name");
+            return Outcome::Accepted;
+        }
+
+        /** \brief The bytes as a robot problem (.cfg) beside arm.urdf, arm.srdf, robot.obj, world.obj and package
+            pkg (robotFolder()) through readRobotProblem(). An accepted problem has a robot, states of its dimension
+            inside the joint limits whose poses are finite and rigid, obstacles, a finite ordered volume. */
+        inline Outcome robotProblem(const std::uint8_t *data, std::size_t size)
+        {
+            QuietLog quiet;
+            const std::filesystem::path dir = robotFolder("robot_problem");
+            const std::string path =
+                writeFile(dir / "problem.cfg", std::string(reinterpret_cast<const char *>(data), size));
+            RobotProblem p;
+            try
+            {
+                p = readRobotProblem(path, robotBodyOptions());
+            }
+            catch (const Exception &)
+            {
+                return Outcome::Rejected;
+            }
+            const std::string what = "readRobotProblem";
+            check(p.robot != nullptr && !p.obstacles.empty(), what + ": no robot or no obstacles");
+            for (const BodyConstPtr &b : p.obstacles)
+                check(b && !b->surface().triangles.empty(), what + ": an empty obstacle");
+            const auto *urdfRobot = dynamic_cast<const UrdfRobot *>(p.robot.get());
+            check(p.urdf == (urdfRobot != nullptr), what + ": urdf flag and robot kind disagree");
+            if (urdfRobot)
+                checkUrdfRobot(*urdfRobot, what);
+            else
+                checkRobotModel(*p.robot, what);
+            std::vector<const std::vector<double> *> states{&p.start};
+            if (p.goal)
+                states.push_back(&*p.goal);
+            for (const std::vector<double> *q : states)
+            {
+                check(q->size() == p.robot->dimension(), what + ": a state of the wrong dimension");
+                for (std::size_t i = 0; i < q->size(); ++i)
+                {
+                    check(std::isfinite((*q)[i]), what + ": a non-finite state number");
+                    if (urdfRobot && i >= urdfRobot->jointOffset())
+                    {
+                        const UrdfJoint &j = urdfRobot->joints()[urdfRobot->variables()[i - urdfRobot->jointOffset()]];
+                        check(j.lower <= (*q)[i] && (*q)[i] <= j.upper, what + ": a state outside a joint's limits");
+                    }
+                }
+                checkPosesAt(*p.robot, *q, what);
+            }
+            check(!p.volume || (p.volume->min().allFinite() && p.volume->max().allFinite() &&
+                                (p.volume->min().array() <= p.volume->max().array()).all()),
+                  what + ": bad volume");
+            check(!p.objectiveThreshold || std::isfinite(*p.objectiveThreshold), what + ": non-finite threshold");
+            check(std::filesystem::exists(p.world), what + ": the world file does not exist");
+            return Outcome::Accepted;
+        }
+
         /** \brief The targets by name (the stem of fuzz/<name>.cpp and of the corpus folders). */
         struct Target
         {
@@ -631,7 +956,9 @@ namespace meshgap
         inline const std::vector<Target> &targets()
         {
             static const std::vector<Target> all = {
-                {"mesh", &mesh}, {"loader", &loader}, {"config", &config}, {"pose", &pose}, {"distance", &distance}};
+                {"mesh", &mesh},         {"loader", &loader}, {"config", &config},
+                {"pose", &pose},         {"distance", &distance}, {"urdf", &urdf},
+                {"srdf", &srdf},         {"robot_problem", &robotProblem}};
             return all;
         }
     }  // namespace fuzz

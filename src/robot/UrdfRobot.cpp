@@ -270,6 +270,48 @@ namespace meshgap
             }
         }
 
+        /** \brief Throws unless urdfdom's \e model has the links and joints the file's XML names (\e links, \e joints),
+            joined the same way: the two XML readers can differ (urdfdom changes a name with an unknown entity such
+            as "&nt" that tinyxml2 keeps). */
+        void checkSameTree(const std::string &path, const urdf::ModelInterface &model,
+                           const std::vector<std::string> &links, const std::vector<XmlJoint> &joints)
+        {
+            auto differs = [&path](const std::string &what)
+            {
+                return Exception(path, "urdfdom reads " + what +
+                                           " differently from the XML (an unknown entity or a character reference in a "
+                                           "name?)");
+            };
+            if (model.links_.size() != links.size() || model.joints_.size() != joints.size())
+                throw differs("the links and joints");
+            for (const std::string &l : links)
+                if (!model.getLink(l))
+                    throw differs("link '" + l + "'");
+            for (const XmlJoint &j : joints)
+            {
+                const urdf::JointConstSharedPtr joint = model.getJoint(j.name);
+                if (!joint || joint->parent_link_name != j.parent || joint->child_link_name != j.child)
+                    throw differs("joint '" + j.name + "'");
+            }
+        }
+
+        /** \brief Largest magnitude of a joint's origin coordinate, limit, mimic multiplier and mimic offset (metres,
+            radians): far beyond any robot, and small enough that every frame of every state within the limits stays
+            finite. */
+        constexpr double MAX_JOINT_MAGNITUDE = 1e9;
+
+        /** \brief Throws unless \e value (what joint \e joint of \e path gives as \e what) is at most
+            MAX_JOINT_MAGNITUDE in magnitude (so not NaN). */
+        void checkJointNumber(const std::string &path, const std::string &joint, const std::string &what, double value)
+        {
+            if (std::abs(value) <= MAX_JOINT_MAGNITUDE)
+                return;
+            std::ostringstream text;
+            text << "joint '" << joint << "': " << what << " " << value << " is not a number of magnitude at most "
+                 << MAX_JOINT_MAGNITUDE;
+            throw Exception(path, text.str());
+        }
+
         Eigen::Isometry3d toIsometry(const urdf::Pose &pose)
         {
             Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
@@ -384,15 +426,23 @@ namespace meshgap
             j.parent = robot.frames()[f].parent;
             j.child = f;
             j.origin = toIsometry(joint->parent_to_joint_origin_transform);
+            if (!j.origin.linear().allFinite())
+                throw Exception(path, "joint '" + j.name + "': its origin's rotation is not finite");
+            for (int k = 0; k < 3; ++k)
+                checkJointNumber(path, j.name, "the origin's coordinate", j.origin.translation()[k]);
             j.axis = Eigen::Vector3d(joint->axis.x, joint->axis.y, joint->axis.z);
-            if (j.type != JointType::FIXED && !(j.axis.norm() > 0.0 && j.axis.allFinite()))
+            if (j.type != JointType::FIXED && !(j.axis.cwiseAbs().maxCoeff() > 0.0 && j.axis.allFinite()))
                 throw Exception(path, "joint '" + j.name + "' has a zero or non-finite axis");
-            j.axis = j.type == JointType::FIXED ? Eigen::Vector3d::UnitX() : j.axis.normalized();
+            // Stable: the norm of "1 0 1e300" overflows and that of "1e-200 0 0" underflows, not their direction.
+            j.axis = j.type == JointType::FIXED ? Eigen::Vector3d::UnitX() : j.axis.stableNormalized();
             const bool bounded = j.type == JointType::REVOLUTE || j.type == JointType::PRISMATIC;
             j.lower = bounded && joint->limits ? joint->limits->lower : -std::numeric_limits<double>::infinity();
             j.upper = bounded && joint->limits ? joint->limits->upper : std::numeric_limits<double>::infinity();
             if (bounded && !(j.lower <= j.upper))
                 throw Exception(path, "joint '" + j.name + "': its lower limit is above its upper limit");
+            if (bounded)
+                for (const double limit : {j.lower, j.upper})
+                    checkJointNumber(path, j.name, "the limit", limit);
             j.variable = RobotModel::NONE;
             j.mimics = RobotModel::NONE;
             j.multiplier = 1.0;
@@ -444,6 +494,8 @@ namespace meshgap
                 at = model.getJoint(at->mimic->joint_name);
                 j.mimics = k;
             }
+            checkJointNumber(path, j.name, "the mimic multiplier (along its chain of mimic joints)", multiplier);
+            checkJointNumber(path, j.name, "the mimic offset (along its chain of mimic joints)", offset);
             j.multiplier = multiplier;
             j.offset = offset;
         }
@@ -498,6 +550,7 @@ namespace meshgap
                                           (capture.errors().empty() ? std::string("(no reason given)")
                                                                     : capture.errors()));
         }
+        checkSameTree(path, *model, linkNames, order);
         UrdfRobotPtr robot(new UrdfRobot());
         robot->where_ = path;
         robot->name_ = model->getName();

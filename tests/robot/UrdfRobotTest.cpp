@@ -358,4 +358,87 @@ namespace meshgap
         message = errorOf([&] { robot->attach("arm", test::box(0.1, 0.1, 0.1), "tool", Eigen::Isometry3d::Identity()); });
         EXPECT_NE(message.find("a link of that name exists already"), std::string::npos) << message;
     }
+
+    // Numbers so large that the frames of valid states are not finite (or far beyond any robot) are refused, naming the
+    // joint; the bound itself is accepted. The fuzz inputs in tests/resources/fuzz/urdf/ gave infinite frames before.
+    TEST(UrdfRobot, JointNumbersAboveABillionAreRefused)
+    {
+        const std::string head = "<robot name=\"big\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/>"
+                                 "<link name=\"d\"/>";
+        auto joint = [](const std::string &name, const std::string &parent, const std::string &child,
+                        const std::string &xyz, const std::string &limit, const std::string &extra)
+        {
+            return "<joint name=\"" + name + "\" type=\"prismatic\"><origin xyz=\"" + xyz + "\"/><parent link=\"" +
+                   parent + "\"/><child link=\"" + child + "\"/><axis xyz=\"0 0 1\"/><limit lower=\"-" + limit +
+                   "\" upper=\"" + limit + "\" effort=\"1\" velocity=\"1\"/>" + extra + "</joint>";
+        };
+        auto mimic = [](const std::string &of, const std::string &multiplier)
+        { return "<mimic joint=\"" + of + "\" multiplier=\"" + multiplier + "\"/>"; };
+        auto load = [&](const std::string &xyz, const std::string &limit, const std::string &multiplier)
+        {
+            const std::string text = head + joint("j1", "a", "b", xyz, limit, "") +
+                                     joint("j2", "b", "c", xyz, "1", mimic("j1", multiplier)) +
+                                     joint("j3", "c", "d", "0 0 0", "1", mimic("j2", multiplier)) + "</robot>";
+            const std::string path = writeFile("big.urdf", text);
+            return errorOf([&] { UrdfRobot::load(path); });
+        };
+        // At the bound: accepted, and the frames at the limits are finite.
+        EXPECT_EQ(load("1e9 0 -1e9", "1e9", "3e4"), "");
+        const std::string atBound = head + joint("j1", "a", "b", "1e9 0 0", "1e9", "") +
+                                    joint("j2", "b", "c", "1e9 0 0", "1e9", "") +
+                                    joint("j3", "c", "d", "0 0 0", "1", "") + "</robot>";
+        const std::vector<double> state = {1e9, 1e9, 1};
+        std::vector<Eigen::Isometry3d> frames;
+        UrdfRobot::load(writeFile("big.urdf", atBound))->framePoses(state.data(), state.size(), frames);
+        ASSERT_EQ(frames.size(), 4u);
+        EXPECT_EQ(frames[3].translation(), Eigen::Vector3d(2e9, 0, 2e9 + 1));  // origins along x, motion along z
+        for (const Eigen::Isometry3d &X : frames)
+            EXPECT_TRUE(X.matrix().allFinite());
+        EXPECT_NE(load("1e308 0 0", "1", "1").find("joint 'j1': the origin's coordinate 1e+308"), std::string::npos);
+        EXPECT_NE(load("0 -2e9 0", "1", "1").find("joint 'j1': the origin's coordinate -2e+09"), std::string::npos);
+        EXPECT_NE(load("0 0 0", "1e300", "1").find("joint 'j1': the limit -1e+300"), std::string::npos);
+        // j2 = 1e5 j1, j3 = 1e5 j2 = 1e10 j1: the composed multiplier is refused.
+        EXPECT_NE(load("0 0 0", "1", "1e5").find("joint 'j3': the mimic multiplier (along its chain of mimic joints) "
+                                                 "1e+10"),
+                  std::string::npos);
+    }
+
+    // tinyxml2 keeps an unknown entity in a name ("&nt") where urdfdom changes it, so the two readers saw different
+    // joints (a null joint dereferenced; tests/resources/fuzz/urdf/unknown_entity_in_joint_name.urdf): refused.
+    TEST(UrdfRobot, NamesTheXmlReadersReadDifferentlyAreRefused)
+    {
+        const std::string tail = "<axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>"
+                                 "</joint></robot>";
+        const std::string path = writeFile("entity.urdf", "<robot name=\"e\"><link name=\"a\"/><link name=\"b\"/>"
+                                                          "<joint name=\"j&nt\" type=\"revolute\"><parent link=\"a\"/>"
+                                                          "<child link=\"b\"/>" + tail);
+        const std::string message = errorOf([&] { UrdfRobot::load(path); });
+        EXPECT_NE(message.find(path + ": urdfdom reads joint 'j&nt' differently"), std::string::npos) << message;
+        // A known entity is read alike by both.
+        const std::string known =
+            writeFile("entity.urdf", "<robot name=\"e\"><link name=\"a\"/><link name=\"b&amp;c\"/><joint "
+                                     "name=\"j&amp;k\" type=\"revolute\"><parent link=\"a\"/>"
+                                     "<child link=\"b&amp;c\"/>" + tail);
+        const UrdfRobotPtr robot = UrdfRobot::load(known);
+        ASSERT_EQ(robot->joints().size(), 1u);
+        EXPECT_EQ(robot->joints()[0].name, "j&k");
+        EXPECT_NE(robot->findFrame("b&c"), RobotModel::NONE);
+    }
+
+    // An axis whose norm overflows ("1 0 1e300") or underflows ("1e-200 0 0") still has a direction; the plain
+    // normalisation made the first the zero vector (tests/resources/fuzz/urdf/axis_norm_overflow.urdf).
+    TEST(UrdfRobot, AxesOfHugeOrTinyLengthKeepTheirDirection)
+    {
+        for (const auto &[xyz, unit] : {std::make_pair(std::string("1 0 1e300"), Eigen::Vector3d(0, 0, 1)),
+                                        std::make_pair(std::string("1e-200 0 0"), Eigen::Vector3d(1, 0, 0)),
+                                        std::make_pair(std::string("3e-170 0 4e-170"), Eigen::Vector3d(0.6, 0, 0.8))})
+        {
+            const std::string path = writeFile("axis.urdf", "<robot name=\"x\"><link name=\"a\"/><link name=\"b\"/>"
+                                                            "<joint name=\"j\" type=\"continuous\"><parent link=\"a\"/>"
+                                                            "<child link=\"b\"/><axis xyz=\"" +
+                                                                xyz + "\"/></joint></robot>");
+            const UrdfRobotPtr robot = UrdfRobot::load(path);
+            EXPECT_LT((robot->joints()[0].axis - unit).norm(), 1e-15) << xyz;
+        }
+    }
 }  // namespace meshgap

@@ -66,12 +66,14 @@ namespace meshgap
         /** \brief Read \e path. Throws meshgap::Exception naming the file and the problem: unreadable XML, a joint
             type other than revolute, continuous, prismatic or fixed (floating and planar joints included), joints
             that do not form one tree (a cycle, a link with two parent joints, several roots, an unknown link), a
-            mimic joint of an unknown or fixed joint, a zero axis, a mesh that cannot be found or read, a bad
-            primitive, and whatever else urdfdom rejects. Throws also for what urdfdom drops with a message and
-            reads on without: a <collision> or <visual> element whose origin or shape has a number that is not one,
-            not finite, beyond MAX_MAGNITUDE (meshgap/Limits.h), not positive where a size must be, or too few or too
-            many of them, an unknown shape or a mesh without a file name (naming file:line and the element); a joint
-            origin or limit beyond MAX_MAGNITUDE; and a robot without any collision geometry. */
+            mimic joint of an unknown or fixed joint, a zero axis, a joint origin coordinate, limit or (composed)
+            mimic multiplier or offset above 1e9 in magnitude, a name urdfdom reads differently from the XML (an
+            unknown entity), a mesh that cannot be found or read, a bad primitive, and whatever else urdfdom
+            rejects. Throws also for what urdfdom drops with a message and reads on without: a <collision> or
+            <visual> element whose origin or shape has a number that is not one, not finite, beyond MAX_MAGNITUDE
+            (meshgap/Limits.h), not positive where a size must be, or too few or too many of them, an unknown shape
+            or a mesh without a file name (naming file:line and the element); and a robot without any collision
+            geometry. */
         static UrdfRobotPtr load(const std::string &path, const UrdfOptions &options = UrdfOptions());
 
         /** \brief Every joint, parent before child (the order of the forward kinematics). */

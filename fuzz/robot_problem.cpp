@@ -1,0 +1,8 @@
+// libFuzzer entry for fuzz::robotProblem() (see FuzzTargets.h).
+#include "FuzzTargets.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size)
+{
+    meshgap::fuzz::robotProblem(data, size);
+    return 0;
+}
