@@ -266,11 +266,11 @@ namespace meshgap
                         checkJoints(keys, key, keys.numbers(key), robot);
                         (key[0] == 's' ? problem.start : problem.goal.emplace()) = keys.numbers(key);
                     }
+                if (keys.has("attach"))
+                    attachPayload(keys, folder, options, *problem.robot);
             }
             else
-                readUrdfKeys(keys, folder, problem, options);
-            if (keys.has("attach"))
-                attachPayload(keys, folder, options, *problem.robot);
+                readUrdfKeys(keys, folder, problem, options);  // attaches the payload before reading the SRDF
             problem.urdf = true;
         }
 

@@ -40,7 +40,7 @@ namespace meshgap
                 for (int k = 0; k < 120; ++k)
                 {
                     const double t = k / 120.0;
-                    states.push_back({3 * t, -2.5 + 5 * t, 0.3 * std::sin(6 * t), 4 * t, std::sin(9 * t)});
+                    states.push_back({3 * t, -2.5 + 5 * t, 0.1 + 0.2 * std::sin(6 * t), 4 * t, std::sin(9 * t)});  // within the limits
                 }
                 return states;
             }

@@ -3,6 +3,8 @@
 // and each bad input gets one clear error and a non-zero exit.
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <unistd.h>
 
 #include <cmath>
@@ -13,6 +15,7 @@
 
 #include "CliRun.h"
 #include "meshgap/robot/RobotProblem.h"
+#include "meshgap/robot/UrdfRobot.h"
 #include "meshgap/robot/RobotScene.h"
 #include "support/RobotRun.h"
 
@@ -142,8 +145,13 @@ TEST_F(RobotCli, DistancePosesWritesCsvRowsThatAreTheLibrarysExactAnswers)
     for (int k = -4; k <= 14; ++k)
     {
         std::vector<double> q = problem.start;
+        const auto &arm = static_cast<const meshgap::UrdfRobot &>(*problem.robot);
         for (std::size_t j = 0; j < q.size(); ++j)
+        {
             q[j] += (k / 10.0) * ((*problem.goal)[j] - problem.start[j]);
+            const meshgap::UrdfJoint &joint = arm.joints()[arm.variables()[j]];
+            q[j] = std::clamp(q[j], joint.lower, joint.upper);  // past start or goal, within the joint's limits
+        }
         states.push_back(q);
         for (std::size_t j = 0; j < q.size(); ++j)
             text << (j ? " " : "") << q[j];

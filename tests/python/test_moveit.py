@@ -69,7 +69,9 @@ def test_request_gives_start_and_goal(tmp_path):
 
 def test_bad_scene_names_the_file_and_entry(tmp_path):
     bad = write(tmp_path, "bad.yaml", "world:\n  collision_objects:\n    - id: b\n      primitives:\n"
-                                      "        - type: box\n          dimensions: [0.2, 0.2]\n")
+                                      "        - type: box\n          dimensions: [0.2, 0.2]\n"
+                                      "      primitive_poses:\n        - position: [0, 0, 0]\n"
+                                      "          orientation: [0, 0, 0, 1]\n")
     with pytest.raises(Exception) as e:
         meshgap.RobotScene.from_moveit(ARM, scene=bad)
     assert "bad.yaml" in str(e.value) and "dimensions" in str(e.value)

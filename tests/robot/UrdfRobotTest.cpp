@@ -363,7 +363,7 @@ namespace meshgap
     // joint; the bound itself is accepted. The fuzz inputs in tests/resources/fuzz/urdf/ gave infinite frames before.
     TEST(UrdfRobot, JointNumbersAboveABillionAreRefused)
     {
-        const std::string head = "<robot name=\"big\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/>"
+        const std::string head = "<robot name=\"big\"><link name=\"a\"><collision><geometry><box size=\"1 1 1\"/></geometry></collision></link><link name=\"b\"/><link name=\"c\"/>"
                                  "<link name=\"d\"/>";
         auto joint = [](const std::string &name, const std::string &parent, const std::string &child,
                         const std::string &xyz, const std::string &limit, const std::string &extra)
@@ -394,9 +394,15 @@ namespace meshgap
         EXPECT_EQ(frames[3].translation(), Eigen::Vector3d(2e9, 0, 2e9 + 1));  // origins along x, motion along z
         for (const Eigen::Isometry3d &X : frames)
             EXPECT_TRUE(X.matrix().allFinite());
-        EXPECT_NE(load("1e308 0 0", "1", "1").find("joint 'j1': the origin's coordinate 1e+308"), std::string::npos);
+        // Beyond 1e12 the XML check refuses the number as written; between 1e9 and 1e12 the joint check does.
+        const std::string beyond = load("1e308 0 0", "1", "1");
+        EXPECT_NE(beyond.find("joint 'j1': <origin xyz=\"1e308 0 0\">: xyz has 1e308, beyond 1e12"), std::string::npos)
+            << beyond;
         EXPECT_NE(load("0 -2e9 0", "1", "1").find("joint 'j1': the origin's coordinate -2e+09"), std::string::npos);
-        EXPECT_NE(load("0 0 0", "1e300", "1").find("joint 'j1': the limit -1e+300"), std::string::npos);
+        const std::string limit = load("0 0 0", "1e300", "1");
+        EXPECT_NE(limit.find("joint 'j1'"), std::string::npos) << limit;
+        EXPECT_NE(limit.find("1e300, beyond 1e12"), std::string::npos) << limit;
+        EXPECT_NE(load("0 0 0", "2e9", "1").find("joint 'j1': the limit -2e+09"), std::string::npos);
         // j2 = 1e5 j1, j3 = 1e5 j2 = 1e10 j1: the composed multiplier is refused.
         EXPECT_NE(load("0 0 0", "1", "1e5").find("joint 'j3': the mimic multiplier (along its chain of mimic joints) "
                                                  "1e+10"),
@@ -409,14 +415,14 @@ namespace meshgap
     {
         const std::string tail = "<axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>"
                                  "</joint></robot>";
-        const std::string path = writeFile("entity.urdf", "<robot name=\"e\"><link name=\"a\"/><link name=\"b\"/>"
+        const std::string path = writeFile("entity.urdf", "<robot name=\"e\"><link name=\"a\"><collision><geometry><box size=\"1 1 1\"/></geometry></collision></link><link name=\"b\"/>"
                                                           "<joint name=\"j&nt\" type=\"revolute\"><parent link=\"a\"/>"
                                                           "<child link=\"b\"/>" + tail);
         const std::string message = errorOf([&] { UrdfRobot::load(path); });
         EXPECT_NE(message.find(path + ": urdfdom reads joint 'j&nt' differently"), std::string::npos) << message;
         // A known entity is read alike by both.
         const std::string known =
-            writeFile("entity.urdf", "<robot name=\"e\"><link name=\"a\"/><link name=\"b&amp;c\"/><joint "
+            writeFile("entity.urdf", "<robot name=\"e\"><link name=\"a\"><collision><geometry><box size=\"1 1 1\"/></geometry></collision></link><link name=\"b&amp;c\"/><joint "
                                      "name=\"j&amp;k\" type=\"revolute\"><parent link=\"a\"/>"
                                      "<child link=\"b&amp;c\"/>" + tail);
         const UrdfRobotPtr robot = UrdfRobot::load(known);
@@ -433,7 +439,7 @@ namespace meshgap
                                         std::make_pair(std::string("1e-200 0 0"), Eigen::Vector3d(1, 0, 0)),
                                         std::make_pair(std::string("3e-170 0 4e-170"), Eigen::Vector3d(0.6, 0, 0.8))})
         {
-            const std::string path = writeFile("axis.urdf", "<robot name=\"x\"><link name=\"a\"/><link name=\"b\"/>"
+            const std::string path = writeFile("axis.urdf", "<robot name=\"x\"><link name=\"a\"><collision><geometry><box size=\"1 1 1\"/></geometry></collision></link><link name=\"b\"/>"
                                                             "<joint name=\"j\" type=\"continuous\"><parent link=\"a\"/>"
                                                             "<child link=\"b\"/><axis xyz=\"" +
                                                                 xyz + "\"/></joint></robot>");
