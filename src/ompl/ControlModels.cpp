@@ -15,6 +15,13 @@ namespace meshgap
 {
     namespace
     {
+        /** \brief \e si without ownership, for the ODE solver its own propagator holds: a solver owning its space
+            information would make a cycle (si -> propagator -> solver -> si) that is never freed. */
+        oc::SpaceInformationPtr unowned(const oc::SpaceInformationPtr &si)
+        {
+            return oc::SpaceInformationPtr(oc::SpaceInformationPtr(), si.get());
+        }
+
         constexpr double DEGREE = M_PI / 180.0;
         constexpr double AXLE_DISTANCE = 1.0;  ///< L, front to rear axle
         constexpr double CAR_MASS = 1.0;       ///< m of the dynamic car
@@ -72,7 +79,7 @@ namespace meshgap
                 qdot[1] = u[0] * std::sin(q[2]);
                 qdot[2] = u[0] * std::tan(u[1]) / AXLE_DISTANCE;
             };
-            auto solver = std::make_shared<oc::ODEBasicSolver<>>(si, ode, INTEGRATION_STEP);
+            auto solver = std::make_shared<oc::ODEBasicSolver<>>(unowned(si), ode, INTEGRATION_STEP);
             si->setStatePropagator(oc::ODESolver::getStatePropagator(
                 solver, [](const ob::State *, const oc::Control *, double, ob::State *result) { wrapYaw(result); }));
             return si;
@@ -104,7 +111,7 @@ namespace meshgap
                 qdot[3] = u[0];
                 qdot[4] = u[1];
             };
-            auto solver = std::make_shared<oc::ODEBasicSolver<>>(si, ode, INTEGRATION_STEP);
+            auto solver = std::make_shared<oc::ODEBasicSolver<>>(unowned(si), ode, INTEGRATION_STEP);
             si->setStatePropagator(oc::ODESolver::getStatePropagator(
                 solver, [](const ob::State *, const oc::Control *, double, ob::State *result)
                 { wrapYaw(result->as<ob::CompoundState>()->components[0]); }));
