@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -73,7 +75,14 @@ TEST(ControlPlanCli, KinematicCarAroundABoxHasAFreePath)
     std::ofstream(cfg) << "[problem]\nname = box\nrobot = car.obj\nworld = w.obj\ncontrol = kinematic_car\n"
                           "start.x = -3\nstart.y = 0\nstart.theta = 0\ngoal.x = 3\ngoal.y = 0\ngoal.theta = 0\n"
                           "volume.min.x = -5\nvolume.min.y = -5\nvolume.max.x = 5\nvolume.max.y = 5\n";
-    for (const std::string planner : {"kpiece", "rrt", "sst"})
+#ifdef __SANITIZE_ADDRESS__
+    // OMPL 1.5.2's SST never frees the motions it prunes (their states and controls): LeakSanitizer would fail the
+    // run on OMPL's leak, so the instrumented build plans with the other two.
+    const std::vector<std::string> planners = {"kpiece", "rrt"};
+#else
+    const std::vector<std::string> planners = {"kpiece", "rrt", "sst"};
+#endif
+    for (const std::string &planner : planners)
     {
         const std::string out = (dir / (planner + ".path")).string();
         const test::CliRun r =
