@@ -819,45 +819,15 @@ namespace
         return s;
     }
 
-    /** \brief A URDF robot (and its SRDF) in a MoveIt planning scene, with a motion plan request's start and goal
-        (MoveItScene.h). */
-    PyRobotScene robotSceneFromMoveIt(const py::handle &urdf, const py::handle &srdf, const py::handle &scene,
-                                      const py::handle &request, const py::handle &packagePath)
+    /** \brief The Python scene of a robot problem read by \e read (with the GIL released): its robot among its
+        world, honouring its allowed pairs, its start and goal, its state names. */
+    template <typename Read>
+    PyRobotScene robotSceneOf(Read read)
     {
-        MoveItFiles files;
-        files.urdf = pathArg(urdf, "urdf");
-        files.srdf = srdf.is_none() ? std::string() : pathArg(srdf, "srdf");
-        files.scene = scene.is_none() ? std::string() : pathArg(scene, "scene");
-        files.request = request.is_none() ? std::string() : pathArg(request, "request");
-        files.packagePath = packagePathArg(packagePath);
         PyRobotScene s;
         {
             py::gil_scoped_release release;
-            RobotProblem problem = readMoveItProblem(files);
-            s.model = problem.robot;
-            s.scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles, problem.allowedObstacles);
-            s.name = problem.name;
-            s.start = problem.start;
-            s.goal = problem.goal;
-        }
-        s.stateNames = genericStateNames(*s.model);
-        if (const auto *robot = dynamic_cast<const UrdfRobot *>(s.model.get()))
-            s.stateNames = urdfStateNames(*robot);
-        return s;
-    }
-
-    /** \brief A robot problem file (RobotProblem.h): its robot among its world, its start and goal. */
-    PyRobotScene robotSceneFromCfg(const py::handle &pathObject)
-    {
-        const std::string path = pathArg(pathObject, "cfg");
-        PyRobotScene s;
-        {
-            py::gil_scoped_release release;
-            if (!std::filesystem::exists(path))
-                throw Exception(path, "no such file");
-            if (!isRobotProblemFile(path))
-                throw Exception(path, "a single-body problem (robot = FILE): open it with meshgap.Scene.from_cfg");
-            RobotProblem problem = readRobotProblem(path);
+            const RobotProblem problem = read();
             s.model = problem.robot;
             s.scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles, problem.allowedObstacles);
             s.name = problem.name;
@@ -869,6 +839,35 @@ namespace
         else
             s.stateNames = genericStateNames(*s.model);
         return s;
+    }
+
+    /** \brief A URDF robot (and its SRDF) in a MoveIt planning scene, with a motion plan request's start and goal
+        (MoveItScene.h). */
+    PyRobotScene robotSceneFromMoveIt(const py::handle &urdf, const py::handle &srdf, const py::handle &scene,
+                                      const py::handle &request, const py::handle &packagePath)
+    {
+        MoveItFiles files;
+        files.urdf = pathArg(urdf, "urdf");
+        files.srdf = srdf.is_none() ? std::string() : pathArg(srdf, "srdf");
+        files.scene = scene.is_none() ? std::string() : pathArg(scene, "scene");
+        files.request = request.is_none() ? std::string() : pathArg(request, "request");
+        files.packagePath = packagePathArg(packagePath);
+        return robotSceneOf([&files] { return readMoveItProblem(files); });
+    }
+
+    /** \brief A robot problem file (RobotProblem.h): its robot among its world, its start and goal. */
+    PyRobotScene robotSceneFromCfg(const py::handle &pathObject)
+    {
+        const std::string path = pathArg(pathObject, "cfg");
+        return robotSceneOf(
+            [&path]
+            {
+                if (!std::filesystem::exists(path))
+                    throw Exception(path, "no such file");
+                if (!isRobotProblemFile(path))
+                    throw Exception(path, "a single-body problem (robot = FILE): open it with meshgap.Scene.from_cfg");
+                return readRobotProblem(path);
+            });
     }
 
     /** \brief \e h as (N, dof) float64 numbers, C-contiguous (a copy when it is not), every number finite; or one
