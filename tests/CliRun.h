@@ -3,6 +3,8 @@
 
 // Running one of meshgap's executables as a user does, for the CLI tests: exit status, stdout, stderr.
 
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -66,6 +68,29 @@ namespace meshgap
                 n += line.rfind(prefix, 0) == 0;
             return n;
         }
+
+        /** \brief A test with a folder of its own per test process (named \e prefix and the process id, removed at
+            the end), and file() to write into it. */
+        class FolderTest : public ::testing::Test
+        {
+        protected:
+            explicit FolderTest(const std::string &prefix)
+              : dir_(std::filesystem::temp_directory_path() / (prefix + std::to_string(::getpid())))
+            {
+            }
+            void SetUp() override { std::filesystem::create_directories(dir_); }
+            void TearDown() override { std::filesystem::remove_all(dir_); }
+
+            /** \brief Write \e text to \e name in the folder; returns its path. */
+            std::string file(const std::string &name, const std::string &text) const
+            {
+                const std::string path = (dir_ / name).string();
+                std::ofstream(path) << text;
+                return path;
+            }
+
+            std::filesystem::path dir_;
+        };
     }  // namespace test
 }  // namespace meshgap
 

@@ -81,24 +81,11 @@ namespace
     }
 
     /** \brief A folder of its own per test process, removed at the end. */
-    class HostileCli : public ::testing::Test
+    class HostileCli : public meshgap::test::FolderTest
     {
     protected:
-        void SetUp() override
-        {
-            dir_ = fs::temp_directory_path() / ("meshgap_hostile_" + std::to_string(::getpid()));
-            fs::create_directories(dir_);
-        }
-        void TearDown() override { fs::remove_all(dir_); }
+        HostileCli() : FolderTest("meshgap_hostile_") {}
 
-        std::string file(const std::string &name, const std::string &text)
-        {
-            const std::string path = (dir_ / name).string();
-            std::ofstream(path) << text;
-            return path;
-        }
-
-        fs::path dir_;
     };
 }  // namespace
 

@@ -31,23 +31,15 @@ namespace
                                 "goal_constraints:\n  - joint_constraints:\n      - joint_name: yaw\n"
                                 "        position: 1.5\n      - joint_name: elbow\n        position: -0.5\n";
 
-    class MoveItCli : public ::testing::Test
+    class MoveItCli : public meshgap::test::FolderTest
     {
     protected:
+        MoveItCli() : FolderTest("meshgap_moveit_cli_") {}
         void SetUp() override
         {
-            dir_ = fs::temp_directory_path() / ("meshgap_moveit_cli_" + std::to_string(::getpid()));
-            fs::create_directories(dir_);
+            FolderTest::SetUp();
             scene_ = file("scene.yaml", SCENE);
             request_ = file("request.yaml", REQUEST);
-        }
-        void TearDown() override { fs::remove_all(dir_); }
-
-        std::string file(const std::string &name, const std::string &text)
-        {
-            const std::string path = (dir_ / name).string();
-            std::ofstream(path) << text;
-            return path;
         }
 
         /** \brief The four flags. */
@@ -56,7 +48,6 @@ namespace
             return "--urdf " + ARM + " --srdf " + ARM_SRDF + " --scene " + scene_ + " --request " + request_;
         }
 
-        fs::path dir_;
         std::string scene_, request_;
     };
 

@@ -30,22 +30,10 @@ namespace
     const std::string MAPS = std::string(MESHGAP_SOURCE_DIR) + "/maps";
 
     /** \brief A folder of its own per test process. */
-    class RobotCli : public ::testing::Test
+    class RobotCli : public meshgap::test::FolderTest
     {
     protected:
-        void SetUp() override
-        {
-            dir_ = fs::temp_directory_path() / ("meshgap_robot_cli_" + std::to_string(::getpid()));
-            fs::create_directories(dir_);
-        }
-        void TearDown() override { fs::remove_all(dir_); }
-
-        std::string file(const std::string &name, const std::string &text)
-        {
-            const std::string path = (dir_ / name).string();
-            std::ofstream(path) << text;
-            return path;
-        }
+        RobotCli() : FolderTest("meshgap_robot_cli_") {}
 
         /** \brief Two unit cubes as bodies (centred by OMPL.app's rule: [-0.5, 0.5]^3 about their state), the world
             one unit cube at x in [2, 3], y and z in [0, 1]. */
@@ -59,7 +47,6 @@ namespace
                                        "start.2.y = 1.8\nstart.2.z = 0.5\n");
         }
 
-        fs::path dir_;
     };
 
     /** \brief The number after \e key on the line of \e text that starts with \e key. */
