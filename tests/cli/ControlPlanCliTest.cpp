@@ -112,7 +112,7 @@ TEST(ControlPlanCli, KinematicCarAroundABoxHasAFreePath)
 
 TEST(ControlPlanCli, BugTrapDynamicCarWritesAFreePath)
 {
-    const std::string data = "/work/shared/data/omplapp";
+    const std::string data = std::string(MESHGAP_SHARED_DATA_DIR) + "/omplapp";
     const std::string cfg = data + "/BugTrap_dcar.cfg";
     if (!fs::exists(cfg))
         GTEST_SKIP() << data << " is absent (OMPL.app's problems)";
