@@ -41,7 +41,7 @@ namespace meshgap::cli
         planner's path the certified validator refuses are repaired first (CertifiedPathRepair, within the same
         time); if one cannot be, the path is left as it is, \e failed is set, the "optimizer" line says why and one
         line "error: ..." naming the motion goes to stderr. */
-    inline std::string optimizeSolution(ompl::geometric::SimpleSetup &setup, const ClearanceCheckerPtr &checker,
+    inline std::string optimizeSolution(ompl::geometric::SimpleSetup &setup, const ClearanceFieldPtr &checker,
                                         double seconds, unsigned long seed, bool &failed)
     {
         std::ostringstream out;

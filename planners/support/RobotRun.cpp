@@ -10,9 +10,11 @@
 #include "meshgap/Text.h"
 #include "meshgap/ompl/CertifiedAnswerPlanner.h"
 #include "meshgap/ompl/MotionValidatorFactory.h"
+#include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 #include "meshgap/robot/MultiBodyRobot.h"
 #include "meshgap/robot/UrdfRobot.h"
+#include "OptimizeOption.h"
 #include "support/PathFile.h"
 #include "support/PlanOutputs.h"
 #include "support/PlanRun.h"
@@ -54,12 +56,9 @@ namespace meshgap
             /** \brief The options meshgap_plan has that a robot problem does not take (yet). */
             void checkRobotOptions(const PlanOptions &o)
             {
-                for (const char *name : {"weight", "optimize", "optimize-time", "sampler", "export-glb",
-                                         "export-states", "clearance-csv"})
+                for (const char *name : {"sampler", "export-glb", "export-states", "clearance-csv"})
                     if (o.isGiven(name))
                         throw Exception(o.label(name), "does not apply to a robot problem (" + o.cfg + ")");
-                if (!o.objective.empty() && o.objective != "length")
-                    throw Exception(o.label("objective"), "a robot problem is planned for length only");
                 if (o.checker != "certified")
                     throw Exception(o.label("checker"), "a robot problem is checked exactly (certified) only");
             }
@@ -115,9 +114,17 @@ namespace meshgap
                 return text.str();
             }
 
-            /** \brief The path interpolated with \e perSegment states per validity-check segment, and its exact
-                clearance: the summary's path lines. */
-            void summarizePath(const RobotPlanRun &run, const PlanOptions &o, std::ostringstream &summary)
+            /** \brief What the exact check of the path densely interpolated found. */
+            struct DenseCheck
+            {
+                std::size_t states{0};
+                RobotResult worst;  ///< the least clear state's answer
+                std::size_t collisions{0};
+            };
+
+            /** \brief The solution path interpolated with o.dense states per validity-check segment, each state
+                checked exactly (the whole robot). */
+            DenseCheck denseCheck(const RobotPlanRun &run, const PlanOptions &o)
             {
                 const og::PathGeometric &path = run.setup->getSolutionPath();
                 const ob::StateSpacePtr &space = run.setup->getStateSpace();
@@ -127,27 +134,54 @@ namespace meshgap
                 og::PathGeometric dense(path);
                 dense.interpolate(count);
                 RobotWarmStart warm;
-                RobotResult r, worst;
+                RobotResult r;
                 std::vector<double> q;
-                std::size_t collisions = 0;
+                DenseCheck d;
+                d.states = dense.getStateCount();
                 for (std::size_t i = 0; i < dense.getStateCount(); ++i)
                 {
                     robotStateToVector(*space, dense.getState(i), q);
                     run.scene->distance(q.data(), q.size(), RobotRequest(), warm, r);
-                    collisions += r.inCollision;
-                    if (i == 0 || r.distance < worst.distance)
-                        worst = r;
+                    d.collisions += r.inCollision;
+                    if (i == 0 || r.distance < d.worst.distance)
+                        d.worst = r;
                 }
-                line(summary, "states", std::to_string(path.getStateCount()) + " (dense: " +
-                                            std::to_string(dense.getStateCount()) + ")");
-                line(summary, "length", path.length());
+                return d;
+            }
+
+            /** \brief "0.0123 (exact, over the dense path; link 'a' and obstacle 3)". */
+            std::string clearanceText(const RobotScene &scene, const DenseCheck &d)
+            {
                 std::ostringstream mc;
                 mc.precision(6);
-                mc << worst.distance << " (exact, over the dense path; " << pairText(*run.scene, worst) << ")";
-                line(summary, "min clearance", mc.str());
-                line(summary, "dense path free", collisions == 0 ? std::string("yes") :
-                                                                   "NO: " + std::to_string(collisions) +
-                                                                       " states collide");
+                mc << d.worst.distance << " (exact, over the dense path; " << pairText(scene, d.worst) << ")";
+                return mc.str();
+            }
+
+            /** \brief The summary's path lines: states, length, cost, the dense path's exact clearance and pair. */
+            void summarizePath(const RobotPlanRun &run, const DenseCheck &d, std::ostringstream &summary)
+            {
+                const og::PathGeometric &path = run.setup->getSolutionPath();
+                line(summary, "states", std::to_string(path.getStateCount()) + " (dense: " + std::to_string(d.states) +
+                                            ")");
+                line(summary, "length", path.length());
+                line(summary, "cost", std::to_string(path.cost(run.setup->getOptimizationObjective()).value()) + " (" +
+                                          run.objective + ")");
+                line(summary, "min clearance", clearanceText(*run.scene, d));
+                line(summary, "dense path free", d.collisions == 0 ? std::string("yes") :
+                                                                     "NO: " + std::to_string(d.collisions) +
+                                                                         " states collide");
+            }
+
+            /** \brief --optimize clearance on the solution path: the optimiser's lines, and the pair that limits
+                the dense path's clearance before and after. */
+            void optimizeRobotPath(RobotPlanRun &run, const PlanOptions &o, std::ostringstream &summary)
+            {
+                const DenseCheck before = denseCheck(run, o);
+                summary << optimizeSolution(*run.setup, run.checker, o.optimizeTime, o.seed, run.optimizeFailed);
+                const DenseCheck after = denseCheck(run, o);
+                line(summary, "opt before", clearanceText(*run.scene, before));
+                line(summary, "opt after", clearanceText(*run.scene, after));
             }
         }  // namespace
 
@@ -179,6 +213,16 @@ namespace meshgap
             checkEnd(*run, p.start, "start", start);
             checkEnd(*run, *p.goal, "goal", goal);
             run->setup->setStartAndGoalStates(start, goal);
+            run->objective = !o.objective.empty() ? o.objective : !p.objective.empty() ? p.objective : "length";
+            if (o.isGiven("weight") && run->objective != "weighted")
+                throw Exception(o.label("weight"), "applies to " + o.label("objective") +
+                                                       " weighted only (the objective is " + run->objective + ")");
+            ObjectiveOptions objectiveOptions;
+            objectiveOptions.weight = o.weight;
+            const ob::OptimizationObjectivePtr objective = allocObjective(run->objective, si, objectiveOptions);
+            if (p.objectiveThreshold)
+                objective->setCostThreshold(ob::Cost(*p.objectiveThreshold));
+            run->setup->setOptimizationObjective(objective);
             // Certified: the planner searches with a sampled motion check; every motion of its answer is certified.
             if (run->motion)
             {
@@ -202,7 +246,7 @@ namespace meshgap
             line(summary, "problem", run.problem.name + " (robot problem)");
             line(summary, "robot", robotText(run));
             line(summary, "planner", o.planner);
-            line(summary, "objective", "length");
+            line(summary, "objective", run.objective);
             line(summary, "clearance mode", std::string("certified, motion ") +
                                                 (run.motion ? "certified (displacement bound per pair; the search "
                                                               "sampled, every motion of the answer proven)" :
@@ -211,14 +255,21 @@ namespace meshgap
             line(summary, "solved", !run.havePath ? "no" : run.exact ? "yes (exact)" : "approximate");
             line(summary, "exact solution", run.exact ? "yes" : "no");
             line(summary, "planning time", std::to_string(run.setup->getLastPlanComputationTime()) + " s");
+            if (run.havePath && !o.optimize.empty())
+                optimizeRobotPath(run, o, summary);
             if (run.havePath)
-                summarizePath(run, o, summary);
+                summarizePath(run, denseCheck(run, o), summary);
             // The search's checks (sampled when the answer is certified afterwards).
             const ob::MotionValidatorPtr &mv = (run.answer ? run.answer->searchSpaceInformation() :
                                                              run.setup->getSpaceInformation())->getMotionValidator();
             line(summary, "motion checks", std::to_string(mv->getValidMotionCount() + mv->getInvalidMotionCount()) +
                                                " (" + std::to_string(mv->getValidMotionCount()) + " free" +
                                                (run.answer ? ", sampled)" : ")"));
+            if (const auto *maxMin =
+                    dynamic_cast<const MaxMinClearanceObjective *>(run.setup->getOptimizationObjective().get()))
+                line(summary, "cost queries", std::to_string(maxMin->queriedStates()) + " states queried for " +
+                                                  std::to_string(maxMin->gridStates()) +
+                                                  " motion grid states (bounded queries)");
             if (run.answer)
             {
                 const CertifiedAnswerPlanner::Stats &a = run.answer->lastStats();

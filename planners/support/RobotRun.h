@@ -34,8 +34,12 @@ namespace meshgap
             std::shared_ptr<RobotMotionValidator> motion;
             /** \brief With the certified validator, the planner: a sampled search, its answer certified. */
             std::shared_ptr<CertifiedAnswerPlanner> answer;
+            /** \brief The objective planned for: --objective, else the problem's, else length. */
+            std::string objective{"length"};
             ompl::base::PlannerStatus status;
             bool exact = false, havePath = false;
+            /** \brief --optimize clearance could not run on the planner's path (the summary says why). */
+            bool optimizeFailed = false;
             std::string summary;
         };
 
@@ -45,8 +49,11 @@ namespace meshgap
             distance). */
         std::unique_ptr<RobotPlanRun> setUpRobotPlan(const PlanOptions &o);
 
-        /** \brief Solve, then the summary: the path's length and the exact minimum clearance over it densely
-            interpolated (o.dense states per validity-check segment), and the checker's and validator's counts. */
+        /** \brief Solve (then, with --optimize clearance, raise the path's clearance: ClearancePathOptimizer on the
+            whole robot's clearance, every motion it makes certified), then the summary: the path's length, cost
+            and the exact minimum clearance over it densely interpolated (o.dense states per validity-check
+            segment) with the pair that attains it (before and after the optimiser when it ran), and the checker's
+            and validator's counts. */
         void solveRobotPlan(RobotPlanRun &run, const PlanOptions &o);
 
         /** \brief Write the summary (o.summaryFile), the path (o.out: one state a line, the numbers of

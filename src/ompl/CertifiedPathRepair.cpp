@@ -9,22 +9,22 @@
 #include <cmath>
 
 #include "meshgap/Exception.h"
-#include "meshgap/ompl/ClearanceGradient.h"
+#include "meshgap/ompl/MotionValidatorFactory.h"
 
 namespace meshgap
 {
     namespace ob = ompl::base;
     namespace og = ompl::geometric;
 
-    CertifiedPathRepair::CertifiedPathRepair(const ob::SpaceInformationPtr &si, ClearanceCheckerPtr checker)
+    CertifiedPathRepair::CertifiedPathRepair(const ob::SpaceInformationPtr &si, ClearanceFieldPtr checker)
         : si_(si), checker_(std::move(checker))
     {
         if (!checker_)
             throw Exception("CertifiedPathRepair", "no checker");
-        if (checker_->mode() != ClearanceChecker::Mode::CERTIFIED)
+        if (!checker_->certified())
             throw Exception("CertifiedPathRepair", "needs a checker in CERTIFIED mode (exact clearance)");
-        tangentDimension(*si_->getStateSpace());  // throws for spaces other than SE(3) and SE(2)
-        validator_ = std::make_shared<ClearanceMotionValidator>(si_, checker_);
+        checker_->gradientDimension();  // throws for spaces the checker has no gradient in
+        validator_ = allocCertifiedMotionValidator(si_, checker_);
     }
 
     void CertifiedPathRepair::validateStates(const og::PathGeometric &path) const
@@ -49,8 +49,7 @@ namespace meshgap
 
     double CertifiedPathRepair::pushOut(ob::State *s, double target, const ob::PlannerTerminationCondition &ptc)
     {
-        const ob::StateSpace &space = *si_->getStateSpace();
-        const double L = checker_->scene().robot().radiusAboutOrigin();
+        const double L = checker_->lengthScale();
         double c = checker_->clearance(s);
         std::vector<double> gradient, step;
         ob::State *candidate = si_->allocState();
@@ -62,18 +61,15 @@ namespace meshgap
             options.tieTolerance = 0.05 * std::abs(c) + 1e-9 * (1.0 + L);
             options.probes = c > 0.0 ? 3 : 0;
             ClearanceGradientInfo info;
-            clearanceGradient(*checker_, s, gradient, options, &info);
-            const std::size_t translations = gradient.size() == 3 ? 2 : 3;
-            double g2 = 0.0;
-            for (std::size_t i = 0; i < gradient.size(); ++i)
-                g2 += gradient[i] * gradient[i] / (i < translations ? 1.0 : L * L);
+            checker_->gradient(s, gradient, options, &info);
+            const double g2 = checker_->gradientNorm2(gradient);
             if (!info.hasDirection || !(g2 > 1e-12))
                 break;
             bool stepped = false;
             for (int trial = 0; trial < 8 && !stepped; ++trial, alpha *= 0.5)
             {
-                ascentStep(gradient, L, alpha / std::sqrt(g2), step);
-                applyTangentStep(space, s, step.data(), candidate);
+                checker_->ascentStep(gradient, alpha / std::sqrt(g2), step);
+                checker_->applyStep(s, step.data(), candidate);
                 if (!si_->satisfiesBounds(candidate))
                     continue;
                 const double cc = checker_->clearance(candidate);
@@ -123,8 +119,8 @@ namespace meshgap
         if (!replanSi_)
         {
             replanSi_ = std::make_shared<ob::SpaceInformation>(si_->getStateSpace());
-            replanSi_->setStateValidityChecker(checker_);
-            replanSi_->setMotionValidator(std::make_shared<ClearanceMotionValidator>(replanSi_, checker_));
+            replanSi_->setStateValidityChecker(std::dynamic_pointer_cast<ob::StateValidityChecker>(checker_));
+            replanSi_->setMotionValidator(allocCertifiedMotionValidator(replanSi_, checker_));
             replanSi_->setStateValidityCheckingResolution(si_->getStateValidityCheckingResolution());
             replanSi_->setup();
         }

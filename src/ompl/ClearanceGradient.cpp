@@ -304,3 +304,48 @@ namespace meshgap
             step[i] = alpha * (i < translations ? gradient[i] : gradient[i] / L2);
     }
 }  // namespace meshgap
+
+namespace meshgap
+{
+    double ClearanceChecker::lengthScale() const
+    {
+        const double radius = scene().robot().radiusAboutOrigin();
+        return radius > 0.0 ? radius : 1.0;
+    }
+
+    double ClearanceChecker::sweep(const ompl::base::State *s1, const ompl::base::State *s2) const
+    {
+        return sweepBound(*si_->getStateSpace(), s1, s2, scene().robot().radiusAboutOrigin());
+    }
+
+    unsigned ClearanceChecker::gradientDimension() const
+    {
+        return tangentDimension(*si_->getStateSpace());
+    }
+
+    double ClearanceChecker::gradient(const ompl::base::State *state, std::vector<double> &gradient,
+                                      const ClearanceGradientOptions &options, ClearanceGradientInfo *info) const
+    {
+        return clearanceGradient(*this, state, gradient, options, info);
+    }
+
+    double ClearanceChecker::gradientNorm2(const std::vector<double> &gradient) const
+    {
+        const double L = lengthScale();
+        const std::size_t translations = gradient.size() == 3 ? 2 : 3;
+        double g2 = 0.0;
+        for (std::size_t i = 0; i < gradient.size(); ++i)
+            g2 += gradient[i] * gradient[i] / (i < translations ? 1.0 : L * L);
+        return g2;
+    }
+
+    void ClearanceChecker::ascentStep(const std::vector<double> &gradient, double alpha, std::vector<double> &step) const
+    {
+        meshgap::ascentStep(gradient, lengthScale(), alpha, step);
+    }
+
+    void ClearanceChecker::applyStep(const ompl::base::State *state, const double *step, ompl::base::State *out) const
+    {
+        applyTangentStep(*si_->getStateSpace(), state, step, out);
+    }
+}  // namespace meshgap

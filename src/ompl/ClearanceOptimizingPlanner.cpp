@@ -51,10 +51,10 @@ namespace meshgap
              status != ompl::base::PlannerStatus::APPROXIMATE_SOLUTION) ||
             !pdef_->hasSolution())
             return status;
-        auto checker = std::dynamic_pointer_cast<ClearanceChecker>(si_->getStateValidityChecker());
-        if (!checker || checker->mode() != ClearanceChecker::Mode::CERTIFIED)
+        auto checker = std::dynamic_pointer_cast<ClearanceField>(si_->getStateValidityChecker());
+        if (!checker || !checker->certified())
         {
-            OMPL_WARN("%s: the validity checker is not a certified meshgap ClearanceChecker: path not optimised",
+            OMPL_WARN("%s: the validity checker is not a certified meshgap ClearanceField: path not optimised",
                       getName().c_str());
             return status;
         }

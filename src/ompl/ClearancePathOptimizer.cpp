@@ -9,22 +9,22 @@
 #include <queue>
 
 #include "meshgap/Exception.h"
-#include "meshgap/ompl/ClearanceGradient.h"
+#include "meshgap/ompl/MotionValidatorFactory.h"
 
 namespace meshgap
 {
     namespace ob = ompl::base;
     namespace og = ompl::geometric;
 
-    ClearancePathOptimizer::ClearancePathOptimizer(const ob::SpaceInformationPtr &si, ClearanceCheckerPtr checker)
+    ClearancePathOptimizer::ClearancePathOptimizer(const ob::SpaceInformationPtr &si, ClearanceFieldPtr checker)
         : si_(si), checker_(std::move(checker))
     {
         if (!checker_)
             throw Exception("ClearancePathOptimizer", "no checker");
-        if (checker_->mode() != ClearanceChecker::Mode::CERTIFIED)
+        if (!checker_->certified())
             throw Exception("ClearancePathOptimizer", "needs a checker in CERTIFIED mode (exact clearance)");
-        tangentDimension(*si_->getStateSpace());  // throws for spaces other than SE(3) and SE(2)
-        validator_ = std::make_shared<ClearanceMotionValidator>(si_, checker_);
+        checker_->gradientDimension();  // throws for spaces the checker has no gradient in
+        validator_ = allocCertifiedMotionValidator(si_, checker_);
         params_.declareParam<double>(
             "time_limit", [this](double v) { setTimeLimit(v); }, [this] { return getTimeLimit(); });
         params_["time_limit"].setRangeSuggestion("0.:1.:3600.");
@@ -53,7 +53,7 @@ namespace meshgap
                                                                             double relative, double refuteBelow) const
     {
         const ob::StateSpace &space = *si_->getStateSpace();
-        const double sweep = sweepBound(space, s1, s2, checker_->scene().robot().radiusAboutOrigin());
+        const double sweep = checker_->sweep(s1, s2);
         MotionBound r;
         r.best = c1;
         r.at = 0.0;
@@ -111,7 +111,7 @@ namespace meshgap
     double ClearancePathOptimizer::defaultTolerance(const std::vector<double> &clearances) const
     {
         return std::max(1e-3 * std::max(*std::min_element(clearances.begin(), clearances.end()), 0.0),
-                        1e-9 * checker_->scene().robot().radiusAboutOrigin());
+                        1e-9 * checker_->lengthScale());
     }
 
     double ClearancePathOptimizer::minClearance(const og::PathGeometric &path, double tolerance) const
@@ -174,7 +174,7 @@ namespace meshgap
               states(s),
               ptc(p),
               space(*optimizer.si_->getStateSpace()),
-              L(optimizer.checker_->scene().robot().radiusAboutOrigin())
+              L(optimizer.checker_->lengthScale())
         {
         }
 
@@ -298,11 +298,8 @@ namespace meshgap
         options.tieTolerance = 0.05 * std::max(c[i], 0.0) + 1e-9 * (1.0 + L);
         options.probes = 3;
         ClearanceGradientInfo info;
-        clearanceGradient(*opt.checker_, states[i], gradient, options, &info);
-        double g2 = 0.0;
-        for (std::size_t k = 0; k < gradient.size(); ++k)
-            g2 +=
-                k < (gradient.size() == 3 ? 2u : 3u) ? gradient[k] * gradient[k] : gradient[k] * gradient[k] / (L * L);
+        opt.checker_->gradient(states[i], gradient, options, &info);
+        const double g2 = opt.checker_->gradientNorm2(gradient);
         if (!info.hasDirection || !(g2 > 1e-12))
             return false;
         const double floor = std::min(m[i - 1], m[i]);
@@ -311,8 +308,8 @@ namespace meshgap
         double a = alpha[i] / std::sqrt(g2);
         for (int trial = 0; trial < 6 && !ptc(); ++trial, a *= 0.5)
         {
-            ascentStep(gradient, L, a, step);
-            applyTangentStep(space, states[i], step.data(), candidate);
+            opt.checker_->ascentStep(gradient, a, step);
+            opt.checker_->applyStep(states[i], step.data(), candidate);
             if (!opt.si_->satisfiesBounds(candidate))
                 continue;
             const double cc = opt.checker_->clearance(candidate);
@@ -381,10 +378,10 @@ namespace meshgap
     {
         double total = 0.0;
         for (std::size_t i = 0; i + 1 < states.size(); ++i)
-            total += sweepBound(space, states[i], states[i + 1], L);
+            total += opt.checker_->sweep(states[i], states[i + 1]);
         const double longest = total / 32.0;
         for (std::size_t i = 0; i + 1 < states.size() && states.size() < maxStates && !ptc();)
-            if (sweepBound(space, states[i], states[i + 1], L) <= longest || !split(i, 0.5))
+            if (opt.checker_->sweep(states[i], states[i + 1]) <= longest || !split(i, 0.5))
                 ++i;
     }
 

@@ -75,4 +75,15 @@ namespace meshgap
     {
         return registry().at(name, where)(Target{si, nullptr, scene, where});
     }
+
+    ompl::base::MotionValidatorPtr allocCertifiedMotionValidator(const ompl::base::SpaceInformationPtr &si,
+                                                                 const ClearanceFieldPtr &field)
+    {
+        if (auto checker = std::dynamic_pointer_cast<ClearanceChecker>(field))
+            return allocMotionValidator("clearance", si, checker, "certified motion validator");
+        if (auto robot = std::dynamic_pointer_cast<RobotChecker>(field))
+            return allocMotionValidator("clearance", si, robot->scenePtr(), "certified motion validator");
+        throw Exception("certified motion validator", "the clearance field is neither a ClearanceChecker nor a "
+                                                      "RobotChecker");
+    }
 }  // namespace meshgap

@@ -9,6 +9,7 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/ompl/ClearanceChecker.h"
+#include "meshgap/ompl/ClearanceField.h"
 
 namespace meshgap
 {
@@ -27,12 +28,12 @@ namespace meshgap
 
     namespace
     {
-        /** \brief One remembered clearance: the checker that answered (its id), the pose (rotation and
-            translation, 12 numbers) and the answer. */
+        /** \brief One remembered clearance: the checker that answered (its id), the state (its numbers, as
+            StateSpace::copyToReals() gives them) and the answer. */
         struct CachedClearance
         {
             std::uint64_t checker{0};  ///< 0: empty
-            std::array<double, 12> pose;
+            std::vector<double> pose;
             double clearance;
         };
 
@@ -45,7 +46,7 @@ namespace meshgap
             return cache;
         }
 
-        std::size_t slotOf(std::uint64_t checker, const std::array<double, 12> &pose)
+        std::size_t slotOf(std::uint64_t checker, const std::vector<double> &pose)
         {
             std::uint64_t h = 1469598103934665603ull ^ checker;
             for (double x : pose)
@@ -80,19 +81,16 @@ namespace meshgap
     {
     }
 
-    double MaxMinClearanceObjective::cachedClearance(const ClearanceChecker &checker, const ompl::base::State *s) const
+    double MaxMinClearanceObjective::cachedClearance(const ClearanceField &checker, const ompl::base::State *s) const
     {
-        const Eigen::Isometry3d X = poseFromState(*si_->getStateSpace(), s);
-        std::array<double, 12> pose;
-        const Eigen::Matrix3d R = X.linear();
-        std::copy(R.data(), R.data() + 9, pose.begin());
-        std::copy(X.translation().data(), X.translation().data() + 3, pose.begin() + 9);
-        CachedClearance &slot = threadCache()[slotOf(checker.id(), pose)];
-        if (slot.checker == checker.id() && slot.pose == pose)
+        thread_local std::vector<double> pose;
+        si_->getStateSpace()->copyToReals(pose, s);
+        CachedClearance &slot = threadCache()[slotOf(checker.fieldId(), pose)];
+        if (slot.checker == checker.fieldId() && slot.pose == pose)
             return slot.clearance;
         counts_.add(QUERIED, 1);
-        slot.checker = checker.id();
-        slot.pose = pose;
+        slot.checker = checker.fieldId();
+        slot.pose.assign(pose.begin(), pose.end());
         slot.clearance = checker.clearanceOrContact(s);
         return slot.clearance;
     }
@@ -102,8 +100,8 @@ namespace meshgap
     {
         // The space's checker now (a benchmark may install another one after the objective was made). Only an exact
         // clearance is 1-Lipschitz: a fast-mode answer (the node search's best find) need not be.
-        const auto *checker = dynamic_cast<const ClearanceChecker *>(si_->getStateValidityChecker().get());
-        if (checker == nullptr || checker->mode() != ClearanceChecker::Mode::CERTIFIED)
+        const auto *checker = dynamic_cast<const ClearanceField *>(si_->getStateValidityChecker().get());
+        if (checker == nullptr || !checker->certified())
             return ompl::base::MaximizeMinClearanceObjective::motionCost(s1, s2);
         // As OMPL's, the minimum is over the grid states after s1 and s2 itself (s1 is the previous motion's end, or
         // a start, whose cost the path does not count); s1's clearance only bounds its neighbours.
@@ -117,7 +115,7 @@ namespace meshgap
         if (n < 2)
             return ompl::base::Cost(lowest);
         counts_.add(GRID_STATES, n - 1);
-        const double step = sweepBound(space, s1, s2, checker->scene().robot().radiusAboutOrigin()) / n;
+        const double step = checker->sweep(s1, s2) / n;
         if (!(step > 0.0))
             return ompl::base::Cost(lowest);  // every grid state is s1's pose
 
@@ -191,8 +189,8 @@ namespace meshgap
             double weight = options.weight;
             if (weight == 0.0)
             {
-                const auto *checker = dynamic_cast<const ClearanceChecker *>(si->getStateValidityChecker().get());
-                weight = checker != nullptr ? 0.1 * checker->scene().robot().radiusAboutOrigin() : 1.0;
+                const auto *checker = dynamic_cast<const ClearanceField *>(si->getStateValidityChecker().get());
+                weight = checker != nullptr ? 0.1 * checker->lengthScale() : 1.0;
             }
             if (!(weight > 0.0) || !std::isfinite(weight))
                 throw Exception("objective", "the weight of 'weighted' must be positive and finite");

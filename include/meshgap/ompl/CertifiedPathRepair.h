@@ -7,6 +7,10 @@
 #include <memory>
 #include <vector>
 
+#include <ompl/base/MotionValidator.h>
+#include <ompl/base/SpaceInformation.h>
+
+#include "meshgap/ompl/ClearanceField.h"
 #include "meshgap/ompl/ClearanceMotionValidator.h"
 
 namespace meshgap
@@ -45,7 +49,8 @@ namespace meshgap
             double seconds{0.0};
         };
 
-        CertifiedPathRepair(const ompl::base::SpaceInformationPtr &si, ClearanceCheckerPtr checker);
+        /** \brief \e checker: the space's validity checker as a clearance field (ClearanceField), certified. */
+        CertifiedPathRepair(const ompl::base::SpaceInformationPtr &si, ClearanceFieldPtr checker);
 
         /** \brief Repair every motion of \e path the certified validator refuses, in place, until \e ptc; returns
             true if states were inserted. Throws meshgap::Exception as the class description says. */
@@ -75,8 +80,8 @@ namespace meshgap
         void freeFrom(std::vector<ompl::base::State *> &states, std::size_t first) const;
 
         ompl::base::SpaceInformationPtr si_;
-        ClearanceCheckerPtr checker_;
-        std::shared_ptr<ClearanceMotionValidator> validator_;
+        ClearanceFieldPtr checker_;
+        ompl::base::MotionValidatorPtr validator_;
         /** \brief The replanning's space information (the same state space and checker, the certified validator),
             made when first needed. */
         ompl::base::SpaceInformationPtr replanSi_;

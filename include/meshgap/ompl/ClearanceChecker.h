@@ -5,6 +5,7 @@
 #include <ompl/base/StateValidityChecker.h>
 
 #include "meshgap/ThreadCounters.h"
+#include "meshgap/ompl/ClearanceField.h"
 #include "meshgap/scene/Scene.h"
 
 namespace meshgap
@@ -68,7 +69,7 @@ namespace meshgap
        also proposes a valid state away from the nearest obstacle (validStateAway()). Thread-safe: the scene is
        immutable, warm starts live per thread, counters are per thread (ThreadCounters).
     */
-    class ClearanceChecker : public ompl::base::StateValidityChecker
+    class ClearanceChecker : public ompl::base::StateValidityChecker, public ClearanceField
     {
     public:
         enum class Mode
@@ -89,11 +90,11 @@ namespace meshgap
         /** \brief clearance() of a free state; for a state in collision a negative number (CONTACT_DISTANCE)
             without the depth, found at about the price of isValid(): for a caller that only needs "in collision"
             there. Counted as a clearance call. */
-        double clearanceOrContact(const ompl::base::State *state) const;
+        double clearanceOrContact(const ompl::base::State *state) const override;
         /** \brief min(clearanceOrContact(state), bound), found only as far as needed: once the clearance is proven
             at least \e bound the search stops (cheap when the robot is far from everything; SceneRequest::upperBound;
             \e bound must be positive). Counted as a clearance call. */
-        double clearanceBelow(const ompl::base::State *state, double bound) const;
+        double clearanceBelow(const ompl::base::State *state, double bound) const override;
         /** \brief clearance(state), and in \e validState a state away from the nearest obstacle
             (validStateAway()); \e validStateAvailable is true only if that state is valid (isValid()). */
         double clearance(const ompl::base::State *state, ompl::base::State *validState,
@@ -114,6 +115,21 @@ namespace meshgap
             planning (not while other threads query). */
         void setComputeDepth(bool computeDepth) { computeDepth_ = computeDepth; }
         bool computeDepth() const { return computeDepth_; }
+
+        /** \brief ClearanceField: CERTIFIED mode is exact; the length scale is the robot's radius about its origin
+            (1 for a point robot); sweep() is sweepBound() with it; the gradient is clearanceGradient()'s, in
+            tangentDimension()'s coordinates, its steps ascentStep() and applyTangentStep(). */
+        bool certified() const override { return mode_ == Mode::CERTIFIED; }
+        std::uint64_t fieldId() const override { return id_; }
+        double lengthScale() const override;
+        double sweep(const ompl::base::State *s1, const ompl::base::State *s2) const override;
+        unsigned gradientDimension() const override;
+        double gradient(const ompl::base::State *state, std::vector<double> &gradient,
+                        const ClearanceGradientOptions &options = {},
+                        ClearanceGradientInfo *info = nullptr) const override;
+        double gradientNorm2(const std::vector<double> &gradient) const override;
+        void ascentStep(const std::vector<double> &gradient, double alpha, std::vector<double> &step) const override;
+        void applyStep(const ompl::base::State *state, const double *step, ompl::base::State *out) const override;
 
         Mode mode() const { return mode_; }
         /** \brief Unique per checker, never reused (a later checker may reuse this one's address, never its id). */

@@ -7,37 +7,7 @@
 
 namespace meshgap
 {
-    /** \brief Settings of clearanceGradient(). */
-    struct ClearanceGradientOptions
-    {
-        /** \brief Robot/obstacle pairs whose exact distance is within this of the minimum count as tied (active)
-            and all enter the subgradient. Negative (the default): 1e-9 * (1 + the robot's radius about its origin),
-            i.e. ties up to roundoff. A larger tolerance gives an epsilon-subgradient: a direction that also respects
-            pairs nearly as close, which a line search along it appreciates. */
-        double tieTolerance{-1.0};
-        /** \brief Probes for near-ties within one obstacle (0, the default: none). A free state's ascent direction
-            g is tried with a step that moves the robot by about probeStep; if the clearance there rises by less than
-            half the first-order prediction, the closest pair found there joins the tied ones (its gradient, taken at
-            the probe) and the minimum-norm element is formed again; up to this many probes. The result is then an
-            estimate of the Goldstein epsilon-subgradient (epsilon = probeStep), as gradient sampling methods use. */
-        unsigned probes{0};
-        /** \brief Length of a probe's step; 0 (the default): 5% of the clearance. */
-        double probeStep{0.0};
-    };
-
-    /** \brief What clearanceGradient() found besides the gradient. */
-    struct ClearanceGradientInfo
-    {
-        bool inCollision{false};
-        /** \brief The gradient is a direction: false where the answer has no witness direction (no obstacle, an
-            empty scene, or a collision of depth 0 or unknown: CONTACT_DISTANCE, where the reported signed distance
-            is locally constant), and the gradient is then zero. */
-        bool hasDirection{false};
-        /** \brief Pairs combined: 1 where the clearance is smooth (one closest pair), more at a tie. */
-        unsigned activePairs{0};
-        /** \brief Of those, pairs found by probes (ClearanceGradientOptions::probes). */
-        unsigned probedPairs{0};
-    };
+    // ClearanceGradientOptions and ClearanceGradientInfo: ClearanceField.h.
 
     /** \brief Coordinates of the gradient and of the steps applyTangentStep() takes: 6 for SE(3) (translation
         dx dy dz, then the rotation wx wy wz as a world-frame rotation vector about the robot's origin), 3 for SE(2)

@@ -10,7 +10,6 @@
 #include <optional>
 
 #include "meshgap/ompl/CertifiedPathRepair.h"
-#include "meshgap/ompl/ClearanceMotionValidator.h"
 
 namespace meshgap
 {
@@ -79,7 +78,9 @@ namespace meshgap
             double seconds{0.0};
         };
 
-        ClearancePathOptimizer(const ompl::base::SpaceInformationPtr &si, ClearanceCheckerPtr checker);
+        /** \brief \e checker: the space's validity checker as a clearance field (a ClearanceChecker in CERTIFIED
+            mode for one rigid body, a RobotChecker for a robot of many bodies). */
+        ClearancePathOptimizer(const ompl::base::SpaceInformationPtr &si, ClearanceFieldPtr checker);
 
         /** \brief Optimise \e path in place within time_limit, the whole call included: the rounds stop early enough
             to leave the final measurement of the path (twice as long as the input's took) its time. Returns true if
@@ -152,8 +153,8 @@ namespace meshgap
                             double inputMeasure, double tolerance);
 
         ompl::base::SpaceInformationPtr si_;
-        ClearanceCheckerPtr checker_;
-        std::shared_ptr<ClearanceMotionValidator> validator_;
+        ClearanceFieldPtr checker_;
+        ompl::base::MotionValidatorPtr validator_;
         ompl::base::ParamSet params_;
         std::function<void(const ompl::base::State *, const ompl::base::State *)> onMotion_;
         Stats stats_;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "meshgap/ompl/ClearanceChecker.h"
+#include "meshgap/ompl/ClearanceField.h"
 #include "meshgap/robot/RobotScene.h"
 
 namespace meshgap
@@ -35,6 +36,12 @@ namespace meshgap
                                                         const ompl::base::SpaceInformationPtr &si,
                                                         const RobotSceneConstPtr &scene,
                                                         const std::string &where = "motion");
+
+    /** \brief The certified motion validator of the robot \e field measures: ClearanceMotionValidator for a
+        ClearanceChecker (CERTIFIED mode), RobotMotionValidator for a RobotChecker. Throws meshgap::Exception for
+        a field that is neither, or not certified. */
+    ompl::base::MotionValidatorPtr allocCertifiedMotionValidator(const ompl::base::SpaceInformationPtr &si,
+                                                                 const ClearanceFieldPtr &field);
 }  // namespace meshgap
 
 #endif

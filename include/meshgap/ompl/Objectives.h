@@ -11,7 +11,7 @@
 
 namespace meshgap
 {
-    class ClearanceChecker;
+    class ClearanceField;
 
     /** \brief Settings of the objectives allocObjective() makes. */
     struct ObjectiveOptions
@@ -54,16 +54,19 @@ namespace meshgap
        1-Lipschitz in the robot's displacement, and sweepBound() bounds the displacement, so the known clearances
        bound the states around them from below; the grid states are visited best-first by that bound (Piyavskii's
        rule), and the search ends when the lowest bound left is at or above the minimum found: the unvisited states
-       cannot change it. Each query is ClearanceChecker::clearanceBelow(state, minimum so far): the exact clearance
+       cannot change it. Each query is ClearanceField::clearanceBelow(state, minimum so far): the exact clearance
        if lower, else a proof that it is not, which the scene finds cheaply by pruning everything farther. More
        savings:
        - the clearances of motion endpoints (tree states, met again and again by RRT* and PRM*) are kept in a
-         small per-thread cache keyed by the state's pose;
+         small per-thread cache keyed by the state's numbers;
        - a motion with a state in collision costs that state's negative value as soon as it is found, without
-         its depth (ClearanceChecker::clearanceOrContact()) and without querying the rest: OMPL's would cost it the
+         its depth (ClearanceField::clearanceOrContact()) and without querying the rest: OMPL's would cost it the
          most negative sample; either way the motion is invalid, and its exact cost is never used.
-       With a validity checker that is not a meshgap ClearanceChecker in CERTIFIED mode (FAST mode's node distance
-       is not Lipschitz: the node search may miss the closest pair) it is OMPL's objective unchanged. The checker
+       The space's validity checker is asked as a ClearanceField: one rigid body's ClearanceChecker, or a robot's
+       RobotChecker (the whole robot: every link, payloads, self pairs; sweep() is then the largest displacement
+       bound over the pairs, and the cache is keyed by the state's numbers). With a validity checker that is not a
+       certified ClearanceField (a ClearanceChecker in FAST mode: its node distance is not
+       Lipschitz, the node search may miss the closest pair) it is OMPL's objective unchanged. The checker
        is the space's at each call, so a benchmark that installs another checker gets its costs from that one.
     */
     class MaxMinClearanceObjective : public ompl::base::MaximizeMinClearanceObjective
@@ -80,7 +83,7 @@ namespace meshgap
     private:
         /** \brief The clearance of \e s (clearanceOrContact()), from this thread's cache if \e checker gave it
             recently. */
-        double cachedClearance(const ClearanceChecker &checker, const ompl::base::State *s) const;
+        double cachedClearance(const ClearanceField &checker, const ompl::base::State *s) const;
 
         enum Count : std::size_t
         {
