@@ -43,6 +43,9 @@
 #include "support/PlanOptions.h"
 #include "support/PlanReport.h"
 #include "support/PlanRun.h"
+#include "support/MoveItOptions.h"
+#include "support/RobotRun.h"
+#include "meshgap/ompl/RobotStateSpace.h"
 
 namespace py = pybind11;
 using namespace meshgap;
@@ -608,6 +611,59 @@ namespace
         return summary;
     }
 
+    /** \brief plan() on a robot problem (support/RobotRun.h, meshgap_plan's run): the path's states as an (M, dof)
+        array of the problem's state numbers, and the summary dict (meshgap_plan's fields, its summary text). */
+    py::tuple planRobot(const PlanOptions &o)
+    {
+        std::unique_ptr<meshgap::cli::RobotPlanRun> run;
+        std::vector<std::vector<double>> states;
+        {
+            py::gil_scoped_release release;
+            const LogLevelScope logLevel(o.quiet);
+            setSeedQuietly(o.seed);
+            run = meshgap::cli::setUpRobotPlan(o);
+            meshgap::cli::solveRobotPlan(*run, o);
+            std::ostringstream log;
+            meshgap::cli::writeRobotPlanFiles(*run, o, log);
+            if (run->havePath)
+                for (const ompl::base::State *s : run->setup->getSolutionPath().getStates())
+                    robotStateToVector(*run->setup->getStateSpace(), s, states.emplace_back());
+        }
+        const auto dof = static_cast<py::ssize_t>(run->problem.robot->dimension());
+        py::array_t<double> path({static_cast<py::ssize_t>(states.size()), dof});
+        auto view = path.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < states.size(); ++i)
+            for (py::ssize_t k = 0; k < dof; ++k)
+                view(static_cast<py::ssize_t>(i), k) = states[i][static_cast<std::size_t>(k)];
+        py::dict summary;
+        summary["problem"] = run->problem.name;
+        summary["robot"] = true;
+        summary["planner"] = o.planner;
+        summary["objective"] = run->objective;
+        summary["status"] = run->status.asString();
+        summary["solved"] = run->havePath;
+        summary["exact"] = run->exact;
+        summary["planning_time"] = run->setup->getLastPlanComputationTime();
+        summary["text"] = run->summary;
+        if (run->havePath)
+        {
+            ompl::geometric::PathGeometric &solution = run->setup->getSolutionPath();
+            summary["states"] = solution.getStateCount();
+            summary["length"] = solution.length();
+            summary["cost"] = solution.cost(run->setup->getOptimizationObjective()).value();
+            summary["min_clearance"] = run->minClearance;
+            summary["limiting_pair"] = run->limitingPair;
+            summary["dense_path_free"] = run->denseFree;
+            if (!o.optimize.empty())
+            {
+                summary["min_clearance_before"] = run->minClearanceBefore;
+                summary["limiting_pair_before"] = run->limitingPairBefore;
+                summary["optimize_failed"] = run->optimizeFailed;
+            }
+        }
+        return py::make_tuple(path, summary);
+    }
+
     /** \brief meshgap_plan's run (support/PlanRun.h) with the keywords as its flags; returns the path's states and
         the summary dict. */
     py::tuple plan(const py::handle &cfgObject, const py::kwargs &kwargs)
@@ -617,6 +673,11 @@ namespace
         o.quiet = true;  // plan() returns its summary: no progress line unless quiet=False
         o.cfg = pathArg(cfgObject, "cfg");
         planOptionsFromKeywords(o, kwargs);
+        if (meshgap::cli::isToolRobotProblem(o.cfg, o.moveit))
+        {
+            checkPlanOptions(o);
+            return planRobot(o);
+        }
         std::unique_ptr<PlanRun> p;
         {
             py::gil_scoped_release release;
@@ -643,7 +704,12 @@ namespace
             "(path, summary): the solution's states as an (M, 7) or (M, 3) array (empty when none was found) and a "
             "dict (problem, planner, objective, status, solved, exact, planning_time, length, cost, min_clearance "
             "over the dense path, dense_path_free, 'text': meshgap_plan's summary, and 'dense': the dense path's "
-            "poses, arc_length, clearance, in_collision).\n\nKeywords: meshgap_plan's flags, '-' written '_' "
+            "poses, arc_length, clearance, in_collision). A robot problem (a robot .cfg: a URDF arm, its payload, several "
+            "bodies) is planned as meshgap_plan plans it, the same run: the path is an (M, dof) array of the problem's "
+            "state numbers and the dict has problem, robot (True), planner, objective, status, solved, exact, "
+            "planning_time, states, length, cost, min_clearance and limiting_pair (the pair that attains it) over the "
+            "dense path, dense_path_free, text; with optimize, min_clearance_before and limiting_pair_before (the "
+            "planner's path) and optimize_failed.\n\nKeywords: meshgap_plan's flags, '-' written '_' "
             "(None keeps the default; files as str or os.PathLike; param a list of str):\n";
         for (const PlanOption &row : planOptionTable())
             if (row.name != "cfg")

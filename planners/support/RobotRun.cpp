@@ -159,8 +159,11 @@ namespace meshgap
             }
 
             /** \brief The summary's path lines: states, length, cost, the dense path's exact clearance and pair. */
-            void summarizePath(const RobotPlanRun &run, const DenseCheck &d, std::ostringstream &summary)
+            void summarizePath(RobotPlanRun &run, const DenseCheck &d, std::ostringstream &summary)
             {
+                run.minClearance = d.worst.distance;
+                run.limitingPair = pairText(*run.scene, d.worst);
+                run.denseFree = d.collisions == 0;
                 const og::PathGeometric &path = run.setup->getSolutionPath();
                 line(summary, "states", std::to_string(path.getStateCount()) + " (dense: " + std::to_string(d.states) +
                                             ")");
@@ -178,6 +181,8 @@ namespace meshgap
             void optimizeRobotPath(RobotPlanRun &run, const PlanOptions &o, std::ostringstream &summary)
             {
                 const DenseCheck before = denseCheck(run, o);
+                run.minClearanceBefore = before.worst.distance;
+                run.limitingPairBefore = pairText(*run.scene, before.worst);
                 summary << optimizeSolution(*run.setup, run.checker, o.optimizeTime, o.seed, run.optimizeFailed);
                 const DenseCheck after = denseCheck(run, o);
                 line(summary, "opt before", clearanceText(*run.scene, before));

@@ -40,6 +40,11 @@ namespace meshgap
             bool exact = false, havePath = false;
             /** \brief --optimize clearance could not run on the planner's path (the summary says why). */
             bool optimizeFailed = false;
+            /** \brief With a path: the exact minimum clearance over the dense path, the pair that attains it, and
+                whether every dense state is free; with --optimize, the same of the planner's path before it. */
+            double minClearance = 0.0, minClearanceBefore = 0.0;
+            std::string limitingPair, limitingPairBefore;
+            bool denseFree = false;
             std::string summary;
         };
 
