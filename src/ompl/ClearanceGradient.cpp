@@ -339,7 +339,8 @@ namespace meshgap
         return g2;
     }
 
-    void ClearanceChecker::ascentStep(const std::vector<double> &gradient, double alpha, std::vector<double> &step) const
+    void ClearanceChecker::ascentStep(const std::vector<double> &gradient, double alpha,
+                                      std::vector<double> &step) const
     {
         meshgap::ascentStep(gradient, lengthScale(), alpha, step);
     }

@@ -61,8 +61,7 @@ namespace meshgap
         return t.result.distance;
     }
 
-    void RobotChecker::distance(const ompl::base::State *state, const RobotRequest &request,
-                                RobotResult &result) const
+    void RobotChecker::distance(const ompl::base::State *state, const RobotRequest &request, RobotResult &result) const
     {
         ThreadState &t = threadStateFor(id_);
         robotStateToVector(*si_->getStateSpace(), state, t.values);

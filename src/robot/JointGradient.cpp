@@ -141,8 +141,8 @@ namespace meshgap
             const FrameMotion::Kind kind = robot.frameMotion(f).kind;
             const bool free = kind == FrameMotion::Kind::SE2 || kind == FrameMotion::Kind::SE3;
             if (free && robot.frames()[f].parent != RobotModel::NONE)
-                throw Exception("robotPointJacobian", "frame '" + robot.frames()[f].name +
-                                                          "' moves free below another frame");
+                throw Exception("robotPointJacobian",
+                                "frame '" + robot.frames()[f].name + "' moves free below another frame");
             addFrameColumns(robot, frames, blocks, f, p, J);
         }
         return J;
@@ -172,9 +172,8 @@ namespace meshgap
             if (w.norm() > 0.0)
                 q = Eigen::Quaterniond(Eigen::AngleAxisd(w.norm(), w / w.norm())) * q;
             q.normalize();
-            const double values[7] = {state[b] + step[t],     state[b + 1] + step[t + 1], state[b + 2] + step[t + 2],
-                                      q.x(),                  q.y(),                      q.z(),
-                                      q.w()};
+            const double values[7] = {
+                state[b] + step[t], state[b + 1] + step[t + 1], state[b + 2] + step[t + 2], q.x(), q.y(), q.z(), q.w()};
             std::copy(values, values + 7, out + b);
         }
         for (std::size_t v = 0; v < n; ++v)

@@ -4,7 +4,6 @@
 // queried exactly); and the clearance optimiser on maps/arm_fixture: the path's exact minimum clearance rises, every
 // motion it makes is certified by RobotMotionValidator and free at steps of 1e-4 rad.
 #include <gtest/gtest.h>
-
 #include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/util/Console.h>
@@ -13,6 +12,8 @@
 #include <cmath>
 #include <random>
 
+#include "TestMeshes.h"
+#include "TestNote.h"
 #include "meshgap/ompl/CertifiedAnswerPlanner.h"
 #include "meshgap/ompl/ClearancePathOptimizer.h"
 #include "meshgap/ompl/Objectives.h"
@@ -23,8 +24,6 @@
 #include "meshgap/robot/JointGradient.h"
 #include "meshgap/robot/MultiBodyRobot.h"
 #include "meshgap/robot/RobotProblem.h"
-#include "TestMeshes.h"
-#include "TestNote.h"
 #include "robot/TestTree.h"
 
 namespace ob = ompl::base;
@@ -149,8 +148,8 @@ namespace meshgap
     TEST(RobotClearanceField, GradientMatchesFiniteDifferencesOnBodiesInSE3AndSE2)
     {
         const BodyConstPtr plate = Body::build(test::box(0.2, 0.05, 0.1));
-        auto robot = std::make_shared<MultiBodyRobot>(std::vector<MultiBodyRobot::Part>{
-            {"a", plate, RigidSpace::SE3}, {"b", plate, RigidSpace::SE2}});
+        auto robot = std::make_shared<MultiBodyRobot>(
+            std::vector<MultiBodyRobot::Part>{{"a", plate, RigidSpace::SE3}, {"b", plate, RigidSpace::SE2}});
         const Field f(robot, test::postsAroundTree(), 0.6);
         EXPECT_EQ(f.checker->gradientDimension(), 6u + 3u);
         expectGradientMatches(f, 5, 40);
@@ -193,7 +192,8 @@ namespace meshgap
 
     TEST(RobotClearanceField, OptimiserRaisesTheArmFixturesExactClearanceWithCertifiedMotions)
     {
-        const RobotProblem problem = readRobotProblem(std::string(MESHGAP_SOURCE_DIR) + "/maps/arm_fixture/arm_fixture.cfg");
+        const RobotProblem problem =
+            readRobotProblem(std::string(MESHGAP_SOURCE_DIR) + "/maps/arm_fixture/arm_fixture.cfg");
         const Field f(problem.robot, problem.obstacles);
         const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
         ompl::msg::setLogLevel(ompl::msg::LOG_NONE);

@@ -18,23 +18,24 @@ namespace meshgap
     /**
        @anchor mgCertifiedPathRepair
        @par Short description
-       Makes every motion of a path accepted by the certified ClearanceMotionValidator (the path is then proven
+       Makes every motion of a path accepted by the certified motion validator (allocCertifiedMotionValidator():
+       ClearanceMotionValidator for one body, RobotMotionValidator for a robot of many; the path is then proven
        collision-free everywhere, not only at samples). A planner run with OMPL's sampled motion validator may return
        a motion that cuts a corner or a thin obstacle between two checked states, or that passes an obstacle closer
        than conservative advancement can prove free; each motion the certified validator refuses is repaired, by
        the second way only if the first fails:
-       - bisection: the motion's middle state is pushed up the exact clearance gradient (clearanceGradient(); out of
-         the obstacle along the penetration direction where it collides) until it is at least as clear as the
-         motion's less clear end or the ascent stalls, and each half is repaired the same way, at most max_depth
-         levels deep;
+       - bisection: the motion's middle state is pushed up the exact clearance gradient (ClearanceField::gradient(); out
+         of the obstacle along the penetration direction where it collides, for one rigid body) until it is at least as
+         clear as the motion's less clear end or the ascent stalls, and each half is repaired the same way, at most
+         max_depth levels deep;
        - replanning: RRTConnect from the motion's first state to its last, in a SpaceInformation whose motion
          validator is the certified one (every motion of its path is certified), until the termination condition;
          its path's redundant states are then removed (PathSimplifier::reduceVertices() with the same validator).
        The path's own states are never moved, only states inserted between them. They must be valid (within bounds,
        collision-free): repair() throws meshgap::Exception naming a state that is not, and names the motion
        ("motion i→j", the input's numbering) it could not repair before the termination condition; the path is
-       then left as it was. Needs a ClearanceChecker in CERTIFIED mode. Not thread-safe (one path at a time); the
-       checker it shares is.
+       then left as it was. Needs a certified ClearanceField (a ClearanceChecker in CERTIFIED mode, a RobotChecker).
+       Not thread-safe (one path at a time); the checker it shares is.
     */
     class CertifiedPathRepair
     {

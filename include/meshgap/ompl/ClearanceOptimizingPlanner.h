@@ -10,12 +10,12 @@ namespace meshgap
     /**
        @anchor mgClearanceOptimizingPlanner
        @par Short description
-       A planner followed by the ClearancePathOptimizer, as one OMPL planner (so a benchmark times and records
-       both): solve() runs the inner planner until it finds a path (or \e ptc), then optimises the solution path in
-       place for the rest of the time \e ptc leaves, or at most optimize_time seconds when that parameter is
-       positive. The optimiser needs the space's validity checker to be a certified meshgap ClearanceField (a
-       ClearanceChecker in CERTIFIED mode, a RobotChecker), looked up at each solve() (a benchmark may swap checkers); with another checker, or when the
-       certified validator refuses the inner planner's path (a motion grazing an obstacle closer than it can
+       A planner followed by the ClearancePathOptimizer, as one OMPL planner (so a benchmark times and records both):
+       solve() runs the inner planner until it finds a path (or \e ptc), then optimises the solution path in place for
+       the rest of the time \e ptc leaves, or at most optimize_time seconds when that parameter is positive. The
+       optimiser needs the space's validity checker to be a certified meshgap ClearanceField (a ClearanceChecker in
+       CERTIFIED mode, a RobotChecker), looked up at each solve() (a benchmark may swap checkers); with another checker,
+       or when the certified validator refuses the inner planner's path (a motion grazing an obstacle closer than it can
        prove free), the inner planner's path is returned as it is and a warning says why. Parameters: the inner
        planner's, and the optimiser's max_length_factor and optimize_time (default 0: all the time left).
     */

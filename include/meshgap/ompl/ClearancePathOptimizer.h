@@ -18,45 +18,47 @@ namespace meshgap
     /**
        @anchor mgClearancePathOptimizer
        @par Short description
-       Raises the minimum clearance of a feasible path (from any planner), as ompl::geometric::PathSimplifier
-       shortens one: the path's interior states are moved up the exact clearance gradient (clearanceGradient(), an
+       Raises the minimum clearance of a feasible path (from any planner), as ompl::geometric::PathSimplifier shortens
+       one: the path's interior states are moved up the exact clearance gradient (ClearanceField::gradient(), an
        epsilon-subgradient where obstacles nearly tie) with a backtracking line search; a state is inserted where a
-       motion's clearance dips between its ends (at the dip); states and stretches of path are removed where a
-       single motion is no less clear (redundant states, random shortcuts). Every change it accepts keeps every
-       motion of the path accepted by the certified ClearanceMotionValidator (conservative advancement on exact
-       clearance: the path is collision-free everywhere, not only at samples), keeps the path within its length
-       cap, and does not lower the clearance of the stretch it replaces. For that it keeps, for each motion, a
-       certified lower bound on its clearance, by Lipschitz branch and bound along the motion (clearance is
-       1-Lipschitz in the robot's displacement and sweepBound() bounds the displacement, so an interval of the
-       motion whose ends have clearances ca, cb is no less clear than (ca + cb - sweep * length) / 2; the most
-       promising interval is halved until the bound is within 2% of the least clear sample, or a sample falls below
-       what the change must keep): a change is accepted only if the bounds of the motions it creates are at least
-       the smallest bound of the motions it removes (and, for a moved state, its own clearance rises). So the
-       path's certified lower bound never falls. At the end the path is measured again from scratch with
-       minClearance(), and if it is below the input's measured the same way (at the start), the input is
-       returned unchanged: the result is never less clear than the input by that measure.
+       motion's clearance dips between its ends (at the dip); states and stretches of path are removed where a single
+       motion is no less clear (redundant states, random shortcuts). Every change it accepts keeps every motion of the
+       path accepted by the certified motion validator (ClearanceMotionValidator, conservative advancement on exact
+       clearance: the path is collision-free everywhere, not only at samples), keeps the path within its length cap, and
+       does not lower the clearance of the stretch it replaces. For that it keeps, for each motion, a certified lower
+       bound on its clearance, by Lipschitz branch and bound along the motion (clearance is 1-Lipschitz in the robot's
+       displacement and ClearanceField::sweep() bounds the displacement, so an interval of the motion whose ends have
+       clearances ca, cb is no less clear than (ca + cb - sweep * length) / 2; the most promising interval is halved
+       until the bound is within 2% of the least clear sample, or a sample falls below what the change must keep): a
+       change is accepted only if the bounds of the motions it creates are at least the smallest bound of the motions it
+       removes (and, for a moved state, its own clearance rises). So the path's certified lower bound never falls. At
+       the end the path is measured again from scratch with minClearance(), and if it is below the input's measured the
+       same way (at the start), the input is returned unchanged: the result is never less clear than the input by that
+       measure.
 
        minClearance() is the measure: the minimum over the path's motions of each motion's least clear sample,
        the same branch and bound run until no interval's bound is more than max(tolerance, 1e-3 * the sample)
        below it: an upper estimate of the true minimum, which is at least it minus that tolerance.
 
-       Parameters (OMPL ParamSet, params(); setters alike): time_limit (s, default 5), target_clearance (stop once
-       the minimum reaches it; default infinity), max_length_factor (the path may grow to this times its input
-       length; default 3), seed (of the shortcuts' random pairs; default 1), max_rounds (default 1000), shortcut
-       (default true), tolerance (of minClearance(); 0, the default: 1e-3 times the input's smallest state
-       clearance, at least 1e-9 times the robot's radius), repair (default true). The result depends only on the
-       input, the parameters and the seed when no time limit cuts it short (max_rounds reached, or converged: a
-       round accepted no change), and the input needs no replanning (CertifiedPathRepair's RRTConnect draws from
-       OMPL's global random seed).
-       Needs a ClearanceChecker in CERTIFIED mode; an input path with a state out of bounds or in collision throws
-       meshgap::Exception naming it. A motion of the input the certified validator refuses (a planner with OMPL's
-       sampled validator may pass one that cuts a thin obstacle or grazes one between two checked states) is first
-       repaired by CertifiedPathRepair (bisection with the new states pushed up the clearance gradient, else
-       RRTConnect with the certified validator), within the same time limit; the optimiser then starts from the
-       repaired path, and every "before" figure of lastStats() is of it (Stats::repair says what was repaired). A
-       motion that cannot be repaired in time throws meshgap::Exception naming it ("motion i→j"), the path left as
-       it was; with repair (parameter "repair") off, any refused motion throws. Not thread-safe (one path at a
-       time); the checker it shares is.
+       Parameters (OMPL ParamSet, params(); setters alike): time_limit (s, default 5), target_clearance (stop once the
+       minimum reaches it; default infinity), max_length_factor (the path may grow to this times its input length;
+       default 3), seed (of the shortcuts' random pairs; default 1), max_rounds (default 1000), shortcut (default true),
+       tolerance (of minClearance(); 0, the default: 1e-3 times the input's smallest state clearance, at least 1e-9
+       times the robot's length scale), repair (default true). The result depends only on the input, the parameters and
+       the seed when no time limit cuts it short (max_rounds reached, or converged: a round accepted no change), and the
+       input needs no replanning (CertifiedPathRepair's RRTConnect draws from OMPL's global random seed). The same for
+       every robot (ClearanceField): one rigid body (ClearanceChecker in CERTIFIED mode: its gradient in SE(3) or SE(2),
+       ClearanceMotionValidator) or a robot of many bodies (RobotChecker: the whole robot's clearance, every link,
+       payloads and self pairs, its gradient in joint space (and an SE(3) or SE(2) pose's tangent space),
+       RobotMotionValidator); the robot's length scale is ClearanceField::lengthScale(). Needs a certified field (a
+       FAST ClearanceChecker throws); an input path with a state out of bounds or in collision throws meshgap::Exception
+       naming it. A motion of the input the certified validator refuses (a planner with OMPL's sampled validator may
+       pass one that cuts a thin obstacle or grazes one between two checked states) is first repaired by
+       CertifiedPathRepair (bisection with the new states pushed up the clearance gradient, else RRTConnect with the
+       certified validator), within the same time limit; the optimiser then starts from the repaired path, and every
+       "before" figure of lastStats() is of it (Stats::repair says what was repaired). A motion that cannot be repaired
+       in time throws meshgap::Exception naming it ("motion i→j"), the path left as it was; with repair (parameter
+       "repair") off, any refused motion throws. Not thread-safe (one path at a time); the checker it shares is.
     */
     class ClearancePathOptimizer
     {
@@ -142,7 +144,7 @@ namespace meshgap
         MotionBound motionBound(const ompl::base::State *s1, const ompl::base::State *s2, double c1, double c2,
                                 double tolerance, double relative = 0.0,
                                 double refuteBelow = -std::numeric_limits<double>::infinity()) const;
-        /** \brief 1e-3 times the smallest of \e clearances (at least 1e-9 times the robot's radius). */
+        /** \brief 1e-3 times the smallest of \e clearances (at least 1e-9 times the robot's length scale). */
         double defaultTolerance(const std::vector<double> &clearances) const;
         void validateInput(const ompl::geometric::PathGeometric &path) const;
         /** \brief optimize()'s rounds over \e w until done, converged or out of rounds. */
