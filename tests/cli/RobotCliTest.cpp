@@ -239,6 +239,46 @@ TEST_F(RobotCli, PlanWritesTheReportWithEveryLink)
         EXPECT_NE(page.find(std::string("\"") + link + "\""), std::string::npos) << link;
 }
 
+TEST_F(RobotCli, PlanOptimizesTheWholeRobotsClearanceAndNamesTheLimitingPair)
+{
+    // RRTConnect's certified answer, then the clearance optimiser until it converges (the time limit only ends a run
+    // that fails anyway): the dense path's exact minimum clearance rises, and the summary names the pair that limits
+    // it before and after.
+    const CliRun r = meshgap::test::runExecutable(
+        "meshgap_plan", "--cfg " + MAPS + "/arm_fixture/arm_fixture.cfg --seed 5 --time 300 -q --optimize clearance "
+                        "--optimize-time 300", 900);
+    ASSERT_EQ(r.status, 0) << r.out << r.err;
+    const double before = valueAfter(r.out, "opt before"), after = valueAfter(r.out, "opt after");
+    EXPECT_GT(after, 2.0 * before) << r.out;
+    EXPECT_NEAR(valueAfter(r.out, "min clearance"), after, 1e-12 * after) << r.out;
+    EXPECT_NE(r.out.find("dense path free yes"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("opt repair      none"), std::string::npos) << r.out;
+    for (const char *key : {"opt before", "opt after"})
+    {
+        const std::size_t at = r.out.find(key);
+        ASSERT_NE(at, std::string::npos) << r.out;
+        const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
+        EXPECT_NE(line.find("(exact, over the dense path; link '"), std::string::npos) << line;
+    }
+}
+
+TEST_F(RobotCli, PlanWithTheMaxMinObjectiveCostsItsLeastClearanceFromBoundedQueries)
+{
+    const CliRun r = meshgap::test::runExecutable(
+        "meshgap_plan", "--cfg " + MAPS + "/arm_fixture/arm_fixture.cfg --seed 1 --time 2 -q --planner rrtstar "
+                        "--objective max_min_clearance", 300);
+    ASSERT_NE(r.status, 1) << r.out << r.err;  // solved, or approximately within the 2 s
+    EXPECT_NE(r.out.find("objective       max_min_clearance"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("cost queries"), std::string::npos) << r.out;
+    // The cost is the least clearance at the objective's grid states: at least the dense path's exact minimum
+    // less what lies between its states, never below 0 on a free path.
+    EXPECT_GT(valueAfter(r.out, "cost"), 0.0) << r.out;
+    const CliRun weight = meshgap::test::runExecutable(
+        "meshgap_plan", "--cfg " + MAPS + "/arm_fixture/arm_fixture.cfg --objective clearance --weight 2", 60);
+    EXPECT_EQ(weight.status, 1);
+    EXPECT_NE(weight.err.find("--weight: applies to --objective weighted only"), std::string::npos) << weight.err;
+}
+
 TEST_F(RobotCli, BadInputGetsOneClearErrorEach)
 {
     struct Case
