@@ -88,7 +88,11 @@ namespace meshgap
             open.pop();
             const double mid = 0.5 * (iv.a + iv.b);
             space.interpolate(s1, s2, mid, s);
-            const double cm = checker_->clearance(s);
+            // Only a sample below this matters exactly: at or above it, both halves' bounds are at least the best
+            // sample (or the floor), so the cap (a lower bound on the sample's clearance, which keeps every bound
+            // certified) prunes them as the exact value would. A bounded query prunes everything farther.
+            const double cap = std::max(r.best + 0.5 * sweep * (iv.b - iv.a), refuteBelow);
+            const double cm = cap > 0.0 ? checker_->clearanceBelow(s, cap) : checker_->clearance(s);
             if (cm < r.best)
             {
                 r.best = cm;
@@ -116,6 +120,12 @@ namespace meshgap
 
     double ClearancePathOptimizer::minClearance(const og::PathGeometric &path, double tolerance) const
     {
+        return measure(path, tolerance, nullptr);
+    }
+
+    double ClearancePathOptimizer::measure(const og::PathGeometric &path, double tolerance,
+                                           std::vector<MotionBound> *bounds) const
+    {
         const std::size_t n = path.getStateCount();
         if (n == 0)
             return std::numeric_limits<double>::infinity();
@@ -125,10 +135,16 @@ namespace meshgap
         if (!(tolerance > 0.0))
             tolerance = defaultTolerance(c);
         double best = c[0];
+        if (bounds != nullptr)
+            bounds->clear();
         for (std::size_t i = 0; i + 1 < n; ++i)
-            best = std::min(best, motionBound(path.getState(i), path.getState(i + 1), c[i], c[i + 1], tolerance,
-                                              MEASURE_RELATIVE_TOLERANCE)
-                                      .best);
+        {
+            const MotionBound r = motionBound(path.getState(i), path.getState(i + 1), c[i], c[i + 1], tolerance,
+                                              MEASURE_RELATIVE_TOLERANCE);
+            best = std::min(best, r.best);
+            if (bounds != nullptr)
+                bounds->push_back(r);
+        }
         return best;
     }
 
@@ -214,7 +230,7 @@ namespace meshgap
         double currentMin() const { return *std::min_element(m.begin(), m.end()); }
         double initialAlpha(double clearance) const { return std::max(0.5 * clearance, 1e-3 * L); }
 
-        void start(const ClearancePathOptimizer::Stats &stats);
+        void start(const ClearancePathOptimizer::Stats &stats, const std::vector<MotionBound> &bounds);
         void insertAt(std::size_t i, ob::State *s, double cs, const MotionBound &ra, const MotionBound &rb);
         bool split(std::size_t i, double fraction);
         bool insertAtDip(std::size_t i);
@@ -228,15 +244,17 @@ namespace meshgap
         bool shortcuts(ompl::RNG &rng);
     };
 
-    /** \brief The bounds of every motion, and the step lengths, of the path as given (c and tolerance set). */
-    void ClearancePathOptimizer::Work::start(const ClearancePathOptimizer::Stats &stats)
+    /** \brief The bounds of every motion (\e bounds: the input's measurement, tighter than the rounds need), and
+        the step lengths, of the path as given (c and tolerance set). */
+    void ClearancePathOptimizer::Work::start(const ClearancePathOptimizer::Stats &stats,
+                                             const std::vector<MotionBound> &bounds)
     {
         const std::size_t n0 = states.size();
         m.resize(n0 - 1);
         b.resize(n0 - 1);
         f.resize(n0 - 1);
         for (std::size_t i = 0; i + 1 < n0; ++i)
-            keep(i, bound(states[i], states[i + 1], c[i], c[i + 1]));
+            keep(i, bounds[i]);
         length = stats.lengthBefore;
         maxLength = opt.maxLengthFactor_ * stats.lengthBefore;
         maxStates = std::max<std::size_t>(4 * n0, 200);
@@ -520,9 +538,10 @@ namespace meshgap
         w.tolerance = tolerance_ > 0.0 ? tolerance_ : defaultTolerance(w.c);
         // The input measured now (before the clock matters), the output at the end, the same way.
         const auto measuring = std::chrono::steady_clock::now();
-        const double inputMeasure = minClearance(input, w.tolerance);
+        std::vector<MotionBound> inputBounds;
+        const double inputMeasure = measure(input, w.tolerance, &inputBounds);
         reserve = 2 * (std::chrono::steady_clock::now() - measuring);
-        w.start(stats_);
+        w.start(stats_, inputBounds);
         w.candidate = si_->allocState();
         ptc_ = &rounds;
         improve(w);

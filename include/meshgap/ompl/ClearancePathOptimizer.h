@@ -144,6 +144,9 @@ namespace meshgap
         MotionBound motionBound(const ompl::base::State *s1, const ompl::base::State *s2, double c1, double c2,
                                 double tolerance, double relative = 0.0,
                                 double refuteBelow = -std::numeric_limits<double>::infinity()) const;
+        /** \brief minClearance(), and into \e bounds (when given) what the branch and bound found along each motion. */
+        double measure(const ompl::geometric::PathGeometric &path, double tolerance,
+                       std::vector<MotionBound> *bounds) const;
         /** \brief 1e-3 times the smallest of \e clearances (at least 1e-9 times the robot's length scale). */
         double defaultTolerance(const std::vector<double> &clearances) const;
         void validateInput(const ompl::geometric::PathGeometric &path) const;
