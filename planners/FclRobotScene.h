@@ -275,6 +275,9 @@ namespace meshgap
                 robot->objects.push_back(std::make_unique<fcl::CollisionObjectd>(*prototype));
                 registered.push_back(robot->objects.back().get());
             }
+            // Two rebalancing passes after each update rather than FCL's ten: fewer instructions a query on both
+            // the four-joint arm and the UR5 (measured: 0 passes lose on the UR5's 18 links, 10 on both).
+            robot->manager.tree_incremental_balance_pass = 2;
             robot->manager.registerObjects(registered);
             robot->manager.setup();
             return robot;
