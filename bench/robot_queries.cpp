@@ -1,8 +1,8 @@
 // Whole-robot checks along joint-space paths against FCL 0.7 on the same pairs (every link against every obstacle,
 // every self pair the SRDF leaves), the same meshes at the same link poses: the minimum signed distance (meshgap:
-// RobotScene::distance(), pruned, warm from state to state, and cold; FCL: every pair's distance, the least kept)
-// and the collision verdict (meshgap: RobotScene::inCollision(), warm; FCL: collide pair by pair, stopping at the
-// first hit). The robot is a URDF (the fanuc arm of ../shared/data/robots by default) carrying a C-shaped payload,
+// RobotScene::distance(), pruned, warm from state to state, and cold; FCL two ways: every pair's distance, the least
+// kept, and as MoveIt uses it, FclRobotScene's broad-phase managers) and the collision verdict (meshgap:
+// RobotScene::inCollision(), warm; FCL: collide pair by pair, stopping at the first hit, and FclRobotScene). The robot is a URDF (the fanuc arm of ../shared/data/robots by default) carrying a C-shaped payload,
 // among a C-shaped fixture, a pillar and a plate scaled to its reach; paths join random states within the joint
 // limits in steps of --step radians (the largest joint change). CPU time per state, best of --repeat passes.
 //
@@ -20,6 +20,7 @@
 
 #include "CliMain.h"
 #include "FclOracle.h"
+#include "FclRobotScene.h"
 #include "TestMeshes.h"
 #include "meshgap/mesh/MeshOperations.h"
 #include "meshgap/robot/RobotScene.h"
@@ -142,7 +143,9 @@ static int run(int argc, char **argv)
         for (const Eigen::Vector3d &v : robot->links()[i].body->surface().vertices)
             r = std::max(r, (zero[i] * v).norm());
     robot->attach("payload", cShape(0.15 * r), attachTo, test::translation(0.0, 0.0, 0.1 * r));
-    const RobotScene scene(robot, world(r));
+    const auto shared = std::make_shared<const RobotScene>(robot, world(r));
+    const RobotScene &scene = *shared;
+    const FclRobotScene broad(shared, false);  // the same meshes: the fanuc's links and the payload are meshes
     const std::vector<std::vector<double>> states = pathStates(*robot, paths, step, seed);
 
     std::vector<std::shared_ptr<test::FclModel>> links, obstacles;
@@ -153,7 +156,7 @@ static int run(int argc, char **argv)
     std::vector<Eigen::Isometry3d> frames, poses;
 
     // The answers, checked against each other first.
-    std::size_t colliding = 0, disagreements = 0;
+    std::size_t colliding = 0, disagreements = 0, broadDisagreements = 0;
     std::vector<double> fclDistances;
     auto fclState = [&](const std::vector<double> &q, bool collisionOnly, double &least)
     {
@@ -187,6 +190,13 @@ static int run(int argc, char **argv)
             colliding += hit ? 1 : 0;
             scene.distance(q.data(), q.size(), RobotRequest(), warm, result);
             disagreements += (result.distance < 0.0) != hit ? 1 : 0;  // containment (FCL cannot see it) counts here
+            // The broad phase answers as the pairs do (the least distance to rounding: FCL gets world poses there,
+            // each pair's relative pose here).
+            double least;
+            fclState(q, false, least);
+            least = std::max(0.0, least);
+            broadDisagreements += broad.inCollision(poses) != hit ||
+                                  std::abs(broad.distance(poses) - least) > 1e-9 * std::max(1.0, least);
         }
     }
 
@@ -206,6 +216,17 @@ static int run(int argc, char **argv)
             sink += fclState(q, true, ignored) ? 1 : 0;
         }
     });
+    auto broadPass = [&](bool collisionOnly)
+    {
+        return microseconds(repeat, states.size(), [&] {
+            for (const auto &q : states)
+            {
+                robot->linkPoses(q.data(), q.size(), frames, poses);
+                sink += collisionOnly ? (broad.inCollision(poses) ? 1.0 : 0.0) : broad.distance(poses);
+            }
+        });
+    };
+    const double broadDistance = broadPass(false), broadCollide = broadPass(true);
     auto meshgapDistance = [&](bool warmStart)
     {
         return microseconds(repeat, states.size(), [&] {
@@ -231,14 +252,17 @@ static int run(int argc, char **argv)
     for (const RobotLink &link : scene.links())
         triangles += link.body->surface().triangles.size();
     std::printf("robot %s: %zu links (%zu triangles), %zu self pairs, %zu obstacles; %zu states on %u paths "
-                "(step %.3g), %zu colliding (FCL), %zu verdicts differing\n",
+                "(step %.3g), %zu colliding (FCL), %zu verdicts differing, %zu broad-phase answers differing\n",
                 robot->name().c_str(), scene.links().size(), triangles, scene.selfPairs().size(),
-                scene.obstacles().size(), states.size(), paths, step, colliding, disagreements);
-    std::printf("| | FCL distance | meshgap cold | meshgap warm | FCL collide | meshgap collision, warm |\n");
-    std::printf("| us/state | %.1f | %.1f | %.1f | %.1f | %.1f |\n", fclDistance, coldDistance, warmDistance,
-                fclCollide, warmCollide);
-    std::printf("| ratio to FCL | 1 | %.3f | %.3f | 1 | %.3f |\n", coldDistance / fclDistance,
-                warmDistance / fclDistance, warmCollide / fclCollide);
+                scene.obstacles().size(), states.size(), paths, step, colliding, disagreements, broadDisagreements);
+    std::printf("| | FCL distance, every pair | FCL distance, broad phase | meshgap cold | meshgap warm | "
+                "FCL collide, every pair | FCL collide, broad phase | meshgap collision, warm |\n");
+    std::printf("|---|---|---|---|---|---|---|---|\n");
+    std::printf("| us/state | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f |\n", fclDistance, broadDistance,
+                coldDistance, warmDistance, fclCollide, broadCollide, warmCollide);
+    std::printf("| ratio to FCL's broad phase | %.3f | 1 | %.3f | %.3f | %.3f | 1 | %.3f |\n",
+                fclDistance / broadDistance, coldDistance / broadDistance, warmDistance / broadDistance,
+                fclCollide / broadCollide, warmCollide / broadCollide);
     std::printf("(checksum %.6g)\n", sink);
     return 0;
 #endif

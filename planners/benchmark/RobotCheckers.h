@@ -3,7 +3,8 @@
 
 // meshgap_benchmark on a robot of many bodies (a robot problem file, RobotProblem.h): the joint-space problem and the
 // checkers it compares, by name: meshgap's exact whole-robot checker with its certified motion validator or with
-// OMPL's discrete one, and FCL checking the same pairs the same way with OMPL's discrete motion validator.
+// OMPL's discrete one, and FCL as MoveIt uses it (broad-phase managers, primitives as FCL's shapes) checking the same
+// pairs with OMPL's discrete motion validator.
 
 #include <atomic>
 #include <memory>
@@ -65,9 +66,10 @@ namespace meshgap
                 override;
             CheckerStats stats() const override;
             bool isMeshgap() const override { return active_ != "fcl"; }
-            /** \brief FCL's verdict on \e path densely interpolated, as Checkers gives it, without the least
-                distance (FCL's distance on every pair of an arm costs milliseconds a state); and meshgap's exact
-                least clearance over the same states ("path min clearance REAL", negative in collision). */
+            /** \brief FCL's verdict on \e path densely interpolated, as Checkers gives it (FclRobotChecker: the true
+                shapes of primitive solids), without the least distance (FCL's distance of an arm costs a millisecond
+                or more a state); and meshgap's exact least clearance over the same states ("path min clearance REAL",
+                negative in collision). */
             void fclPathProperties(const ompl::geometric::PathGeometric &solution,
                                    ompl::tools::Benchmark::RunProperties &run) override;
 

@@ -33,6 +33,13 @@ namespace meshgap
         return body;
     }
 
+    BodyPtr Body::build(Mesh mesh, std::vector<Primitive> primitives, const BodyOptions &options)
+    {
+        BodyPtr body = build(std::move(mesh), options);
+        body->primitives_ = std::move(primitives);
+        return body;
+    }
+
     const Body::NodeLayer &Body::buildNodeLayer() const
     {
         std::call_once(layerOnce_, [this] {

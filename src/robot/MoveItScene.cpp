@@ -281,7 +281,9 @@ namespace meshgap
                                         "robot '" + robot_.name() + "')");
             }
 
-            Mesh primitive(const YAML::Node &p, const std::string &entry) const;
+            /** \brief The primitive \e p as a circumscribed mesh in its own frame, and as the solid it is (its pose
+                left to the caller). */
+            Mesh primitive(const YAML::Node &p, const std::string &entry, Primitive &solid) const;
             Mesh mesh(const YAML::Node &m, const std::string &entry) const;
             void readObject(const YAML::Node &object, const std::string &entry);
 
@@ -294,7 +296,7 @@ namespace meshgap
             std::map<std::string, Eigen::Isometry3d> fixed_;
         };
 
-        Mesh WorldReader::primitive(const YAML::Node &p, const std::string &entry) const
+        Mesh WorldReader::primitive(const YAML::Node &p, const std::string &entry, Primitive &solid) const
         {
             static const std::map<std::string, int> names = {{"box", 1}, {"sphere", 2}, {"cylinder", 3}, {"cone", 4}};
             const YAML::Node typeNode = YamlFile::child(p, "type");
@@ -316,6 +318,12 @@ namespace meshgap
                 file_.fail(dimensions ? dimensions : p, entry + ".dimensions",
                            std::to_string(d.size()) + " numbers; a " + type + " takes " + std::to_string(needed) +
                                (kind == 1 ? " (x y z)" : kind == 2 ? " (radius)" : " (height radius)"));
+            static const Primitive::Kind kinds[] = {Primitive::Kind::BOX, Primitive::Kind::SPHERE,
+                                                    Primitive::Kind::CYLINDER, Primitive::Kind::CONE};
+            solid.kind = kinds[kind - 1];
+            solid.size = kind == 1 ? Eigen::Vector3d(d[0], d[1], d[2]) :
+                         kind == 2 ? Eigen::Vector3d(d[0], 0.0, 0.0) :
+                                     Eigen::Vector3d(d[1], d[0], 0.0);
             try
             {
                 if (kind == 1)
@@ -411,12 +419,16 @@ namespace meshgap
                 for (std::size_t k = 0; k < shapes.size(); ++k)
                 {
                     const std::string item = entry + "." + kind + "[" + std::to_string(k) + "]";
-                    Mesh m = isPrimitive ? primitive(shapes[k], item) : mesh(shapes[k], item);
-                    transformMesh(m, X_WO * file_.pose(poses[k], entry + "." + posesKey + "[" + std::to_string(k) +
-                                                                     "]"));
+                    std::vector<Primitive> solids(isPrimitive ? 1 : 0);
+                    Mesh m = isPrimitive ? primitive(shapes[k], item, solids[0]) : mesh(shapes[k], item);
+                    const Eigen::Isometry3d X_WS =
+                        X_WO * file_.pose(poses[k], entry + "." + posesKey + "[" + std::to_string(k) + "]");
+                    transformMesh(m, X_WS);
+                    for (Primitive &solid : solids)
+                        solid.pose = X_WS;
                     try
                     {
-                        problem_.obstacles.push_back(Body::build(std::move(m), options_));
+                        problem_.obstacles.push_back(Body::build(std::move(m), std::move(solids), options_));
                     }
                     catch (const Exception &e)
                     {

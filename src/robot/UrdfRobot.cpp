@@ -359,9 +359,40 @@ namespace meshgap
             throw Exception("URDF", "a geometry of unknown kind");
         }
 
+        /** \brief A box, cylinder or sphere element as the solid it is, at \e pose; false for a mesh. */
+        bool geometryPrimitive(const urdf::Geometry &geometry, const Eigen::Isometry3d &pose, Primitive &solid)
+        {
+            solid.pose = pose;
+            switch (geometry.type)
+            {
+                case urdf::Geometry::BOX:
+                {
+                    const auto &box = static_cast<const urdf::Box &>(geometry);
+                    solid.kind = Primitive::Kind::BOX;
+                    solid.size = Eigen::Vector3d(box.dim.x, box.dim.y, box.dim.z);
+                    return true;
+                }
+                case urdf::Geometry::CYLINDER:
+                {
+                    const auto &cylinder = static_cast<const urdf::Cylinder &>(geometry);
+                    solid.kind = Primitive::Kind::CYLINDER;
+                    solid.size = Eigen::Vector3d(cylinder.radius, cylinder.length, 0.0);
+                    return true;
+                }
+                case urdf::Geometry::SPHERE:
+                    solid.kind = Primitive::Kind::SPHERE;
+                    solid.size = Eigen::Vector3d(static_cast<const urdf::Sphere &>(geometry).radius, 0.0, 0.0);
+                    return true;
+                default:
+                    return false;
+            }
+        }
+
         /** \brief The link's collision geometry (its visual geometry when it has no collision element) merged into
-            one mesh in the link frame; no triangles when it has neither. */
-        Mesh linkMesh(const urdf::Link &link, const UrdfOptions &options, const std::string &folder)
+            one mesh in the link frame; no triangles when it has neither. \e primitives: every element as the solid
+            it is, in the link frame, when each is a box, cylinder or sphere; empty otherwise. */
+        Mesh linkMesh(const urdf::Link &link, const UrdfOptions &options, const std::string &folder,
+                      std::vector<Primitive> &primitives)
         {
             std::vector<std::pair<urdf::GeometrySharedPtr, urdf::Pose>> elements;
             for (const urdf::CollisionSharedPtr &c : link.collision_array)
@@ -372,11 +403,18 @@ namespace meshgap
                     if (v && v->geometry)
                         elements.emplace_back(v->geometry, v->origin);
             std::vector<Mesh> parts;
+            primitives.clear();
+            bool allPrimitives = true;
             for (const auto &[geometry, origin] : elements)
             {
                 parts.push_back(geometryMesh(*geometry, options, folder));
                 transformMesh(parts.back(), toIsometry(origin));
+                Primitive solid;
+                allPrimitives = allPrimitives && geometryPrimitive(*geometry, toIsometry(origin), solid);
+                primitives.push_back(solid);
             }
+            if (!allPrimitives)
+                primitives.clear();
             return parts.empty() ? Mesh() : mergeMeshes(parts, link.name);
         }
 
@@ -509,9 +547,10 @@ namespace meshgap
         {
             const std::string &name = robot.frames()[f].name;
             Mesh mesh;
+            std::vector<Primitive> primitives;
             try
             {
-                mesh = linkMesh(*model.getLink(name), options, folder.empty() ? "." : folder);
+                mesh = linkMesh(*model.getLink(name), options, folder.empty() ? "." : folder, primitives);
             }
             catch (const Exception &e)
             {
@@ -522,7 +561,8 @@ namespace meshgap
             // Adjacent links touch by design: a new link is allowed with its nearest ancestor that has geometry.
             const std::size_t owner = f == 0 ? RobotModel::NONE : robot.ownerLink(robot.frames()[f].parent);
             const std::size_t link =
-                robot.addLink(name, Body::build(std::move(mesh), options.body), f, Eigen::Isometry3d::Identity(), false);
+                robot.addLink(name, Body::build(std::move(mesh), std::move(primitives), options.body), f,
+                              Eigen::Isometry3d::Identity(), false);
             if (owner != RobotModel::NONE)
                 robot.allowCollision(owner, link);
         }

@@ -177,6 +177,51 @@ goal_constraints:
         EXPECT_TRUE(p.obstacles[4]->isClosed());
     }
 
+    TEST_F(MoveItFilesTest, EachPrimitiveKeepsItsSolidWhereItsMeshIs)
+    {
+        const RobotProblem p = read(ARM_SRDF, SCENE, REQUEST);
+        ASSERT_EQ(p.obstacles.size(), 5u);
+        using Kind = Primitive::Kind;
+        const std::vector<Kind> kinds = {Kind::BOX, Kind::CYLINDER, Kind::SPHERE, Kind::CONE};
+        const std::vector<Eigen::Vector3d> sizes = {{0.1, 0.2, 0.3}, {0.1, 0.4, 0}, {0.2, 0, 0}, {0.05, 0.3, 0}};
+        const std::vector<Eigen::Vector3d> centres = {{0.5, 0, 0}, {0, -2, 0}, {0, 3, 1}, {3, 3, 0}};
+        for (std::size_t o = 0; o < 4; ++o)
+        {
+            ASSERT_EQ(p.obstacles[o]->primitives().size(), 1u) << o;
+            const Primitive &solid = p.obstacles[o]->primitives()[0];
+            EXPECT_EQ(solid.kind, kinds[o]) << o;
+            EXPECT_TRUE(near(solid.size, sizes[o])) << o << ": " << solid.size.transpose();
+            EXPECT_TRUE(near(solid.pose.translation(), centres[o], 1e-12)) << o;
+            // The mesh in the solid's frame: within its circumscribed extent, and reaching it.
+            double reach = 0.0;
+            for (const Eigen::Vector3d &v : p.obstacles[o]->surface().vertices)
+            {
+                const Eigen::Vector3d u = solid.pose.inverse() * v;
+                const double radial = kinds[o] == Kind::SPHERE ? u.norm() : u.head<2>().norm();
+                const double extent = kinds[o] == Kind::BOX ? (2.0 * u.cwiseAbs().cwiseQuotient(solid.size)).maxCoeff()
+                                      : kinds[o] == Kind::SPHERE ? radial / solid.size.x()
+                                                                 : std::max(radial / solid.size.x(),
+                                                                            2.0 * std::abs(u.z()) / solid.size.y());
+                reach = std::max(reach, extent);
+            }
+            EXPECT_GE(reach, 1.0 - 1e-12) << o;
+            EXPECT_LE(reach, 1.0 / std::pow(std::cos(M_PI / 32), 2) + 1e-12) << o;
+        }
+        // The box turned a quarter about z by the object's pose: its x and y edges along the world's y and x.
+        EXPECT_TRUE(near(p.obstacles[0]->primitives()[0].pose.linear() * Eigen::Vector3d::UnitX(),
+                         Eigen::Vector3d::UnitY(), 1e-12));
+        EXPECT_TRUE(p.obstacles[4]->primitives().empty());  // a mesh
+        // The URDF's links are boxes: each keeps its box, in the link's frame.
+        for (const RobotLink &link : p.robot->links())
+        {
+            ASSERT_EQ(link.body->primitives().size(), 1u) << link.name;
+            EXPECT_EQ(link.body->primitives()[0].kind, Kind::BOX) << link.name;
+            const Eigen::AlignedBox3d bounds = link.body->surface().bounds();
+            EXPECT_TRUE(near(bounds.sizes(), link.body->primitives()[0].size, 1e-12)) << link.name;
+            EXPECT_TRUE(near(bounds.center(), link.body->primitives()[0].pose.translation(), 1e-12)) << link.name;
+        }
+    }
+
     TEST_F(MoveItFilesTest, StartIsTheSceneStateUnderTheRequestsAndGoalTheStartUnderTheConstraints)
     {
         const RobotProblem p = read("", SCENE, REQUEST);

@@ -15,6 +15,7 @@
 #include "meshgap/geometry/NodeSizing.h"
 #include "meshgap/mesh/Refine.h"
 #include "meshgap/mesh/SurfaceGraph.h"
+#include "meshgap/geometry/Primitive.h"
 
 namespace meshgap
 {
@@ -67,12 +68,20 @@ namespace meshgap
     public:
         /** \brief Build a body from a mesh in its own frame. The mesh must be valid (see Mesh::validate()). */
         static BodyPtr build(Mesh mesh, const BodyOptions &options = BodyOptions());
+        /** \brief The same, for a mesh built from \e primitives (in the mesh's frame) that it circumscribes, every
+            part of it one of them (primitives()). */
+        static BodyPtr build(Mesh mesh, std::vector<Primitive> primitives,
+                             const BodyOptions &options = BodyOptions());
 
         const std::string &name() const { return surface_.source; }
         /** \brief The refined mesh: its vertices are the nodes the combinatorial solvers search. */
         const Mesh &mesh() const { return nodeLayer().mesh; }
         /** \brief The surface as given (cleaned, not refined): what exact distance and collision use. */
         const Mesh &surface() const { return surface_; }
+        /** \brief The primitive solids the surface was built from, in its frame, when it was built from primitives
+            only (a URDF link of boxes, cylinders and spheres, a MoveIt scene's primitive): the surface circumscribes
+            them (it contains each, and is what every meshgap query answers). Empty for a body built from a mesh. */
+        const std::vector<Primitive> &primitives() const { return primitives_; }
         /** \brief BVH over surface()'s triangles. */
         const TriangleBvh &bvh() const { return *bvh_; }
         /** \brief Surface triangles that contain node \e i (at a corner, on an edge or inside). */
@@ -165,6 +174,7 @@ namespace meshgap
         void buildSurfaceMaps(NodeLayer &layer, const std::vector<std::uint32_t> &parent) const;
 
         Mesh surface_;
+        std::vector<Primitive> primitives_;
         std::unique_ptr<TriangleBvh> bvh_;
         bool closed_{false};
         EdgeReport edges_;

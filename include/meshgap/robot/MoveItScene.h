@@ -43,7 +43,8 @@ namespace meshgap
           object's header.frame_id: empty, a fixed_frame_transforms child frame (its transform applied) or a link of
           the robot (its pose at the scene's robot state). One obstacle body per primitive or mesh, named after its
           object (RobotProblem::obstacleNames). Primitives are circumscribed meshes (cylinderMesh(), sphereMesh(),
-          coneMesh(); boxMesh() exact): a state free for them is free for the true shapes.
+          coneMesh(); boxMesh() exact): a state free for them is free for the true shapes. Each such body keeps its
+          primitive as the solid it is, in the world frame (Body::primitives()).
         - allowed_collision_matrix: entry_names and entry_values (rows as lists of booleans, or {enabled: [...]});
           default_entry_names and default_entry_values (a name allowed against everything). An allowed pair of two
           links is never checked (as the SRDF's disable_collisions, which are honoured too); of a link and an object,

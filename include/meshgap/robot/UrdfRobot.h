@@ -55,7 +55,8 @@ namespace meshgap
 
     /** \brief A kinematic tree read from a URDF (urdfdom): one frame per URDF link, one link body per URDF link with
         geometry (its collision elements merged; its visual elements when it has no collision element), meshes
-        and boxes, cylinders and spheres alike. The state: a floating base's pose first (UrdfOptions::floatingBase),
+        and boxes, cylinders and spheres alike (a link of boxes, cylinders and spheres only keeps them as solids in
+        its body's frame, Body::primitives()). The state: a floating base's pose first (UrdfOptions::floatingBase),
         then the value of every movable joint (revolute, continuous, prismatic; not fixed, not mimic) in the order
         the URDF lists them. Forward kinematics is a walk down the tree, parent before child. Links joined by a
         joint are allowed to touch (a link with no geometry is skipped: its children are adjacent to its nearest

@@ -1,0 +1,285 @@
+// FclRobotScene, the FCL peer as MoveIt uses FCL (broad-phase managers, primitives as FCL's shapes): on the same
+// triangles its verdict and least distance are FCL's pair by pair over the pairs the scene checks (allowed pairs
+// left out); with the true primitive solids it brackets meshgap's exact answer on the circumscribed meshes; threads
+// get the same answers. On maps/arm_fixture and a MotionBenchMaker UR5 problem (../shared/data/mbm, skipped when
+// absent), random states of fixed seeds.
+#include <gtest/gtest.h>
+
+#ifdef MESHGAP_HAVE_FCL
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+#include <thread>
+#include <unistd.h>
+
+#include "FclRobotScene.h"
+#include "FclOracle.h"
+#include "meshgap/robot/MoveItScene.h"
+#include "meshgap/robot/RobotProblem.h"
+#include "meshgap/robot/UrdfRobot.h"
+
+namespace fs = std::filesystem;
+
+namespace meshgap
+{
+    namespace
+    {
+        /** \brief Uniform states within the joint limits (continuous joints in [-pi, pi]). */
+        std::vector<std::vector<double>> randomStates(const UrdfRobot &robot, std::size_t count, std::uint32_t seed)
+        {
+            std::mt19937 rng(seed);
+            std::vector<std::vector<double>> states;
+            for (std::size_t n = 0; n < count; ++n)
+            {
+                std::vector<double> q;
+                for (std::size_t k : robot.variables())
+                {
+                    const UrdfJoint &j = robot.joints()[k];
+                    const double lo = std::isfinite(j.lower) ? j.lower : -M_PI;
+                    const double hi = std::isfinite(j.upper) ? j.upper : M_PI;
+                    q.push_back(std::uniform_real_distribution<double>(lo, hi)(rng));
+                }
+                states.push_back(q);
+            }
+            return states;
+        }
+
+        /** \brief FCL pair by pair over the pairs \e scene checks, on the bodies' surfaces: the verdict and the
+            least distance (at least 0). */
+        struct PairByPair
+        {
+            explicit PairByPair(const RobotScene &scene) : scene_(scene)
+            {
+                for (const RobotLink &link : scene.links())
+                    links_.push_back(test::fclModel(link.body->surface()));
+                for (const BodyConstPtr &o : scene.obstacles())
+                    obstacles_.push_back(test::fclModel(o->surface()));
+            }
+
+            /** \brief Every pair's collide; when none collides, every pair's distance (in collision 0). */
+            void answer(const std::vector<Eigen::Isometry3d> &X, bool &hit, double &least) const
+            {
+                hit = false;
+                least = std::numeric_limits<double>::infinity();
+                for (bool distance : {false, true})
+                {
+                    auto pair = [&](const std::shared_ptr<test::FclModel> &a, const Eigen::Isometry3d &Xa,
+                                    const std::shared_ptr<test::FclModel> &b, const Eigen::Isometry3d &Xb)
+                    {
+                        if (distance)
+                            least = std::min(least, std::max(0.0, test::fclDistance(a, b, Xa.inverse() * Xb)));
+                        else
+                            hit = hit || test::fclCollide(a, b, Xa.inverse() * Xb);
+                    };
+                    for (std::size_t i = 0; i < links_.size(); ++i)
+                        for (std::size_t o : scene_.linkObstacles(i))
+                            pair(obstacles_[o], Eigen::Isometry3d::Identity(), links_[i], X[i]);
+                    for (const LinkPair &p : scene_.selfPairs())
+                        pair(links_[p.first], X[p.first], links_[p.second], X[p.second]);
+                    if (hit)
+                    {
+                        least = 0.0;
+                        return;
+                    }
+                }
+            }
+
+        private:
+            const RobotScene &scene_;
+            std::vector<std::shared_ptr<test::FclModel>> links_, obstacles_;
+        };
+
+        struct Tally
+        {
+            std::size_t states{0}, colliding{0}, free{0};
+        };
+
+        /** \brief FclRobotScene on the surfaces answers as FCL pair by pair: the same verdict, the same least
+            distance. */
+        void expectPairByPair(const RobotScenePtr &scene, const std::vector<std::vector<double>> &states,
+                              Tally &tally)
+        {
+            const FclRobotScene fcl(scene, false);
+            EXPECT_EQ(fcl.numLinkObjects(), scene->links().size());
+            const PairByPair oracle(*scene);
+            for (const std::vector<double> &q : states)
+            {
+                const std::vector<Eigen::Isometry3d> X = scene->robot().linkPoses(q);
+                bool hit = false;
+                double least = 0.0;
+                oracle.answer(X, hit, least);
+                ++tally.states;
+                (hit ? tally.colliding : tally.free) += 1;
+                ASSERT_EQ(fcl.inCollision(X), hit) << "state " << tally.states;
+                const double d = fcl.distance(X);
+                EXPECT_NEAR(d, least, 1e-12 * std::max(1.0, least)) << "state " << tally.states;
+                EXPECT_EQ(hit, d == 0.0) << "state " << tally.states << ": distance " << d;
+            }
+        }
+
+        /** \brief How far a circumscribed mesh of \e body's primitives reaches beyond them at most (sphereMesh()'s
+            bound, the largest of cylinderMesh()'s, coneMesh()'s and its own, at \e segments). */
+        double excessOf(const Body &body, unsigned segments)
+        {
+            double excess = 0.0;
+            const double factor = 1.0 / std::pow(std::cos(M_PI / segments), 2) - 1.0;
+            for (const Primitive &p : body.primitives())
+                if (p.kind != Primitive::Kind::BOX)
+                    excess = std::max(excess, factor * p.size.x());
+            return excess;
+        }
+
+        /** \brief FclRobotScene on the true solids against meshgap's exact answer on their circumscribed meshes:
+            a state meshgap finds free FCL finds free, one FCL finds colliding meshgap finds colliding, and FCL's
+            distance is at least meshgap's and above it by at most the meshes' excess (both bodies of a pair).
+            Returns how many states FCL puts strictly farther than meshgap. */
+        std::size_t expectBracketsMeshgap(const RobotScenePtr &scene, const std::vector<std::vector<double>> &states,
+                                          unsigned segments)
+        {
+            const FclRobotScene fcl(scene, true);
+            double excess = 0.0;
+            for (const RobotLink &link : scene->links())
+                excess = std::max(excess, excessOf(*link.body, segments));
+            for (const BodyConstPtr &o : scene->obstacles())
+                excess = std::max(excess, excessOf(*o, segments));
+            const double gjk = 1e-6;  // FCL's GJK on primitives answers to its tolerance
+            std::size_t farther = 0;
+            RobotWarmStart warm;
+            RobotResult result;
+            for (std::size_t n = 0; n < states.size(); ++n)
+            {
+                const std::vector<double> &q = states[n];
+                const std::vector<Eigen::Isometry3d> X = scene->robot().linkPoses(q);
+                scene->distance(q.data(), q.size(), RobotRequest(), warm, result);
+                const bool hit = fcl.inCollision(X);
+                const double d = fcl.distance(X);
+                if (result.distance > 0.0)
+                {
+                    EXPECT_FALSE(hit) << "state " << n << ": meshgap " << result.distance;
+                }
+                if (hit)
+                {
+                    EXPECT_LE(result.distance, 0.0) << "state " << n;
+                }
+                EXPECT_GE(d, std::max(0.0, result.distance) - gjk) << "state " << n;
+                EXPECT_LE(d, std::max(0.0, result.distance) + 2.0 * excess + gjk) << "state " << n;
+                farther += d > std::max(0.0, result.distance) + 1e-9 ? 1 : 0;
+            }
+            return farther;
+        }
+
+        RobotProblem armFixture()
+        {
+            return readRobotProblem(std::string(MESHGAP_SOURCE_DIR) + "/maps/arm_fixture/arm_fixture.cfg");
+        }
+
+        std::vector<std::vector<double>> armStates(const RobotProblem &problem, std::size_t count, std::uint32_t seed)
+        {
+            std::vector<std::vector<double>> states =
+                randomStates(static_cast<const UrdfRobot &>(*problem.robot), count, seed);
+            states.push_back(problem.start);
+            states.push_back(*problem.goal);
+            return states;
+        }
+    }  // namespace
+
+    TEST(FclRobotScene, ArmFixtureMatchesFclPairByPairAllowedPairsLeftOut)
+    {
+        const RobotProblem problem = armFixture();
+        const std::vector<std::vector<double>> states = armStates(problem, 400, 11);
+        Tally tally;
+        expectPairByPair(std::make_shared<RobotScene>(problem.robot, problem.obstacles), states, tally);
+        // A collision matrix that allows every link against the first obstacle: those pairs are never asked.
+        std::vector<LinkPair> allowed;
+        for (std::size_t i = 0; i < problem.robot->links().size(); ++i)
+            allowed.emplace_back(i, 0);
+        expectPairByPair(std::make_shared<RobotScene>(problem.robot, problem.obstacles, allowed), states, tally);
+        EXPECT_GT(tally.colliding, 50u);
+        EXPECT_GT(tally.free, 50u);
+    }
+
+    TEST(FclRobotScene, ArmFixtureTrueSolidsBracketMeshgapsAnswer)
+    {
+        const RobotProblem problem = armFixture();
+        const auto scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles);
+        // The arm's links are URDF cylinders and boxes (one link two cylinders); the payload and the world meshes.
+        std::size_t solids = 0;
+        for (const RobotLink &link : scene->links())
+            solids += link.body->primitives().size();
+        EXPECT_GE(solids, 5u);
+        EXPECT_TRUE(scene->obstacles()[0]->primitives().empty());
+        const FclRobotScene fcl(scene);
+        EXPECT_EQ(fcl.numLinkObjects(), solids + 1);  // the payload is one mesh
+        const std::size_t farther = expectBracketsMeshgap(scene, armStates(problem, 400, 12), 32);
+        EXPECT_GT(farther, 10u);  // the true cylinders are seen: FCL finds them farther than their prisms
+    }
+
+    TEST(FclRobotScene, ThreadsGetTheSameAnswers)
+    {
+        const RobotProblem problem = armFixture();
+        const auto scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles);
+        const FclRobotScene fcl(scene);
+        const std::vector<std::vector<double>> states = armStates(problem, 200, 13);
+        std::vector<double> expected;
+        std::vector<char> expectedHit;
+        for (const std::vector<double> &q : states)
+        {
+            expected.push_back(fcl.distance(scene->robot().linkPoses(q)));
+            expectedHit.push_back(fcl.inCollision(scene->robot().linkPoses(q)) ? 1 : 0);
+        }
+        std::vector<std::size_t> wrong(3, 0);
+        std::vector<std::thread> threads;
+        for (std::size_t t = 0; t < wrong.size(); ++t)
+            threads.emplace_back(
+                [&, t]
+                {
+                    for (int round = 0; round < 3; ++round)
+                        for (std::size_t n = 0; n < states.size(); ++n)
+                        {
+                            const std::vector<Eigen::Isometry3d> X = scene->robot().linkPoses(states[n]);
+                            wrong[t] += fcl.distance(X) != expected[n] ? 1 : 0;
+                            wrong[t] += fcl.inCollision(X) != (expectedHit[n] != 0) ? 1 : 0;
+                        }
+                });
+        for (std::thread &thread : threads)
+            thread.join();
+        for (std::size_t t = 0; t < wrong.size(); ++t)
+            EXPECT_EQ(wrong[t], 0u) << "thread " << t;
+    }
+
+    TEST(FclRobotScene, Ur5BookshelfMatchesFclPairByPairAndBracketsMeshgap)
+    {
+        const fs::path folder = fs::path(MESHGAP_SHARED_DATA_DIR) / "mbm" / "ur5";
+        if (!fs::exists(folder / "problems.tar.bz2") || !fs::exists(folder / "ur5.urdf"))
+            GTEST_SKIP() << "MotionBenchMaker's UR5 problems are not in " << folder.string();
+        const fs::path dir = fs::temp_directory_path() / ("meshgap_fcl_mbm_" + std::to_string(::getpid()));
+        fs::create_directories(dir);
+        const std::string inside = "problems/bookshelf_small_ur5/";
+        const std::string command = "tar -xjf '" + (folder / "problems.tar.bz2").string() + "' -C '" + dir.string() +
+                                    "' " + inside + "scene0001.yaml " + inside + "request0001.yaml";
+        ASSERT_EQ(std::system(command.c_str()), 0) << command;
+        MoveItFiles files;
+        files.urdf = (folder / "ur5.urdf").string();
+        files.srdf = (folder / "ur5.srdf").string();
+        files.scene = (dir / inside / "scene0001.yaml").string();
+        files.request = (dir / inside / "request0001.yaml").string();
+        files.packagePath = {folder.string()};
+        const RobotProblem problem = readMoveItProblem(files);
+        fs::remove_all(dir);
+        std::size_t cylinders = 0;
+        for (const BodyConstPtr &o : problem.obstacles)
+            for (const Primitive &p : o->primitives())
+                cylinders += p.kind == Primitive::Kind::CYLINDER ? 1 : 0;
+        EXPECT_GT(cylinders, 0u);
+        const auto scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles, problem.allowedObstacles);
+        // FCL's distance between the UR5's meshes costs a large part of a second a state: a few states.
+        const std::vector<std::vector<double>> states = armStates(problem, 12, 14);
+        Tally tally;
+        expectPairByPair(scene, states, tally);
+        EXPECT_GE(tally.colliding, 2u);
+        EXPECT_GE(tally.free, 2u);  // the start and the goal, at least
+        expectBracketsMeshgap(scene, states, files.segments);
+    }
+}  // namespace meshgap
+#endif
