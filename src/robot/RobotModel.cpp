@@ -153,7 +153,7 @@ namespace meshgap
         frames_.push_back({name, parent});
         joints_.emplace_back();
         joints_.back().name = name;
-        plainRoot_.push_back(false);
+        steps_.push_back(Step::FIXED);
         return frames_.size() - 1;
     }
 
@@ -182,8 +182,16 @@ namespace meshgap
             joint.joint.reset();  // fixed
         if (!joint.joint)
             joint.variable = joint.mimics = NONE;
-        plainRoot_.at(frame) = frames_[frame].parent == NONE && joint.joint &&
-                               joint.origin.matrix() == Eigen::Matrix4d::Identity();
+        Step step = Step::FIXED;
+        if (joint.joint && frames_.at(frame).parent == NONE && joint.origin.matrix() == Eigen::Matrix4d::Identity())
+            step = Step::ROOT;
+        else if (joint.joint && joint.joint->size() == 1 && joint.joint->motion() == JointMotion::ROTATION)
+            step = Step::ROTATE;
+        else if (joint.joint && joint.joint->size() == 1 && joint.joint->motion() == JointMotion::TRANSLATION)
+            step = Step::SLIDE;
+        else if (joint.joint)
+            step = Step::MOVE;
+        steps_.at(frame) = step;
         joints_.at(frame) = std::move(joint);
     }
 
@@ -235,24 +243,42 @@ namespace meshgap
         for (std::size_t f = 0; f < frames_.size(); ++f)
         {
             const FrameJoint &j = joints_[f];
-            const std::size_t parent = frames_[f].parent;
+            const Step step = steps_[f];
             double mimicked = 0.0;
             const double *q = nullptr;
-            if (j.joint && j.mimics == NONE)
-                q = state + j.variable;
-            else if (j.joint)
+            if (step != Step::FIXED)
             {
-                mimicked = j.multiplier * state[j.variable] + j.offset;
-                q = &mimicked;
+                if (j.mimics == NONE)
+                    q = state + j.variable;
+                else
+                {
+                    mimicked = j.multiplier * state[j.variable] + j.offset;
+                    q = &mimicked;
+                }
             }
-            if (plainRoot_[f])  // a rigid body: its pose is its joint's motion
+            if (step == Step::ROOT)  // a rigid body: its pose is its joint's motion
             {
                 frames[f] = j.joint->pose(q);
                 continue;
             }
+            const std::size_t parent = frames_[f].parent;
             Eigen::Isometry3d &X = frames[f];
-            X = parent == NONE ? j.origin : frames[parent] * j.origin;
-            if (q)
+            if (parent == NONE)
+                X = j.origin;
+            else  // frames[parent] * j.origin, spelt out: inline, which Eigen's product is not here
+            {
+                const Eigen::Isometry3d &P = frames[parent];
+                X.linear().noalias() = P.linear() * j.origin.linear();
+                X.translation().noalias() = P.linear() * j.origin.translation();
+                X.translation() += P.translation();
+                X.makeAffine();
+            }
+            // A turn about, or a slide along, the axis inline (an arm's every joint); other types through move().
+            if (step == Step::ROTATE)
+                X.rotate(Eigen::AngleAxisd(*q, j.joint->axis()));
+            else if (step == Step::SLIDE)
+                X.translate(*q * j.joint->axis());
+            else if (step == Step::MOVE)
                 j.joint->move(q, X);
         }
     }

@@ -29,6 +29,8 @@ namespace meshgap
         FIXED,        ///< not at all
         ROTATION,     ///< about an axis through the child frame's origin, by the value's change
         TRANSLATION,  ///< along a unit axis, by the value's change
+        // A joint of one value that is a ROTATION turns by its value about axis(), a TRANSLATION moves by it along
+        // axis(): RobotModel applies these two inline, without move().
         SE2,          ///< free in a plane: "x y theta", x and y linear, theta along the shorter arc
         SE3           ///< free: "x y z qx qy qz qw", the position linear, the rotation along the shorter great arc
     };

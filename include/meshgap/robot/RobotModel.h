@@ -217,8 +217,18 @@ namespace meshgap
         std::size_t dimension_{0};
         std::vector<RobotFrame> frames_;
         std::vector<FrameJoint> joints_;
-        /** \brief Per frame: a root moved by its joint from the identity (its pose is Joint::pose()). */
-        std::vector<bool> plainRoot_;
+        /** \brief How computeFrames() moves a frame after its origin: not at all, by Joint::pose() alone (a root
+            whose origin is the identity), a turn about or a slide along the joint's axis by its one value (inline),
+            or by Joint::move(). */
+        enum class Step : unsigned char
+        {
+            FIXED,
+            ROOT,
+            ROTATE,
+            SLIDE,
+            MOVE
+        };
+        std::vector<Step> steps_;
         /** \brief Per state number: its name, limits, and the limits checkState() takes (with their slack). */
         struct Number
         {
