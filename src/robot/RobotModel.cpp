@@ -265,13 +265,12 @@ namespace meshgap
             Eigen::Isometry3d &X = frames[f];
             if (parent == NONE)
                 X = j.origin;
-            else  // frames[parent] * j.origin, spelt out: inline, which Eigen's product is not here
-            {
+            else  // frames[parent] * j.origin, spelt out: inline, which Eigen's product is not here (the last row
+            {     // of an Isometry3d is always 0 0 0 1)
                 const Eigen::Isometry3d &P = frames[parent];
                 X.linear().noalias() = P.linear() * j.origin.linear();
                 X.translation().noalias() = P.linear() * j.origin.translation();
                 X.translation() += P.translation();
-                X.makeAffine();
             }
             // A turn about, or a slide along, the axis inline (an arm's every joint); other types through move().
             if (step == Step::ROTATE)
