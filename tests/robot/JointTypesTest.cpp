@@ -9,6 +9,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include <map>
 #include <random>
 
 #include "TestMeshes.h"
