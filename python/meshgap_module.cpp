@@ -1030,8 +1030,8 @@ namespace
             m, "RobotScene",
             "A robot of many bodies (a URDF arm, links checked against the obstacles and against each other) among "
             "obstacles. RobotScene.from_urdf(urdf, world=..., ...) builds one; a state is a row of numbers: a "
-            "floating base's pose (x y z qx qy qz qw) if any, then the URDF's movable joints in its order "
-            "(state_names).")
+            "floating base's pose (x y z qx qy qz qw) if any, then the URDF's movable joints' values in its order "
+            "(a planar joint's x y theta, a floating joint's x y z qx qy qz qw; state_names).")
             .def_static("from_cfg", &robotSceneFromCfg, py::arg("path"),
                         "A robot problem file (robot.urdf = FILE with robot.srdf, robot.package_path, world, attach, "
                         "start.joints and goal.joints; or several bodies robot.1 = FILE, ...): its robot among its "
