@@ -219,17 +219,22 @@ namespace meshgap
         for (std::size_t i = 0; i < dimension; ++i)
             if (!covered[i])
                 throw Exception(where_, "state number " + std::to_string(i) + " moves no joint");
+        limited_.clear();
+        for (std::size_t i = 0; i < dimension; ++i)
+            if (std::isfinite(numbers[i].low) || std::isfinite(numbers[i].high))
+                limited_.push_back({i, numbers[i].low, numbers[i].high});
         numbers_ = std::move(numbers);
         dimension_ = dimension;
     }
 
     void RobotModel::checkStateLimits(const double *state, const std::string &where) const
     {
-        for (std::size_t i = 0; i < numbers_.size(); ++i)
+        for (const Limit &l : limited_)
         {
-            const Number &n = numbers_[i];
-            if (state[i] < n.low || state[i] > n.high)
+            const std::size_t i = l.number;
+            if (state[i] < l.low || state[i] > l.high)
             {
+                const Number &n = numbers_[i];
                 std::ostringstream text;
                 text << "joint '" << n.name << "' = " << state[i] << " is outside its limits [" << n.lower << ", "
                      << n.upper << "]";

@@ -236,6 +236,13 @@ namespace meshgap
             double lower, upper, low, high;
         };
         std::vector<Number> numbers_;
+        /** \brief The numbers with a finite limit, and the limits checkState() takes: all it looks at. */
+        struct Limit
+        {
+            std::size_t number;
+            double low, high;
+        };
+        std::vector<Limit> limited_;
         std::vector<RobotLink> links_;
         /** \brief Allowed link pairs, a triangular bit matrix grown with the links. */
         std::vector<std::vector<bool>> allowed_;
