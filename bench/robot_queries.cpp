@@ -64,11 +64,11 @@ namespace
         auto random = [&]
         {
             std::vector<double> q;
-            for (std::size_t k : robot.variables())
+            for (std::size_t i = 0; i < robot.dimension(); ++i)
             {
-                const UrdfJoint &j = robot.joints()[k];
-                q.push_back(std::uniform_real_distribution<double>(std::isfinite(j.lower) ? j.lower : -M_PI,
-                                                                   std::isfinite(j.upper) ? j.upper : M_PI)(rng));
+                const double lo = robot.stateLower(i), hi = robot.stateUpper(i);
+                q.push_back(std::uniform_real_distribution<double>(std::isfinite(lo) ? lo : -M_PI,
+                                                                   std::isfinite(hi) ? hi : M_PI)(rng));
             }
             return q;
         };

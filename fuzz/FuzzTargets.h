@@ -760,7 +760,7 @@ namespace meshgap
             for (std::size_t k = 0; k < robot.variables().size(); ++k)
             {
                 const UrdfJoint &j = robot.joints()[robot.variables()[k]];
-                q[robot.jointOffset() + k] = std::min(std::max(0.0, j.lower), j.upper);
+                q[robot.jointOffset() + k] = j.joint->neutral(robot.jointOffset() + k - j.variable);
             }
             return q;
         }
@@ -782,8 +782,11 @@ namespace meshgap
                 check(j.child == k + 1 && j.parent == robot.frames()[j.child].parent, at + ": frames out of order");
                 check(isPose(j.origin), at + ": its origin is not a finite rigid pose");
                 check(j.axis.allFinite() && std::abs(j.axis.norm() - 1.0) < 1e-12, at + ": axis not of unit length");
-                check(!(j.lower > j.upper) && !std::isnan(j.lower) && !std::isnan(j.upper), at + ": limits");
-                const bool fixed = j.type == JointType::FIXED;
+                for (std::size_t v = 0; v < j.joint->size(); ++v)
+                    check(!(j.joint->lower(v) > j.joint->upper(v)) && !std::isnan(j.joint->lower(v)) &&
+                              !std::isnan(j.joint->upper(v)),
+                          at + ": limits");
+                const bool fixed = j.joint->size() == 0;
                 if (fixed || j.mimics != RobotModel::NONE)
                 {
                     check(j.variable == RobotModel::NONE, at + ": a fixed or mimic joint has a variable");
@@ -797,7 +800,9 @@ namespace meshgap
             check(robot.jointOffset() + robot.variables().size() == robot.dimension(), what + ": dimension");
             for (std::size_t i = 0; i < robot.variables().size(); ++i)
                 check(robot.variables()[i] < joints.size() &&
-                          joints[robot.variables()[i]].variable == robot.jointOffset() + i,
+                          joints[robot.variables()[i]].variable <= robot.jointOffset() + i &&
+                          robot.jointOffset() + i < joints[robot.variables()[i]].variable +
+                                                        joints[robot.variables()[i]].joint->size(),
                       what + ": variables() and the joints' variable disagree");
             checkPosesAt(robot, referenceState(robot), what);
         }
@@ -931,11 +936,8 @@ namespace meshgap
                 for (std::size_t i = 0; i < q->size(); ++i)
                 {
                     check(std::isfinite((*q)[i]), what + ": a non-finite state number");
-                    if (urdfRobot && i >= urdfRobot->jointOffset())
-                    {
-                        const UrdfJoint &j = urdfRobot->joints()[urdfRobot->variables()[i - urdfRobot->jointOffset()]];
-                        check(j.lower <= (*q)[i] && (*q)[i] <= j.upper, what + ": a state outside a joint's limits");
-                    }
+                    check(p.robot->stateLower(i) <= (*q)[i] && (*q)[i] <= p.robot->stateUpper(i),
+                          what + ": a state outside a joint's limits");
                 }
                 checkPosesAt(*p.robot, *q, what);
             }

@@ -735,30 +735,13 @@ namespace
         std::optional<std::vector<double>> start, goal;
     };
 
-    /** \brief The names of a UrdfRobot's state numbers: a floating base's pose, then the movable joints. */
-    std::vector<std::string> urdfStateNames(const UrdfRobot &robot)
+    /** \brief The names of a robot's state numbers (RobotModel::stateName()): "shoulder", a planar joint's
+        "base.x", a floating base's "base.qw", a rigid body's "robot.theta". */
+    std::vector<std::string> stateNamesOf(const RobotModel &robot)
     {
         std::vector<std::string> names;
-        if (robot.floatingBase())
-            for (const char *c : {"x", "y", "z", "qx", "qy", "qz", "qw"})
-                names.push_back(std::string("base.") + c);
-        for (std::size_t j : robot.variables())
-            names.push_back(robot.joints()[j].name);
-        return names;
-    }
-
-    /** \brief The names of the state numbers of a robot of rigid bodies: per body (its frame's name), x y theta
-        (SE(2)) or x y z qx qy qz qw (SE(3)), told apart by the count per body. */
-    std::vector<std::string> genericStateNames(const RobotModel &robot)
-    {
-        std::vector<std::string> names;
-        const std::size_t bodies = robot.frames().size();
-        const bool planar = bodies * 3 == robot.dimension();
-        for (const RobotFrame &f : robot.frames())
-            for (const char *c : planar ? std::vector<const char *>{"x", "y", "theta"} :
-                                          std::vector<const char *>{"x", "y", "z", "qx", "qy", "qz", "qw"})
-                names.push_back(f.name + "." + c);
-        names.resize(robot.dimension(), "?");
+        for (std::size_t i = 0; i < robot.dimension(); ++i)
+            names.push_back(robot.stateName(i));
         return names;
     }
 
@@ -878,7 +861,7 @@ namespace
         }
         attachArg(*robot, attach);
         PyRobotScene s;
-        s.stateNames = urdfStateNames(*robot);
+        s.stateNames = stateNamesOf(*robot);
         s.name = robot->name();
         s.model = robot;
         std::vector<BodyConstPtr> obstacles = worldArg(world);
@@ -901,10 +884,7 @@ namespace
             s.start = problem.start;
             s.goal = problem.goal;
         }
-        if (const auto *urdf = dynamic_cast<const UrdfRobot *>(s.model.get()))
-            s.stateNames = urdfStateNames(*urdf);
-        else
-            s.stateNames = genericStateNames(*s.model);
+        s.stateNames = stateNamesOf(*s.model);
         return s;
     }
 
@@ -1084,29 +1064,23 @@ namespace
         return indexArg(h, links.size(), "link");
     }
 
-    /** \brief Every state number's bounds, (dof, 2): a URDF joint's limits (-inf, inf for a continuous joint), -1, 1
-        for a quaternion's numbers (a floating base's, a rigid body's), -inf, inf for positions and angles. */
+    /** \brief Every state number's bounds, (dof, 2): its limits (a URDF joint's; -inf, inf for a continuous joint,
+        positions and angles), -1, 1 for a quaternion's numbers (a floating base's or joint's, a rigid body's). */
     py::array_t<double> robotBounds(const PyRobotScene &self)
     {
-        const std::size_t dof = self.scene->robot().dimension();
+        const RobotModel &robot = self.scene->robot();
+        const std::size_t dof = robot.dimension();
         py::array_t<double> out({py::ssize_t(dof), py::ssize_t(2)});
-        const double inf = std::numeric_limits<double>::infinity();
+        std::vector<bool> quaternion(dof, false);
+        for (const StateBlock &block : robot.stateBlocks())
+            if (block.space == JointSpace::SE3)
+                for (std::size_t k = 3; k < 7; ++k)
+                    quaternion[block.first + k] = true;
         for (std::size_t k = 0; k < dof; ++k)
         {
-            const std::string &name = self.stateNames[k];
-            const std::size_t dot = name.rfind('.');
-            const std::string last = dot == std::string::npos ? name : name.substr(dot + 1);
-            const bool quaternion = last == "qx" || last == "qy" || last == "qz" || last == "qw";
-            out.mutable_at(py::ssize_t(k), 0) = quaternion ? -1.0 : -inf;
-            out.mutable_at(py::ssize_t(k), 1) = quaternion ? 1.0 : inf;
+            out.mutable_at(py::ssize_t(k), 0) = quaternion[k] ? -1.0 : robot.stateLower(k);
+            out.mutable_at(py::ssize_t(k), 1) = quaternion[k] ? 1.0 : robot.stateUpper(k);
         }
-        if (const auto *urdf = dynamic_cast<const UrdfRobot *>(&self.scene->robot()))
-            for (std::size_t v = 0; v < urdf->variables().size(); ++v)
-            {
-                const UrdfJoint &j = urdf->joints()[urdf->variables()[v]];
-                out.mutable_at(py::ssize_t(urdf->jointOffset() + v), 0) = j.lower;
-                out.mutable_at(py::ssize_t(urdf->jointOffset() + v), 1) = j.upper;
-            }
         return out;
     }
 
@@ -1123,8 +1097,8 @@ namespace
             m, "RobotScene",
             "A robot of many bodies (a URDF arm, links checked against the obstacles and against each other) among "
             "obstacles. RobotScene.from_urdf(urdf, world=..., ...) builds one; a state is a row of numbers: a "
-            "floating base's pose (x y z qx qy qz qw) if any, then the URDF's movable joints in its order "
-            "(state_names).")
+            "floating base's pose (x y z qx qy qz qw) if any, then the URDF's movable joints' values in its order "
+            "(a planar joint's x y theta, a floating joint's x y z qx qy qz qw; state_names).")
             .def_static("from_cfg", &robotSceneFromCfg, py::arg("path"),
                         "A robot problem file (robot.urdf = FILE with robot.srdf, robot.package_path, world, attach, "
                         "start.joints and goal.joints; or several bodies robot.1 = FILE, ...): its robot among its "

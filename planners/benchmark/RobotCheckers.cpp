@@ -64,7 +64,6 @@ namespace meshgap
                 needs none (a unit box stands in). */
             ompl::base::RealVectorBounds boundsOf(const RobotProblem &problem)
             {
-                const auto *urdf = dynamic_cast<const UrdfRobot *>(problem.robot.get());
                 ompl::base::RealVectorBounds bounds(3);
                 bounds.setLow(-1.0);
                 bounds.setHigh(1.0);
@@ -74,7 +73,7 @@ namespace meshgap
                         bounds.setLow(k, problem.volume->min()[k]);
                         bounds.setHigh(k, problem.volume->max()[k]);
                     }
-                else if (!urdf || urdf->floatingBase())
+                else if (problem.robot->movesFree())
                     throw Exception(problem.file, "no volume (volume.min.* and volume.max.*): a robot moving free "
                                                   "needs bounds");
                 return bounds;

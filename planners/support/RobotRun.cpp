@@ -69,8 +69,7 @@ namespace meshgap
                 ob::RealVectorBounds b(3);
                 b.setLow(-1.0);
                 b.setHigh(1.0);
-                const auto *urdf = dynamic_cast<const UrdfRobot *>(p.robot.get());
-                if (!p.volume && !(urdf && !urdf->floatingBase()))
+                if (!p.volume && p.robot->movesFree())
                     throw Exception(p.file, "needs volume.min.x .. volume.max.z (the bounds of its bodies' positions)");
                 if (p.volume)
                     for (int k = 0; k < 3; ++k)

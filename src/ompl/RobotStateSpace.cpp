@@ -8,8 +8,6 @@
 #include <typeinfo>
 
 #include "meshgap/Exception.h"
-#include "meshgap/robot/MultiBodyRobot.h"
-#include "meshgap/robot/UrdfRobot.h"
 
 namespace ob = ompl::base;
 
@@ -17,60 +15,51 @@ namespace meshgap
 {
     namespace
     {
-        ob::StateSpacePtr rigidSpace(RigidSpace kind, const ob::RealVectorBounds &bounds)
+        /** \brief The OMPL space of one block of the robot's state; SE(2) and SE(3) positions within \e bounds. */
+        ob::StateSpacePtr blockSpace(const StateBlock &block, const ob::RealVectorBounds &bounds)
         {
-            if (kind == RigidSpace::SE3)
+            switch (block.space)
             {
-                if (bounds.low.size() != 3)
-                    throw Exception("robot state space", "an SE(3) body needs 3-dimensional position bounds");
-                auto space = std::make_shared<ob::SE3StateSpace>();
-                space->setBounds(bounds);
-                return space;
-            }
-            if (bounds.low.size() < 2)
-                throw Exception("robot state space", "an SE(2) body needs position bounds in x and y");
-            ob::RealVectorBounds planar(2);
-            for (int k = 0; k < 2; ++k)
-            {
-                planar.low[k] = bounds.low[k];
-                planar.high[k] = bounds.high[k];
-            }
-            auto space = std::make_shared<ob::SE2StateSpace>();
-            space->setBounds(planar);
-            return space;
-        }
-
-        void addJointSpaces(const UrdfRobot &robot, ob::CompoundStateSpace &space)
-        {
-            std::vector<const UrdfJoint *> run;  // consecutive bounded joints, one real-vector space
-            auto flush = [&]
-            {
-                if (run.empty())
-                    return;
-                auto vector = std::make_shared<ob::RealVectorStateSpace>(static_cast<unsigned int>(run.size()));
-                ob::RealVectorBounds limits(static_cast<unsigned int>(run.size()));
-                for (std::size_t k = 0; k < run.size(); ++k)
+                case JointSpace::SE3:
                 {
-                    limits.low[k] = run[k]->lower;
-                    limits.high[k] = run[k]->upper;
-                    vector->setDimensionName(static_cast<unsigned int>(k), run[k]->name);
+                    if (bounds.low.size() != 3)
+                        throw Exception("robot state space", "'" + block.names[0] + "' moves free in SE(3): it needs "
+                                                             "3-dimensional position bounds");
+                    auto space = std::make_shared<ob::SE3StateSpace>();
+                    space->setBounds(bounds);
+                    return space;
                 }
-                vector->setBounds(limits);
-                space.addSubspace(vector, 1.0);
-                run.clear();
-            };
-            for (std::size_t k : robot.variables())
-            {
-                const UrdfJoint &j = robot.joints()[k];
-                if (j.type == JointType::CONTINUOUS)
+                case JointSpace::SE2:
                 {
-                    flush();
-                    space.addSubspace(std::make_shared<ob::SO2StateSpace>(), 1.0);
+                    if (bounds.low.size() < 2)
+                        throw Exception("robot state space", "'" + block.names[0] + "' moves free in SE(2): it needs "
+                                                             "position bounds in x and y");
+                    ob::RealVectorBounds planar(2);
+                    for (int k = 0; k < 2; ++k)
+                    {
+                        planar.low[k] = bounds.low[k];
+                        planar.high[k] = bounds.high[k];
+                    }
+                    auto space = std::make_shared<ob::SE2StateSpace>();
+                    space->setBounds(planar);
+                    return space;
                 }
-                else
-                    run.push_back(&j);
+                case JointSpace::SO2:
+                    return std::make_shared<ob::SO2StateSpace>();
+                default:
+                    break;
             }
-            flush();
+            const auto count = static_cast<unsigned int>(block.names.size());
+            auto vector = std::make_shared<ob::RealVectorStateSpace>(count);
+            ob::RealVectorBounds limits(count);
+            for (unsigned int k = 0; k < count; ++k)
+            {
+                limits.low[k] = block.lower[k];
+                limits.high[k] = block.upper[k];
+                vector->setDimensionName(k, block.names[k]);
+            }
+            vector->setBounds(limits);
+            return vector;
         }
 
         enum class Kind
@@ -208,19 +197,8 @@ namespace meshgap
     ob::StateSpacePtr robotStateSpace(const RobotModel &robot, const ob::RealVectorBounds &bounds)
     {
         auto space = std::make_shared<ob::CompoundStateSpace>();
-        if (const auto *urdf = dynamic_cast<const UrdfRobot *>(&robot))
-        {
-            if (urdf->floatingBase())
-                space->addSubspace(rigidSpace(RigidSpace::SE3, bounds), 1.0);
-            addJointSpaces(*urdf, *space);
-        }
-        else if (const auto *rigid = dynamic_cast<const RigidBodyRobot *>(&robot))
-            space->addSubspace(rigidSpace(rigid->space(), bounds), 1.0);
-        else if (const auto *multi = dynamic_cast<const MultiBodyRobot *>(&robot))
-            for (std::size_t i = 0; i < multi->frames().size(); ++i)  // one per body (payloads have none)
-                space->addSubspace(rigidSpace(multi->space(i), bounds), 1.0);
-        else
-            throw Exception("robot state space", "a robot model of unknown kind");
+        for (const StateBlock &block : robot.stateBlocks())
+            space->addSubspace(blockSpace(block, bounds), 1.0);
         if (space->getSubspaceCount() == 0)
             throw Exception("robot state space", "the robot has no movable joint (a fixed robot): there is nothing "
                                                    "to plan; its clearance can still be asked");

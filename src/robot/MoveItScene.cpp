@@ -176,14 +176,15 @@ namespace meshgap
             return values;
         }
 
-        /** \brief The default state: every joint at 0, or the middle of its limits when 0 is outside them. */
+        /** \brief The default state: every joint at 0, or the middle of its limits when 0 is outside them (a
+            floating joint's rotation the identity). */
         std::vector<double> defaultState(const UrdfRobot &robot)
         {
             std::vector<double> q;
-            for (std::size_t v : robot.variables())
+            for (std::size_t k = 0; k < robot.variables().size(); ++k)
             {
-                const UrdfJoint &j = robot.joints()[v];
-                q.push_back(0.0 >= j.lower && 0.0 <= j.upper ? 0.0 : 0.5 * (j.lower + j.upper));
+                const UrdfJoint &j = robot.joints()[robot.variables()[k]];
+                q.push_back(j.joint->neutral(robot.jointOffset() + k - j.variable));
             }
             return q;
         }
@@ -193,23 +194,25 @@ namespace meshgap
         {
             for (const JointValue &v : values)
             {
-                std::size_t index = RobotModel::NONE;
-                for (std::size_t k = 0; k < robot.joints().size(); ++k)
-                    if (robot.joints()[k].name == v.name)
-                        index = k;
+                const std::size_t index = robot.findJoint(v.name);
                 if (index == RobotModel::NONE)
                     throw Exception(v.where, "robot '" + robot.name() + "' has no joint '" + v.name + "'");
                 const UrdfJoint &j = robot.joints()[index];
-                if (j.type == JointType::FIXED && v.value != 0.0)
+                if (j.joint->size() == 0 && v.value != 0.0)
                     throw Exception(v.where, "joint '" + v.name + "' is fixed in the URDF, but is given " +
                                                  std::to_string(v.value));
+                if (j.joint->size() > 1)
+                    throw Exception(v.where, "joint '" + v.name + "' is a " + j.joint->type() + " joint of " +
+                                                 std::to_string(j.joint->size()) +
+                                                 " values, which a joint state's one position cannot set");
                 if (j.variable == RobotModel::NONE)
                     continue;  // fixed (at 0), or a mimic joint: follows its joint
-                if (v.value < j.lower || v.value > j.upper)
+                const double lower = j.joint->lower(0), upper = j.joint->upper(0);
+                if (v.value < lower || v.value > upper)
                 {
                     std::ostringstream text;
-                    text << "joint '" << v.name << "' = " << v.value << " is outside its limits [" << j.lower << ", "
-                         << j.upper << "]";
+                    text << "joint '" << v.name << "' = " << v.value << " is outside its limits [" << lower << ", "
+                         << upper << "]";
                     throw Exception(v.where, text.str());
                 }
                 q[j.variable - robot.jointOffset()] = v.value;

@@ -14,22 +14,17 @@ namespace meshgap
         {
             if (findFrame(part.name) != NONE)
                 throw Exception(where_, "two bodies named '" + part.name + "'");
-            addLink(part.name, part.body, addFrame(part.name, NONE), Eigen::Isometry3d::Identity(), false);
+            const std::size_t frame = addFrame(part.name, NONE);
+            addLink(part.name, part.body, frame, Eigen::Isometry3d::Identity(), false);
+            FrameJoint joint;
+            joint.name = part.name;
+            joint.joint = rigidJoint(part.space);
+            joint.variable = dimension;
+            setFrameJoint(frame, joint);
             spaces_.push_back(part.space);
             offsets_.push_back(dimension);
             dimension += rigidSpaceDimension(part.space);
         }
         setDimension(dimension);
-    }
-
-    void MultiBodyRobot::computeFrames(const double *state, Eigen::Isometry3d *frames) const
-    {
-        for (std::size_t i = 0; i < spaces_.size(); ++i)
-            frames[i] = rigidPose(spaces_[i], state + offsets_[i]);
-    }
-
-    FrameMotion MultiBodyRobot::frameMotion(std::size_t frame) const
-    {
-        return rigidMotion(spaces_[frame], offsets_[frame]);
     }
 }  // namespace meshgap

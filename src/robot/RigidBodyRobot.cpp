@@ -15,29 +15,22 @@ namespace meshgap
         return space == RigidSpace::SE2 ? poseFromSE2(state) : poseFromSE3(state);
     }
 
-    FrameMotion rigidMotion(RigidSpace space, std::size_t variable)
+    JointConstPtr rigidJoint(RigidSpace space)
     {
-        FrameMotion m;
-        m.kind = space == RigidSpace::SE2 ? FrameMotion::Kind::SE2 : FrameMotion::Kind::SE3;
-        m.variable = variable;
-        m.reach = std::numeric_limits<double>::infinity();
-        return m;
+        JointSpec spec;
+        spec.axis = Eigen::Vector3d::UnitZ();
+        return makeJoint(space == RigidSpace::SE2 ? "planar" : "floating", spec);
     }
 
     RigidBodyRobot::RigidBodyRobot(BodyConstPtr body, RigidSpace space, const std::string &name) : space_(space)
     {
         where_ = "robot '" + name + "'";
         addLink(name, std::move(body), addFrame(name, NONE), Eigen::Isometry3d::Identity(), false);
+        FrameJoint joint;
+        joint.name = name;
+        joint.joint = rigidJoint(space);
+        joint.variable = 0;
+        setFrameJoint(0, joint);
         setDimension(rigidSpaceDimension(space));
-    }
-
-    void RigidBodyRobot::computeFrames(const double *state, Eigen::Isometry3d *frames) const
-    {
-        frames[0] = rigidPose(space_, state);
-    }
-
-    FrameMotion RigidBodyRobot::frameMotion(std::size_t /*frame*/) const
-    {
-        return rigidMotion(space_, 0);
     }
 }  // namespace meshgap

@@ -1,5 +1,6 @@
 #include "meshgap/robot/RobotModel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -150,6 +151,9 @@ namespace meshgap
         if (parent != NONE && parent >= frames_.size())
             throw Exception(where_, "frame '" + name + "': its parent is not defined before it");
         frames_.push_back({name, parent});
+        joints_.emplace_back();
+        joints_.back().name = name;
+        steps_.push_back(Step::FIXED);
         return frames_.size() - 1;
     }
 
@@ -170,6 +174,192 @@ namespace meshgap
             if (links_[i].frame == frame)
                 allowed_[index][i] = true;
         return index;
+    }
+
+    void RobotModel::setFrameJoint(std::size_t frame, FrameJoint joint)
+    {
+        if (joint.joint && joint.joint->size() == 0)
+            joint.joint.reset();  // fixed
+        if (!joint.joint)
+            joint.variable = joint.mimics = NONE;
+        Step step = Step::FIXED;
+        if (joint.joint && frames_.at(frame).parent == NONE && joint.origin.matrix() == Eigen::Matrix4d::Identity())
+            step = Step::ROOT;
+        else if (joint.joint && joint.joint->size() == 1 && joint.joint->motion() == JointMotion::ROTATION)
+            step = Step::ROTATE;
+        else if (joint.joint && joint.joint->size() == 1 && joint.joint->motion() == JointMotion::TRANSLATION)
+            step = Step::SLIDE;
+        else if (joint.joint)
+            step = Step::MOVE;
+        steps_.at(frame) = step;
+        joints_.at(frame) = std::move(joint);
+    }
+
+    void RobotModel::setDimension(std::size_t dimension)
+    {
+        std::vector<Number> numbers(dimension, Number{"", 0.0, 0.0, 0.0, 0.0});
+        std::vector<bool> covered(dimension, false);
+        for (const FrameJoint &j : joints_)
+        {
+            if (!j.joint || j.mimics != NONE)
+                continue;
+            for (std::size_t k = 0; k < j.joint->size(); ++k)
+            {
+                const std::size_t i = j.variable + k;
+                if (j.variable == NONE || i >= dimension || covered[i])
+                    throw Exception(where_, "joint '" + j.name + "' has no place of its own in a state of " +
+                                                std::to_string(dimension) + " numbers");
+                covered[i] = true;
+                const std::string value = j.joint->valueName(k);
+                const double lo = j.joint->lower(k), hi = j.joint->upper(k);
+                const double slack = 1e-9 * std::max({1.0, std::abs(lo), std::abs(hi)});
+                numbers[i] = {value.empty() ? j.name : j.name + "." + value, lo, hi, lo - slack, hi + slack};
+            }
+        }
+        for (std::size_t i = 0; i < dimension; ++i)
+            if (!covered[i])
+                throw Exception(where_, "state number " + std::to_string(i) + " moves no joint");
+        limited_.clear();
+        for (std::size_t i = 0; i < dimension; ++i)
+            if (std::isfinite(numbers[i].low) || std::isfinite(numbers[i].high))
+                limited_.push_back({i, numbers[i].low, numbers[i].high});
+        numbers_ = std::move(numbers);
+        dimension_ = dimension;
+    }
+
+    void RobotModel::checkStateLimits(const double *state, const std::string &where) const
+    {
+        for (const Limit &l : limited_)
+        {
+            const std::size_t i = l.number;
+            if (state[i] < l.low || state[i] > l.high)
+            {
+                const Number &n = numbers_[i];
+                std::ostringstream text;
+                text << "joint '" << n.name << "' = " << state[i] << " is outside its limits [" << n.lower << ", "
+                     << n.upper << "]";
+                throw Exception(where, text.str());
+            }
+        }
+    }
+
+    void RobotModel::computeFrames(const double *state, Eigen::Isometry3d *frames) const
+    {
+        for (std::size_t f = 0; f < frames_.size(); ++f)
+        {
+            const FrameJoint &j = joints_[f];
+            const Step step = steps_[f];
+            double mimicked = 0.0;
+            const double *q = nullptr;
+            if (step != Step::FIXED)
+            {
+                if (j.mimics == NONE)
+                    q = state + j.variable;
+                else
+                {
+                    mimicked = j.multiplier * state[j.variable] + j.offset;
+                    q = &mimicked;
+                }
+            }
+            if (step == Step::ROOT)  // a rigid body: its pose is its joint's motion
+            {
+                frames[f] = j.joint->pose(q);
+                continue;
+            }
+            const std::size_t parent = frames_[f].parent;
+            Eigen::Isometry3d &X = frames[f];
+            if (parent == NONE)
+                X = j.origin;
+            else  // frames[parent] * j.origin, spelt out: inline, which Eigen's product is not here (the last row
+            {     // of an Isometry3d is always 0 0 0 1)
+                const Eigen::Isometry3d &P = frames[parent];
+                X.linear().noalias() = P.linear() * j.origin.linear();
+                X.translation().noalias() = P.linear() * j.origin.translation();
+                X.translation() += P.translation();
+            }
+            // A turn about, or a slide along, the axis inline (an arm's every joint); other types through move().
+            if (step == Step::ROTATE)
+                X.rotate(Eigen::AngleAxisd(*q, j.joint->axis()));
+            else if (step == Step::SLIDE)
+                X.translate(*q * j.joint->axis());
+            else if (step == Step::MOVE)
+                j.joint->move(q, X);
+        }
+    }
+
+    FrameMotion RobotModel::frameMotion(std::size_t frame) const
+    {
+        const FrameJoint &j = joints_.at(frame);
+        FrameMotion m;
+        m.reach = j.origin.translation().norm();
+        if (!j.joint)
+            return m;
+        const Joint &source = j.mimics != NONE ? *joints_[j.mimics].joint : *j.joint;
+        m.kind = j.joint->motion();
+        m.variable = j.variable;
+        m.scale = std::abs(j.multiplier);
+        m.angle = source.space() == JointSpace::SO2;
+        // The values it takes: its source's limits mapped by the mimic's multiplier and offset.
+        double lo = source.lower(0), hi = source.upper(0);
+        if (j.mimics != NONE)
+        {
+            lo = j.multiplier == 0.0 ? j.offset : j.multiplier * lo + j.offset;
+            hi = j.multiplier == 0.0 ? j.offset : j.multiplier * hi + j.offset;
+        }
+        m.reach += j.joint->reach(std::min(lo, hi), std::max(lo, hi));
+        return m;
+    }
+
+    std::vector<StateBlock> RobotModel::stateBlocks() const
+    {
+        // The joint that owns each state number, in state order.
+        std::vector<const FrameJoint *> owner(dimension_, nullptr);
+        for (const FrameJoint &j : joints_)
+            if (j.joint && j.mimics == NONE)
+                owner[j.variable] = &j;
+        std::vector<StateBlock> blocks;
+        for (std::size_t i = 0; i < dimension_;)
+        {
+            const FrameJoint &j = *owner[i];
+            const JointSpace space = j.joint->space();
+            if (space != JointSpace::REAL || blocks.empty() || blocks.back().space != JointSpace::REAL)
+                blocks.push_back({space, i, {}, {}, {}});
+            for (std::size_t k = 0; k < j.joint->size(); ++k, ++i)
+            {
+                blocks.back().names.push_back(numbers_[i].name);
+                blocks.back().lower.push_back(numbers_[i].lower);
+                blocks.back().upper.push_back(numbers_[i].upper);
+            }
+        }
+        return blocks;
+    }
+
+    bool RobotModel::movesFree() const
+    {
+        for (const FrameJoint &j : joints_)
+            if (j.joint && (j.joint->space() == JointSpace::SE2 || j.joint->space() == JointSpace::SE3))
+                return true;
+        return false;
+    }
+
+    void RobotModel::pointJacobian(const double *state, const std::vector<Eigen::Isometry3d> &frames,
+                                   std::size_t frame, const Eigen::Vector3d &p, Eigen::Matrix3Xd &J) const
+    {
+        J.setZero(3, static_cast<Eigen::Index>(dimension_));
+        for (std::size_t f = frame; f != NONE; f = frames_[f].parent)
+        {
+            const FrameJoint &j = joints_[f];
+            if (!j.joint)
+                continue;
+            const auto column = static_cast<Eigen::Index>(j.variable);
+            if (j.mimics == NONE)
+                j.joint->addJacobian(state + j.variable, frames[f], p, 1.0, J, column);
+            else
+            {
+                const double q = j.multiplier * state[j.variable] + j.offset;
+                j.joint->addJacobian(&q, frames[f], p, j.multiplier, J, column);
+            }
+        }
     }
 
     Eigen::Isometry3d poseFromSE3(const double *state)

@@ -130,12 +130,12 @@ namespace meshgap
                    });
         }
 
-        /** \brief The names of the movable joints, in state order. */
+        /** \brief The names of the movable joints' values, in state order. */
         std::string jointNames(const UrdfRobot &robot)
         {
             std::string names;
-            for (std::size_t v : robot.variables())
-                names += (names.empty() ? "" : " ") + robot.joints()[v].name;
+            for (std::size_t i = robot.jointOffset(); i < robot.dimension(); ++i)
+                names += (names.empty() ? "" : " ") + robot.stateName(i);
             return names;
         }
 
@@ -154,15 +154,14 @@ namespace meshgap
             if (offset && std::abs(Eigen::Vector4d(q[3], q[4], q[5], q[6]).norm() - 1.0) > 1e-6)
                 throw Exception(keys.where(key), key + ": the floating base's quaternion (numbers 4 to 7) is not of "
                                                        "unit length");
-            for (std::size_t k = 0; k < joints; ++k)
+            for (std::size_t i = offset; i < q.size(); ++i)
             {
-                const UrdfJoint &joint = robot.joints()[robot.variables()[k]];
-                const double value = q[offset + k];
-                if (value < joint.lower || value > joint.upper)
+                const double value = q[i], lower = robot.stateLower(i), upper = robot.stateUpper(i);
+                if (value < lower || value > upper)
                 {
                     std::ostringstream text;
-                    text << key << ": joint '" << joint.name << "' (number " << offset + k + 1 << ") = " << value
-                         << " is outside its limits [" << joint.lower << ", " << joint.upper << "]";
+                    text << key << ": joint '" << robot.stateName(i) << "' (number " << i + 1 << ") = " << value
+                         << " is outside its limits [" << lower << ", " << upper << "]";
                     throw Exception(keys.where(key), text.str());
                 }
             }

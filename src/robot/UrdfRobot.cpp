@@ -212,12 +212,10 @@ namespace meshgap
                            attribute(e->FirstChildElement("parent"), "link", "a parent link"),
                            attribute(e->FirstChildElement("child"), "link", "a child link"), e->GetLineNum()};
                 checkJointNumbers(e, path, j.name, j.type);
-                if (j.type == "floating" || j.type == "planar")
-                    throw Exception(where, "joint '" + j.name + "' is of type '" + j.type +
-                                               "', which is not supported (revolute, continuous, prismatic, fixed)");
-                if (j.type != "revolute" && j.type != "continuous" && j.type != "prismatic" && j.type != "fixed")
-                    throw Exception(where, "joint '" + j.name + "' has an unknown type '" + j.type +
-                                               "' (revolute, continuous, prismatic, fixed)");
+                const auto &types = jointTypes();
+                if (std::none_of(types.begin(), types.end(), [&](const JointType *t) { return j.type == t->name; }))
+                    throw Exception(where, "joint '" + j.name + "' has an unknown type '" + j.type + "' (" +
+                                               jointTypeNames() + ")");
                 joints.push_back(j);
             }
         }
@@ -429,6 +427,8 @@ namespace meshgap
         static void resolveMimics(UrdfRobot &robot, const urdf::ModelInterface &model, const std::string &path);
         static void addLinks(UrdfRobot &robot, const urdf::ModelInterface &model, const UrdfOptions &options,
                              const std::string &path);
+        /** \brief Each frame's FrameJoint (a floating base's on the root) and the state's size. */
+        static void setFrameJoints(UrdfRobot &robot);
     };
 
     void UrdfBuilder::addFrames(UrdfRobot &robot, const std::string &root, const std::vector<XmlJoint> &order)
@@ -451,16 +451,15 @@ namespace meshgap
     void UrdfBuilder::addJoints(UrdfRobot &robot, const urdf::ModelInterface &model,
                                 const std::vector<XmlJoint> &order, const std::string &path)
     {
+        std::map<std::string, std::string> typeOf;  // the type each joint element names
+        for (const XmlJoint &x : order)
+            typeOf[x.name] = x.type;
         // Frames 1.. are the joints' children in forward-kinematics order.
         for (std::size_t f = 1; f < robot.frames().size(); ++f)
         {
             const urdf::JointConstSharedPtr joint = model.getLink(robot.frames()[f].name)->parent_joint;
             UrdfJoint j;
             j.name = joint->name;
-            j.type = joint->type == urdf::Joint::REVOLUTE     ? JointType::REVOLUTE
-                     : joint->type == urdf::Joint::CONTINUOUS ? JointType::CONTINUOUS
-                     : joint->type == urdf::Joint::PRISMATIC  ? JointType::PRISMATIC
-                                                              : JointType::FIXED;
             j.parent = robot.frames()[f].parent;
             j.child = f;
             j.origin = toIsometry(joint->parent_to_joint_origin_transform);
@@ -468,19 +467,28 @@ namespace meshgap
                 throw Exception(path, "joint '" + j.name + "': its origin's rotation is not finite");
             for (int k = 0; k < 3; ++k)
                 checkJointNumber(path, j.name, "the origin's coordinate", j.origin.translation()[k]);
-            j.axis = Eigen::Vector3d(joint->axis.x, joint->axis.y, joint->axis.z);
-            if (j.type != JointType::FIXED && !(j.axis.cwiseAbs().maxCoeff() > 0.0 && j.axis.allFinite()))
-                throw Exception(path, "joint '" + j.name + "' has a zero or non-finite axis");
-            // Stable: the norm of "1 0 1e300" overflows and that of "1e-200 0 0" underflows, not their direction.
-            j.axis = j.type == JointType::FIXED ? Eigen::Vector3d::UnitX() : j.axis.stableNormalized();
-            const bool bounded = j.type == JointType::REVOLUTE || j.type == JointType::PRISMATIC;
-            j.lower = bounded && joint->limits ? joint->limits->lower : -std::numeric_limits<double>::infinity();
-            j.upper = bounded && joint->limits ? joint->limits->upper : std::numeric_limits<double>::infinity();
-            if (bounded && !(j.lower <= j.upper))
-                throw Exception(path, "joint '" + j.name + "': its lower limit is above its upper limit");
-            if (bounded)
-                for (const double limit : {j.lower, j.upper})
-                    checkJointNumber(path, j.name, "the limit", limit);
+            JointSpec spec;
+            spec.axis = Eigen::Vector3d(joint->axis.x, joint->axis.y, joint->axis.z);
+            spec.hasLimits = joint->limits != nullptr;
+            spec.lower = spec.hasLimits ? joint->limits->lower : 0.0;
+            spec.upper = spec.hasLimits ? joint->limits->upper : 0.0;
+            try
+            {
+                j.joint = makeJoint(typeOf.at(j.name), spec);
+            }
+            catch (const Exception &e)
+            {
+                throw Exception(path, "joint '" + j.name + "': " + e.what());
+            }
+            j.axis = j.joint->axis();
+            for (std::size_t k = 0; k < j.joint->size(); ++k)
+            {
+                if (!(j.joint->lower(k) <= j.joint->upper(k)))
+                    throw Exception(path, "joint '" + j.name + "': its lower limit is above its upper limit");
+                for (const double limit : {j.joint->lower(k), j.joint->upper(k)})
+                    if (!std::isinf(limit))
+                        checkJointNumber(path, j.name, "the limit", limit);
+            }
             j.variable = RobotModel::NONE;
             j.mimics = RobotModel::NONE;
             j.multiplier = 1.0;
@@ -488,45 +496,43 @@ namespace meshgap
             robot.joints_.push_back(j);
         }
         // State order: the file's order of the movable joints that mimic none.
+        std::size_t next = robot.jointOffset();
         for (const XmlJoint &x : order)
         {
-            const urdf::JointConstSharedPtr joint = model.getJoint(x.name);
-            if (joint->type == urdf::Joint::FIXED || joint->mimic)
+            const std::size_t k = robot.findJoint(x.name);
+            UrdfJoint &j = robot.joints_[k];
+            if (j.joint->size() == 0 || model.getJoint(x.name)->mimic)
                 continue;
-            for (std::size_t k = 0; k < robot.joints_.size(); ++k)
-                if (robot.joints_[k].name == x.name)
-                {
-                    robot.joints_[k].variable = robot.jointOffset() + robot.variables_.size();
-                    robot.variables_.push_back(k);
-                }
+            j.variable = next;
+            next += j.joint->size();
+            robot.variables_.insert(robot.variables_.end(), j.joint->size(), k);
         }
     }
 
     void UrdfBuilder::resolveMimics(UrdfRobot &robot, const urdf::ModelInterface &model, const std::string &path)
     {
-        auto indexOf = [&](const std::string &name)
-        {
-            for (std::size_t k = 0; k < robot.joints_.size(); ++k)
-                if (robot.joints_[k].name == name)
-                    return k;
-            return RobotModel::NONE;
-        };
         for (UrdfJoint &j : robot.joints_)
         {
             const urdf::JointConstSharedPtr joint = model.getJoint(j.name);
-            if (!joint->mimic || j.type == JointType::FIXED)
+            if (!joint->mimic || j.joint->size() == 0)
                 continue;
+            if (j.joint->size() != 1)
+                throw Exception(path, "joint '" + j.name + "', a " + j.joint->type() +
+                                          " joint, mimics another: only a joint of one value can");
             // Follow a chain of mimic joints to the movable joint at its end, composing the affine maps.
             double multiplier = 1.0, offset = 0.0;
             urdf::JointConstSharedPtr at = joint;
             for (std::size_t steps = 0; at->mimic; ++steps)
             {
-                const std::size_t k = indexOf(at->mimic->joint_name);
-                if (k == RobotModel::NONE || robot.joints_[k].type == JointType::FIXED || steps > robot.joints_.size())
+                const std::size_t k = robot.findJoint(at->mimic->joint_name);
+                const bool single = k != RobotModel::NONE && robot.joints_[k].joint->size() == 1;
+                if (!single || steps > robot.joints_.size())
                     throw Exception(path, "joint '" + j.name + "' mimics '" + at->mimic->joint_name +
                                               (k == RobotModel::NONE ? "', which is not defined"
-                                               : steps > robot.joints_.size() ? "', in a cycle of mimic joints"
-                                                                               : "', a fixed joint"));
+                                               : steps > robot.joints_.size()
+                                                   ? "', in a cycle of mimic joints"
+                                                   : "', a " + std::string(robot.joints_[k].joint->type()) +
+                                                         " joint (only a joint of one value is mimicked)"));
                 offset = multiplier * at->mimic->offset + offset;
                 multiplier *= at->mimic->multiplier;
                 at = model.getJoint(at->mimic->joint_name);
@@ -537,6 +543,31 @@ namespace meshgap
             j.multiplier = multiplier;
             j.offset = offset;
         }
+    }
+
+    void UrdfBuilder::setFrameJoints(UrdfRobot &robot)
+    {
+        if (robot.floatingBase_)
+        {
+            FrameJoint base;
+            base.name = "base";
+            base.joint = makeJoint("floating");
+            base.variable = 0;
+            robot.setFrameJoint(0, base);
+        }
+        for (const UrdfJoint &j : robot.joints_)
+        {
+            FrameJoint f;
+            f.name = j.name;
+            f.joint = j.joint;
+            f.origin = j.origin;
+            f.variable = j.mimics != RobotModel::NONE ? robot.joints_[j.mimics].variable : j.variable;
+            f.mimics = j.mimics != RobotModel::NONE ? robot.joints_[j.mimics].child : RobotModel::NONE;
+            f.multiplier = j.multiplier;
+            f.offset = j.offset;
+            robot.setFrameJoint(j.child, f);
+        }
+        robot.setDimension(robot.jointOffset() + robot.variables_.size());
     }
 
     void UrdfBuilder::addLinks(UrdfRobot &robot, const urdf::ModelInterface &model, const UrdfOptions &options,
@@ -598,80 +629,19 @@ namespace meshgap
         UrdfBuilder::addFrames(*robot, model->getRoot()->name, order);
         UrdfBuilder::addJoints(*robot, *model, order, path);
         UrdfBuilder::resolveMimics(*robot, *model, path);
+        UrdfBuilder::setFrameJoints(*robot);
         UrdfBuilder::addLinks(*robot, *model, options, path);
         if (robot->links().empty())
             throw Exception(path, "robot '" + robot->name_ + "' has no collision geometry: none of its links has a "
                                   "<collision> or <visual> element, so there is nothing to check");
-        robot->setDimension(robot->jointOffset() + robot->variables_.size());
         return robot;
     }
 
-    void UrdfRobot::checkStateLimits(const double *state, const std::string &where) const
+    std::size_t UrdfRobot::findJoint(const std::string &name) const
     {
-        for (std::size_t k = 0; k < variables_.size(); ++k)
-        {
-            const UrdfJoint &joint = joints_[variables_[k]];
-            const double value = state[joint.variable];
-            const double slack = 1e-9 * std::max({1.0, std::abs(joint.lower), std::abs(joint.upper)});
-            if (value < joint.lower - slack || value > joint.upper + slack)
-            {
-                std::ostringstream text;
-                text << "joint '" << joint.name << "' = " << value
-                     << " is outside its limits [" << joint.lower << ", " << joint.upper << "]";
-                throw Exception(where, text.str());
-            }
-        }
-    }
-
-    void UrdfRobot::computeFrames(const double *state, Eigen::Isometry3d *frames) const
-    {
-        frames[0] = floatingBase_ ? poseFromSE3(state) : Eigen::Isometry3d::Identity();
-        for (const UrdfJoint &j : joints_)
-        {
-            Eigen::Isometry3d X = frames[j.parent] * j.origin;
-            if (j.type != JointType::FIXED)
-            {
-                const double q = j.mimics != NONE ? j.multiplier * state[joints_[j.mimics].variable] + j.offset
-                                                  : state[j.variable];
-                if (j.type == JointType::PRISMATIC)
-                    X.translate(q * j.axis);
-                else
-                    X.rotate(Eigen::AngleAxisd(q, j.axis));
-            }
-            frames[j.child] = X;
-        }
-    }
-
-    FrameMotion UrdfRobot::frameMotion(std::size_t frame) const
-    {
-        FrameMotion m;
-        if (frame == 0)  // the root
-        {
-            if (floatingBase_)
-            {
-                m.kind = FrameMotion::Kind::SE3;
-                m.variable = 0;
-                m.reach = std::numeric_limits<double>::infinity();
-            }
-            return m;
-        }
-        const auto at = std::find_if(joints_.begin(), joints_.end(), [&](const UrdfJoint &j) { return j.child == frame; });
-        if (at == joints_.end())
-            throw Exception(where_, "frame " + std::to_string(frame) + " has no joint");
-        const UrdfJoint &j = *at;
-        m.reach = j.origin.translation().norm();
-        if (j.type == JointType::FIXED)
-            return m;
-        const UrdfJoint &source = j.mimics != NONE ? joints_[j.mimics] : j;
-        m.kind = j.type == JointType::PRISMATIC ? FrameMotion::Kind::TRANSLATION : FrameMotion::Kind::ROTATION;
-        m.variable = source.variable;
-        m.scale = std::abs(j.multiplier);
-        m.angle = source.type == JointType::CONTINUOUS;
-        if (j.type == JointType::PRISMATIC)
-        {
-            const double lo = j.multiplier * source.lower + j.offset, hi = j.multiplier * source.upper + j.offset;
-            m.reach += std::max(std::abs(lo), std::abs(hi));
-        }
-        return m;
+        for (std::size_t k = 0; k < joints_.size(); ++k)
+            if (joints_[k].name == name)
+                return k;
+        return NONE;
     }
 }  // namespace meshgap

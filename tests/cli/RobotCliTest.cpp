@@ -136,8 +136,7 @@ TEST_F(RobotCli, DistancePosesWritesCsvRowsThatAreTheLibrarysExactAnswers)
         for (std::size_t j = 0; j < q.size(); ++j)
         {
             q[j] += (k / 10.0) * ((*problem.goal)[j] - problem.start[j]);
-            const meshgap::UrdfJoint &joint = arm.joints()[arm.variables()[j]];
-            q[j] = std::clamp(q[j], joint.lower, joint.upper);  // past start or goal, within the joint's limits
+            q[j] = std::clamp(q[j], arm.stateLower(j), arm.stateUpper(j));  // past start or goal, within the limits
         }
         states.push_back(q);
         for (std::size_t j = 0; j < q.size(); ++j)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import meshgap
-from conftest import box, merged, write_obj
+from conftest import RESOURCES, box, merged, write_obj
 
 # The arm: a fixed base box; "upper" turns about z (revolute "turn") on top of it; "slider" hangs from the upper
 # arm's far end, facing back (a half turn about z), and slides along its own x ("slide", prismatic), so it can reach
@@ -387,3 +387,22 @@ def test_maps_batch_equals_meshgap_distance_cli(tmp_path, name, dimension):
     np.testing.assert_allclose([float(row["distance"]) for row in rows], r["distance"], rtol=1e-9, atol=1e-12)
     np.testing.assert_allclose([[float(row["clearance_" + n]) for n in scene.link_names] for row in rows],
                                r["link_clearance"], rtol=1e-9, atol=1e-12)
+
+
+def test_planar_and_floating_joints_name_and_bound_their_numbers(files):
+    """mobile.urdf: a planar base with a revolute arm, a floating drone, a planar slider; the state numbers are named
+    per joint value, bounded by the shoulder's limits and +-1 for the quaternion, unbounded elsewhere (the problem's
+    volume bounds the positions in the planner's space)."""
+    scene = meshgap.RobotScene.from_urdf(RESOURCES / "robot" / "meshgap_test_description" / "urdf" / "mobile.urdf",
+                                         world=files / "world.obj")
+    assert scene.state_names == ["drive.x", "drive.y", "drive.theta", "shoulder", "fly.x", "fly.y", "fly.z",
+                                 "fly.qx", "fly.qy", "fly.qz", "fly.qw", "wall.x", "wall.y", "wall.theta"]
+    inf = np.inf
+    np.testing.assert_array_equal(scene.bounds, [[-inf, inf]] * 3 + [[-1, 1]] + [[-inf, inf]] * 3 + [[-1, 1]] * 4 +
+                                  [[-inf, inf]] * 3)
+    # The base driven 1 along its plane's x (the joint frame turned 0.3 about z), then turned a quarter.
+    state = np.zeros(14)
+    state[[0, 2, 10]] = [1.0, math.pi / 2, 1.0]
+    base = scene.link_poses(state[None, :])[0, scene.link_names.index("base")]
+    np.testing.assert_allclose(base[:3, 3], [math.cos(0.3), math.sin(0.3), 0.05], atol=1e-12)
+    np.testing.assert_allclose(base[:2, 0], [math.cos(0.3 + math.pi / 2), math.sin(0.3 + math.pi / 2)], atol=1e-12)

@@ -28,7 +28,7 @@ namespace meshgap
             std::vector<Eigen::Isometry3d> frames;
             robot->framePoses(q.data(), q.size(), frames);
             Eigen::VectorXd g;
-            if (!clearanceGradient(*robot, scene, frames, r, g) || r.distance < 1e-4)
+            if (!clearanceGradient(*robot, scene, q, frames, r, g) || r.distance < 1e-4)
                 continue;
             ++free;
             // The same pair's distance a step either way.

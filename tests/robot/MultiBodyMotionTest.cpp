@@ -1,6 +1,7 @@
-// Certified motions for robots of free bodies (several rigid bodies in SE(2) and SE(3), a floating base): the
-// displacement bounds against the vertices' real motion along OMPL's interpolation, a swap in which two bodies pass
-// through each other between the states OMPL's discrete validator looks at, and planned paths checked densely by FCL.
+// Certified motions for robots of free bodies (several rigid bodies in SE(2) and SE(3), a floating base, planar and
+// floating joints): the displacement bounds against the vertices' real motion along OMPL's interpolation, a swap in
+// which two bodies pass through each other between the states OMPL's discrete validator looks at, and planned paths
+// checked densely by FCL.
 #include <gtest/gtest.h>
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/SpaceInformation.h>
@@ -248,6 +249,19 @@ namespace meshgap
         const double scale[5] = {1.5, 2.5, 0.2, 1.5, 1.0}, centre[5] = {0, 0, 0.1, 0, 0};
         const double tightest = checkBounds(
             *robot, [&](std::size_t k) { return k < 7 ? 0.0 : centre[k - 7] + scale[k - 7] * u(rng); }, 7);
+        test::Note() << "largest displacement / bound " << tightest;
+        EXPECT_GT(tightest, 0.2);
+    }
+
+    TEST(MultiBodyMotion, DisplacementBoundHoldsForPlanarAndFloatingJoints)
+    {
+        // mobile.urdf: a planar base carrying a revolute arm, a floating drone, a planar slider normal to x; the
+        // shoulder (state number 3) within its limits.
+        const UrdfRobotPtr robot = UrdfRobot::load(test::MOBILE_URDF);
+        std::mt19937 rng(6);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        const double tightest = checkBounds(
+            *robot, [&](std::size_t k) { return k == 3 ? u(rng) : 0.0; }, 9);
         test::Note() << "largest displacement / bound " << tightest;
         EXPECT_GT(tightest, 0.2);
     }

@@ -83,11 +83,10 @@ namespace meshgap
             for (std::size_t n = 0; n < count; ++n)
             {
                 std::vector<double> q;
-                for (std::size_t k : robot.variables())
+                for (std::size_t i = 0; i < robot.dimension(); ++i)
                 {
-                    const UrdfJoint &j = robot.joints()[k];
-                    const double lo = std::isfinite(j.lower) ? j.lower : -M_PI;
-                    const double hi = std::isfinite(j.upper) ? j.upper : M_PI;
+                    const double lo = std::isfinite(robot.stateLower(i)) ? robot.stateLower(i) : -M_PI;
+                    const double hi = std::isfinite(robot.stateUpper(i)) ? robot.stateUpper(i) : M_PI;
                     q.push_back(std::uniform_real_distribution<double>(lo, hi)(rng));
                 }
                 states.push_back(q);

@@ -16,6 +16,11 @@ namespace meshgap::test
     inline const std::string TREE_URDF =
         std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/meshgap_test_description/urdf/tree.urdf";
 
+    /** \brief mobile.urdf: a planar base (normal z) with a revolute arm, a floating drone and a planar slider (normal
+        x); state "drive.x y theta, shoulder, fly.x y z qx qy qz qw, wall.x y theta" (14 numbers). */
+    inline const std::string MOBILE_URDF =
+        std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/meshgap_test_description/urdf/mobile.urdf";
+
     /** \brief tree.urdf with a box payload (half-extents 3, 2 and 1 cm) 4 cm out along its tool's z. */
     inline UrdfRobotPtr treeWithPayload()
     {

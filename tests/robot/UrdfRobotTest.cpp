@@ -138,10 +138,10 @@ namespace meshgap
         {
             // Anywhere within each joint's limits (framePoses() refuses a state beyond them), [-3, 3] when unbounded.
             std::vector<double> q;
-            for (std::size_t k : robot->variables())
+            for (std::size_t i = 0; i < robot->dimension(); ++i)
             {
-                const UrdfJoint &j = robot->joints()[k];
-                const double lo = std::isfinite(j.lower) ? j.lower : -3.0, hi = std::isfinite(j.upper) ? j.upper : 3.0;
+                const double lo = std::isfinite(robot->stateLower(i)) ? robot->stateLower(i) : -3.0;
+                const double hi = std::isfinite(robot->stateUpper(i)) ? robot->stateUpper(i) : 3.0;
                 q.push_back(lo + (hi - lo) * unit(rng));
             }
             std::vector<Eigen::Isometry3d> frames;
@@ -308,9 +308,17 @@ namespace meshgap
                     "link 'b' is the child of two joints, 'j1' and 'j3'");
         expectError("screw.urdf", head + joint("j1", "screw", "a", "b") + joint("j2", "fixed", "b", "c") + "</robot>",
                     "joint 'j1' has an unknown type 'screw'");
-        expectError("planar.urdf",
-                    head + joint("j1", "planar", "a", "b") + joint("j2", "fixed", "b", "c") + "</robot>",
-                    "joint 'j1' is of type 'planar', which is not supported");
+        expectError("mimic_planar.urdf",
+                    head + joint("j1", "planar", "a", "b") +
+                        "<joint name=\"j2\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/>"
+                        "<limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/><mimic joint=\"j1\"/></joint>"
+                        "</robot>",
+                    "joint 'j2' mimics 'j1', a planar joint (only a joint of one value is mimicked)");
+        expectError("zero_axis.urdf",
+                    head + "<joint name=\"j1\" type=\"planar\"><parent link=\"a\"/><child link=\"b\"/>"
+                           "<axis xyz=\"0 0 0\"/></joint>" +
+                        joint("j2", "fixed", "b", "c") + "</robot>",
+                    "joint 'j1': its axis: zero or not finite");
         expectError("two_roots.urdf", head + joint("j1", "fixed", "a", "b") + "</robot>", "several root links");
         expectError("unknown_link.urdf",
                     head + joint("j1", "fixed", "a", "b") + joint("j2", "fixed", "b", "d") + "</robot>",

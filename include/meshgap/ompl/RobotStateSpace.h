@@ -8,14 +8,13 @@
 
 namespace meshgap
 {
-    /** \brief The OMPL state space of a robot model, its subspaces in the order of the model's state numbers:
-        - UrdfRobot: an SE(3) space for a floating base (translation within \e bounds), then, per run of joints,
-          one RealVectorStateSpace for consecutive revolute and prismatic joints (bounded by their limits) and one
-          SO2StateSpace per continuous joint;
-        - RigidBodyRobot: one SE(2) or SE(3) space (translation within \e bounds; SE(2) takes its x and y);
-        - MultiBodyRobot: one such space per body.
-        A compound space always (so that robotStateToVector() and its inverse walk one layout). Throws
-        meshgap::Exception for another kind of model, or bounds that are not 3-dimensional when needed. */
+    /** \brief The OMPL state space of a robot model: one subspace per block of RobotModel::stateBlocks(), in the
+        order of the model's state numbers: a RealVectorStateSpace for a run of joints of one bounded value
+        (revolute, prismatic; bounded by their limits), an SO2StateSpace per continuous joint, an SE2StateSpace
+        per planar joint or SE(2) body (x and y within the first two of \e bounds), an SE3StateSpace per floating
+        joint, floating base or SE(3) body (the position within \e bounds). A compound space always (so that
+        robotStateToVector() and its inverse walk one layout). Throws meshgap::Exception for a robot without a
+        movable joint, or bounds that are not 3-dimensional (2 for SE(2)) when needed. */
     ompl::base::StateSpacePtr robotStateSpace(const RobotModel &robot, const ompl::base::RealVectorBounds &bounds);
 
     /** \brief The model's state numbers of \e state of a space made by robotStateSpace() (or any compound of SE(3)

@@ -14,9 +14,9 @@ namespace meshgap
         radius about its frame, plus the reaches of the frames between):
         - a rotation about an axis through f's origin (revolute, continuous joint): |dq| scale r_fL;
         - a translation (prismatic joint): |dq| scale;
-        - a body free in SE(2) or SE(3) (a rigid body, one of several, a floating base): |dp| + theta r_fL, dp its
-          position's change and theta the angle between its two rotations (the shorter arc, as OMPL interpolates:
-          yaw along the shorter arc, slerp along the shorter great arc).
+        - a frame free in SE(2) or SE(3) (a rigid body, one of several, a floating base, a planar or floating
+          joint): |dp| + theta r_fL, dp its position's change and theta the angle between its two rotations (the
+          shorter arc, as OMPL interpolates: yaw along the shorter arc, slerp along the shorter great arc).
         Every term moves at a constant rate along OMPL's interpolation, so the bound over a fraction of the motion
         is that fraction of it. A mimic joint moves |multiplier| times its source; continuous joints move along the
         shorter arc, as OMPL's SO(2) interpolation does. */

@@ -12,7 +12,7 @@ namespace meshgap
 
     /** \brief Several rigid bodies moving at once, each free in SE(2) or SE(3) (OMPL.app's multi-body problems): one
         frame and one link per body, the state the bodies' states one after the other (a compound OMPL state), and
-        every body checked against every other. */
+        every body checked against every other. Each body's frame hangs from the world by rigidJoint(). */
     class MultiBodyRobot : public RobotModel
     {
     public:
@@ -30,11 +30,6 @@ namespace meshgap
         /** \brief Where part \e i's numbers start in a state. */
         std::size_t offset(std::size_t i) const { return offsets_[i]; }
         RigidSpace space(std::size_t i) const { return spaces_[i]; }
-        /** \brief Body \e frame's SE2 or SE3, from offset(frame) on. */
-        FrameMotion frameMotion(std::size_t frame) const override;
-
-    protected:
-        void computeFrames(const double *state, Eigen::Isometry3d *frames) const override;
 
     private:
         std::vector<RigidSpace> spaces_;

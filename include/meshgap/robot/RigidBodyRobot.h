@@ -19,25 +19,22 @@ namespace meshgap
     /** \brief Numbers in a state of \e space (3 or 7). */
     std::size_t rigidSpaceDimension(RigidSpace space);
 
-    /** \brief How a body free in \e space with its pose at state number \e variable moves: SE2 or SE3. */
-    FrameMotion rigidMotion(RigidSpace space, std::size_t variable);
+    /** \brief The joint that moves a body free in \e space from the world: planar about z (SE2, poseFromSE2()) or
+        floating (SE3, poseFromSE3()). */
+    JointConstPtr rigidJoint(RigidSpace space);
 
     /** \brief The pose a state of \e space gives (poseFromSE2(), poseFromSE3()). */
     Eigen::Isometry3d rigidPose(RigidSpace space, const double *state);
 
     /** \brief One rigid body flying free in SE(2) or SE(3): the robot of OMPL.app's rigid-body problems, a robot
-        model with one frame and one link (both named \e name), whose pose is the state. */
+        model with one frame and one link (both named \e name), whose pose is the state: the frame hangs from the world
+        by rigidJoint(). */
     class RigidBodyRobot : public RobotModel
     {
     public:
         RigidBodyRobot(BodyConstPtr body, RigidSpace space, const std::string &name = "robot");
 
         RigidSpace space() const { return space_; }
-        /** \brief SE2 or SE3 from state number 0. */
-        FrameMotion frameMotion(std::size_t frame) const override;
-
-    protected:
-        void computeFrames(const double *state, Eigen::Isometry3d *frames) const override;
 
     private:
         RigidSpace space_;

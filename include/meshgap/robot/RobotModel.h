@@ -10,6 +10,7 @@
 
 #include "meshgap/ClassForward.h"
 #include "meshgap/geometry/Body.h"
+#include "meshgap/robot/Joint.h"
 
 namespace meshgap
 {
@@ -40,16 +41,10 @@ namespace meshgap
         it (MotionBound). */
     struct FrameMotion
     {
-        enum class Kind
-        {
-            FIXED,        ///< not at all
-            ROTATION,     ///< about an axis through the frame's origin, by scale times the state number's change
-            TRANSLATION,  ///< along a unit axis, by scale times the state number's change
-            SE2,          ///< free in the plane: "x y theta" from \e variable on, x and y linear, theta along the
-                          ///< shorter arc
-            SE3           ///< free: "x y z qx qy qz qw" from \e variable on, the position linear, the rotation along
-                          ///< the shorter great arc (slerp)
-        };
+        /** \brief FIXED, ROTATION (about an axis through the frame's origin, by scale times the state number's
+            change), TRANSLATION (along a unit axis, the same), SE2 ("x y theta" from \e variable on, x and y linear,
+            theta along the shorter arc), SE3 ("x y z qx qy qz qw" from \e variable on, the rotation by slerp). */
+        using Kind = JointMotion;
         Kind kind{Kind::FIXED};
         /** \brief The state number that drives it (the first of an SE(2) or SE(3) pose). */
         std::size_t variable{std::numeric_limits<std::size_t>::max()};
@@ -64,6 +59,34 @@ namespace meshgap
         double reach{0.0};
     };
 
+    /** \brief How a frame hangs from its parent (the world, for a root): fixed at \e origin, then moved by its joint's
+        values (the child's pose: parent * origin * joint motion). A mimic joint's one value is multiplier * (state
+        number \e variable) + offset. */
+    struct FrameJoint
+    {
+        /** \brief The joint's name (a URDF joint's; "base" for a floating base; a rigid body's name). */
+        std::string name;
+        /** \brief Null: fixed at \e origin. */
+        JointConstPtr joint;
+        Eigen::Isometry3d origin{Eigen::Isometry3d::Identity()};
+        /** \brief The state number of its first value (a mimic joint: its source's), or RobotModel::NONE. */
+        std::size_t variable{std::numeric_limits<std::size_t>::max()};
+        /** \brief A mimic joint: the frame whose joint it follows; RobotModel::NONE otherwise. */
+        std::size_t mimics{std::numeric_limits<std::size_t>::max()};
+        double multiplier{1.0}, offset{0.0};
+    };
+
+    /** \brief A run of state numbers one OMPL space holds (RobotStateSpace): the numbers first, ..., first +
+        names.size() - 1, their names ("shoulder", "base.qw") and limits (infinite where the problem's bounds
+        or nothing bound them). REAL blocks hold consecutive one-value joints; SO2, SE2 and SE3 blocks one joint. */
+    struct StateBlock
+    {
+        JointSpace space;
+        std::size_t first;
+        std::vector<std::string> names;
+        std::vector<double> lower, upper;
+    };
+
     /** \brief Two links a query checks against each other (first < second, indices in RobotModel::links()). */
     using LinkPair = std::pair<std::size_t, std::size_t>;
 
@@ -71,10 +94,13 @@ namespace meshgap
         world pose, the link bodies in those frames, and which link pairs are checked against each other (every
         link is checked against the obstacles; two links are, unless their pair is allowed to touch).
 
-        Kinds (their own files): RigidBodyRobot (one body in SE(2) or SE(3)), MultiBodyRobot (several, each in SE(2)
-        or SE(3)), UrdfRobot (a kinematic tree read from a URDF). Configure a model (attach(), allowCollision())
-        before sharing it; once shared it is only read, and every query is thread-safe (RobotScene copies the links
-        and pairs it is built with). */
+        Each frame hangs from its parent by a FrameJoint (a Joint, one class per type: revolute, continuous,
+        prismatic, fixed, planar, floating), from which the model answers what tools need: the frame poses, the
+        motion bound's frame motions, the state's OMPL spaces (stateBlocks()) and Jacobians. Kinds (their own
+        files) build the frames: RigidBodyRobot (one body in SE(2) or SE(3): a planar or floating joint from the
+        world), MultiBodyRobot (several such), UrdfRobot (a kinematic tree read from a URDF). Configure a model
+        (attach(), allowCollision()) before sharing it; once shared it is only read, and every query is thread-safe
+        (RobotScene copies the links and pairs it is built with). */
     class RobotModel
     {
     public:
@@ -127,8 +153,32 @@ namespace meshgap
         /** \brief The link pairs checked against each other: every pair not allowed, in increasing order. */
         std::vector<LinkPair> selfPairs() const;
 
-        /** \brief How frame \e frame (an index in frames()) moves relative to its parent as the state changes. */
-        virtual FrameMotion frameMotion(std::size_t frame) const = 0;
+        /** \brief How frame \e frame (an index in frames()) hangs from its parent. */
+        const FrameJoint &frameJoint(std::size_t frame) const { return joints_[frame]; }
+
+        /** \brief How frame \e frame (an index in frames()) moves relative to its parent as the state changes: by
+            default its joint's motion (a mimic joint driven by its source's state number, |multiplier| times as
+            far, an angle when its source is one), its reach the joint origin's distance from the parent frame plus
+            the joint's own (Joint::reach(), over its source's limits mapped by a mimic's multiplier and offset). */
+        virtual FrameMotion frameMotion(std::size_t frame) const;
+
+        /** \brief The state's numbers in runs, each held by one OMPL space (RobotStateSpace builds the space from
+            them): by default from the frames' joints, in state order. */
+        virtual std::vector<StateBlock> stateBlocks() const;
+        /** \brief State number \e number's name ("elbow", "base.qw"), limits (infinite where none). */
+        const std::string &stateName(std::size_t number) const { return numbers_[number].name; }
+        double stateLower(std::size_t number) const { return numbers_[number].lower; }
+        double stateUpper(std::size_t number) const { return numbers_[number].upper; }
+        /** \brief True when a frame moves free in SE(2) or SE(3) (a rigid body, a floating base, a planar or floating
+            joint): the problem must bound its position. */
+        bool movesFree() const;
+
+        /** \brief The world-frame velocity of the point \e p (world), fixed to frame \e frame, per unit change of each
+            state number at \e state: a 3 x dimension() Jacobian into \e J, from the frame poses \e frames at that
+            state (framePoses()). By default each joint from \e frame up adds its columns (Joint::addJacobian(); a
+            mimic joint adds its multiplier times its own to its source's). */
+        virtual void pointJacobian(const double *state, const std::vector<Eigen::Isometry3d> &frames,
+                                   std::size_t frame, const Eigen::Vector3d &p, Eigen::Matrix3Xd &J) const;
 
         /** \brief The link of frame \e frame or, when that frame has none, of its nearest ancestor with one (NONE
             if none has): what a body fixed to that frame is adjacent to. */
@@ -138,20 +188,27 @@ namespace meshgap
         RobotModel() = default;
 
         /** \brief Throws meshgap::Exception naming \e where for a state (dimension() numbers, finite) this kind of
-            robot does not take; by default none. */
-        virtual void checkStateLimits(const double * /*state*/, const std::string & /*where*/) const
-        {
-        }
+            robot does not take; by default one with a number outside its limits (stateLower(), stateUpper(), to
+            1e-9 of the larger of 1 and the limit: the roundoff of an interpolation between two states at the limits
+            passes), naming the joint, its value and limits. */
+        virtual void checkStateLimits(const double *state, const std::string &where) const;
 
-        /** \brief Every frame's world pose at \e state (dimension() numbers, finite, checked by the caller). */
-        virtual void computeFrames(const double *state, Eigen::Isometry3d *frames) const = 0;
+        /** \brief Every frame's world pose at \e state (dimension() numbers, finite, checked by the caller): by
+            default a walk down the frames, parent before child, through their joints. */
+        virtual void computeFrames(const double *state, Eigen::Isometry3d *frames) const;
+
+        /** \brief Set how frame \e frame hangs from its parent (a frame added by addFrame() is fixed at the
+            identity). Call before setDimension(). */
+        void setFrameJoint(std::size_t frame, FrameJoint joint);
 
         /** \brief Add a frame (a parent's index must be below the new one's); returns its index. */
         std::size_t addFrame(const std::string &name, std::size_t parent);
         /** \brief Add a link body in frame \e frame; returns its index. Throws for a name already taken. */
         std::size_t addLink(const std::string &name, BodyConstPtr body, std::size_t frame,
                             const Eigen::Isometry3d &X_FL, bool payload);
-        void setDimension(std::size_t dimension) { dimension_ = dimension; }
+        /** \brief Set the state's size, once the frames' joints are set; throws meshgap::Exception unless the
+            joints' values cover the numbers 0 .. dimension - 1 once each. */
+        void setDimension(std::size_t dimension);
 
         /** \brief What error messages call this model (the file it came from, or its kind). */
         std::string where_{"RobotModel"};
@@ -159,6 +216,33 @@ namespace meshgap
     private:
         std::size_t dimension_{0};
         std::vector<RobotFrame> frames_;
+        std::vector<FrameJoint> joints_;
+        /** \brief How computeFrames() moves a frame after its origin: not at all, by Joint::pose() alone (a root
+            whose origin is the identity), a turn about or a slide along the joint's axis by its one value (inline),
+            or by Joint::move(). */
+        enum class Step : unsigned char
+        {
+            FIXED,
+            ROOT,
+            ROTATE,
+            SLIDE,
+            MOVE
+        };
+        std::vector<Step> steps_;
+        /** \brief Per state number: its name, limits, and the limits checkState() takes (with their slack). */
+        struct Number
+        {
+            std::string name;
+            double lower, upper, low, high;
+        };
+        std::vector<Number> numbers_;
+        /** \brief The numbers with a finite limit, and the limits checkState() takes: all it looks at. */
+        struct Limit
+        {
+            std::size_t number;
+            double low, high;
+        };
+        std::vector<Limit> limited_;
         std::vector<RobotLink> links_;
         /** \brief Allowed link pairs, a triangular bit matrix grown with the links. */
         std::vector<std::vector<bool>> allowed_;
