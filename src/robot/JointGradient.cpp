@@ -61,18 +61,6 @@ namespace meshgap
             return v - before;
         }
 
-        /** \brief The URDF joint that moves frame \e frame (ROTATION, TRANSLATION), or null. */
-        const UrdfJoint *jointOf(const RobotModel &robot, std::size_t frame)
-        {
-            const auto *urdf = dynamic_cast<const UrdfRobot *>(&robot);
-            if (urdf == nullptr)
-                return nullptr;
-            for (const UrdfJoint &j : urdf->joints())
-                if (j.child == frame)
-                    return &j;
-            return nullptr;
-        }
-
         /** \brief Frame \e f's columns of the Jacobian of the point \e p: how it moves with \e f's own motion. */
         void addFrameColumns(const RobotModel &robot, const std::vector<Eigen::Isometry3d> &frames,
                              const std::vector<std::size_t> &blocks, std::size_t f, const Eigen::Vector3d &p,
@@ -88,14 +76,11 @@ namespace meshgap
                 case FrameMotion::Kind::ROTATION:
                 case FrameMotion::Kind::TRANSLATION:
                 {
-                    const UrdfJoint *j = jointOf(robot, f);
-                    if (j == nullptr)
-                        throw Exception("robotPointJacobian", "frame '" + robot.frames()[f].name +
-                                                                  "' turns or slides about an axis not known here");
-                    const Eigen::Vector3d axis = frames[f].linear() * j->axis;
+                    const FrameJoint &j = robot.frameJoint(f);
+                    const Eigen::Vector3d axis = frames[f].linear() * j.joint->axis();
                     const Eigen::Vector3d column =
                         m.kind == FrameMotion::Kind::TRANSLATION ? axis : Eigen::Vector3d(axis.cross(r));
-                    J.col(col(m.variable)) += (j->mimics != RobotModel::NONE ? j->multiplier : 1.0) * column;
+                    J.col(col(m.variable)) += (j.mimics != RobotModel::NONE ? j.multiplier : 1.0) * column;
                     return;
                 }
                 case FrameMotion::Kind::SE2:

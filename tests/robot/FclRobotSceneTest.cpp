@@ -33,11 +33,10 @@ namespace meshgap
             for (std::size_t n = 0; n < count; ++n)
             {
                 std::vector<double> q;
-                for (std::size_t k : robot.variables())
+                for (std::size_t k = 0; k < robot.dimension(); ++k)
                 {
-                    const UrdfJoint &j = robot.joints()[k];
-                    const double lo = std::isfinite(j.lower) ? j.lower : -M_PI;
-                    const double hi = std::isfinite(j.upper) ? j.upper : M_PI;
+                    const double lo = std::isfinite(robot.stateLower(k)) ? robot.stateLower(k) : -M_PI;
+                    const double hi = std::isfinite(robot.stateUpper(k)) ? robot.stateUpper(k) : M_PI;
                     q.push_back(std::uniform_real_distribution<double>(lo, hi)(rng));
                 }
                 states.push_back(q);
