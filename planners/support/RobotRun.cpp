@@ -46,9 +46,9 @@ namespace meshgap
             {
                 if (r.link >= scene.links().size() || (scene.obstacles().empty() && scene.selfPairs().empty()))
                     return "no pair (the robot has neither obstacles nor self pairs to check)";
-                const std::string link = "'" + scene.links()[r.link].name + "'";
-                return r.selfPair ? "links " + link + " and '" + scene.links()[r.other].name + "'" :
-                                    "link " + link + " and obstacle " + std::to_string(r.other);
+                const std::string link = quote(scene.links()[r.link].name);
+                return r.selfPair ? "links " + link + " and " + quote(scene.links()[r.other].name)
+                                  : "link " + link + " and obstacle " + std::to_string(r.other);
             }
 
             /** \brief The options meshgap_plan has that a robot problem does not take (yet). */

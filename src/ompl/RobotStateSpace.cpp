@@ -8,6 +8,7 @@
 #include <typeinfo>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/robot/MultiBodyRobot.h"
 #include "meshgap/robot/UrdfRobot.h"
 
@@ -176,8 +177,8 @@ namespace meshgap
                                   out ? out + count : nullptr, in ? in + count : nullptr);
                 return count;
             }
-            throw Exception("robot state space", "space '" + space.getName() +
-                                                     "' is none of SE(3), SE(2), SO(2), real vector or a compound");
+            throw Exception("robot state space", "space " + quote(space.getName()) +
+                                                     " is none of SE(3), SE(2), SO(2), real vector or a compound");
         }
 
         /** \brief Numbers in a state of \e space (walk()'s count, without a state). */
@@ -200,8 +201,8 @@ namespace meshgap
                     count += countOf(*compound->getSubspace(i));
                 return count;
             }
-            throw Exception("robot state space", "space '" + space.getName() +
-                                                     "' is none of SE(3), SE(2), SO(2), real vector or a compound");
+            throw Exception("robot state space", "space " + quote(space.getName()) +
+                                                     " is none of SE(3), SE(2), SO(2), real vector or a compound");
         }
     }  // namespace
 

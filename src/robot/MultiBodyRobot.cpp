@@ -1,6 +1,7 @@
 #include "meshgap/robot/MultiBodyRobot.h"
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 
 namespace meshgap
 {
@@ -13,7 +14,7 @@ namespace meshgap
         for (const Part &part : parts)
         {
             if (findFrame(part.name) != NONE)
-                throw Exception(where_, "two bodies named '" + part.name + "'");
+                throw Exception(where_, "two bodies named " + quote(part.name));
             addLink(part.name, part.body, addFrame(part.name, NONE), Eigen::Isometry3d::Identity(), false);
             spaces_.push_back(part.space);
             offsets_.push_back(dimension);
