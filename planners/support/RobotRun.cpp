@@ -106,7 +106,7 @@ namespace meshgap
                 std::ostringstream text;
                 const RobotModel &robot = *run.problem.robot;
                 if (const auto *urdf = dynamic_cast<const UrdfRobot *>(&robot))
-                    text << "URDF '" << urdf->name() << "'" << (urdf->floatingBase() ? ", floating base" : "") << ", "
+                    text << "URDF " << quote(urdf->name()) << (urdf->floatingBase() ? ", floating base" : "") << ", "
                          << urdf->variables().size() << " joints, ";
                 else
                     text << robot.links().size() << " bodies in " << (run.problem.planar ? "SE(2)" : "SE(3)") << ", ";

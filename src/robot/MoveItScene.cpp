@@ -209,8 +209,8 @@ namespace meshgap
                 if (v.value < j.lower || v.value > j.upper)
                 {
                     std::ostringstream text;
-                    text << "joint '" << v.name << "' = " << v.value << " is outside its limits [" << j.lower << ", "
-                         << j.upper << "]";
+                    text << "joint " << quote(v.name) << " = " << v.value << " is outside its limits [" << j.lower
+                         << ", " << j.upper << "]";
                     throw Exception(v.where, text.str());
                 }
                 q[j.variable - robot.jointOffset()] = v.value;

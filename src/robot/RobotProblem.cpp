@@ -163,7 +163,7 @@ namespace meshgap
                 if (value < joint.lower || value > joint.upper)
                 {
                     std::ostringstream text;
-                    text << key << ": joint '" << joint.name << "' (number " << offset + k + 1 << ") = " << value
+                    text << key << ": joint " << quote(joint.name) << " (number " << offset + k + 1 << ") = " << value
                          << " is outside its limits [" << joint.lower << ", " << joint.upper << "]";
                     throw Exception(keys.where(key), text.str());
                 }

@@ -315,7 +315,7 @@ namespace meshgap
             if (std::abs(value) <= MAX_JOINT_MAGNITUDE)
                 return;
             std::ostringstream text;
-            text << "joint '" << joint << "': " << what << " " << value << " is not a number of magnitude at most "
+            text << "joint " << quote(joint) << ": " << what << " " << value << " is not a number of magnitude at most "
                  << MAX_JOINT_MAGNITUDE;
             throw Exception(excerpt(path), text.str());
         }
@@ -562,7 +562,7 @@ namespace meshgap
         }
         checkSameTree(path, *model, linkNames, order);
         UrdfRobotPtr robot(new UrdfRobot());
-        robot->where_ = path;
+        robot->where_ = excerpt(path);
         robot->name_ = model->getName();
         robot->floatingBase_ = options.floatingBase;
         UrdfBuilder::addFrames(*robot, model->getRoot()->name, order);
@@ -587,7 +587,7 @@ namespace meshgap
             if (value < joint.lower - slack || value > joint.upper + slack)
             {
                 std::ostringstream text;
-                text << "joint '" << joint.name << "' = " << value
+                text << "joint " << quote(joint.name) << " = " << value
                      << " is outside its limits [" << joint.lower << ", " << joint.upper << "]";
                 throw Exception(where, text.str());
             }
