@@ -34,6 +34,7 @@
 #include "meshgap/geometry/Body.h"
 #include "meshgap/mesh/Mesh.h"
 #include "meshgap/mesh/MeshLoader.h"
+#include "meshgap/robot/MoveItScene.h"
 #include "meshgap/robot/RobotProblem.h"
 #include "meshgap/robot/Srdf.h"
 #include "meshgap/robot/UrdfRobot.h"
@@ -899,6 +900,26 @@ namespace meshgap
             return Outcome::Accepted;
         }
 
+        /** \brief The start and goal of \e p: of the robot's dimension, finite, inside the joint limits (a
+            UrdfRobot's), with finite rigid poses. */
+        inline void checkProblemStates(const RobotProblem &p, const std::string &what)
+        {
+            std::vector<const std::vector<double> *> states{&p.start};
+            if (p.goal)
+                states.push_back(&*p.goal);
+            for (const std::vector<double> *q : states)
+            {
+                check(q->size() == p.robot->dimension(), what + ": a state of the wrong dimension");
+                for (std::size_t i = 0; i < q->size(); ++i)
+                {
+                    check(std::isfinite((*q)[i]), what + ": a non-finite state number");
+                    check(p.robot->stateLower(i) <= (*q)[i] && (*q)[i] <= p.robot->stateUpper(i),
+                          what + ": a state outside a joint's limits");
+                }
+                checkPosesAt(*p.robot, *q, what);
+            }
+        }
+
         /** \brief The bytes as a robot problem (.cfg) beside arm.urdf, arm.srdf, robot.obj, world.obj and package
             pkg (robotFolder()) through readRobotProblem(). An accepted problem has a robot, states of its dimension
             inside the joint limits whose poses are finite and rigid, obstacles, a finite ordered volume. */
@@ -927,25 +948,69 @@ namespace meshgap
                 checkUrdfRobot(*urdfRobot, what);
             else
                 checkRobotModel(*p.robot, what);
-            std::vector<const std::vector<double> *> states{&p.start};
-            if (p.goal)
-                states.push_back(&*p.goal);
-            for (const std::vector<double> *q : states)
-            {
-                check(q->size() == p.robot->dimension(), what + ": a state of the wrong dimension");
-                for (std::size_t i = 0; i < q->size(); ++i)
-                {
-                    check(std::isfinite((*q)[i]), what + ": a non-finite state number");
-                    check(p.robot->stateLower(i) <= (*q)[i] && (*q)[i] <= p.robot->stateUpper(i),
-                          what + ": a state outside a joint's limits");
-                }
-                checkPosesAt(*p.robot, *q, what);
-            }
+            checkProblemStates(p, what);
             check(!p.volume || (p.volume->min().allFinite() && p.volume->max().allFinite() &&
                                 (p.volume->min().array() <= p.volume->max().array()).all()),
                   what + ": bad volume");
             check(!p.objectiveThreshold || std::isfinite(*p.objectiveThreshold), what + ": non-finite threshold");
             check(std::filesystem::exists(p.world), what + ": the world file does not exist");
+            return Outcome::Accepted;
+        }
+
+        /** \brief The bytes as both the moveit_msgs/PlanningScene and the moveit_msgs/MotionPlanRequest (YAML; a
+            scene's keys and a request's do not overlap, so one input may hold either or both) of the fixture robot
+            with its SRDF (robotFolder(); meshes by file name or through package pkg) through readMoveItProblem().
+            An accepted problem has the fixture's robot (its links and frames), a start and a goal (when given) of
+            its dimension inside the joint limits with finite rigid poses, one named obstacle per body, each
+            non-empty and finite, and (link, obstacle) allowed pairs in range, sorted and unique. */
+        inline Outcome moveit(const std::uint8_t *data, std::size_t size)
+        {
+            QuietLog quiet;
+            const std::filesystem::path dir = robotFolder("moveit");
+            static const UrdfRobotConstPtr robot = [&dir] {
+                MoveItFiles f;
+                f.urdf = (dir / "arm.urdf").string();
+                f.srdf = (dir / "arm.srdf").string();
+                f.packagePath = {dir.string()};
+                return readMoveItRobot(f, robotBodyOptions());
+            }();
+            MoveItFiles files;
+            files.robot = robot;
+            files.packagePath = {dir.string()};
+            files.segments = 6;
+            files.scene = files.request =
+                writeFile(dir / "input.yaml", std::string(reinterpret_cast<const char *>(data), size));
+            RobotProblem p;
+            try
+            {
+                p = readMoveItProblem(files, robotBodyOptions());
+            }
+            catch (const Exception &)
+            {
+                return Outcome::Rejected;
+            }
+            const std::string what = "readMoveItProblem";
+            const auto *urdfRobot = dynamic_cast<const UrdfRobot *>(p.robot.get());
+            check(p.urdf && urdfRobot != nullptr, what + ": not a UrdfRobot");
+            check(urdfRobot->links().size() == robot->links().size() &&
+                      urdfRobot->frames().size() == robot->frames().size(),
+                  what + ": links or frames changed");
+            checkUrdfRobot(*urdfRobot, what);
+            checkProblemStates(p, what);
+            check(p.obstacleNames.size() == p.obstacles.size(), what + ": not one name per obstacle");
+            for (const BodyConstPtr &b : p.obstacles)
+            {
+                check(b && !b->surface().triangles.empty(), what + ": an empty obstacle");
+                for (const Eigen::Vector3d &v : b->surface().vertices)
+                    check(v.allFinite(), what + ": an obstacle has a non-finite vertex");
+            }
+            for (std::size_t k = 0; k < p.allowedObstacles.size(); ++k)
+            {
+                const LinkPair &pair = p.allowedObstacles[k];
+                check(pair.first < urdfRobot->links().size() && pair.second < p.obstacles.size() &&
+                          (k == 0 || p.allowedObstacles[k - 1] < pair),
+                      what + ": allowed (link, obstacle) pairs out of range, out of order or repeated");
+            }
             return Outcome::Accepted;
         }
 
@@ -960,7 +1025,7 @@ namespace meshgap
             static const std::vector<Target> all = {
                 {"mesh", &mesh},         {"loader", &loader}, {"config", &config},
                 {"pose", &pose},         {"distance", &distance}, {"urdf", &urdf},
-                {"srdf", &srdf},         {"robot_problem", &robotProblem}};
+                {"srdf", &srdf},         {"robot_problem", &robotProblem}, {"moveit", &moveit}};
             return all;
         }
     }  // namespace fuzz

@@ -4,10 +4,10 @@
 #
 #   fuzz/run.sh [SECONDS_PER_TARGET (default 60)] [TARGET ...]
 #
-# targets: mesh config pose distance urdf srdf robot_problem (default), loader. urdf, srdf and robot_problem read
-# the bytes as a URDF, an SRDF or a robot problem .cfg in a folder that holds a fixture robot (arm.urdf, arm.srdf),
-# meshes (robot.obj, world.obj) and a package (pkg/meshes/cube.obj); see FuzzTargets.h. A target's dictionary,
-# fuzz/<target>.dict, is passed when there is one.
+# targets: mesh config pose distance urdf srdf robot_problem moveit (default), loader. urdf, srdf, robot_problem and
+# moveit read the bytes as a URDF, an SRDF, a robot problem .cfg or a MoveIt planning scene and motion plan request
+# (YAML) in a folder that holds a fixture robot (arm.urdf, arm.srdf), meshes (robot.obj, world.obj) and a package
+# (pkg/meshes/cube.obj); see FuzzTargets.h. A target's dictionary, fuzz/<target>.dict, is passed when there is one.
 #
 # loader (assimp on the bytes as .obj/.stl/.ply) is not run by default: assimp is not instrumented, so the fuzzer is
 # blind inside it, and Debian's assimp 5.2.5 hangs on a PLY header with non-ASCII bytes in a property name
@@ -21,7 +21,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
 seconds=${1:-60}
 shift || true
-if [ $# -gt 0 ]; then targets=("$@"); else targets=(mesh config pose distance urdf srdf robot_problem); fi
+if [ $# -gt 0 ]; then targets=("$@"); else targets=(mesh config pose distance urdf srdf robot_problem moveit); fi
 build=${BUILD_DIR:-$root/build-fuzz}
 out=${OUT:-$build/fuzz-out}
 
@@ -41,6 +41,7 @@ for t in "${targets[@]}"; do
     mkdir -p "$corpus" "$crashes"
     maxlen=4096
     [ "$t" = loader ] && maxlen=16384
+    [ "$t" = moveit ] && maxlen=8192  # MotionBenchMaker's scenes are 6 to 9 kB
     echo "== $t: ${seconds} s"
     dict=()
     [ -f "$here/$t.dict" ] && dict=(-dict="$here/$t.dict")

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 
 namespace meshgap
 {
@@ -78,8 +79,8 @@ namespace meshgap
         {
             const std::size_t dot = text.find('.'), eq = text.find('=');
             if (dot == std::string::npos || eq == std::string::npos || dot == 0 || eq < dot + 2)
-                throw Exception("--param", "'" + text + "' is not " + owner + ".NAME=VALUE (e.g. --param " + example +
-                                               ")");
+                throw Exception("--param",
+                                quote(text) + " is not " + owner + ".NAME=VALUE (e.g. --param " + example + ")");
             return {text.substr(0, dot), text.substr(dot + 1, eq - dot - 1), text.substr(eq + 1)};
         }
 

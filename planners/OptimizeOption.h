@@ -12,6 +12,7 @@
 
 #include "CliMain.h"
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/ompl/ClearancePathOptimizer.h"
 
 namespace meshgap::cli
@@ -28,7 +29,7 @@ namespace meshgap::cli
                                      const std::string &mode)
     {
         if (!optimize.empty() && optimize != "clearance")
-            throw Exception("--optimize", "unknown optimiser '" + optimize + "'; valid: " + optimizerNames());
+            throw Exception("--optimize", "unknown optimiser " + quote(optimize) + "; valid: " + optimizerNames());
         if (timeGiven && optimize.empty())
             throw Exception("--optimize-time", "applies to --optimize only");
         checkSeconds(seconds, "--optimize-time");

@@ -116,19 +116,20 @@ namespace
         for (const std::string &c : checkers)
         {
             if (c.rfind("meshgap-", 0) == 0)
-                throw Exception("--checker", "'" + c + "' is now spelled '" + c.substr(8) + "' (as meshgap_plan does)");
+                throw Exception("--checker",
+                                quote(c) + " is now spelled " + quote(c.substr(8)) + " (as meshgap_plan does)");
             if (std::find(available.begin(), available.end(), c) == available.end())
-                throw Exception("--checker", "unknown checker '" + c + "'; valid names: " + joinNames(available));
+                throw Exception("--checker", "unknown checker " + quote(c) + "; valid names: " + joinNames(available));
         }
         if (checkers.empty() || std::set<std::string>(checkers.begin(), checkers.end()).size() != checkers.size())
-            throw Exception("--checker", "'" + o.checkerList + "' names no checker, or one twice");
+            throw Exception("--checker", quote(o.checkerList) + " names no checker, or one twice");
         const std::vector<std::string> samplers =
             o.samplerList.empty() ? std::vector<std::string>{""} : splitList(o.samplerList);
         for (const std::string &s : samplers)
             if (!o.samplerList.empty())
                 validStateSamplerAllocator(s, "--sampler");  // throws for an unknown name, listing the valid ones
         if (samplers.empty() || std::set<std::string>(samplers.begin(), samplers.end()).size() != samplers.size())
-            throw Exception("--sampler", "'" + o.samplerList + "' names no sampler, or one twice");
+            throw Exception("--sampler", quote(o.samplerList) + " names no sampler, or one twice");
         std::vector<std::pair<std::string, std::string>> setups;
         for (const std::string &c : checkers)
             for (const std::string &s : samplers)
@@ -170,7 +171,7 @@ namespace
         const std::vector<std::string> known = plannerNames();
         for (const PlannerSpec &p : planners)
             if (std::find(known.begin(), known.end(), p.type) == known.end())
-                throw Exception("planner", "unknown planner '" + p.type + "'; valid names: " + joinNames(known) +
+                throw Exception("planner", "unknown planner " + quote(p.type) + "; valid names: " + joinNames(known) +
                                                (o.plannerList.empty() ? " (choose with --planner)" : ""));
         for (const std::string &text : o.params)
         {
@@ -184,7 +185,7 @@ namespace
                     used = true;
                 }
             if (!used)
-                throw Exception("--param", "'" + text + "': no planner " + type + " in this benchmark");
+                throw Exception("--param", quote(text) + ": no planner " + type + " in this benchmark");
         }
         return planners;
     }
@@ -209,8 +210,8 @@ namespace
         {
             const std::string name = allocate(spec, si)->getName();
             if (!names.insert(name).second)
-                throw Exception(config.file, "two planners named '" + name + "': name each ([planner] " + spec.type +
-                                                 ".name = ...)");
+                throw Exception(config.file, "two planners named " + quote(name) + ": name each ([planner] " +
+                                                 spec.type + ".name = ...)");
         }
     }
 

@@ -56,7 +56,7 @@ namespace
         double h = 0.0;
         if (parseNumber(text, h) && h >= 0.0 && std::isfinite(h))
             return h;
-        throw Exception("--" + option, "'" + text + "' is not a grid size (a number >= 0, 0 = no refinement, or auto)");
+        throw Exception("--" + option, quote(text) + " is not a grid size (a number >= 0, 0 = no refinement, or auto)");
     }
 
     BodyPtr makeBody(const Mesh &mesh, const LoadReport &report, double grid, bool adaptive,
@@ -301,12 +301,12 @@ namespace
         {
             const cli::OwnedParam param = cli::parseOwnedParam(s, "ALGORITHM", o.algorithm + ".NAME=VALUE");
             if (param.owner != o.algorithm)
-                throw Exception("--param", "'" + s + "': the algorithm is " + o.algorithm + ", not " + param.owner);
+                throw Exception("--param", quote(s) + ": the algorithm is " + o.algorithm + ", not " + param.owner);
             if (!solver->params().hasParam(param.name) || !solver->params().setParam(param.name, param.value))
-                throw Exception("--param", "'" + s + "' is not a valid parameter of " + o.algorithm);
+                throw Exception("--param", quote(s) + " is not a valid parameter of " + o.algorithm);
         }
         if (o.sizing != "uniform" && o.sizing != "adaptive")
-            throw Exception("--sizing", "'" + o.sizing + "' is not a node sizing (uniform or adaptive)");
+            throw Exception("--sizing", quote(o.sizing) + " is not a node sizing (uniform or adaptive)");
         return solver;
     }
 

@@ -67,8 +67,8 @@ int main(int argc, char **argv)
         for (const auto &map : robotMaps)
             names.push_back(map.first);
         if (which != "all" && std::find(names.begin(), names.end(), which) == names.end())
-            throw meshgap::Exception("--scene", "unknown scene '" + which + "' (valid: " + meshgap::joinNames(names) +
-                                                    ", all)");
+            throw meshgap::Exception(
+                "--scene", "unknown scene " + quote(which) + " (valid: " + meshgap::joinNames(names) + ", all)");
         for (const auto &scene : scenes)
             if (which == "all" || which == scene.first)
                 writeScene(scene.second(), std::filesystem::path(out) / scene.first);

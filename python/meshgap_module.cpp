@@ -850,8 +850,9 @@ namespace
         const std::string path = pathArg(urdf, "urdf");
         const std::string srdfPath = srdf.is_none() ? std::string() : pathArg(srdf, "srdf");
         for (const std::string &file : {path, srdfPath})
-            if (!file.empty() && !std::filesystem::exists(file))
-                throw Exception(file, "no such file");  // FileNotFoundError, as for a mesh
+            if (std::error_code error; !file.empty() && !std::filesystem::exists(file, error))
+                throw Exception(excerpt(file),  // FileNotFoundError, as for a mesh
+                                error ? "cannot be read (" + error.message() + ")" : "no such file");
         UrdfRobotPtr robot;
         {
             py::gil_scoped_release release;
@@ -909,8 +910,9 @@ namespace
         return robotSceneOf(
             [&path]
             {
-                if (!std::filesystem::exists(path))
-                    throw Exception(path, "no such file");
+                if (std::error_code error; !std::filesystem::exists(path, error))
+                    throw Exception(excerpt(path),
+                                    error ? "cannot be read (" + error.message() + ")" : "no such file");
                 if (!isRobotProblemFile(path))
                     throw Exception(path, "a single-body problem (robot = FILE): open it with meshgap.Scene.from_cfg");
                 return readRobotProblem(path);
@@ -1057,7 +1059,7 @@ namespace
             for (std::size_t i = 0; i < links.size(); ++i)
                 if (links[i].name == name)
                     return i;
-            throw Exception("link", "no link named '" + name + "'");
+            throw Exception("link", "no link named " + quote(name));
         }
         if (py::isinstance<py::bool_>(h) || !PyIndex_Check(h.ptr()))
             throw Exception("link", "expected a link's name (str) or index (int), got " + typeName(h));

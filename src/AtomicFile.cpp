@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 
 #if defined(__unix__) || defined(__APPLE__)
 #include <signal.h>
@@ -95,7 +96,7 @@ namespace meshgap
             std::error_code ec;
             std::filesystem::rename(temporary, path, ec);
             if (ec)
-                throw Exception(path, "cannot rename " + temporary + " to it: " + ec.message());
+                throw Exception(excerpt(path), "cannot rename " + temporary + " to it: " + ec.message());
         }
         catch (...)
         {
@@ -114,13 +115,15 @@ namespace meshgap
                             errno = 0;
                             std::ofstream out(temporary, binary ? std::ios::out | std::ios::binary : std::ios::out);
                             if (!out)
-                                throw Exception(path, "cannot open " + temporary + " for writing" +
-                                                          (errno != 0 ? std::string(": ") + std::strerror(errno) : ""));
+                                throw Exception(excerpt(path),
+                                                "cannot open " + temporary + " for writing" +
+                                                    (errno != 0 ? std::string(": ") + std::strerror(errno) : ""));
                             write(out);
                             out.close();
                             if (!out)
-                                throw Exception(path, "write failed" +
-                                                          (errno != 0 ? std::string(": ") + std::strerror(errno) : ""));
+                                throw Exception(
+                                    excerpt(path),
+                                    "write failed" + (errno != 0 ? std::string(": ") + std::strerror(errno) : ""));
                         });
     }
 }  // namespace meshgap

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 
 namespace meshgap
 {
@@ -14,15 +15,15 @@ namespace meshgap
         std::error_code ec;
         const fs::file_status status = fs::status(path, ec);
         if (path.empty() || status.type() == fs::file_type::not_found)
-            throw Exception(path.empty() ? std::string("''") : path, "no such file");
+            throw Exception(path.empty() ? std::string("''") : excerpt(path), "no such file");
         if (ec)
-            throw Exception(path, "cannot be read (" + ec.message() + ")");
+            throw Exception(excerpt(path), "cannot be read (" + ec.message() + ")");
         if (status.type() == fs::file_type::directory)
-            throw Exception(path, "is a folder, not a file");
+            throw Exception(excerpt(path), "is a folder, not a file");
         if (status.type() != fs::file_type::regular)
-            throw Exception(path, "is not a regular file (a device, a FIFO or a socket)");
+            throw Exception(excerpt(path), "is not a regular file (a device, a FIFO or a socket)");
         if (!std::ifstream(path).good())
-            throw Exception(path, "cannot be opened for reading");
+            throw Exception(excerpt(path), "cannot be opened for reading");
     }
 
     std::string readInputFile(const std::string &path)
@@ -32,7 +33,7 @@ namespace meshgap
         std::ostringstream text;
         text << in.rdbuf();
         if (in.bad())
-            throw Exception(path, "cannot be read");
+            throw Exception(excerpt(path), "cannot be read");
         return text.str();
     }
 }  // namespace meshgap

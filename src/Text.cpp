@@ -9,6 +9,34 @@
 
 namespace meshgap
 {
+    namespace
+    {
+        /** \brief excerpt() with the quotes of quote() around the text shown, before the length. */
+        std::string shorten(const std::string &text, std::size_t limit, const char *quotes)
+        {
+            if (text.size() <= limit)
+                return quotes + text + quotes;
+            auto continuation = [&text](std::size_t i) { return (static_cast<unsigned char>(text[i]) & 0xC0) == 0x80; };
+            std::size_t head = limit - limit / 4, tail = text.size() - limit / 4;
+            while (head > 0 && continuation(head))
+                --head;
+            while (tail < text.size() && continuation(tail))
+                ++tail;
+            return quotes + text.substr(0, head) + "..." + text.substr(tail) + quotes + " (" +
+                   std::to_string(text.size()) + " characters)";
+        }
+    }  // namespace
+
+    std::string excerpt(const std::string &text, std::size_t limit)
+    {
+        return shorten(text, limit, "");
+    }
+
+    std::string quote(const std::string &text, std::size_t limit)
+    {
+        return shorten(text, limit, "'");
+    }
+
     bool parseNumber(const std::string &text, double &value)
     {
         if (text.empty() || std::isspace(static_cast<unsigned char>(text.front())))
@@ -26,7 +54,7 @@ namespace meshgap
     {
         double x = 0.0;
         if (!parseNumber(text, x) || !std::isfinite(x))
-            throw Exception(where, "'" + text + "' is not a finite number" +
+            throw Exception(where, quote(text) + " is not a finite number" +
                                        (expected.empty() ? std::string() : " (expected " + expected + ")"));
         return x;
     }

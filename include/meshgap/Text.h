@@ -1,11 +1,25 @@
 #ifndef MESHGAP_TEXT_H
 #define MESHGAP_TEXT_H
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
 namespace meshgap
 {
+    /** \brief How many characters of user input an error message quotes (excerpt(), quote()). */
+    constexpr std::size_t MAX_QUOTED = 200;
+
+    /** \brief \e text as an error message may show it: whole when it has at most \e limit characters (bytes), else
+        its first three quarters of \e limit and its last quarter around "..." (cut at UTF-8 character boundaries),
+        followed by " (N characters)". A 30 MB line or a 5000-character path gives a short message that still shows
+        how the value begins and ends (a path's file name). */
+    std::string excerpt(const std::string &text, std::size_t limit = MAX_QUOTED);
+
+    /** \brief \e text in single quotes, as every error message that echoes user input (a value, a name, a line, a
+        path) quotes it: "'text'", or for a long text "'first...last' (N characters)" (excerpt()). */
+    std::string quote(const std::string &text, std::size_t limit = MAX_QUOTED);
+
     /** \brief The one strict number parser: true and \e value if all of \e text is a number in std::strtod's
         syntax (no leading or trailing characters, so "1.5x" and "" fail); NaN and infinities parse (check
         std::isfinite() where they are not allowed). */

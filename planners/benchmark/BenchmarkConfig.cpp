@@ -24,9 +24,11 @@ namespace meshgap
                 }
                 const std::string prefix = key.substr(0, dot), rest = key.substr(dot + 1);
                 if (prefix == "problem")
-                    throw Exception(config.file, "[planner] " + key + ": per-planner problem settings are not supported");
+                    throw Exception(config.file,
+                                    "[planner] " + quote(key) + ": per-planner problem settings are not supported");
                 if (specs.empty() || specs.back().type != prefix)
-                    throw Exception(config.file, "[planner] " + key + " does not follow a '" + prefix + "=' line");
+                    throw Exception(config.file,
+                                    "[planner] " + quote(key) + " does not follow a " + quote(prefix + "=") + " line");
                 if (rest == "name")
                     specs.back().name = value;
                 else
@@ -45,7 +47,7 @@ namespace meshgap
                 if (i >= 1 && i <= n)
                     return {i, n};
             }
-            throw Exception("--shard", "'" + text + "' is not i/n with 1 <= i <= n");
+            throw Exception("--shard", quote(text) + " is not i/n with 1 <= i <= n");
         }
 
         void applyConfig(const ProblemConfig &config, Settings &settings)
@@ -61,7 +63,7 @@ namespace meshgap
                 else if (key == "run_count")
                 {
                     if (!parseUnsigned(value, runs) || runs > std::numeric_limits<unsigned>::max())
-                        throw Exception(where, "'" + value + "' is not a whole number of runs");
+                        throw Exception(where, quote(value) + " is not a whole number of runs");
                     settings.runs = static_cast<unsigned>(runs);
                 }
                 else if (key == "output")

@@ -14,6 +14,7 @@
 #include "FclChecker.h"
 #include "benchmark/BenchmarkLog.h"
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/ProblemSetup.h"
@@ -109,7 +110,7 @@ namespace meshgap
                     checker = fcl_;
     #endif
                 else
-                    throw Exception("--checker", "unknown checker '" + name + "'");
+                    throw Exception("--checker", "unknown checker " + quote(name));
                 active_ = name;
                 si_->setStateValidityChecker(checker);
                 si_->setMotionValidator(validator ? validator :

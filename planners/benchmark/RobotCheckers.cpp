@@ -7,6 +7,7 @@
 
 #include "benchmark/BenchmarkLog.h"
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/ompl/CertifiedAnswerPlanner.h"
 #include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/Objectives.h"
@@ -165,7 +166,7 @@ namespace meshgap
                 checker = fcl_;
     #endif
             else if (name != "discrete")
-                throw Exception("--checker", "unknown checker '" + name + "'");
+                throw Exception("--checker", "unknown checker " + quote(name));
             active_ = name;
             si->setStateValidityChecker(checker);
             si->setMotionValidator(validator ? validator : allocMotionValidator("discrete", si, scene_, "--checker"));

@@ -14,6 +14,7 @@
 
 #include "CliMain.h"
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/ompl/PlannerFactory.h"
 #include "support/PlanOutputs.h"
 #include "support/Progress.h"
@@ -119,8 +120,8 @@ namespace meshgap
             {
                 const OwnedParam param = parseOwnedParam(text, "PLANNER", p->planner + ".goal_bias=0.1");
                 if (boost::algorithm::to_lower_copy(param.owner) != boost::algorithm::to_lower_copy(p->planner))
-                    throw Exception(o.label("param"), "'" + text + "': the planner is " + p->planner + ", not " +
-                                                          param.owner);
+                    throw Exception(o.label("param"),
+                                    quote(text) + ": the planner is " + p->planner + ", not " + param.owner);
                 setPlannerParam(*planner, param.name, param.value, o.label("param"));
             }
             for (const auto &[name, value] : o.plannerParams)

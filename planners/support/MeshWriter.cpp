@@ -11,6 +11,7 @@
 
 #include "meshgap/AtomicFile.h"
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 
 namespace meshgap
 {
@@ -50,11 +51,11 @@ namespace meshgap
             const Mesh &mesh = part.mesh;
             for (const Eigen::Vector3d &v : mesh.vertices)
                 if (!v.allFinite())
-                    throw Exception(path, "cannot write part '" + part.name + "': a coordinate is not finite");
+                    throw Exception(path, "cannot write part " + quote(part.name) + ": a coordinate is not finite");
             for (const Triangle &t : mesh.triangles)
                 for (std::uint32_t i : t)
                     if (i >= mesh.vertices.size())
-                        throw Exception(path, "cannot write part '" + part.name + "': a triangle uses vertex " +
+                        throw Exception(path, "cannot write part " + quote(part.name) + ": a triangle uses vertex " +
                                                   std::to_string(i) + " of " + std::to_string(mesh.vertices.size()));
         }
 

@@ -81,7 +81,7 @@ namespace meshgap
                 throw Exception(o.keywords ? "cfg" : "command line",
                                 "--cfg FILE (or --urdf with --scene and --request) is required; see --help");
             if (o.checker != "certified" && o.checker != "fast")
-                throw Exception(o.label("checker"), "'" + o.checker + "' is not certified or fast");
+                throw Exception(o.label("checker"), quote(o.checker) + " is not certified or fast");
             checkMotionValidatorName(o.motion, o.label("motion"));
             if (o.motion == "clearance" && o.checker != "certified")
                 throw Exception(o.label("motion"), "clearance needs " + o.label("checker") +

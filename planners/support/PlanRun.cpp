@@ -8,6 +8,7 @@
 #include "CliMain.h"
 #include "OptimizeOption.h"
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/PlannerFactory.h"
@@ -56,7 +57,7 @@ namespace meshgap
                     const OwnedParam param = parseOwnedParam(text, "PLANNER", o.planner + ".range=5");
                     if (boost::algorithm::to_lower_copy(param.owner) != boost::algorithm::to_lower_copy(o.planner))
                         throw Exception(o.label("param"),
-                                        "'" + text + "': the planner is " + o.planner + ", not " + param.owner);
+                                        quote(text) + ": the planner is " + o.planner + ", not " + param.owner);
                     setPlannerParam(*planner, param.name, param.value, o.label("param"));
                 }
                 for (const auto &[name, value] : o.plannerParams)

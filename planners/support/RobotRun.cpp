@@ -48,9 +48,9 @@ namespace meshgap
             {
                 if (r.link >= scene.links().size() || (scene.obstacles().empty() && scene.selfPairs().empty()))
                     return "no pair (the robot has neither obstacles nor self pairs to check)";
-                const std::string link = "'" + scene.links()[r.link].name + "'";
-                return r.selfPair ? "links " + link + " and '" + scene.links()[r.other].name + "'" :
-                                    "link " + link + " and obstacle " + std::to_string(r.other);
+                const std::string link = quote(scene.links()[r.link].name);
+                return r.selfPair ? "links " + link + " and " + quote(scene.links()[r.other].name)
+                                  : "link " + link + " and obstacle " + std::to_string(r.other);
             }
 
             /** \brief The options meshgap_plan has that a robot problem does not take (yet). */
@@ -104,7 +104,7 @@ namespace meshgap
                 std::ostringstream text;
                 const RobotModel &robot = *run.problem.robot;
                 if (const auto *urdf = dynamic_cast<const UrdfRobot *>(&robot))
-                    text << "URDF '" << urdf->name() << "'" << (urdf->floatingBase() ? ", floating base" : "") << ", "
+                    text << "URDF " << quote(urdf->name()) << (urdf->floatingBase() ? ", floating base" : "") << ", "
                          << urdf->variables().size() << " joints, ";
                 else
                     text << robot.links().size() << " bodies in " << (run.problem.planar ? "SE(2)" : "SE(3)") << ", ";

@@ -14,6 +14,7 @@
 
 #include "meshgap/AtomicFile.h"
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 
 #if defined(__unix__) || defined(__APPLE__)
 #include <unistd.h>
@@ -321,7 +322,8 @@ namespace meshgap
                             {
                                 std::FILE *f = std::fopen(tmp.c_str(), "wb");
                                 if (f == nullptr)
-                                    throw Exception(path, "cannot create '" + tmp + "': " + std::strerror(errno));
+                                    throw Exception(excerpt(path),
+                                                    "cannot create " + quote(tmp) + ": " + std::strerror(errno));
                                 const std::size_t entries = std::size_t(numNodes) * numNodes;
                                 bool ok = writeAll(f, &header, sizeof header) &&
                                           writeAll(f, D, entries * sizeof(double)) &&
@@ -333,7 +335,8 @@ namespace meshgap
                                 if (std::fclose(f) != 0)
                                     ok = false;
                                 if (!ok)
-                                    throw Exception(path, "writing '" + tmp + "' failed: " + std::strerror(savedErrno));
+                                    throw Exception(excerpt(path),
+                                                    "writing " + quote(tmp) + " failed: " + std::strerror(savedErrno));
                             });
         }
         catch (const std::exception &e)

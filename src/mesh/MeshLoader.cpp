@@ -1,18 +1,20 @@
 #include "meshgap/mesh/MeshLoader.h"
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <ompl/util/Console.h>
+
+#include <assimp/Importer.hpp>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
-#include <ompl/util/Console.h>
 #include <set>
 #include <tuple>
 
 #include "meshgap/Exception.h"
 #include "meshgap/InputFile.h"
+#include "meshgap/Text.h"
 
 namespace meshgap
 {
@@ -54,10 +56,11 @@ namespace meshgap
                         for (int c = 0; c < 3; ++c)
                         {
                             if (face.mIndices[c] >= m->mNumVertices)
-                                throw Exception(path, "face " + std::to_string(f) + " of mesh '" + m->mName.C_Str() +
-                                                          "' uses vertex index " + std::to_string(face.mIndices[c]) +
-                                                          " but the mesh has " + std::to_string(m->mNumVertices) +
-                                                          " vertices");
+                                throw Exception(excerpt(path), "face " + std::to_string(f) + " of mesh " +
+                                                                   quote(m->mName.C_Str()) + " uses vertex index " +
+                                                                   std::to_string(face.mIndices[c]) +
+                                                                   " but the mesh has " +
+                                                                   std::to_string(m->mNumVertices) + " vertices");
                             t[c] = offset + face.mIndices[c];
                         }
                         mesh.triangles.push_back(t);
@@ -79,16 +82,16 @@ namespace meshgap
             in.read(&head[0], static_cast<std::streamsize>(head.size()));
             head.resize(static_cast<std::size_t>(in.gcount()));
             if (head.compare(0, 3, "ply") != 0 && head.compare(0, 3, "PLY") != 0)
-                throw Exception(path, "corrupt PLY header (the file does not start with 'ply')");
+                throw Exception(excerpt(path), "corrupt PLY header (the file does not start with 'ply')");
             const std::size_t end = head.find("end_header");
             if (end == std::string::npos)
-                throw Exception(path, "corrupt PLY header (no 'end_header' in the first 64 KiB)");
+                throw Exception(excerpt(path), "corrupt PLY header (no 'end_header' in the first 64 KiB)");
             for (std::size_t i = 0; i < end; ++i)
             {
                 const unsigned char c = static_cast<unsigned char>(head[i]);
                 if (!(c == '\n' || c == '\r' || c == '\t' || (c >= 32 && c < 127)))
-                    throw Exception(path, "corrupt PLY header (a byte that is not text at offset " + std::to_string(i) +
-                                              ")");
+                    throw Exception(excerpt(path),
+                                    "corrupt PLY header (a byte that is not text at offset " + std::to_string(i) + ")");
             }
         }
 
@@ -126,7 +129,7 @@ namespace meshgap
         std::error_code ec;
         checkInputFile(path);
         if (fs::file_size(path, ec) == 0)
-            throw Exception(path, "the file is empty");
+            throw Exception(excerpt(path), "the file is empty");
         if (hasExtension(path, ".ply"))
             checkPlyHeader(path);
 
@@ -142,11 +145,12 @@ namespace meshgap
             const std::string why = importer.GetErrorString();
             // assimp's validation words an empty scene its own way; say it as the rest of meshgap does.
             if (why.find("contains no faces") != std::string::npos || why.find("mNumMeshes is 0") != std::string::npos)
-                throw Exception(path, "no triangles (an empty scene, a point cloud or only lines?)");
-            throw Exception(path, "cannot read the mesh (" + (why.empty() ? std::string("unknown format") : why) + ")");
+                throw Exception(excerpt(path), "no triangles (an empty scene, a point cloud or only lines?)");
+            throw Exception(excerpt(path),
+                            "cannot read the mesh (" + (why.empty() ? std::string("unknown format") : why) + ")");
         }
         if (scene->mRootNode == nullptr || !scene->HasMeshes())
-            throw Exception(path, "no triangles (the file holds no mesh)");
+            throw Exception(excerpt(path), "no triangles (the file holds no mesh)");
 
         Mesh mesh;
         mesh.source = path;
@@ -163,8 +167,8 @@ namespace meshgap
         mesh.validate();  // NaN/Inf, indices, and "no triangles" (e.g. a point cloud or lines only)
         report.clean = cleanMesh(mesh);
         if (mesh.triangles.empty())
-            throw Exception(path, "no triangles left: all " + std::to_string(report.rawTriangles) +
-                                      " triangles are degenerate (zero area)");
+            throw Exception(excerpt(path), "no triangles left: all " + std::to_string(report.rawTriangles) +
+                                               " triangles are degenerate (zero area)");
         if (report.clean.degenerate > 0)
             OMPL_WARN("%s: dropped %zu degenerate (zero-area) triangles", path.c_str(), report.clean.degenerate);
         if (report.clean.duplicates > 0)

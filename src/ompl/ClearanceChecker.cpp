@@ -1,14 +1,16 @@
 #include "meshgap/ompl/ClearanceChecker.h"
 
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <ompl/base/spaces/SE2StateSpace.h>
-#include <ompl/base/spaces/SE3StateSpace.h>
 #include <unordered_map>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/distance/SolverFactory.h"
 
 namespace meshgap
@@ -48,7 +50,7 @@ namespace meshgap
             X.translation() = Eigen::Vector3d(s->getX(), s->getY(), 0.0);
             return X;
         }
-        throw Exception("ClearanceChecker", "state space '" + space.getName() + "' is neither SE(3) nor SE(2)");
+        throw Exception("ClearanceChecker", "state space " + quote(space.getName()) + " is neither SE(3) nor SE(2)");
     }
 
     void stateFromPose(const ompl::base::StateSpace &space, const Eigen::Isometry3d &X, ompl::base::State *state)
@@ -73,7 +75,7 @@ namespace meshgap
             s->setYaw(std::atan2(X.linear()(1, 0), X.linear()(0, 0)));
             return;
         }
-        throw Exception("ClearanceChecker", "state space '" + space.getName() + "' is neither SE(3) nor SE(2)");
+        throw Exception("ClearanceChecker", "state space " + quote(space.getName()) + " is neither SE(3) nor SE(2)");
     }
 
     double sweepBound(const ompl::base::StateSpace &space, const ompl::base::State *s1, const ompl::base::State *s2,

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/distance/ExactDistance.h"
 
 namespace meshgap
@@ -227,7 +228,7 @@ namespace meshgap
             return 6;
         if (space.getType() == ompl::base::STATE_SPACE_SE2)
             return 3;
-        throw Exception("ClearanceGradient", "state space '" + space.getName() + "' is neither SE(3) nor SE(2)");
+        throw Exception("ClearanceGradient", "state space " + quote(space.getName()) + " is neither SE(3) nor SE(2)");
     }
 
     void applyTangentStep(const ompl::base::StateSpace &space, const ompl::base::State *state, const double *step,

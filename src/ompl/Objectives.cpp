@@ -1,13 +1,15 @@
 #include "meshgap/ompl/Objectives.h"
 
+#include <ompl/base/OptimizationObjective.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
-#include <ompl/base/OptimizationObjective.h>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 #include "meshgap/ompl/ClearanceChecker.h"
 #include "meshgap/ompl/ClearanceField.h"
 
@@ -203,6 +205,6 @@ namespace meshgap
         std::string valid;
         for (const std::string &n : objectiveNames())
             valid += (valid.empty() ? "" : ", ") + n;
-        throw Exception("objective", "unknown objective '" + name + "'; valid names: " + valid);
+        throw Exception("objective", "unknown objective " + quote(name) + "; valid names: " + valid);
     }
 }  // namespace meshgap

@@ -92,7 +92,7 @@ namespace meshgap
         {
             std::vector<std::string> names;
             planner.params().getParamNames(names);
-            throw Exception(where, "'" + key + "' is no parameter of " + planner.getName() +
+            throw Exception(where, quote(key) + " is no parameter of " + planner.getName() +
                                        "; its parameters: " + (names.empty() ? "none" : joinNames(names)));
         }
         bool set = false;
@@ -104,6 +104,6 @@ namespace meshgap
         {
         }
         if (!set)
-            throw Exception(where, planner.getName() + "'s " + key + " refuses the value '" + value + "'");
+            throw Exception(where, planner.getName() + "'s " + key + " refuses the value " + quote(value));
     }
 }  // namespace meshgap

@@ -165,8 +165,8 @@ namespace meshgap
                                   out ? out + count : nullptr, in ? in + count : nullptr);
                 return count;
             }
-            throw Exception("robot state space", "space '" + space.getName() +
-                                                     "' is none of SE(3), SE(2), SO(2), real vector or a compound");
+            throw Exception("robot state space", "space " + quote(space.getName()) +
+                                                     " is none of SE(3), SE(2), SO(2), real vector or a compound");
         }
 
         /** \brief Numbers in a state of \e space (walk()'s count, without a state). */
@@ -189,8 +189,8 @@ namespace meshgap
                     count += countOf(*compound->getSubspace(i));
                 return count;
             }
-            throw Exception("robot state space", "space '" + space.getName() +
-                                                     "' is none of SE(3), SE(2), SO(2), real vector or a compound");
+            throw Exception("robot state space", "space " + quote(space.getName()) +
+                                                     " is none of SE(3), SE(2), SO(2), real vector or a compound");
         }
     }  // namespace
 

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 
 namespace meshgap
 {
@@ -22,8 +23,8 @@ namespace meshgap
             {
                 chain.push_back(f);
                 if (motions[f].kind != FrameMotion::Kind::FIXED && !std::isfinite(reach))
-                    throw Exception("MotionBound", "frame '" + robot.frames()[f].name +
-                                                       "' moves a frame that moves free (no bound on its reach)");
+                    throw Exception("MotionBound", "frame " + quote(robot.frames()[f].name) +
+                                                       " moves a frame that moves free (no bound on its reach)");
                 addTerms(motions[f], step, reach, terms);
                 // Up to the parent frame: a rotation keeps the distance from the frame's origin, the frame's own
                 // origin lies within its reach of the parent's.

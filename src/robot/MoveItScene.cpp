@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "meshgap/Exception.h"
+#include "meshgap/InputFile.h"
+#include "meshgap/Text.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/mesh/MeshOperations.h"
 #include "meshgap/robot/PackagePath.h"
@@ -36,8 +38,7 @@ namespace meshgap
         public:
             explicit YamlFile(const std::string &path) : path_(path)
             {
-                if (!fs::is_regular_file(path))
-                    throw Exception(path, "the file does not exist");
+                checkInputFile(path);
                 try
                 {
                     root_ = YAML::LoadFile(path);
@@ -47,13 +48,13 @@ namespace meshgap
                     throw Exception(at(e.mark), "cannot read the YAML: " + e.msg);
                 }
                 if (!root_.IsMap())
-                    throw Exception(path, "not a YAML map (a moveit_msgs message)");
+                    throw Exception(excerpt(path), "not a YAML map (a moveit_msgs message)");
             }
             const YAML::Node &root() const { return root_; }
             const std::string &path() const { return path_; }
             std::string at(const YAML::Mark &mark) const
             {
-                return mark.line >= 0 ? path_ + ":" + std::to_string(mark.line + 1) : path_;
+                return excerpt(path_) + (mark.line >= 0 ? ":" + std::to_string(mark.line + 1) : std::string());
             }
             [[noreturn]] void fail(const YAML::Node &node, const std::string &entry, const std::string &what) const
             {
@@ -85,7 +86,7 @@ namespace meshgap
                 }
                 catch (const YAML::Exception &)
                 {
-                    fail(node, entry, "'" + node.Scalar() + "' is not a number");
+                    fail(node, entry, quote(node.Scalar()) + " is not a number");
                 }
             }
             std::string text(const YAML::Node &node, const std::string &entry) const
@@ -196,10 +197,10 @@ namespace meshgap
             {
                 const std::size_t index = robot.findJoint(v.name);
                 if (index == RobotModel::NONE)
-                    throw Exception(v.where, "robot '" + robot.name() + "' has no joint '" + v.name + "'");
+                    throw Exception(v.where, "robot " + quote(robot.name()) + " has no joint " + quote(v.name));
                 const UrdfJoint &j = robot.joints()[index];
                 if (j.joint->size() == 0 && v.value != 0.0)
-                    throw Exception(v.where, "joint '" + v.name + "' is fixed in the URDF, but is given " +
+                    throw Exception(v.where, "joint " + quote(v.name) + " is fixed in the URDF, but is given " +
                                                  std::to_string(v.value));
                 if (j.joint->size() > 1)
                     throw Exception(v.where, "joint '" + v.name + "' is a " + j.joint->type() + " joint of " +
@@ -211,7 +212,7 @@ namespace meshgap
                 if (v.value < lower || v.value > upper)
                 {
                     std::ostringstream text;
-                    text << "joint '" << v.name << "' = " << v.value << " is outside its limits [" << lower << ", "
+                    text << "joint " << quote(v.name) << " = " << v.value << " is outside its limits [" << lower << ", "
                          << upper << "]";
                     throw Exception(v.where, text.str());
                 }
@@ -280,8 +281,11 @@ namespace meshgap
                     return frames_[f];
                 if (name == "world")
                     return Eigen::Isometry3d::Identity();
-                file_.fail(node, entry, "unknown frame '" + id + "' (neither a fixed frame of the scene nor a link of "
-                                        "robot '" + robot_.name() + "')");
+                file_.fail(node, entry,
+                           "unknown frame " + quote(id) +
+                               " (neither a fixed frame of the scene nor a link "
+                               "of robot " +
+                               quote(robot_.name()) + ")");
             }
 
             /** \brief The primitive \e p as a circumscribed mesh in its own frame, and as the solid it is (its pose
@@ -310,8 +314,8 @@ namespace meshgap
             else if (type.size() == 1 && type[0] >= '1' && type[0] <= '4')
                 kind = type[0] - '0';
             else
-                file_.fail(typeNode, entry + ".type", "unknown primitive type '" + type +
-                                                          "' (box, sphere, cylinder, cone, or 1 to 4)");
+                file_.fail(typeNode, entry + ".type",
+                           "unknown primitive type " + quote(type) + " (box, sphere, cylinder, cone, or 1 to 4)");
             const YAML::Node dimensions = YamlFile::child(p, "dimensions");
             std::vector<double> d;
             for (const YAML::Node &n : file_.list(dimensions, entry + ".dimensions"))
@@ -400,7 +404,7 @@ namespace meshgap
             if (!object.IsMap())
                 file_.fail(object, where, "is not a collision object");
             const std::string id = file_.text(YamlFile::child(object, "id"), where + ".id");
-            const std::string entry = where + " ('" + id + "')";
+            const std::string entry = where + " (" + quote(id) + ")";
             const YAML::Node header = file_.section(object, "header", entry + ".header");
             const YAML::Node frameId = YamlFile::child(header, "frame_id");
             const Eigen::Isometry3d X_WO =
@@ -408,7 +412,7 @@ namespace meshgap
                 file_.pose(YamlFile::child(object, "pose"), entry + ".pose");
             if (const YAML::Node op = YamlFile::child(object, "operation"))
                 if (op.Scalar() != "0" && op.Scalar() != "ADD" && op.Scalar() != "add")
-                    file_.fail(op, entry + ".operation", "'" + op.Scalar() + "': only ADD (0) is read");
+                    file_.fail(op, entry + ".operation", quote(op.Scalar()) + ": only ADD (0) is read");
             for (const char *kind : {"primitives", "meshes"})
             {
                 const bool isPrimitive = kind[0] == 'p';
@@ -451,8 +455,8 @@ namespace meshgap
             {
                 bool b = false;
                 if (!v.IsScalar() || !YAML::convert<bool>::decode(v, b))
-                    file.fail(v, entry, "'" + (v.IsScalar() ? v.Scalar() : std::string("?")) +
-                                            "' is not true or false");
+                    file.fail(v, entry,
+                              (v.IsScalar() ? quote(v.Scalar()) : std::string("'?'")) + " is not true or false");
                 out.push_back(b);
             }
             return out;

@@ -1,6 +1,7 @@
 #include "meshgap/robot/MultiBodyRobot.h"
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 
 namespace meshgap
 {
@@ -13,7 +14,7 @@ namespace meshgap
         for (const Part &part : parts)
         {
             if (findFrame(part.name) != NONE)
-                throw Exception(where_, "two bodies named '" + part.name + "'");
+                throw Exception(where_, "two bodies named " + quote(part.name));
             const std::size_t frame = addFrame(part.name, NONE);
             addLink(part.name, part.body, frame, Eigen::Isometry3d::Identity(), false);
             FrameJoint joint;

@@ -5,6 +5,7 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/InputFile.h"
+#include "meshgap/Text.h"
 
 namespace fs = std::filesystem;
 
@@ -65,7 +66,7 @@ namespace meshgap
             const std::size_t slash = rest.find('/');
             const std::string name = rest.substr(0, slash);
             if (name.empty() || slash == std::string::npos || slash + 1 == rest.size())
-                throw Exception(uri, "a package URI needs a package name and a file (package://PACKAGE/FILE)");
+                throw Exception(excerpt(uri), "a package URI needs a package name and a file (package://PACKAGE/FILE)");
             std::vector<fs::path> searched(packagePath.begin(), packagePath.end());
             for (fs::path folder = fs::absolute(baseFolder).lexically_normal();; folder = folder.parent_path())
             {
@@ -77,7 +78,7 @@ namespace meshgap
             for (std::size_t i = 0; i < searched.size() && package.empty(); ++i)
                 package = packageIn(searched[i], name);
             if (package.empty())
-                throw Exception(uri, "no package '" + name + "' in any of " + joined(searched) +
+                throw Exception(excerpt(uri), "no package " + quote(name) + " in any of " + joined(searched) +
                                          " (ROS_PACKAGE_PATH or the package path, then the description's folder "
                                          "and its parents)");
             file = package / rest.substr(slash + 1);
@@ -88,14 +89,14 @@ namespace meshgap
             file = fs::path(uri).is_absolute() ? fs::path(uri) : fs::path(baseFolder) / uri;
         std::error_code ignored;
         if (!fs::exists(file, ignored))
-            throw Exception(uri, "no such file: " + file.string());
+            throw Exception(excerpt(uri), "no such file: " + excerpt(file.string()));
         try
         {
             checkInputFile(file.string());  // a folder, a FIFO or a device says what it is
         }
         catch (const Exception &e)
         {
-            throw Exception(uri, e.what());
+            throw Exception(excerpt(uri), e.what());
         }
         return file.string();
     }

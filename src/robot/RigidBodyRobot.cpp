@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "meshgap/Text.h"
+
 namespace meshgap
 {
     std::size_t rigidSpaceDimension(RigidSpace space)
@@ -24,7 +26,7 @@ namespace meshgap
 
     RigidBodyRobot::RigidBodyRobot(BodyConstPtr body, RigidSpace space, const std::string &name) : space_(space)
     {
-        where_ = "robot '" + name + "'";
+        where_ = "robot " + quote(name);
         addLink(name, std::move(body), addFrame(name, NONE), Eigen::Isometry3d::Identity(), false);
         FrameJoint joint;
         joint.name = name;

@@ -6,6 +6,7 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/Limits.h"
+#include "meshgap/Text.h"
 
 namespace meshgap
 {
@@ -82,11 +83,12 @@ namespace meshgap
     {
         const std::size_t frame = findFrame(parent);
         if (frame == NONE)
-            throw Exception(where_, "payload '" + name + "' attached to '" + parent + "', which is no link of this robot");
+            throw Exception(where_, "payload " + quote(name) + " attached to " + quote(parent) +
+                                        ", which is no link of this robot");
         if (findLink(name) != NONE)
-            throw Exception(where_, "payload '" + name + "': a link of that name exists already");
+            throw Exception(where_, "payload " + quote(name) + ": a link of that name exists already");
         if (!X_FP.matrix().allFinite())
-            throw Exception(where_, "payload '" + name + "': its transform is not finite");
+            throw Exception(where_, "payload " + quote(name) + ": its transform is not finite");
         mesh.validate();
         const std::size_t owner = ownerLink(frame);
         const std::size_t index = addLink(name, Body::build(std::move(mesh), options), frame, X_FP, true);
@@ -108,7 +110,7 @@ namespace meshgap
             {
                 const std::size_t frame = findFrame(name);
                 if (frame == NONE)
-                    throw Exception(where_, "no link named '" + name + "'");
+                    throw Exception(where_, "no link named " + quote(name));
                 for (std::size_t i = 0; i < links_.size(); ++i)
                     if (links_[i].frame == frame && !links_[i].payload)
                         found.push_back(i);
@@ -149,7 +151,7 @@ namespace meshgap
     std::size_t RobotModel::addFrame(const std::string &name, std::size_t parent)
     {
         if (parent != NONE && parent >= frames_.size())
-            throw Exception(where_, "frame '" + name + "': its parent is not defined before it");
+            throw Exception(where_, "frame " + quote(name) + ": its parent is not defined before it");
         frames_.push_back({name, parent});
         joints_.emplace_back();
         joints_.back().name = name;
@@ -161,11 +163,11 @@ namespace meshgap
                                     const Eigen::Isometry3d &X_FL, bool payload)
     {
         if (!body)
-            throw Exception(where_, "link '" + name + "' has no body");
+            throw Exception(where_, "link " + quote(name) + " has no body");
         if (frame >= frames_.size())
-            throw Exception(where_, "link '" + name + "' is in no frame of this robot");
+            throw Exception(where_, "link " + quote(name) + " is in no frame of this robot");
         if (findLink(name) != NONE)
-            throw Exception(where_, "two links named '" + name + "'");
+            throw Exception(where_, "two links named " + quote(name));
         const std::size_t index = links_.size();
         links_.push_back({name, std::move(body), frame, X_FL, payload});
         allowed_.emplace_back(index, false);
@@ -236,7 +238,7 @@ namespace meshgap
             {
                 const Number &n = numbers_[i];
                 std::ostringstream text;
-                text << "joint '" << n.name << "' = " << state[i] << " is outside its limits [" << n.lower << ", "
+                text << "joint " << quote(n.name) << " = " << state[i] << " is outside its limits [" << n.lower << ", "
                      << n.upper << "]";
                 throw Exception(where, text.str());
             }

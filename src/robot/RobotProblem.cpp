@@ -8,6 +8,7 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/InputFile.h"
+#include "meshgap/Text.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/mesh/MeshOperations.h"
 #include "meshgap/robot/MoveItScene.h"
@@ -72,8 +73,9 @@ namespace meshgap
             fs::path p(text);
             if (p.is_relative())
                 p = folder / p;
-            if (!fs::exists(p))
-                throw Exception(keys.where(key), key + " file '" + p.string() + "' does not exist");
+            std::error_code error;  // a name too long or a folder that cannot be searched: checkInputFile() says so
+            if (!fs::exists(p, error) && !error)
+                throw Exception(keys.where(key), key + " file " + quote(p.string()) + " does not exist");
             try
             {
                 checkInputFile(p.string());
@@ -147,8 +149,8 @@ namespace meshgap
             const std::size_t joints = robot.variables().size(), offset = robot.jointOffset();
             if (q.size() != robot.dimension())
                 throw Exception(keys.where(key),
-                                key + " has " + std::to_string(q.size()) + " numbers; robot '" + robot.name() +
-                                    "' takes " + (offset ? "7 (the floating base's x y z qx qy qz qw) + " : "") +
+                                key + " has " + std::to_string(q.size()) + " numbers; robot " + quote(robot.name()) +
+                                    " takes " + (offset ? "7 (the floating base's x y z qx qy qz qw) + " : "") +
                                     std::to_string(joints) + " (its movable joints: " + jointNames(robot) + ")" +
                                     (offset ? "" : ", or 7 more first for a floating base (x y z qx qy qz qw)"));
             if (offset && std::abs(Eigen::Vector4d(q[3], q[4], q[5], q[6]).norm() - 1.0) > 1e-6)
@@ -160,7 +162,7 @@ namespace meshgap
                 if (value < lower || value > upper)
                 {
                     std::ostringstream text;
-                    text << key << ": joint '" << robot.stateName(i) << "' (number " << i + 1 << ") = " << value
+                    text << key << ": joint " << quote(robot.stateName(i)) << " (number " << i + 1 << ") = " << value
                          << " is outside its limits [" << lower << ", " << upper << "]";
                     throw Exception(keys.where(key), text.str());
                 }
@@ -176,16 +178,16 @@ namespace meshgap
             fields >> mesh >> link;
             std::getline(fields, rest);
             if (mesh.empty() || link.empty())
-                throw Exception(keys.where("attach"), "attach = MESH LINK x y z qx qy qz qw: found '" +
-                                                          keys.value("attach") + "'");
+                throw Exception(keys.where("attach"),
+                                "attach = MESH LINK x y z qx qy qz qw: found " + quote(keys.value("attach")));
             const Eigen::Isometry3d X = naming(keys, "attach", [&] { return parsePose(rest, "the pose"); });
             if (robot.findFrame(link) == RobotModel::NONE)
             {
                 std::string links;
                 for (const RobotFrame &f : robot.frames())
                     links += (links.empty() ? "" : ", ") + f.name;
-                throw Exception(keys.where("attach"), "attach: the robot has no link '" + link + "' (its links: " +
-                                                          links + ")");
+                throw Exception(keys.where("attach"),
+                                "attach: the robot has no link " + quote(link) + " (its links: " + links + ")");
             }
             const std::string path = existingFile(keys, "attach", mesh, folder);
             naming(keys, "attach", [&] { return robot.attach("payload", loadMesh(path), link, X, options); });
@@ -315,8 +317,9 @@ namespace meshgap
                     std::string rest;
                     const std::size_t n = bodyNumber(e.key, prefix, &rest);
                     if (n > bodies.size())
-                        throw Exception(e.where, "'" + e.key + "' names body " + std::to_string(n) + ", but there are " +
-                                                     std::to_string(bodies.size()) + " (robot.1 ..)");
+                        throw Exception(e.where, quote(e.key) + " names body " + std::to_string(n) +
+                                                     ", but there are " + std::to_string(bodies.size()) +
+                                                     " (robot.1 ..)");
                 }
             return bodies.size();
         }
@@ -343,8 +346,9 @@ namespace meshgap
                         for (const std::string prefix : {"start.", "goal."})
                             if (keys.has(prefix + id + field))
                                 throw Exception(keys.where(prefix + id + field),
-                                                "'" + prefix + id + field + "' in a planar problem (no start.N.z: "
-                                                "SE(2), theta is the yaw about z); give start.N.z for SE(3)");
+                                                quote(prefix + id + field) +
+                                                    " in a planar problem (no start.N.z: "
+                                                    "SE(2), theta is the yaw about z); give start.N.z for SE(3)");
                 const std::string path = existingFile(keys, key, keys.value(key), folder);
                 const Mesh mesh = naming(keys, key, [&] { return loadRobotMesh(path, problem.planar); });
                 parts.push_back({key, Body::build(mesh, options), problem.planar ? RigidSpace::SE2 : RigidSpace::SE3});
@@ -396,14 +400,16 @@ namespace meshgap
         const ConfigFile file = readConfigFile(path);
         for (const ConfigEntry &e : file.problem)
             if (e.key == "robot")
-                throw Exception(e.where, "'robot = " + e.value + "' makes this a single-body problem (one mesh in "
-                                                                 "SE(2) or SE(3)), not a robot problem: read it as a "
-                                                                 "single-body problem (readProblemConfig())");
+                throw Exception(e.where, quote("robot = " + e.value) +
+                                             " makes this a single-body problem (one mesh in "
+                                             "SE(2) or SE(3)), not a robot problem: read it as a "
+                                             "single-body problem (readProblemConfig())");
         const ConfigKeys keys(file, robotKey);
         const bool urdf = keys.has("robot.urdf");
         if (!urdf && !keys.has("robot.1"))
-            throw Exception(path, "a robot problem needs robot.urdf = FILE (a URDF robot) or robot.1 = FILE, "
-                                  "robot.2 = FILE, ... (several bodies)");
+            throw Exception(excerpt(path),
+                            "a robot problem needs robot.urdf = FILE (a URDF robot) or robot.1 = FILE, "
+                            "robot.2 = FILE, ... (several bodies)");
         if (urdf && keys.has("robot.1"))
             throw Exception(keys.where("robot.1"), "robot.1 and robot.urdf in one problem: either a URDF robot "
                                                    "or several bodies");

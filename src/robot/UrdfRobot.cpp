@@ -42,7 +42,7 @@ namespace meshgap
             void log(const std::string &text, console_bridge::LogLevel level, const char *, int) override
             {
                 if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR)
-                    errors_ += (errors_.empty() ? "" : "; ") + text;
+                    errors_ += (errors_.empty() ? "" : "; ") + excerpt(text);
             }
             const std::string &errors() const { return errors_; }
 
@@ -63,7 +63,8 @@ namespace meshgap
             const std::string &path;
             std::string context;
 
-            /** \brief Throws "path:line: context: <box size="0.5 0.06">: problem" for element \e e. */
+            /** \brief Throws "path:line: context: <box size="0.5 0.06">: problem" for element \e e (its name and
+                attributes shortened by excerpt()). */
             [[noreturn]] void fail(const tinyxml2::XMLElement *e, const std::string &problem) const
             {
                 std::string text = "<" + std::string(e->Name());
@@ -73,7 +74,8 @@ namespace meshgap
                     text += " " + std::string(a->Name()) + "=\"" +
                             (value.size() > 60 ? value.substr(0, 60) + "..." : value) + "\"";
                 }
-                throw Exception(path + ":" + std::to_string(e->GetLineNum()), context + ": " + text + ">: " + problem);
+                throw Exception(excerpt(path) + ":" + std::to_string(e->GetLineNum()),
+                                context + ": " + excerpt(text) + ">: " + problem);
             }
         };
 
@@ -97,12 +99,14 @@ namespace meshgap
             {
                 double x = 0.0;
                 if (!parseNumber(token, x) || !std::isfinite(x))
-                    place.fail(e, std::string(name) + " has '" + token + "', not a finite number");
+                    place.fail(e, std::string(name) + " has " + quote(token) + ", not a finite number");
                 if (!anyMagnitude && std::abs(x) > MAX_MAGNITUDE)
-                    place.fail(e, std::string(name) + " has " + token + ", beyond 1e12 in magnitude (the largest "
-                                                                         "meshgap's geometry answers reliably)");
+                    place.fail(e, std::string(name) + " has " + excerpt(token) +
+                                      ", beyond 1e12 in magnitude (the "
+                                      "largest meshgap's geometry answers "
+                                      "reliably)");
                 if (positive && !(x > 0.0))
-                    place.fail(e, std::string(name) + " must be positive, found " + token);
+                    place.fail(e, std::string(name) + " must be positive, found " + excerpt(token));
                 values.push_back(x);
             }
             if (values.size() != count)
@@ -117,7 +121,7 @@ namespace meshgap
         void checkGeometryElement(const tinyxml2::XMLElement *element, const std::string &path,
                                   const std::string &link)
         {
-            const XmlPlace place{path, "link '" + link + "'"};
+            const XmlPlace place{path, "link " + quote(link)};
             if (const tinyxml2::XMLElement *origin = element->FirstChildElement("origin"))
             {
                 xmlNumbers(place, origin, "xyz", 3, false);
@@ -157,7 +161,7 @@ namespace meshgap
         void checkJointNumbers(const tinyxml2::XMLElement *joint, const std::string &path, const std::string &name,
                                const std::string &type)
         {
-            const XmlPlace place{path, "joint '" + name + "'"};
+            const XmlPlace place{path, "joint " + quote(name)};
             if (const tinyxml2::XMLElement *origin = joint->FirstChildElement("origin"))
             {
                 xmlNumbers(place, origin, "xyz", 3, false);
@@ -190,7 +194,7 @@ namespace meshgap
         {
             const tinyxml2::XMLElement *robot = document.RootElement();
             if (!robot || std::string(robot->Name()) != "robot")
-                throw Exception(path, "not a URDF: its root element is not <robot>");
+                throw Exception(excerpt(path), "not a URDF: its root element is not <robot>");
             for (const tinyxml2::XMLElement *e = robot->FirstChildElement("link"); e; e = e->NextSiblingElement("link"))
             {
                 links.push_back(e->Attribute("name") ? e->Attribute("name") : "");
@@ -201,7 +205,7 @@ namespace meshgap
             for (const tinyxml2::XMLElement *e = robot->FirstChildElement("joint"); e;
                  e = e->NextSiblingElement("joint"))
             {
-                const std::string where = path + ":" + std::to_string(e->GetLineNum());
+                const std::string where = excerpt(path) + ":" + std::to_string(e->GetLineNum());
                 auto attribute = [&](const tinyxml2::XMLElement *element, const char *name, const char *what)
                 {
                     if (!element || !element->Attribute(name))
@@ -214,7 +218,7 @@ namespace meshgap
                 checkJointNumbers(e, path, j.name, j.type);
                 const auto &types = jointTypes();
                 if (std::none_of(types.begin(), types.end(), [&](const JointType *t) { return j.type == t->name; }))
-                    throw Exception(where, "joint '" + j.name + "' has an unknown type '" + j.type + "' (" +
+                    throw Exception(where, "joint " + quote(j.name) + " has an unknown type " + quote(j.type) + " (" +
                                                jointTypeNames() + ")");
                 joints.push_back(j);
             }
@@ -230,13 +234,15 @@ namespace meshgap
                 parentJoint[l] = nullptr;
             for (const XmlJoint &j : joints)
             {
-                const std::string where = path + ":" + std::to_string(j.line);
+                const std::string where = excerpt(path) + ":" + std::to_string(j.line);
                 for (const std::string &l : {j.parent, j.child})
                     if (parentJoint.count(l) == 0)
-                        throw Exception(where, "joint '" + j.name + "' names link '" + l + "', which is not defined");
+                        throw Exception(
+                            where, "joint " + quote(j.name) + " names link " + quote(l) + ", which is not defined");
                 if (const XmlJoint *other = parentJoint[j.child])
-                    throw Exception(where, "link '" + j.child + "' is the child of two joints, '" + other->name +
-                                               "' and '" + j.name + "': the joints do not form a tree");
+                    throw Exception(where, "link " + quote(j.child) + " is the child of two joints, " +
+                                               quote(other->name) + " and " + quote(j.name) +
+                                               ": the joints do not form a tree");
                 parentJoint[j.child] = &j;
             }
             std::vector<std::string> roots;
@@ -253,18 +259,19 @@ namespace meshgap
                 {
                     at = parentJoint[at]->parent;
                     if (steps > links.size())
-                        throw Exception(path, "the joints form a cycle through link '" + at + "' (joint '" +
-                                                  parentJoint[at]->name + "'): a URDF must be a tree");
+                        throw Exception(excerpt(path), "the joints form a cycle through link " + quote(at) +
+                                                           " (joint " + quote(parentJoint[at]->name) +
+                                                           "): a URDF must be a tree");
                 }
             }
             if (roots.size() != 1)
             {
                 std::string names;
                 for (const std::string &r : roots)
-                    names += (names.empty() ? "'" : ", '") + r + "'";
-                throw Exception(path, roots.empty() ? "no root link: the joints form a cycle"
-                                                    : "several root links (" + names +
-                                                          "): the joints must join every link into one tree");
+                    names += (names.empty() ? "" : ", ") + quote(r);
+                throw Exception(excerpt(path), roots.empty() ? "no root link: the joints form a cycle"
+                                                             : "several root links (" + names +
+                                                                   "): the joints must join every link into one tree");
             }
         }
 
@@ -276,20 +283,21 @@ namespace meshgap
         {
             auto differs = [&path](const std::string &what)
             {
-                return Exception(path, "urdfdom reads " + what +
-                                           " differently from the XML (an unknown entity or a character reference in a "
-                                           "name?)");
+                return Exception(excerpt(path),
+                                 "urdfdom reads " + what +
+                                     " differently from the XML (an unknown entity or a character reference in a "
+                                     "name?)");
             };
             if (model.links_.size() != links.size() || model.joints_.size() != joints.size())
                 throw differs("the links and joints");
             for (const std::string &l : links)
                 if (!model.getLink(l))
-                    throw differs("link '" + l + "'");
+                    throw differs("link " + quote(l));
             for (const XmlJoint &j : joints)
             {
                 const urdf::JointConstSharedPtr joint = model.getJoint(j.name);
                 if (!joint || joint->parent_link_name != j.parent || joint->child_link_name != j.child)
-                    throw differs("joint '" + j.name + "'");
+                    throw differs("joint " + quote(j.name));
             }
         }
 
@@ -305,9 +313,9 @@ namespace meshgap
             if (std::abs(value) <= MAX_JOINT_MAGNITUDE)
                 return;
             std::ostringstream text;
-            text << "joint '" << joint << "': " << what << " " << value << " is not a number of magnitude at most "
+            text << "joint " << quote(joint) << ": " << what << " " << value << " is not a number of magnitude at most "
                  << MAX_JOINT_MAGNITUDE;
-            throw Exception(path, text.str());
+            throw Exception(excerpt(path), text.str());
         }
 
         Eigen::Isometry3d toIsometry(const urdf::Pose &pose)
@@ -464,7 +472,7 @@ namespace meshgap
             j.child = f;
             j.origin = toIsometry(joint->parent_to_joint_origin_transform);
             if (!j.origin.linear().allFinite())
-                throw Exception(path, "joint '" + j.name + "': its origin's rotation is not finite");
+                throw Exception(excerpt(path), "joint " + quote(j.name) + ": its origin's rotation is not finite");
             for (int k = 0; k < 3; ++k)
                 checkJointNumber(path, j.name, "the origin's coordinate", j.origin.translation()[k]);
             JointSpec spec;
@@ -478,13 +486,13 @@ namespace meshgap
             }
             catch (const Exception &e)
             {
-                throw Exception(path, "joint '" + j.name + "': " + e.what());
+                throw Exception(excerpt(path), "joint " + quote(j.name) + ": " + e.what());
             }
             j.axis = j.joint->axis();
             for (std::size_t k = 0; k < j.joint->size(); ++k)
             {
                 if (!(j.joint->lower(k) <= j.joint->upper(k)))
-                    throw Exception(path, "joint '" + j.name + "': its lower limit is above its upper limit");
+                    throw Exception(excerpt(path), "joint " + quote(j.name) + ": its lower limit is above its upper limit");
                 for (const double limit : {j.joint->lower(k), j.joint->upper(k)})
                     if (!std::isinf(limit))
                         checkJointNumber(path, j.name, "the limit", limit);
@@ -527,7 +535,7 @@ namespace meshgap
                 const std::size_t k = robot.findJoint(at->mimic->joint_name);
                 const bool single = k != RobotModel::NONE && robot.joints_[k].joint->size() == 1;
                 if (!single || steps > robot.joints_.size())
-                    throw Exception(path, "joint '" + j.name + "' mimics '" + at->mimic->joint_name +
+                    throw Exception(excerpt(path), "joint " + quote(j.name) + " mimics '" + excerpt(at->mimic->joint_name) +
                                               (k == RobotModel::NONE ? "', which is not defined"
                                                : steps > robot.joints_.size()
                                                    ? "', in a cycle of mimic joints"
@@ -585,7 +593,7 @@ namespace meshgap
             }
             catch (const Exception &e)
             {
-                throw Exception(path, "link '" + name + "': " + e.what());
+                throw Exception(excerpt(path), "link " + quote(name) + ": " + e.what());
             }
             if (mesh.triangles.empty())
                 continue;  // a frame only
@@ -604,7 +612,7 @@ namespace meshgap
         const std::string xml = readInputFile(path);
         tinyxml2::XMLDocument document;
         if (document.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
-            throw Exception(path + ":" + std::to_string(document.ErrorLineNum()),
+            throw Exception(excerpt(path) + ":" + std::to_string(document.ErrorLineNum()),
                             std::string("cannot read the URDF: ") + document.ErrorStr());
         std::vector<std::string> linkNames;
         std::vector<XmlJoint> order;
@@ -617,13 +625,14 @@ namespace meshgap
             model = urdf::parseURDF(xml);
             // urdfdom drops an element it cannot read, logs why and returns the rest: an error all the same.
             if (!model || !capture.errors().empty())
-                throw Exception(path, "urdfdom rejects the URDF: " +
-                                          (capture.errors().empty() ? std::string("(no reason given)")
-                                                                    : capture.errors()));
+                throw Exception(excerpt(path),
+                                "urdfdom rejects the URDF: " +
+                                    (capture.errors().empty() ? std::string("(no reason given)")
+                                                              : excerpt(capture.errors(), 4 * MAX_QUOTED)));
         }
         checkSameTree(path, *model, linkNames, order);
         UrdfRobotPtr robot(new UrdfRobot());
-        robot->where_ = path;
+        robot->where_ = excerpt(path);
         robot->name_ = model->getName();
         robot->floatingBase_ = options.floatingBase;
         UrdfBuilder::addFrames(*robot, model->getRoot()->name, order);
@@ -632,7 +641,7 @@ namespace meshgap
         UrdfBuilder::setFrameJoints(*robot);
         UrdfBuilder::addLinks(*robot, *model, options, path);
         if (robot->links().empty())
-            throw Exception(path, "robot '" + robot->name_ + "' has no collision geometry: none of its links has a "
+            throw Exception(excerpt(path), "robot " + quote(robot->name_) + " has no collision geometry: none of its links has a "
                                   "<collision> or <visual> element, so there is nothing to check");
         return robot;
     }

@@ -33,11 +33,12 @@ namespace meshgap
         {
             double x = 0.0;
             if (!parseNumber(value, x) || !std::isfinite(x))
-                throw Exception(where, key + " = '" + value + "' is not a finite number");
+                throw Exception(where, key + " = " + quote(value) + " is not a finite number");
             // An axis is a direction (normalised): any magnitude; every other number is a position, an angle, a size.
             if (std::abs(x) > MAX_MAGNITUDE && key.find("axis") == std::string::npos)
-                throw Exception(where, key + " = '" + value + "' is beyond 1e12 in magnitude, the largest meshgap's "
-                                                              "geometry answers reliably");
+                throw Exception(where, key + " = " + quote(value) +
+                                           " is beyond 1e12 in magnitude, the largest meshgap's "
+                                           "geometry answers reliably");
             return x;
         }
 
@@ -61,33 +62,34 @@ namespace meshgap
         checkInputFile(path);
         std::ifstream in(path);
         if (!in)
-            throw Exception(path, "cannot open the problem file");
+            throw Exception(excerpt(path), "cannot open the problem file");
         ConfigFile file;
         file.path = path;
         std::string section, line;
         for (std::size_t number = 1; std::getline(in, line); ++number)
         {
-            const std::string where = path + ":" + std::to_string(number);
+            const std::string where = excerpt(path) + ":" + std::to_string(number);
             line = trim(line.substr(0, line.find('#')));
             if (line.empty() || line[0] == '#' || line[0] == ';')
                 continue;
             if (line.front() == '[')
             {
                 if (line.back() != ']')
-                    throw Exception(where, "malformed section header '" + line + "'");
+                    throw Exception(where, "malformed section header " + quote(line));
                 section = trim(line.substr(1, line.size() - 2));
                 if (section != "problem" && section != "benchmark" && section != "planner")
-                    throw Exception(where, "unknown section [" + section + "] (expected problem, benchmark, planner)");
+                    throw Exception(where, "unknown section " + quote("[" + section + "]") +
+                                               " (expected problem, benchmark, planner)");
                 continue;
             }
             const auto eq = line.find('=');
             if (eq == std::string::npos)
-                throw Exception(where, "expected 'key = value', found '" + line + "'");
+                throw Exception(where, "expected 'key = value', found " + quote(line));
             const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
             if (key.empty())
                 throw Exception(where, "empty key");
             if (section.empty())
-                throw Exception(where, "'" + key + "' is outside any [section]");
+                throw Exception(where, quote(key) + " is outside any [section]");
             if (section == "problem")
                 file.problem.push_back({key, value, where});
             else if (section == "benchmark")
@@ -113,9 +115,9 @@ namespace meshgap
         for (const ConfigEntry &e : file.problem)
         {
             if (!known(e.key))
-                throw Exception(e.where, "unknown key '" + e.key + "' in [problem]");
+                throw Exception(e.where, "unknown key " + quote(e.key) + " in [problem]");
             if (has(e.key))
-                throw Exception(e.where, "'" + e.key + "' is given twice (first at " + where(e.key) + ")");
+                throw Exception(e.where, quote(e.key) + " is given twice (first at " + where(e.key) + ")");
             values_[e.key] = {e.value, e.where};
         }
     }
@@ -145,6 +147,6 @@ namespace meshgap
     void ConfigKeys::require(const std::string &key) const
     {
         if (!has(key) || value(key).empty())
-            throw Exception(path_, "missing required key '" + key + "' in [problem]");
+            throw Exception(excerpt(path_), "missing required key " + quote(key) + " in [problem]");
     }
 }  // namespace meshgap

@@ -21,7 +21,7 @@ namespace meshgap
         {
             double x = 0.0;
             if (!parseNumber(token, x))
-                throw Exception(where, "'" + token + "' is not a number (expected x y z qx qy qz qw)");
+                throw Exception(where, quote(token) + " is not a number (expected x y z qx qy qz qw)");
             v.push_back(x);
         }
         if (v.size() != 7)
@@ -53,7 +53,7 @@ namespace meshgap
         checkInputFile(path);
         std::ifstream in(path);
         if (!in)
-            throw Exception(path, "cannot open the pose file");
+            throw Exception(excerpt(path), "cannot open the pose file");
         std::vector<Eigen::Isometry3d> poses;
         std::string line;
         for (std::size_t number = 1; std::getline(in, line); ++number)
@@ -61,10 +61,10 @@ namespace meshgap
             const auto first = line.find_first_not_of(" \t\r");
             if (first == std::string::npos || line[first] == '#')
                 continue;
-            poses.push_back(parsePose(line, path + ":" + std::to_string(number)));
+            poses.push_back(parsePose(line, excerpt(path) + ":" + std::to_string(number)));
         }
         if (poses.empty())
-            throw Exception(path, "no poses in the file");
+            throw Exception(excerpt(path), "no poses in the file");
         return poses;
     }
 

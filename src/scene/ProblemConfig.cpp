@@ -35,8 +35,9 @@ namespace meshgap
             std::filesystem::path p(problem.value(key));
             if (p.is_relative())
                 p = folder / p;
-            if (!std::filesystem::exists(p))
-                throw Exception(problem.where(key), key + " mesh '" + p.string() + "' does not exist");
+            std::error_code error;  // a name too long or a folder that cannot be searched: checkInputFile() says so
+            if (!std::filesystem::exists(p, error) && !error)
+                throw Exception(problem.where(key), key + " mesh " + quote(p.string()) + " does not exist");
             try
             {
                 checkInputFile(p.string());
@@ -81,10 +82,12 @@ namespace meshgap
                 config.volume = Eigen::AlignedBox3d(lo, hi);
             }
             else if (given > 0)
-                throw Exception(path, config.planar ? "a planar volume needs the four keys volume.min.x/y, "
-                                                      "volume.max.x/y (found " + std::to_string(given) + ")" :
-                                                    "volume needs all six keys volume.min.x .. volume.max.z (found " +
-                                                        std::to_string(given) + ")");
+                throw Exception(excerpt(path), config.planar
+                                                   ? "a planar volume needs the four keys volume.min.x/y, "
+                                                     "volume.max.x/y (found " +
+                                                         std::to_string(given) + ")"
+                                                   : "volume needs all six keys volume.min.x .. volume.max.z (found " +
+                                                         std::to_string(given) + ")");
         }
 
         /** \brief A start or goal outside the volume is no problem any planner can solve: say so here, for every
@@ -130,9 +133,10 @@ namespace meshgap
         namespace fs = std::filesystem;
         const ConfigFile file = readConfigFile(path);
         if (const ConfigEntry *key = robotProblemKey(file))
-            throw Exception(key->where, "'" + key->key + "' makes this a robot problem (a URDF robot or several "
-                                                         "bodies), not a single-body one: read it as a robot problem "
-                                                         "(readRobotProblem())");
+            throw Exception(key->where, quote(key->key) +
+                                            " makes this a robot problem (a URDF robot or several "
+                                            "bodies), not a single-body one: read it as a robot problem "
+                                            "(readRobotProblem())");
         ProblemConfig config;
         config.file = path;
         config.benchmark = file.benchmark;
@@ -146,9 +150,9 @@ namespace meshgap
             for (const char *key : {"goal.z", "start.axis.x", "start.axis.y", "start.axis.z", "goal.axis.x",
                                     "goal.axis.y", "goal.axis.z", "volume.min.z", "volume.max.z"})
                 if (problem.has(key))
-                    throw Exception(problem.where(key), "'" + std::string(key) +
-                                                             "' in a planar problem (no start.z: SE(2), theta is the "
-                                                             "yaw about z); give start.z for a 3D problem");
+                    throw Exception(problem.where(key), quote(key) +
+                                                            " in a planar problem (no start.z: SE(2), theta is the "
+                                                            "yaw about z); give start.z for a 3D problem");
         const fs::path folder = fs::path(path).parent_path();
         config.robot = meshPath(problem, "robot", folder);
         config.world = meshPath(problem, "world", folder);
@@ -163,8 +167,8 @@ namespace meshgap
             config.control = problem.value("control");
             const std::vector<std::string> &models = controlModelNames();
             if (std::find(models.begin(), models.end(), config.control) == models.end())
-                throw Exception(problem.where("control"), "unknown control model '" + config.control + "' (" +
-                                                              joinNames(models) + ")");
+                throw Exception(problem.where("control"),
+                                "unknown control model " + quote(config.control) + " (" + joinNames(models) + ")");
         }
         if (problem.has("objective"))
             config.objective = problem.value("objective");

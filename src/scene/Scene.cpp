@@ -17,6 +17,7 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/Limits.h"
+#include "meshgap/Text.h"
 #include "meshgap/ThreadScratch.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/distance/PenetrationDepth.h"
@@ -206,7 +207,7 @@ namespace meshgap
                 if (known == name)
                     return *solver;
             allocSolver(name);  // throws, listing the valid names
-            throw Exception("Scene", "no solver '" + name + "'");
+            throw Exception("Scene", "no solver " + quote(name));
         }
     };
 

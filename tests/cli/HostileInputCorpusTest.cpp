@@ -12,6 +12,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iterator>
 #include <map>
 #include <regex>
 #include <set>
@@ -20,9 +22,12 @@
 
 #include "CliRun.h"
 #include "meshgap/Exception.h"
+#include "meshgap/mesh/MeshLoader.h"
+#include "meshgap/robot/MoveItScene.h"
 #include "meshgap/robot/RobotBatch.h"
 #include "meshgap/robot/RobotProblem.h"
 #include "meshgap/robot/RobotScene.h"
+#include "meshgap/scene/ProblemConfig.h"
 
 using meshgap::test::CliRun;
 namespace fs = std::filesystem;
@@ -356,4 +361,104 @@ TEST(HostileInputCorpus, BatchNamesTheRowOfAStateOutsideTheLimits)
         EXPECT_THROW(meshgap::robotInCollisionBatch(scene, states.data(), states.size(), true, threads, collides),
                      meshgap::Exception);
     }
+}
+
+// Huge values (a 1 MB cfg value, key or line, a 1 MB YAML scalar or URDF attribute, a mesh path of 5000 characters)
+// are not echoed whole: each error stays short and still names the file (and line) and the problem.
+TEST_F(HostileCli, HugeValuesAreNotEchoedWhole)
+{
+    constexpr std::size_t BOUND = 1000;
+    const std::string mb(1 << 20, '7'), longPath = (dir_ / (std::string(5000, 'm') + ".obj")).string();
+    const std::string cube = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/cube.obj";
+    const std::string arm = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/problems/arm2.urdf";
+    const std::string single = "[problem]\nrobot = " + cube + "\nworld = " + cube + "\nstart.y = 0\nstart.z = 0\n";
+    fs::copy_file(fs::path(HOSTILE) / "valid_arm.urdf", dir_ / "valid_arm.urdf");
+    fs::copy_file(fs::path(HOSTILE) / "far_block.obj", dir_ / "far_block.obj");
+    const std::string robot = "[problem]\nrobot.urdf = valid_arm.urdf\nworld = far_block.obj\n";  // + start.joints
+    const std::string urdf = HOSTILE + "/valid_arm.urdf";
+    auto messageOf = [](const std::function<void()> &read)
+    {
+        try
+        {
+            read();
+        }
+        catch (const meshgap::Exception &e)
+        {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    auto yaml = [&](const std::string &name, const std::string &text)
+    {
+        return messageOf(
+            [&]
+            {
+                meshgap::MoveItFiles files;
+                files.urdf = arm;
+                files.scene = file(name, text);
+                meshgap::readMoveItProblem(files);
+            });
+    };
+    auto urdfWith = [&](const std::string &name, const std::string &from, const std::string &to)
+    {
+        std::ifstream in(urdf);
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        text.replace(text.find(from), from.size(), to);
+        file(name, text);
+        return messageOf(
+            [&]
+            {
+                meshgap::readRobotProblem(file(
+                    "urdf.cfg", "[problem]\nrobot.urdf = " + name + "\nworld = far_block.obj\nstart.joints = 0\n"));
+            });
+    };
+    const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+        {messageOf([&] { meshgap::readProblemConfig(file("value.cfg", single + "start.x = " + mb + "x\n")); }),
+         {"value.cfg:6", "start.x", "is not a finite number", "(1048577 characters)"}},
+        {messageOf([&] { meshgap::readProblemConfig(file("key.cfg", single + mb + " = 1\n")); }),
+         {"key.cfg:6", "unknown key", "in [problem]"}},
+        {messageOf([&] { meshgap::readProblemConfig(file("line.cfg", single + mb + "\n")); }),
+         {"line.cfg:6", "expected 'key = value'"}},
+        {messageOf([&] { meshgap::readProblemConfig(file("section.cfg", "[" + mb + "]\n")); }),
+         {"section.cfg:1", "unknown section"}},
+        {messageOf([&] { meshgap::readRobotProblem(file("joints.cfg", robot + "start.joints = " + mb + "x\n")); }),
+         {"joints.cfg:4", "start.joints", "not a finite number"}},
+        {messageOf(
+             [&] { meshgap::readRobotProblem(file("attach.cfg", robot + "start.joints = 0\nattach = " + mb + "\n")); }),
+         {"attach.cfg:5", "attach", "found"}},
+        {messageOf(
+             [&]
+             {
+                 meshgap::readProblemConfig(file("path.cfg", "[problem]\nrobot = " + longPath + "\nworld = " + cube +
+                                                                 "\nstart.x = 0\nstart.y = 0\nstart.z = 0\n"));
+             }),
+         {"path.cfg:2", "robot mesh", "mmm.obj", "cannot be read"}},
+        {messageOf([&] { meshgap::loadMesh(longPath); }), {"mmm.obj", "(5"}},
+        {yaml("type.yaml", "world:\n  collision_objects:\n    - id: a\n      primitives:\n        - type: " + mb +
+                               "x\n          dimensions: [1, 1, 1]\n      primitive_poses: [{}]\n"),
+         {"type.yaml:5", "primitives[0].type", "unknown primitive type", "(1048577 characters)"}},
+        {yaml("number.yaml", "robot_state:\n  joint_state:\n    name: [yaw]\n    position: [" + mb + "x]\n"),
+         {"number.yaml:4", "position[0]", "is not a number"}},
+        {yaml("joint.yaml", "robot_state:\n  joint_state:\n    name: [" + mb + "]\n    position: [0]\n"),
+         {"joint.yaml:4", "has no joint"}},
+        {yaml("id.yaml", "world:\n  collision_objects:\n    - id: " + mb +
+                             "\n      primitives: [{type: box}]\n"
+                             "      primitive_poses: [{}]\n"),
+         {"id.yaml:4", "dimensions", "0 numbers; a box takes 3"}},
+        {urdfWith("attribute.urdf", "xyz=\"0.25 0 0\"", "xyz=\"0.25 0 " + mb + "x\""),
+         {"attribute.urdf:8", "link 'b'", "not a finite number"}},
+        {urdfWith("name.urdf", "<child link=\"b\"/>", "<child link=\"" + mb + "\"/>"), {"name.urdf", "characters)"}},
+    };
+    for (const auto &[message, mentions] : cases)
+    {
+        SCOPED_TRACE(message.substr(0, 2 * BOUND));
+        EXPECT_LT(message.size(), BOUND);
+        for (const std::string &m : mentions)
+            EXPECT_NE(message.find(m), std::string::npos) << "the error does not say '" << m << "'";
+    }
+
+    // The tools print the same short line.
+    const CliRun r = meshgap::test::runExecutable("meshgap_distance", "'" + longPath + "' '" + cube + "'", 120);
+    expectOneClearError("meshgap_distance LONG_PATH cube.obj", r, {"mmm.obj"});
+    EXPECT_LT(r.err.size(), BOUND) << r.err.substr(0, 2 * BOUND);
 }

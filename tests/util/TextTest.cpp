@@ -78,3 +78,26 @@ TEST(Text, JoinNamesIsTheInverseOfSplitList)
     EXPECT_EQ(joinNames({}), "");
     EXPECT_EQ(joinNames({"one"}), "one");
 }
+
+TEST(Text, ExcerptKeepsShortTextAndShortensLongTextAtBothEnds)
+{
+    EXPECT_EQ(excerpt("abc"), "abc");
+    EXPECT_EQ(quote("abc"), "'abc'");
+    EXPECT_EQ(quote(""), "''");
+    const std::string limit(MAX_QUOTED, 'x');
+    EXPECT_EQ(excerpt(limit), limit);
+    const std::string path = "/" + std::string(5000, 'd') + "/mesh.obj";
+    const std::string shown = excerpt(path);
+    EXPECT_EQ(shown, "/" + std::string(149, 'd') + "..." + std::string(41, 'd') + "/mesh.obj (5010 characters)");
+    EXPECT_EQ(quote(path),
+              "'/" + std::string(149, 'd') + "..." + std::string(41, 'd') + "/mesh.obj' (5010 characters)");
+    EXPECT_EQ(excerpt(std::string(1000, 'a'), 8), "aaaaaa...aa (1000 characters)");
+    // Cut between UTF-8 characters, never inside one ("é" is two bytes).
+    std::string accents;
+    for (int k = 0; k < 200; ++k)
+        accents += "\xc3\xa9";
+    const std::string cut = excerpt(accents);
+    EXPECT_EQ(cut, accents.substr(0, 150) + "..." + accents.substr(400 - 50) + " (400 characters)");
+    const std::string odd = "x" + accents;  // every character boundary shifted by one byte
+    EXPECT_EQ(excerpt(odd), odd.substr(0, 149) + "..." + odd.substr(401 - 50) + " (401 characters)");
+}
