@@ -1,0 +1,46 @@
+#ifndef MESHGAP_GEOMETRY_BOX_BOUND_H
+#define MESHGAP_GEOMETRY_BOX_BOUND_H
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace meshgap
+{
+    /** \brief Lower bounds on the distance between two oriented boxes, seen from box A: A = {x : |x_i| <= ha_i} in
+        its own frame, B = {T + C y : |y_j| <= hb_j} (C the rotation from B's box axes to A's, T B's centre). Every
+        bound here is the gap of the two boxes' projections on some unit direction, which no pair of points of the
+        boxes can beat: a lower bound whatever the direction, exact when the direction is the one between the boxes' nearest points. The three face axes of either box are such
+        directions, and the direction between the nearest points found below prunes where they do not (boxes apart
+        across an edge or a corner, or slanted to each other, as the thin boxes of flat CAD parts are). */
+    namespace boxbound
+    {
+        /** \brief The gap of the boxes' projections on the unit direction \e n (from A towards B; any sign): B's
+            least projection minus A's greatest, less \e pad (the caller's allowance for roundoff). */
+        inline double gapAlong(const Eigen::Vector3d &n, const Eigen::Vector3d &ha, const Eigen::Vector3d &hb,
+                               const Eigen::Matrix3d &C, const Eigen::Vector3d &T, double pad)
+        {
+            return n.dot(T) - (C.transpose() * n).cwiseAbs().dot(hb) - n.cwiseAbs().dot(ha) - pad;
+        }
+
+        /** \brief The gap of the boxes along the direction between two points found by alternating projection
+            (B's centre clamped into A, that point clamped into B, that one into A: near the boxes' nearest pair when
+            they are apart, and exactly it when a face of one faces the other's): a lower bound on their distance.
+            -infinity when the points meet (the boxes may overlap: no bound). \e pad as for gapAlong(). */
+        inline double gapAlongNearest(const Eigen::Vector3d &ha, const Eigen::Vector3d &hb, const Eigen::Matrix3d &C,
+                                      const Eigen::Vector3d &T, double pad)
+        {
+            const Eigen::Vector3d p0 = T.cwiseMax(-ha).cwiseMin(ha);
+            const Eigen::Vector3d y = (C.transpose() * (p0 - T)).cwiseMax(-hb).cwiseMin(hb);
+            const Eigen::Vector3d q = T + C * y;
+            const Eigen::Vector3d d = q - q.cwiseMax(-ha).cwiseMin(ha);
+            const double length = d.norm();
+            if (!(length > 0.0))
+                return -std::numeric_limits<double>::infinity();
+            return gapAlong(d / length, ha, hb, C, T, pad);
+        }
+    }  // namespace boxbound
+}  // namespace meshgap
+
+#endif
