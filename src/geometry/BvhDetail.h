@@ -123,19 +123,25 @@ namespace meshgap
         };
 
         /** \brief Lower bound on the distance between anything in box \e a and anything in box \e b (B's frame),
-            from the sphere gap (cheapest), then the boxes' gap along the direction between their nearest points
-            (boxbound::gapAlongNearest()); <= 0 means the boxes may touch. Once the sphere gap exceeds \e enough
-            (the caller prunes above it) it is returned: still a lower bound, just not the best of the two. */
+            from the sphere gap (cheapest), then the gaps on b's face axes (boxbound::gapOnFacesOfB()), then the gap
+            along the direction between the boxes' nearest points (boxbound::gapAlongNearest()); <= 0 means the boxes
+            may touch. Once a partial bound exceeds \e enough (the caller prunes above it) that one is returned: still
+            a lower bound, just not the best of the three. The order, and b's face axes rather than a's, measured on
+            flat CAD parts (where the nearest direction prunes most) and on twisted's slender slanted triangles (where
+            b's face axes do): bench/README.md, "Instruction counts". */
         inline double lowerBound(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X,
                                  double enough = std::numeric_limits<double>::infinity())
         {
             const PlacedNode &placed = X.place(b);
             const Eigen::Vector3d offset = placed.center - a.center;
-            const double bound = offset.norm() - a.radius - b.radius;
+            double bound = offset.norm() - a.radius - b.radius;
             if (bound > enough)
                 return bound;
             const BoxPair P(a, placed, offset);
-            const double pad = 1e-12 * (P.T->norm() + a.half.sum() + b.half.sum());
+            const double pad = 1e-12 * (P.T->cwiseAbs().sum() + a.half.sum() + b.half.sum());
+            bound = std::max(bound, boxbound::gapOnFacesOfB(a.half, b.half, *P.C, *P.T, pad));
+            if (bound > enough)
+                return bound;
             return std::max(bound, boxbound::gapAlongNearest(a.half, b.half, *P.C, *P.T, pad));
         }
 

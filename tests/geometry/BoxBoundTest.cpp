@@ -1,4 +1,4 @@
-// The box bound the distance traversals prune with (boxbound::gapAlongNearest): never above the distance of the two
+// The box bounds the distance traversals prune with (BoxBound.h): never above the distance of the two
 // boxes (checked against near-nearest point pairs found by long alternating projection, which are real points of the
 // boxes), exact where it must be (boxes facing each other across a face), and, on the nodes of real trees, never above
 // the least distance of the triangles under them (brute force over all triangle pairs); the traversals that prune with
@@ -63,7 +63,8 @@ namespace
     /** \brief Corners of triangle \e t of \e m, placed by \e X. */
     std::array<Eigen::Vector3d, 3> corners(const Mesh &m, std::uint32_t t, const Eigen::Isometry3d &X)
     {
-        return {X * m.vertices[m.triangles[t][0]], X * m.vertices[m.triangles[t][1]], X * m.vertices[m.triangles[t][2]]};
+        return {X * m.vertices[m.triangles[t][0]], X * m.vertices[m.triangles[t][1]],
+                X * m.vertices[m.triangles[t][2]]};
     }
 
     /** \brief Two bodies of slanted plates with many parallel and nearly parallel faces. */
@@ -90,7 +91,8 @@ TEST(BoxBound, NeverAboveTheDistanceOfTwoBoxesFlatOrNot)
     int apart = 0, tight = 0;
     for (int trial = 0; trial < 20000; ++trial)
     {
-        Eigen::Vector3d ha(0.01 + u(rng), 0.01 + u(rng), 0.01 + u(rng)), hb(0.01 + u(rng), 0.01 + u(rng), 0.01 + u(rng));
+        Eigen::Vector3d ha(0.01 + u(rng), 0.01 + u(rng), 0.01 + u(rng)),
+            hb(0.01 + u(rng), 0.01 + u(rng), 0.01 + u(rng));
         if (trial % 3 == 0)  // flat boxes, as a CAD part's leaves and sheets
         {
             ha[trial % 2] = 1e-6;
@@ -106,6 +108,7 @@ TEST(BoxBound, NeverAboveTheDistanceOfTwoBoxesFlatOrNot)
             ++apart;
             tight += bound > 0.99 * distance;
         }
+        ASSERT_LE(boxbound::gapOnFacesOfB(ha, hb, C, T, 0.0), distance + 1e-12) << "trial " << trial;
         // Any direction gives a lower bound: the face axes of A, for instance.
         for (int i = 0; i < 3; ++i)
             ASSERT_LE(boxbound::gapAlong(Eigen::Vector3d::Unit(i), ha, hb, C, T, 0.0), distance + 1e-12);
@@ -119,8 +122,8 @@ TEST(BoxBound, ExactAcrossAFaceAnEdgeOrACorner)
 {
     const Eigen::Vector3d h(1.0, 0.5, 0.25);
     // Face to face, shifted sideways.
-    EXPECT_NEAR(boxbound::gapAlongNearest(h, h, Eigen::Matrix3d::Identity(), Eigen::Vector3d(3.0, 0.4, -0.1), 0.0),
-                1.0, 1e-15);
+    EXPECT_NEAR(boxbound::gapAlongNearest(h, h, Eigen::Matrix3d::Identity(), Eigen::Vector3d(3.0, 0.4, -0.1), 0.0), 1.0,
+                1e-15);
     // Corner to corner along the diagonal: the face axes alone give 0.5 at most.
     EXPECT_NEAR(boxbound::gapAlongNearest(h, h, Eigen::Matrix3d::Identity(), Eigen::Vector3d(2.5, 1.5, 1.0), 0.0),
                 std::sqrt(0.25 + 0.25 + 0.25), 1e-15);
@@ -167,7 +170,8 @@ TEST(BoxBound, EveryNodePairOfTwoTreesBoundsItsTriangles)
                     const Eigen::Matrix3d C = A.axes.transpose() * X.linear() * B.axes;
                     const Eigen::Vector3d T = A.axes.transpose() * (X * B.center - A.center);
                     const double pad = 1e-12 * (T.norm() + A.half.sum() + B.half.sum());
-                    const double bound = boxbound::gapAlongNearest(A.half, B.half, C, T, pad);
+                    const double bound = std::max(boxbound::gapAlongNearest(A.half, B.half, C, T, pad),
+                                                  boxbound::gapOnFacesOfB(A.half, B.half, C, T, pad));
                     std::vector<std::uint32_t> ta, tb;
                     trianglesUnder(a, na, ta);
                     trianglesUnder(b, nb, tb);

@@ -6,6 +6,13 @@
 #include <cmath>
 #include <limits>
 
+// Inlined into the traversals' inner loop even where the compiler would rather call it (measured: fewer instructions).
+#if defined(__GNUC__)
+#define MESHGAP_BOX_BOUND_INLINE inline __attribute__((always_inline))
+#else
+#define MESHGAP_BOX_BOUND_INLINE inline
+#endif
+
 namespace meshgap
 {
     /** \brief Lower bounds on the distance between two oriented boxes, seen from box A: A = {x : |x_i| <= ha_i} in
@@ -24,12 +31,25 @@ namespace meshgap
             return n.dot(T) - (C.transpose() * n).cwiseAbs().dot(hb) - n.cwiseAbs().dot(ha) - pad;
         }
 
+        /** \brief The bound given by the gaps g_j of the boxes' projections on B's three face axes, less \e pad (|C|
+            padded so that nearly parallel axes never make a gap too large): a point pair's offset has a component of
+            at least g_j along each axis where g_j > 0, so its length is at least the norm of the positive gaps; the
+            largest gap (<= 0) when the projections overlap on all three. */
+        MESHGAP_BOX_BOUND_INLINE double gapOnFacesOfB(const Eigen::Vector3d &ha, const Eigen::Vector3d &hb,
+                                                      const Eigen::Matrix3d &C, const Eigen::Vector3d &T, double pad)
+        {
+            const Eigen::Matrix3d absC = C.cwiseAbs().array() + 1e-12;
+            const Eigen::Vector3d g = (C.transpose() * T).cwiseAbs() - absC.transpose() * ha - hb;
+            const double largest = g.maxCoeff() - pad;
+            return largest > 0.0 ? g.cwiseMax(0.0).norm() - 2.0 * pad : largest;  // 2 pad > sqrt(3) pad
+        }
+
         /** \brief The gap of the boxes along the direction between two points found by alternating projection
             (B's centre clamped into A, that point clamped into B, that one into A: near the boxes' nearest pair when
             they are apart, and exactly it when a face of one faces the other's): a lower bound on their distance.
             -infinity when the points meet (the boxes may overlap: no bound). \e pad as for gapAlong(). */
-        inline double gapAlongNearest(const Eigen::Vector3d &ha, const Eigen::Vector3d &hb, const Eigen::Matrix3d &C,
-                                      const Eigen::Vector3d &T, double pad)
+        MESHGAP_BOX_BOUND_INLINE double gapAlongNearest(const Eigen::Vector3d &ha, const Eigen::Vector3d &hb,
+                                                        const Eigen::Matrix3d &C, const Eigen::Vector3d &T, double pad)
         {
             const Eigen::Vector3d p0 = T.cwiseMax(-ha).cwiseMin(ha);
             const Eigen::Vector3d y = (C.transpose() * (p0 - T)).cwiseMax(-hb).cwiseMin(hb);
