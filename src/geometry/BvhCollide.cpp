@@ -28,12 +28,14 @@ namespace meshgap
         /** \brief Full separating-axis test of the two oriented boxes (15 axes): true if they are disjoint. */
         bool separated(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X)
         {
-            const Eigen::Vector3d offset = X.R * b.center + X.t - a.center;
+            const bvh::PlacedNode &placed = X.place(b);
+            const Eigen::Vector3d offset = placed.center - a.center;
             if (offset.norm() > a.radius + b.radius)
                 return true;
-            const BoxPair P(a, b, X, offset);
+            const BoxPair P(a, placed, offset);
             const Eigen::Vector3d &T = *P.T;
-            const Eigen::Matrix3d &C = *P.C, &absC = *P.absC;
+            const Eigen::Matrix3d &C = *P.C;
+            const Eigen::Matrix3d absC = C.cwiseAbs().array() + 1e-12;
             if (((T.cwiseAbs() - a.half - absC * b.half).array() > 0.0).any())
                 return true;
             if ((((C.transpose() * T).cwiseAbs() - absC.transpose() * a.half - b.half).array() > 0.0).any())
@@ -104,7 +106,7 @@ namespace meshgap
     {
         if (a.nodes().empty() || b.nodes().empty())
             return false;
-        const RelativePose X(X_AB);
+        const RelativePose X(X_AB, b);
         std::vector<PairEntry> &stack = threadStack<PairEntry, 3>();
         stack.push_back({0u, 0u});
         while (!stack.empty())
@@ -299,7 +301,7 @@ namespace meshgap
             front.valid = false;
             return false;
         }
-        const RelativePose X(X_AB);
+        const RelativePose X(X_AB, b);
         const TriangleBvh::Node &rootA = a.nodes()[0], &rootB = b.nodes()[0];
         // Ten times trianglesIntersect()'s contact tolerance at the largest coordinate scale of any pair: a pair
         // kept apart by more than this is apart for trianglesIntersect() too.

@@ -11,81 +11,138 @@
 #include <limits>
 #include <vector>
 
+#include "meshgap/geometry/BoxBound.h"
 #include "meshgap/geometry/TriangleBvh.h"
 
 namespace meshgap
 {
     namespace bvh
     {
-        /** \brief The pose of B in A with |R| precomputed (padded so parallel axes never make a bound too large). */
-        struct RelativePose
+        /** \brief A node of B placed in A's frame at one query's pose: its box axes and its centre. */
+        struct PlacedNode
         {
-            Eigen::Matrix3d R, absR;
-            Eigen::Vector3d t;
-            explicit RelativePose(const Eigen::Isometry3d &X)
-                : R(X.linear()), absR(R.cwiseAbs().array() + 1e-12), t(X.translation())
+            Eigen::Matrix3d axes;
+            Eigen::Vector3d center;
+        };
+
+        /** \brief This thread's nodes of B placed at the current query's pose, each worked out at its first use in
+            the query (a node meets many of A's) and stamped with the query it belongs to: an entry stamped by another
+            query (an earlier one, or one on another tree) is worked out again. The capacity is kept across queries:
+            once warm, a query allocates nothing. */
+        struct PlacementCache
+        {
+            std::vector<PlacedNode> placed;
+            std::vector<std::uint32_t> stamps;
+            std::uint32_t stamp{0};
+
+            static PlacementCache &ofThisThread()
             {
+                thread_local PlacementCache cache;
+                return cache;
+            }
+            /** \brief A new query over \e nodes nodes of B: its stamp. */
+            std::uint32_t begin(std::size_t nodes)
+            {
+                if (stamps.size() < nodes)
+                {
+                    stamps.resize(nodes, 0u);
+                    placed.resize(nodes);
+                }
+                if (++stamp == 0)  // wrapped around: no entry may look current
+                {
+                    std::fill(stamps.begin(), stamps.end(), 0u);
+                    stamp = 1;
+                }
+                return stamp;
             }
         };
 
-        /** \brief Box \e b (placed by X) seen from box \e a: the rotation C from b's box axes to a's, |C| padded
-            (so parallel axes never make a bound too large), and the centre offset T along a's axes. Two aligned
-            boxes use X's own (nothing computed, nothing copied). */
+        /** \brief The pose of B in A, and B's nodes placed at it once per query (place()). */
+        class RelativePose
+        {
+        public:
+            Eigen::Matrix3d R;
+            Eigen::Vector3d t;
+            /** \brief The pose \e X of tree \e b in A's frame. */
+            RelativePose(const Eigen::Isometry3d &X, const TriangleBvh &b)
+                : R(X.linear()),
+                  t(X.translation()),
+                  nodes_(b.nodes().data()),
+                  cache_(PlacementCache::ofThisThread()),
+                  stamp_(cache_.begin(b.nodes().size()))
+            {
+            }
+            RelativePose(const RelativePose &) = delete;
+            RelativePose &operator=(const RelativePose &) = delete;
+
+            /** \brief Node \e n of B placed in A's frame (valid until the next call). */
+            const PlacedNode &place(const TriangleBvh::Node &n) const
+            {
+                const auto i = static_cast<std::size_t>(&n - nodes_);
+                PlacedNode &p = cache_.placed[i];
+                if (cache_.stamps[i] != stamp_)
+                {
+                    cache_.stamps[i] = stamp_;
+                    p.center = R * n.center + t;
+                    if (n.aligned)
+                        p.axes = R;
+                    else
+                        p.axes.noalias() = R * n.axes;
+                }
+                return p;
+            }
+
+        private:
+            const TriangleBvh::Node *nodes_;
+            PlacementCache &cache_;
+            const std::uint32_t stamp_;
+        };
+
+        /** \brief Box \e b (placed by X: \e placed) seen from box \e a: the rotation C from b's box axes to a's and
+            the centre offset T along a's axes; an aligned \e a uses the placed node's own (nothing computed, nothing
+            copied). */
         struct BoxPair
         {
-            Eigen::Matrix3d ownC, ownAbsC;
+            Eigen::Matrix3d ownC;
             Eigen::Vector3d ownT;
-            const Eigen::Matrix3d *C, *absC;
+            const Eigen::Matrix3d *C;
             const Eigen::Vector3d *T;
-            BoxPair(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X,
-                    const Eigen::Vector3d &offset)
+            BoxPair(const TriangleBvh::Node &a, const PlacedNode &placed, const Eigen::Vector3d &offset)
             {
-                if (a.aligned && b.aligned)
+                if (a.aligned)
                 {
-                    C = &X.R;
-                    absC = &X.absR;
+                    C = &placed.axes;
                     T = &offset;
                     return;
                 }
-                ownC = a.axes.transpose() * (X.R * b.axes);
-                ownAbsC = ownC.cwiseAbs().array() + 1e-12;
-                ownT = a.aligned ? offset : Eigen::Vector3d(a.axes.transpose() * offset);
+                ownC.noalias() = a.axes.transpose() * placed.axes;
+                ownT.noalias() = a.axes.transpose() * offset;
                 C = &ownC;
-                absC = &ownAbsC;
                 T = &ownT;
             }
         };
 
-        /** \brief The distance bound given by the gaps \e g of two boxes' projections on three orthonormal axes
-            (one box's face axes): a point pair's offset has a component of at least g_i along each axis i where
-            g_i > 0, so its length is at least the norm of the positive gaps (for boxes apart diagonally, up to
-            sqrt(3) times the largest gap alone). The largest gap, <= 0, when the projections overlap on all three. */
-        inline double gapOnAxes(const Eigen::Vector3d &g)
-        {
-            const double largest = g.maxCoeff();
-            return largest > 0.0 ? g.cwiseMax(0.0).norm() : largest;
-        }
-
         /** \brief Lower bound on the distance between anything in box \e a and anything in box \e b (B's frame),
-            from the sphere gap (cheapest, and rotation-free), then the face-axis gaps of each box (gapOnAxes());
-            <= 0 means the boxes may touch. Once a partial bound exceeds \e enough (the caller prunes above it) that
-            one is returned: still a lower bound, just not the best of the three. */
+            from the sphere gap (cheapest), then the gaps on b's face axes (boxbound::gapOnFacesOfB()), then the gap
+            along the direction between the boxes' nearest points (boxbound::gapAlongNearest()); <= 0 means the boxes
+            may touch. Once a partial bound exceeds \e enough (the caller prunes above it) that one is returned: still
+            a lower bound, just not the best of the three. The order, and b's face axes rather than a's, measured on
+            flat CAD parts (where the nearest direction prunes most) and on twisted's slender slanted triangles (where
+            b's face axes do): bench/README.md, "Instruction counts". */
         inline double lowerBound(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X,
                                  double enough = std::numeric_limits<double>::infinity())
         {
-            const Eigen::Vector3d offset = X.R * b.center + X.t - a.center;
+            const PlacedNode &placed = X.place(b);
+            const Eigen::Vector3d offset = placed.center - a.center;
             double bound = offset.norm() - a.radius - b.radius;
             if (bound > enough)
                 return bound;
-            const BoxPair P(a, b, X, offset);
-            const Eigen::Vector3d rb = *P.absC * b.half;  // B's box projected on A's axes
-            bound = std::max(bound, gapOnAxes(P.T->cwiseAbs() - a.half - rb));
+            const BoxPair P(a, placed, offset);
+            const double pad = 1e-12 * (P.T->cwiseAbs().sum() + a.half.sum() + b.half.sum());
+            bound = std::max(bound, boxbound::gapOnFacesOfB(a.half, b.half, *P.C, *P.T, pad));
             if (bound > enough)
                 return bound;
-            const Eigen::Vector3d s = P.C->transpose() * *P.T;        // T on B's axes
-            const Eigen::Vector3d ra = P.absC->transpose() * a.half;  // A's box projected on B's axes
-            bound = std::max(bound, gapOnAxes(s.cwiseAbs() - ra - b.half));
-            return bound;
+            return std::max(bound, boxbound::gapAlongNearest(a.half, b.half, *P.C, *P.T, pad));
         }
 
         /** \brief The gap between triangles p and q along unit axis \e n, either way round, and that axis pointing

@@ -427,7 +427,7 @@ namespace meshgap
                 front->valid = false;
             return;
         }
-        const RelativePose X(X_AB);
+        const RelativePose X(X_AB, b);
         // Distances within this slack of each other are ties, broken by the smaller triangle pair (see the header).
         const TriangleBvh::Node &rootA = a.nodes()[0], &rootB = b.nodes()[0];
         const double slack =

@@ -16,9 +16,9 @@ namespace meshgap
                     std::uint32_t *hitA = nullptr, std::uint32_t *hitB = nullptr);
 
     /** \brief bvhCollide() carried along a run of nearby poses: \e front keeps the node pairs the last test proved
-        apart, each with a lower bound on its gap (the sphere and face-axis bound of a box pair, the separating-axis
-        gap of a triangle pair), and the next test re-tests only the entries whose gap B's motion since then could
-        have closed, descending below those that no longer separate. The verdict and the reported pair are those of
+        apart, each with a lower bound on its gap (the sphere and nearest-direction bound of a box pair, the
+        separating-axis gap of a triangle pair), and the next test re-tests only the entries whose gap B's motion
+        since then could have closed, descending below those that no longer separate. The verdict and the reported pair are those of
         the stateless bvhCollide(): a pair is kept only while its gap exceeds ten times the contact tolerance of
         trianglesIntersect(), and every pair that might touch is decided by trianglesIntersect() itself.
 

@@ -21,7 +21,8 @@ namespace meshgap
         one of its box axes where the surface area heuristic (the children's box areas times their triangle counts)
         is least, leaves of at most LEAF_SIZE triangles (a leaf's principal box is flat: a triangle's own plane).
         Between two trees at a relative pose, a box pair is bounded from below by the gap of the spheres, then by the
-        gaps along each box's three face axes (their norm). Immutable; the mesh must outlive the tree. */
+        gap of the boxes along the direction between their nearest points (BoxBound.h). Immutable; the mesh must
+        outlive the tree. */
     class TriangleBvh
     {
     public:

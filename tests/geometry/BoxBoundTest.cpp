@@ -1,0 +1,188 @@
+// The box bounds the distance traversals prune with (BoxBound.h): never above the distance of the two
+// boxes (checked against near-nearest point pairs found by long alternating projection, which are real points of the
+// boxes), exact where it must be (boxes facing each other across a face), and, on the nodes of real trees, never above
+// the least distance of the triangles under them (brute force over all triangle pairs); the traversals that prune with
+// it give the brute-force minimum on flat, slanted plates.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "TestMeshes.h"
+#include "meshgap/geometry/BoxBound.h"
+#include "meshgap/geometry/TriangleBvh.h"
+#include "meshgap/geometry/TriangleDistance.h"
+
+using namespace meshgap;
+
+namespace
+{
+    Eigen::Matrix3d randomRotation(std::mt19937 &rng)
+    {
+        std::normal_distribution<double> g;
+        return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+    }
+
+    /** \brief A pair of points, one in each box (A = [-ha, ha], B = T + C [-hb, hb]), near the nearest pair: many
+        rounds of alternating projection from B's centre. Their distance is at least the boxes' distance. */
+    double nearPairDistance(const Eigen::Vector3d &ha, const Eigen::Vector3d &hb, const Eigen::Matrix3d &C,
+                            const Eigen::Vector3d &T)
+    {
+        Eigen::Vector3d q = T, p = T.cwiseMax(-ha).cwiseMin(ha);
+        for (int round = 0; round < 400; ++round)
+        {
+            q = T + C * (C.transpose() * (p - T)).cwiseMax(-hb).cwiseMin(hb);
+            p = q.cwiseMax(-ha).cwiseMin(ha);
+        }
+        return (q - p).norm();
+    }
+
+    /** \brief A thin plate (the flat part of a CAD body) of \e n x \e n squares, tilted and placed by \e X. */
+    Mesh plate(double w, double h, int n, const Eigen::Isometry3d &X)
+    {
+        return test::transformed(test::box(w, h, 0.002, n), X);
+    }
+
+    /** \brief The triangles (indices) under node \e n. */
+    void trianglesUnder(const TriangleBvh &tree, std::uint32_t n, std::vector<std::uint32_t> &out)
+    {
+        const TriangleBvh::Node &node = tree.nodes()[n];
+        if (node.isLeaf())
+        {
+            for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
+                out.push_back(tree.order()[k]);
+            return;
+        }
+        trianglesUnder(tree, node.first, out);
+        trianglesUnder(tree, node.first + 1, out);
+    }
+
+    /** \brief Corners of triangle \e t of \e m, placed by \e X. */
+    std::array<Eigen::Vector3d, 3> corners(const Mesh &m, std::uint32_t t, const Eigen::Isometry3d &X)
+    {
+        return {X * m.vertices[m.triangles[t][0]], X * m.vertices[m.triangles[t][1]],
+                X * m.vertices[m.triangles[t][2]]};
+    }
+
+    /** \brief Two bodies of slanted plates with many parallel and nearly parallel faces. */
+    Mesh plates(std::uint32_t seed)
+    {
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        Mesh out;
+        for (int k = 0; k < 3; ++k)
+        {
+            Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+            X.linear() = randomRotation(rng);
+            X.translation() = Eigen::Vector3d(u(rng), u(rng), u(rng));
+            out = test::merged(out, plate(0.6 + 0.3 * u(rng), 0.3 + 0.2 * u(rng), 3, X));
+        }
+        return out;
+    }
+}  // namespace
+
+TEST(BoxBound, NeverAboveTheDistanceOfTwoBoxesFlatOrNot)
+{
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int apart = 0, tight = 0;
+    for (int trial = 0; trial < 20000; ++trial)
+    {
+        Eigen::Vector3d ha(0.01 + u(rng), 0.01 + u(rng), 0.01 + u(rng)),
+            hb(0.01 + u(rng), 0.01 + u(rng), 0.01 + u(rng));
+        if (trial % 3 == 0)  // flat boxes, as a CAD part's leaves and sheets
+        {
+            ha[trial % 2] = 1e-6;
+            hb[(trial / 2) % 3] = 0.0;
+        }
+        const Eigen::Matrix3d C = trial % 5 == 0 ? Eigen::Matrix3d::Identity() : randomRotation(rng);
+        const Eigen::Vector3d T = 4.0 * Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+        const double bound = boxbound::gapAlongNearest(ha, hb, C, T, 0.0);
+        const double distance = nearPairDistance(ha, hb, C, T);
+        ASSERT_LE(bound, distance + 1e-12) << "trial " << trial << ": the bound is above a real point pair's distance";
+        if (distance > 1e-3)
+        {
+            ++apart;
+            tight += bound > 0.99 * distance;
+        }
+        ASSERT_LE(boxbound::gapOnFacesOfB(ha, hb, C, T, 0.0), distance + 1e-12) << "trial " << trial;
+        // Any direction gives a lower bound: the face axes of A, for instance.
+        for (int i = 0; i < 3; ++i)
+            ASSERT_LE(boxbound::gapAlong(Eigen::Vector3d::Unit(i), ha, hb, C, T, 0.0), distance + 1e-12);
+    }
+    // The bound is meant to prune: within 1 % of the distance on most separated pairs.
+    EXPECT_GT(apart, 10000);
+    EXPECT_GT(tight, 0.7 * apart) << tight << " of " << apart;
+}
+
+TEST(BoxBound, ExactAcrossAFaceAnEdgeOrACorner)
+{
+    const Eigen::Vector3d h(1.0, 0.5, 0.25);
+    // Face to face, shifted sideways.
+    EXPECT_NEAR(boxbound::gapAlongNearest(h, h, Eigen::Matrix3d::Identity(), Eigen::Vector3d(3.0, 0.4, -0.1), 0.0), 1.0,
+                1e-15);
+    // Corner to corner along the diagonal: the face axes alone give 0.5 at most.
+    EXPECT_NEAR(boxbound::gapAlongNearest(h, h, Eigen::Matrix3d::Identity(), Eigen::Vector3d(2.5, 1.5, 1.0), 0.0),
+                std::sqrt(0.25 + 0.25 + 0.25), 1e-15);
+    // B turned 45 degrees about z: its edge faces A's face.
+    const Eigen::Matrix3d C = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::Vector3d hb(0.5, 0.5, 0.25);
+    EXPECT_NEAR(boxbound::gapAlongNearest(h, hb, C, Eigen::Vector3d(3.0, 0.0, 0.0), 0.0), 2.0 - 0.5 * std::sqrt(2.0),
+                1e-12);
+    // Overlapping boxes: no bound.
+    EXPECT_LE(boxbound::gapAlongNearest(h, hb, C, Eigen::Vector3d(1.2, 0.0, 0.0), 0.0), 0.0);
+}
+
+TEST(BoxBound, EveryNodePairOfTwoTreesBoundsItsTriangles)
+{
+    for (std::uint32_t seed = 1; seed <= 3; ++seed)
+    {
+        const Mesh ma = plates(seed), mb = plates(100 + seed);
+        const TriangleBvh a(ma), b(mb);
+        std::mt19937 rng(seed);
+        for (int pose = 0; pose < 4; ++pose)
+        {
+            const Eigen::Isometry3d X = test::randomPose(1000 * seed + pose, 1.5);
+            // Every triangle pair's distance, then each node pair's least.
+            std::vector<std::vector<double>> d(ma.triangles.size(), std::vector<double>(mb.triangles.size()));
+            for (std::uint32_t i = 0; i < ma.triangles.size(); ++i)
+                for (std::uint32_t j = 0; j < mb.triangles.size(); ++j)
+                {
+                    const auto p = corners(ma, i, Eigen::Isometry3d::Identity()), q = corners(mb, j, X);
+                    Eigen::Vector3d onA, onB;
+                    d[i][j] = triangleDistance(p[0], p[1], p[2], q[0], q[1], q[2], onA, onB);
+                }
+            // The whole traversal, pruning with these bounds: the brute-force minimum.
+            double brute = std::numeric_limits<double>::infinity();
+            for (const auto &row : d)
+                brute = std::min(brute, *std::min_element(row.begin(), row.end()));
+            BvhDistanceResult result;
+            bvhDistance(a, b, X, std::numeric_limits<double>::infinity(), -1.0, result);
+            EXPECT_NEAR(result.distance, brute, 1e-12) << "seed " << seed << " pose " << pose;
+            int pruning = 0;
+            for (std::uint32_t na = 0; na < a.nodes().size(); na += 3)
+                for (std::uint32_t nb = 0; nb < b.nodes().size(); nb += 2)
+                {
+                    const TriangleBvh::Node &A = a.nodes()[na], &B = b.nodes()[nb];
+                    const Eigen::Matrix3d C = A.axes.transpose() * X.linear() * B.axes;
+                    const Eigen::Vector3d T = A.axes.transpose() * (X * B.center - A.center);
+                    const double pad = 1e-12 * (T.norm() + A.half.sum() + B.half.sum());
+                    const double bound = std::max(boxbound::gapAlongNearest(A.half, B.half, C, T, pad),
+                                                  boxbound::gapOnFacesOfB(A.half, B.half, C, T, pad));
+                    std::vector<std::uint32_t> ta, tb;
+                    trianglesUnder(a, na, ta);
+                    trianglesUnder(b, nb, tb);
+                    double least = std::numeric_limits<double>::infinity();
+                    for (std::uint32_t i : ta)
+                        for (std::uint32_t j : tb)
+                            least = std::min(least, d[i][j]);
+                    ASSERT_LE(bound, least) << "seed " << seed << " pose " << pose << " nodes " << na << ", " << nb;
+                    pruning += bound > 0.0;
+                }
+            EXPECT_GT(pruning, 0);
+        }
+    }
+}
