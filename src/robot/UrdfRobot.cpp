@@ -627,6 +627,7 @@ namespace meshgap
         m.variable = source.variable;
         m.scale = std::abs(j.multiplier);
         m.angle = source.type == JointType::CONTINUOUS;
+        m.axis = j.axis;
         if (j.type == JointType::PRISMATIC)
         {
             const double lo = j.multiplier * source.lower + j.offset, hi = j.multiplier * source.upper + j.offset;
