@@ -193,6 +193,7 @@ namespace meshgap
         // the first pair at or below max(stopBelow, 0) (0: a touching pair, nothing can be closer).
         const bool mayStop = stopBelow >= 0.0;
         const bool verdictOnly = mayStop || !request.computeDepth;  // a collision gets no depth
+        bool exhausted = false;
         if (!(mayStop && best.d <= stopBelow))
         {
             BvhDistanceResult traversal;
@@ -203,7 +204,8 @@ namespace meshgap
                 known ? Eigen::Vector3d((best.onB - best.onA) / (best.onB - best.onA).norm()) : Eigen::Vector3d::Zero();
             bvhDistance(a.bvh(), b.bvh(), X_AB, std::min(best.d, upperBound), mayStop ? stopBelow : 0.0, traversal,
                         seeded ? best.ta : UINT32_MAX, seeded ? best.tb : UINT32_MAX, warm ? &warm->front : nullptr,
-                        known ? &seedAxis : nullptr);
+                        known ? &seedAxis : nullptr, request.maxTests);
+            exhausted = traversal.exhausted;
             result.triangleTests += traversal.triangleTests;
             result.boxTests += traversal.boxTests;
             if (traversal.found)
@@ -216,7 +218,7 @@ namespace meshgap
             // Nothing closer than the caller's bound (the seed, if any, was not either): proven, but no pair to
             // report. A part of one body may still lie inside the other.
             result.distance = std::numeric_limits<double>::infinity();
-            result.certified = true;
+            result.certified = !exhausted;
             result.inCollision = oneInsideTheOther(a, b, X_AB);
             finishCollision(a, b, X_AB, verdictOnly, result, warm);
             return;
@@ -237,7 +239,7 @@ namespace meshgap
         // The traversal ran to its end, or stopped at a touching pair (distance 0). An answer at or below stopBelow
         // may have ended it early (bvhDistance() does not say whether it did): then it is only an upper bound.
         const bool stoppedEarly = mayStop && best.d <= stopBelow && !result.inCollision;
-        result.certified = !stoppedEarly;
+        result.certified = !stoppedEarly && (!exhausted || result.inCollision);
         if (!result.inCollision && !stoppedEarly)
             result.inCollision = oneInsideTheOther(a, b, X_AB);  // the witnesses stay the closest surface points
         finishCollision(a, b, X_AB, verdictOnly, result, warm);

@@ -94,6 +94,8 @@ namespace meshgap
                 the whole bound, which later poses reuse. */
             double exitAbove() const { return record_ ? std::numeric_limits<double>::infinity() : enough(); }
             bool stopped() const { return stopped_; }
+            /** \brief Give up after \e budget box and triangle tests (0: never). */
+            void setBudget(std::size_t budget) { budget_ = budget; }
 
             /** \brief The bound of pair \e e at this pose: its box bound, or for a leaf pair -infinity (the leaf
                 test makes its own). */
@@ -177,6 +179,11 @@ namespace meshgap
                     const PairEntry e = open_.back().pair;
                     const double bound = open_.back().bound;
                     open_.pop_back();
+                    if (budget_ > 0 && !stopped_ && result_.boxTests + result_.triangleTests >= budget_)
+                    {
+                        stopped_ = true;
+                        result_.exhausted = true;
+                    }
                     if (stopped_ || bound > enough())
                     {
                         // Left unexplored by the early stop, or nothing in this pair can beat or tie the best so
@@ -346,6 +353,7 @@ namespace meshgap
             const std::uint32_t stamp_;
             std::vector<Open> &open_;
             bool bestFirst_{true};
+            std::size_t budget_{0};
             const std::uint32_t seedA_, seedB_;
             const double seedDistance_;
             const Eigen::Vector3d *seedAxis_{nullptr};
@@ -417,7 +425,7 @@ namespace meshgap
 
     void bvhDistance(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, double upperBound,
                      double stopBelow, BvhDistanceResult &result, std::uint32_t seedA, std::uint32_t seedB,
-                     BvhFront *front, const Eigen::Vector3d *seedAxis)
+                     BvhFront *front, const Eigen::Vector3d *seedAxis, std::size_t budget)
     {
         result = BvhDistanceResult();
         result.distance = upperBound;
@@ -432,10 +440,11 @@ namespace meshgap
         const TriangleBvh::Node &rootA = a.nodes()[0], &rootB = b.nodes()[0];
         const double slack =
             1e-12 * (rootA.center.norm() + rootA.radius + rootB.center.norm() + rootB.radius + X.t.norm());
-        if (!front)
+        if (!front || budget > 0)
         {
             DistanceTraversal traversal(a, b, X, slack, stopBelow, result, seedA, seedB, nullptr, 0.0, 0);
             traversal.knowSeed(seedAxis);
+            traversal.setBudget(budget);
             traversal.run({0u, 0u}, traversal.bound({0u, 0u}));
             return;
         }

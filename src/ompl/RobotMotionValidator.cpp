@@ -2,6 +2,7 @@
 
 #include <ompl/base/SpaceInformation.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "meshgap/Exception.h"
@@ -17,6 +18,8 @@ namespace meshgap
             throw Exception("RobotMotionValidator", "no robot scene");
         if (scene_->links().size() != robot.links().size())
             throw Exception("RobotMotionValidator", "the robot scene was built with another set of links");
+        for (const auto &[a, b] : scene_->selfPairs())
+            pairTerms_.push_back(bound_.pairTerms(a, b));
     }
 
     namespace
@@ -27,6 +30,20 @@ namespace meshgap
         constexpr std::size_t MAX_PIECES = std::size_t(1) << 16;
         /** \brief Buffers grown past this many pieces by an unusual motion are released after it. */
         constexpr std::size_t KEPT_PIECES = std::size_t(1) << 12;
+        /** \brief A pair's first question on a piece may cost this many box and triangle tests; one that gives up
+            is asked again on both halves, with half the margin and four times the budget, and from the sixth time
+            on with no budget. A pair just beyond its margin costs thousands of tests to prove, one at twice its
+            margin tens: halving the piece is cheaper (bench/README.md, "Certified motions on MotionBenchMaker's
+            problems": 30 to 3,000 tried, 100 the least total). */
+        constexpr std::size_t FIRST_BUDGET = 100;
+        constexpr unsigned int UNLIMITED_AFTER = 5;
+
+        /** \brief A pair still to prove on a piece, and how many times a question about it gave up. */
+        struct Pending
+        {
+            std::size_t pair;
+            unsigned int gaveUp;
+        };
 
         /** \brief A piece [t0, t1] of the motion and the pairs still to prove on it: Work::pending[first, first +
             count). */
@@ -41,9 +58,10 @@ namespace meshgap
         struct Work
         {
             RobotWarmStart warm;
-            std::vector<double> q0, q1, q, moves, lambda;
-            std::vector<Piece> pieces;         ///< breadth first: a queue read from its head
-            std::vector<std::size_t> pending;  ///< pair indices, a range per piece
+            MotionBound::Motion motion;
+            std::vector<double> q0, q1, q, moves, lambda, sums;
+            std::vector<Piece> pieces;     ///< breadth first: a queue read from its head
+            std::vector<Pending> pending;  ///< a range per piece
         };
     }  // namespace
 
@@ -60,12 +78,13 @@ namespace meshgap
         // bound is linear in the joint steps, and the joints move linearly in t).
         const std::size_t links = scene_->links().size(), pairs = scene_->numPairs();
         bound_.linkDisplacements(w.q0, w.q1, w.moves);
+        bound_.motion(w.q0, w.q1, w.motion);
         w.lambda.assign(w.moves.begin(), w.moves.begin() + links);
         for (const auto &[a, b] : scene_->selfPairs())
             w.lambda.push_back(bound_.pairDisplacement(a, b, w.q0, w.q1));
         w.pending.clear();
         for (std::size_t k = 0; k < pairs; ++k)
-            w.pending.push_back(k);
+            w.pending.push_back({k, 0});
         w.pieces.assign(1, Piece{0.0, 1.0, 0, pairs, 0});
         ompl::base::State *middle = si_->allocState();
         bool free = true;
@@ -76,14 +95,19 @@ namespace meshgap
             space.interpolate(s1, s2, t, middle);  // OMPL's own interpolation (SO(2) by the shorter arc)
             robotStateToVector(space, middle, w.q);
             scene_->place(w.q.data(), w.q.size(), w.warm);
+            bound_.pieceBounds(w.motion, w.warm.frames, w.warm.poses, half, w.sums);
             const std::size_t start = w.pending.size();
             for (std::size_t i = p.first; free && i < p.first + p.count; ++i)
             {
-                const std::size_t k = w.pending[i];
-                if (scene_->pairApart(k, half * w.lambda[k], w.warm))
+                const auto [k, tries] = w.pending[i];
+                const std::size_t budget = tries >= UNLIMITED_AFTER ? 0 : FIRST_BUDGET << (2 * tries);
+                bool gaveUp = false;
+                if (scene_->pairApart(k, std::min(half * w.lambda[k], pieceBound(k, w.sums)), w.warm, budget,
+                                      &gaveUp))
                     continue;
-                free = !scene_->pairCollides(k, w.warm);
-                w.pending.push_back(k);
+                // A pair given up on is within reach of its margin, not within it: no collision to look for.
+                free = gaveUp || !scene_->pairCollides(k, w.warm);
+                w.pending.push_back({k, tries + (gaveUp ? 1u : 0u)});
             }
             const std::size_t left = w.pending.size() - start;
             if (!free || left == 0)
@@ -96,9 +120,18 @@ namespace meshgap
         if (w.pieces.capacity() > KEPT_PIECES)
         {
             w.pieces = std::vector<Piece>();
-            w.pending = std::vector<std::size_t>();
+            w.pending = std::vector<Pending>();
         }
         return free;
+    }
+
+    double RobotMotionValidator::pieceBound(std::size_t k, const std::vector<double> &sums) const
+    {
+        const std::size_t links = scene_->links().size();
+        if (k < links)
+            return bound_.linkBound(k, sums);
+        const auto [a, b] = scene_->selfPairs()[k - links];
+        return bound_.pairBound(a, b, pairTerms_[k - links], sums);
     }
 
     bool RobotMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const

@@ -7,17 +7,32 @@
 
 namespace meshgap
 {
+    namespace
+    {
+        /** \brief The 8 corners of BVH node \e n's box, in its body's frame. */
+        std::array<Eigen::Vector3d, 8> boxCorners(const TriangleBvh::Node &n)
+        {
+            std::array<Eigen::Vector3d, 8> corners;
+            for (int c = 0; c < 8; ++c)
+            {
+                const Eigen::Vector3d sign((c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 1.0 : -1.0);
+                corners[c] = n.center + n.axes * sign.cwiseProduct(n.half);
+            }
+            return corners;
+        }
+    }  // namespace
+
     MotionBound::MotionBound(const RobotModel &robot)
     {
         std::vector<FrameMotion> motions;
         for (std::size_t f = 0; f < robot.frames().size(); ++f)
             motions.push_back(robot.frameMotion(f));
+        offsets_.push_back(0);
         for (const RobotLink &link : robot.links())
         {
             double reach = 0.0;  // from the current frame's origin to any point of the link
             for (const Eigen::Vector3d &v : link.body->surface().vertices)
                 reach = std::max(reach, (link.X_FL * v).norm());
-            std::vector<Term> terms;
             std::vector<std::size_t> chain;
             for (std::size_t f = link.frame, step = 0; f != RobotModel::NONE; f = robot.frames()[f].parent, ++step)
             {
@@ -25,35 +40,39 @@ namespace meshgap
                 if (motions[f].kind != FrameMotion::Kind::FIXED && !std::isfinite(reach))
                     throw Exception("MotionBound", "frame " + quote(robot.frames()[f].name) +
                                                        " moves a frame that moves free (no bound on its reach)");
-                addTerms(motions[f], step, reach, terms);
+                addTerms(motions[f], f, step, reach, terms_);
                 // Up to the parent frame: a rotation keeps the distance from the frame's origin, the frame's own
                 // origin lies within its reach of the parent's.
                 reach += motions[f].reach;
             }
-            terms_.push_back(terms);
+            offsets_.push_back(terms_.size());
             chains_.push_back(chain);
+            corners_.push_back(boxCorners(link.body->bvh().nodes().front()));
         }
     }
 
-    void MotionBound::addTerms(const FrameMotion &m, std::size_t step, double reach, std::vector<Term> &terms)
+    void MotionBound::addTerms(const FrameMotion &m, std::size_t frame, std::size_t step, double reach,
+                               std::vector<Term> &terms)
     {
+        const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
         switch (m.kind)
         {
             case FrameMotion::Kind::FIXED:
                 break;
             case FrameMotion::Kind::ROTATION:
-                terms.push_back({m.angle ? Measure::ARC : Measure::SCALAR, m.variable, reach * m.scale, step});
+                terms.push_back({m.angle ? Measure::ARC : Measure::SCALAR, m.variable, m.scale, reach, step, frame,
+                                 Lever::AXIS, m.axis});
                 break;
             case FrameMotion::Kind::TRANSLATION:
-                terms.push_back({Measure::SCALAR, m.variable, m.scale, step});
+                terms.push_back({Measure::SCALAR, m.variable, m.scale, 1.0, step, frame, Lever::NONE, m.axis});
                 break;
             case FrameMotion::Kind::SE2:
-                terms.push_back({Measure::PLANE_MOVE, m.variable, 1.0, step});
-                terms.push_back({Measure::PLANE_TURN, m.variable + 2, reach, step});
+                terms.push_back({Measure::PLANE_MOVE, m.variable, 1.0, 1.0, step, frame, Lever::NONE, z});
+                terms.push_back({Measure::PLANE_TURN, m.variable + 2, 1.0, reach, step, frame, Lever::ORIGIN, z});
                 break;
             case FrameMotion::Kind::SE3:
-                terms.push_back({Measure::SPACE_MOVE, m.variable, 1.0, step});
-                terms.push_back({Measure::SPACE_TURN, m.variable + 3, reach, step});
+                terms.push_back({Measure::SPACE_MOVE, m.variable, 1.0, 1.0, step, frame, Lever::NONE, z});
+                terms.push_back({Measure::SPACE_TURN, m.variable + 3, 1.0, reach, step, frame, Lever::ORIGIN, z});
                 break;
         }
     }
@@ -88,11 +107,10 @@ namespace meshgap
                 break;
             }
         }
-        return t.factor * change;
+        return t.scale * change;
     }
 
-    double MotionBound::pairDisplacement(std::size_t first, std::size_t second, const std::vector<double> &a,
-                                         const std::vector<double> &b) const
+    std::pair<std::size_t, std::size_t> MotionBound::pairTerms(std::size_t first, std::size_t second) const
     {
         // The nearest common ancestor: its place on each link's way up (past the end: none, two separate roots).
         const std::vector<std::size_t> &up1 = chains_[first], &up2 = chains_[second];
@@ -105,26 +123,94 @@ namespace meshgap
                     at2 = k;
                     break;
                 }
+        auto below = [&](std::size_t link, std::size_t at)
+        {
+            std::size_t n = 0;
+            for (std::size_t t = offsets_[link]; t < offsets_[link + 1] && terms_[t].step < at; ++t)
+                ++n;
+            return n;
+        };
+        return {below(first, at1), below(second, at2)};
+    }
+
+    double MotionBound::pairDisplacement(std::size_t first, std::size_t second, const std::vector<double> &a,
+                                         const std::vector<double> &b) const
+    {
+        const auto [n1, n2] = pairTerms(first, second);
         double d = 0.0;
-        for (const Term &t : terms_[first])
-            if (t.step < at1)
-                d += termMove(t, a, b);
-        for (const Term &t : terms_[second])
-            if (t.step < at2)
-                d += termMove(t, a, b);
+        for (std::size_t t = offsets_[first]; t < offsets_[first] + n1; ++t)
+            d += termMove(terms_[t], a, b) * terms_[t].reach;
+        for (std::size_t t = offsets_[second]; t < offsets_[second] + n2; ++t)
+            d += termMove(terms_[t], a, b) * terms_[t].reach;
         return d;
     }
 
     void MotionBound::linkDisplacements(const std::vector<double> &a, const std::vector<double> &b,
                                         std::vector<double> &out) const
     {
-        out.resize(terms_.size());
-        for (std::size_t i = 0; i < terms_.size(); ++i)
+        out.resize(chains_.size());
+        for (std::size_t i = 0; i < chains_.size(); ++i)
         {
             double d = 0.0;
-            for (const Term &t : terms_[i])
-                d += termMove(t, a, b);
+            for (std::size_t t = offsets_[i]; t < offsets_[i + 1]; ++t)
+                d += termMove(terms_[t], a, b) * terms_[t].reach;
             out[i] = d;
+        }
+    }
+
+    void MotionBound::motion(const std::vector<double> &a, const std::vector<double> &b, Motion &out) const
+    {
+        out.move.resize(terms_.size());
+        out.crude.resize(terms_.size());
+        for (std::size_t t = 0; t < terms_.size(); ++t)
+        {
+            out.move[t] = termMove(terms_[t], a, b);
+            out.crude[t] = out.move[t] * terms_[t].reach;
+        }
+    }
+
+    void MotionBound::pieceBounds(const Motion &motion, const std::vector<Eigen::Isometry3d> &frames,
+                                  const std::vector<Eigen::Isometry3d> &links, double half,
+                                  std::vector<double> &out) const
+    {
+        out.resize(terms_.size() + chains_.size());
+        std::array<Eigen::Vector3d, 8> corners;
+        for (std::size_t i = 0; i < chains_.size(); ++i)
+        {
+            for (int c = 0; c < 8; ++c)
+                corners[c] = links[i] * corners_[i][c];
+            // below: the crude bound of the frames nearer the link than the current term's (its own motion
+            // relative to that frame); terms of one frame (a free body's move and turn) share a step.
+            double sum = 0.0, crude = 0.0, below = 0.0;
+            std::size_t at = offsets_[i] + i, step = RobotModel::NONE;
+            out[at] = 0.0;
+            for (std::size_t t = offsets_[i]; t < offsets_[i + 1]; ++t)
+            {
+                const Term &term = terms_[t];
+                if (term.step != step)
+                {
+                    below = crude;
+                    step = term.step;
+                }
+                double add = motion.move[t] * half;
+                if (term.lever != Lever::NONE)
+                {
+                    const Eigen::Vector3d o = frames[term.frame].translation();
+                    const Eigen::Vector3d u = frames[term.frame].linear() * term.axis;
+                    double rho = 0.0;
+                    for (const Eigen::Vector3d &x : corners)
+                    {
+                        const Eigen::Vector3d r = x - o;
+                        rho = std::max(rho, term.lever == Lever::AXIS ? r.cross(u).norm() : r.norm());
+                    }
+                    rho += 1e-12 * (1.0 + rho + o.norm());  // roundoff in the world coordinates
+                    // The crude lever bounds the distance at every state: keep the smaller.
+                    add *= std::min(term.reach, rho + 0.5 * half * below);
+                }
+                crude += motion.crude[t];
+                sum += add;
+                out[++at] = sum;
+            }
         }
     }
 }  // namespace meshgap

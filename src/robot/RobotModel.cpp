@@ -301,6 +301,7 @@ namespace meshgap
         m.variable = j.variable;
         m.scale = std::abs(j.multiplier);
         m.angle = source.space() == JointSpace::SO2;
+        m.axis = j.joint->axis();
         // The values it takes: its source's limits mapped by the mimic's multiplier and offset.
         double lo = source.lower(0), hi = source.upper(0);
         if (j.mimics != NONE)

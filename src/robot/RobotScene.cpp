@@ -276,8 +276,11 @@ namespace meshgap
         prepare(state, size, warm);
     }
 
-    bool RobotScene::pairApart(std::size_t k, double margin, RobotWarmStart &warm) const
+    bool RobotScene::pairApart(std::size_t k, double margin, RobotWarmStart &warm, std::size_t budget,
+                               bool *gaveUp) const
     {
+        if (gaveUp)
+            *gaveUp = false;
         // Above margin, strictly: the question asked is "nothing at or below margin * (1 + 1e-12) + tiny".
         const double bound = margin * (1.0 + 1e-12) + 1e-300;
         if (k < links_.size())
@@ -286,9 +289,13 @@ namespace meshgap
             request.upperBound = bound;
             request.stopBelow = bound;
             request.computeDepth = false;
+            request.maxTests = budget;
             SceneResult s;
             scenes_[k]->distance(warm.poses[k], request, warm.links[k], s);
-            return s.atLeast && !s.inCollision;
+            const bool apart = s.atLeast && !s.inCollision;
+            if (apart && !s.certified && gaveUp)
+                *gaveUp = true;
+            return apart && s.certified;
         }
         const std::size_t p = k - links_.size();
         double gap;
@@ -299,10 +306,14 @@ namespace meshgap
         request.upperBound = bound;
         request.stopBelow = bound;
         request.computeDepth = false;
+        request.maxTests = budget;
         DistanceResult r;
         refineExact(*links_[a].body, *links_[b].body, warm.poses[a].inverse() * warm.poses[b], r, request,
                     &warm.self[p]);
-        return !r.inCollision && !(r.distance < bound);
+        const bool apart = !r.inCollision && !(r.distance < bound);
+        if (apart && !r.certified && gaveUp)
+            *gaveUp = true;
+        return apart && r.certified;
     }
 
     bool RobotScene::pairCollides(std::size_t k, RobotWarmStart &warm) const

@@ -146,6 +146,79 @@ namespace meshgap
             return tightest;
         }
 
+        /** \brief Random pieces of random motions of \e robot (middle state, half-length 0.5, 0.1 or 0.01 of the
+            motion): no vertex of a link is further from where it is at the middle than MotionBound::pieceBounds()
+            says, at 100 states of the piece, and no checked pair moved more in its nearest common frame than
+            pairBound(); each bound is at most the piece's share of the whole motion's crude bound. Returns the
+            mean ratio of the piece bound to that share (how much tighter it is). */
+        double checkPieceBounds(const RobotModel &robot, const std::function<double(std::size_t)> &joints,
+                                unsigned seed)
+        {
+            const MotionBound bound(robot);
+            const ob::StateSpacePtr space = robotStateSpace(robot, box3(4, 4, 4));
+            std::mt19937 rng(seed);
+            std::uniform_real_distribution<double> unit(0.0, 1.0);
+            ob::State *sa = space->allocState(), *sb = space->allocState(), *s = space->allocState();
+            std::vector<double> a, b, q, moves, sums;
+            std::vector<Eigen::Isometry3d> framesM, linksM, framesQ, linksQ;
+            MotionBound::Motion motion;
+            double ratio = 0.0;
+            int ratios = 0;
+            auto moved = [&](std::size_t link, std::size_t c)
+            {
+                const Eigen::Isometry3d XM = c == RobotModel::NONE ? linksM[link] : framesM[c].inverse() * linksM[link];
+                const Eigen::Isometry3d XQ = c == RobotModel::NONE ? linksQ[link] : framesQ[c].inverse() * linksQ[link];
+                double most = 0.0;
+                for (const Eigen::Vector3d &v : robot.links()[link].body->surface().vertices)
+                    most = std::max(most, (XQ * v - XM * v).norm());
+                return most;
+            };
+            for (int trial = 0; trial < 60 && !::testing::Test::HasFailure(); ++trial)
+            {
+                robotStateFromVector(*space, randomState(robot, rng, joints), sa);
+                robotStateFromVector(*space, randomState(robot, rng, joints), sb);
+                robotStateToVector(*space, sa, a);
+                robotStateToVector(*space, sb, b);
+                bound.linkDisplacements(a, b, moves);
+                bound.motion(a, b, motion);
+                const double half = std::vector<double>{0.5, 0.1, 0.01}[trial % 3];
+                const double middle = half + (1.0 - 2.0 * half) * unit(rng);
+                space->interpolate(sa, sb, middle, s);
+                robotStateToVector(*space, s, q);
+                robot.linkPoses(q.data(), q.size(), framesM, linksM);
+                bound.pieceBounds(motion, framesM, linksM, half, sums);
+                for (int step = 0; step <= 100; ++step)
+                {
+                    space->interpolate(sa, sb, middle - half + 2.0 * half * step / 100.0, s);
+                    robotStateToVector(*space, s, q);
+                    robot.linkPoses(q.data(), q.size(), framesQ, linksQ);
+                    for (std::size_t i = 0; i < robot.links().size(); ++i)
+                    {
+                        const double piece = bound.linkBound(i, sums);
+                        EXPECT_LE(moved(i, RobotModel::NONE), piece + 1e-9) << robot.links()[i].name << " " << trial;
+                        EXPECT_LE(piece, half * moves[i] * (1 + 1e-9) + 1e-12);
+                        if (step == 0 && moves[i] > 0)
+                        {
+                            ratio += piece / (half * moves[i]);
+                            ++ratios;
+                        }
+                    }
+                    for (const auto &[first, second] : robot.selfPairs())
+                    {
+                        const std::size_t c =
+                            commonFrame(robot, robot.links()[first].frame, robot.links()[second].frame);
+                        const double piece = bound.pairBound(first, second, bound.pairTerms(first, second), sums);
+                        EXPECT_LE(moved(first, c) + moved(second, c), piece + 1e-9)
+                            << robot.links()[first].name << " " << robot.links()[second].name << " " << trial;
+                    }
+                }
+            }
+            space->freeState(sa);
+            space->freeState(sb);
+            space->freeState(s);
+            return ratios ? ratio / ratios : 0.0;
+        }
+
         /** \brief Three bodies, one in SE(2) and two in SE(3), none centred on its frame's origin, and a payload
             on the second. */
         MultiBodyRobotPtr threeBodies()
@@ -234,6 +307,7 @@ namespace meshgap
             *robot, [](std::size_t) { return 0.0; }, 3);
         test::Note() << "largest displacement / bound " << tightest;
         EXPECT_GT(tightest, 0.3);  // a bound, not a wild one
+        test::Note() << "piece bound / crude share, mean " << checkPieceBounds(*robot, [](std::size_t) { return 0.0; }, 4);
     }
 
     TEST(MultiBodyMotion, DisplacementBoundHoldsForAFloatingBase)
@@ -251,6 +325,23 @@ namespace meshgap
             *robot, [&](std::size_t k) { return k < 7 ? 0.0 : centre[k - 7] + scale[k - 7] * u(rng); }, 7);
         test::Note() << "largest displacement / bound " << tightest;
         EXPECT_GT(tightest, 0.2);
+        test::Note() << "piece bound / crude share, mean "
+                     << checkPieceBounds(
+                            *robot, [&](std::size_t k) { return k < 7 ? 0.0 : centre[k - 7] + scale[k - 7] * u(rng); },
+                            8);
+    }
+
+    TEST(MultiBodyMotion, PieceBoundHoldsForAFixedTree)
+    {
+        // tree.urdf on a fixed base, carrying a payload: the bound a certified arm motion is proven with.
+        const UrdfRobotPtr robot = test::treeWithPayload();
+        std::mt19937 rng(6);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        const double scale[5] = {1.5, 2.5, 0.2, 1.5, 1.0}, centre[5] = {0, 0, 0.1, 0, 0};
+        const double ratio = checkPieceBounds(
+            *robot, [&](std::size_t k) { return centre[k] + scale[k] * u(rng); }, 9);
+        test::Note() << "piece bound / crude share, mean " << ratio;
+        EXPECT_LT(ratio, 1.0);  // tighter than the crude bound on average, or it would not be worth its price
     }
 
     TEST(MultiBodyMotion, DisplacementBoundHoldsForPlanarAndFloatingJoints)

@@ -44,6 +44,11 @@ namespace meshgap
             way; a caller that needs only the verdict and the clearance of free poses saves the depth's cost.
             Node-level solvers ignore it. */
         bool computeDepth{true};
+        /** \brief Exact stage and scene, for bounded questions (a finite upperBound): give up on a pair after this
+            many box and triangle tests (bvhDistance()'s budget), the answer then not certified (and SceneResult::
+            atLeast not claimed): a caller that can ask a cheaper question instead (a smaller bound) saves the
+            price of one whose answer lies just beyond its bound. 0 (the default): no limit. */
+        std::size_t maxTests{0};
     };
 
     /** \brief What a colliding pair's (negative) distance is: how its penetration depth was found. */

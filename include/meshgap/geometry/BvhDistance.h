@@ -22,6 +22,9 @@ namespace meshgap
         std::uint32_t triangleA{0}, triangleB{0};
         Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};  ///< A's frame
         std::size_t boxTests{0}, triangleTests{0};
+        /** \brief The search gave up at its budget of tests (bvhDistance()'s \e budget) with pairs left to open:
+            distance is then only what was found, and nothing is proven about the pairs left. */
+        bool exhausted{false};
     };
 
     /** \brief Exact minimum distance between the triangles of \e a (frame A) and of \e b placed by \e X_AB, searching
@@ -41,11 +44,15 @@ namespace meshgap
 
         With \e seedAxis, the seed pair's distance is exactly \e upperBound (computed by triangleDistance() with B's
         corners placed as R v + t, as here) and \e seedAxis its witness direction (unit, from A's point towards
-        B's): the traversal does not test that pair again. */
+        B's): the traversal does not test that pair again. 
+
+        With a \e budget (> 0), the search gives up once it has made that many box and triangle tests, with
+        result.exhausted set (a bounded question whose answer is not worth its price: the caller asks a cheaper one).
+        A budgeted search neither reads nor writes \e front. */
     void bvhDistance(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, double upperBound,
                      double stopBelow, BvhDistanceResult &result, std::uint32_t seedA = UINT32_MAX,
                      std::uint32_t seedB = UINT32_MAX, BvhFront *front = nullptr,
-                     const Eigen::Vector3d *seedAxis = nullptr);
+                     const Eigen::Vector3d *seedAxis = nullptr, std::size_t budget = 0);
 
 }  // namespace meshgap
 

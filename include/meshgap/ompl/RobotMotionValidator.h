@@ -3,6 +3,9 @@
 
 #include <ompl/base/MotionValidator.h>
 
+#include <utility>
+#include <vector>
+
 #include "meshgap/ompl/RobotChecker.h"
 #include "meshgap/robot/MotionBound.h"
 
@@ -21,7 +24,12 @@ namespace meshgap
        for a link against the obstacles). So on a piece
        [t0, t1] of the motion every state is within (t1 - t0) lambda / 2 of the piece's middle state, and a pair
        that is more than that apart at the middle (RobotScene::pairApart(), a bounded question: nothing beyond the
-       margin is looked at) is free on the whole piece. Pieces are taken breadth first (halves of halves, as OMPL's
+       margin is looked at) is free on the whole piece. The margin is the least of that and the piece's own bound
+       at its middle state (MotionBound::pieceBounds(): each joint's step times the distance of the link's box from
+       that joint's axis there, not its farthest reach over every state; two to three times tighter on an arm). A
+       question that costs more than a budget of box and triangle tests gives up, and the pair is asked again on
+       both halves with half the margin (cheaper: a pair just beyond its margin is the costly kind to prove) and
+       four times the budget, without a budget from the sixth time. Pieces are taken breadth first (halves of halves, as OMPL's
        discrete validator orders its states), each asking only the pairs its parent could not prove; a pair that
        collides at a middle state (RobotScene::pairCollides()) makes the motion invalid at once, and so does a
        piece 2^-30 of the motion long, or a 65,537th piece, still unproven (conservative). Both end states are
@@ -46,8 +54,13 @@ namespace meshgap
         /** \brief Whether the motion from \e s1 to \e s2 is proven free, as described above. */
         bool proveFree(const ompl::base::State *s1, const ompl::base::State *s2) const;
 
+        /** \brief Pair \e k's displacement bound over a piece, from MotionBound::pieceBounds()' \e sums. */
+        double pieceBound(std::size_t k, const std::vector<double> &sums) const;
+
         RobotSceneConstPtr scene_;
         MotionBound bound_;
+        /** \brief Per self pair, MotionBound::pairTerms(). */
+        std::vector<std::pair<std::size_t, std::size_t>> pairTerms_;
     };
 }  // namespace meshgap
 

@@ -1,6 +1,8 @@
 #ifndef MESHGAP_ROBOT_MOTION_BOUND_H
 #define MESHGAP_ROBOT_MOTION_BOUND_H
 
+#include <array>
+#include <utility>
 #include <vector>
 
 #include "meshgap/robot/RobotModel.h"
@@ -23,6 +25,14 @@ namespace meshgap
     class MotionBound
     {
     public:
+        /** \brief What one motion moves (its frames' steps), computed once by motion() and read by every piece of it
+            (pieceBounds()). Reused between motions without allocation. */
+        struct Motion
+        {
+            std::vector<double> move;   ///< per term (all links' terms in a row): the frame's step, angle or length
+            std::vector<double> crude;  ///< per term: its whole-motion displacement bound (move times its lever)
+        };
+
         /** \brief Throws meshgap::Exception for a frame that moves free below a moving frame (no finite reach). */
         explicit MotionBound(const RobotModel &robot);
 
@@ -40,6 +50,36 @@ namespace meshgap
         double pairDisplacement(std::size_t first, std::size_t second, const std::vector<double> &a,
                                 const std::vector<double> &b) const;
 
+        /** \brief The steps of the straight motion from \e a to \e b, into \e out (for pieceBounds()). */
+        void motion(const std::vector<double> &a, const std::vector<double> &b, Motion &out) const;
+
+        /** \brief A tighter bound over a piece of \e motion: the states within \e half (a fraction of the motion)
+            of a middle state whose frames' and links' world poses are \e frames and \e links. A frame f turning by
+            an angle moves a point x at the rate |dq_f| dist(x, f's axis) (the distance to its origin for a free
+            body's turn), not |dq_f| r_fL: the distance of the link's box (its BVH root box, 8 corners) from f's axis
+            is measured at the middle state, rho_f, and grows over the piece by at most the link's own displacement
+            relative to f (the crude bound of the frames below f, C_f). Integrating, f adds |dq_f| (half rho_f +
+            half^2 C_f / 2); a translation adds half |dq_f|. \e out gets, per link, the running sums of its terms
+            nearest first (pairBound() reads them). */
+        void pieceBounds(const Motion &motion, const std::vector<Eigen::Isometry3d> &frames,
+                         const std::vector<Eigen::Isometry3d> &links, double half, std::vector<double> &out) const;
+        /** \brief From pieceBounds()' \e sums: the bound for link \e link against the world. */
+        double linkBound(std::size_t link, const std::vector<double> &sums) const
+        {
+            return sums[offsets_[link + 1] + link];
+        }
+        /** \brief For links \e first and \e second: how many of each one's terms lie below their nearest common
+            ancestor (all of them for two bodies with no common frame). */
+        std::pair<std::size_t, std::size_t> pairTerms(std::size_t first, std::size_t second) const;
+        /** \brief From pieceBounds()' \e sums: the bound for links \e first and \e second relative to each other
+            (as pairDisplacement(): each link's terms below their nearest common ancestor, \e terms from
+            pairTerms()). */
+        double pairBound(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
+                         const std::vector<double> &sums) const
+        {
+            return sums[offsets_[first] + first + terms.first] + sums[offsets_[second] + second + terms.second];
+        }
+
     private:
         /** \brief What a term measures between the two states. */
         enum class Measure
@@ -51,21 +91,38 @@ namespace meshgap
             SPACE_MOVE,  ///< |dx, dy, dz| of an SE(3) pose
             SPACE_TURN   ///< the angle between its two rotations
         };
+        /** \brief How a term's lever is measured at a piece's middle state. */
+        enum class Lever
+        {
+            NONE,    ///< a translation: no lever
+            AXIS,    ///< a joint's rotation: the distance from its axis
+            ORIGIN   ///< a free body's turn: the distance from its origin
+        };
         /** \brief Per link, one move of a frame on its way up, nearest first: what it measures from which state
-            number, its factor, and where the frame is on the link's way up (an index into chains_). */
+            number, its scale (a mimic joint's |multiplier|), the link's crude reach about it (1 for a translation),
+            where the frame is on the link's way up (an index into chains_), which frame and about which axis. */
         struct Term
         {
             Measure measure;
             std::size_t variable;
-            double factor;
+            double scale;
+            double reach;
             std::size_t step;
+            std::size_t frame;
+            Lever lever;
+            Eigen::Vector3d axis;
         };
-        /** \brief What \e t measures from \e a to \e b, times its factor. */
+        /** \brief What \e t measures from \e a to \e b, times its scale: the frame's step. */
         static double termMove(const Term &t, const std::vector<double> &a, const std::vector<double> &b);
-        /** \brief The terms of frame \e motion, at \e step on a link's way up, for points at most \e reach from
-            its origin, appended to \e terms. */
-        static void addTerms(const FrameMotion &motion, std::size_t step, double reach, std::vector<Term> &terms);
-        std::vector<std::vector<Term>> terms_;
+        /** \brief The terms of frame \e frame moving as \e motion, at \e step on a link's way up, for points at
+            most \e reach from its origin, appended to \e terms. */
+        static void addTerms(const FrameMotion &motion, std::size_t frame, std::size_t step, double reach,
+                             std::vector<Term> &terms);
+        /** \brief Every link's terms in a row: link i's are terms_[offsets_[i], offsets_[i + 1]). */
+        std::vector<Term> terms_;
+        std::vector<std::size_t> offsets_;
+        /** \brief Per link, the 8 corners of its BVH's root box, in its body frame. */
+        std::vector<std::array<Eigen::Vector3d, 8>> corners_;
         /** \brief Per link, its frame and every frame above it, up to the root. */
         std::vector<std::vector<std::size_t>> chains_;
     };

@@ -57,6 +57,9 @@ namespace meshgap
         /** \brief The farthest the frame's origin gets from its parent frame's origin, over every state (infinite
             for SE2 and SE3). */
         double reach{0.0};
+        /** \brief ROTATION and TRANSLATION: the axis, a unit vector in the frame's own coordinates; a rotation turns
+            the frame about the line through its origin along it. */
+        Eigen::Vector3d axis{Eigen::Vector3d::UnitZ()};
     };
 
     /** \brief How a frame hangs from its parent (the world, for a root): fixed at \e origin, then moved by its joint's

@@ -151,8 +151,12 @@ namespace meshgap
         /** \brief At the state last placed in \e warm: true when pair \e k (RobotResult::pairs order) is certified
             more than \e margin (>= 0) apart, its signed distance above margin; false when some part of it is
             within margin, or collides. A bounded question: the pair's traversal prunes everything beyond margin
-            and stops at the first triangle pair within it. */
-        bool pairApart(std::size_t k, double margin, RobotWarmStart &warm) const;
+            and stops at the first triangle pair within it. With a \e budget (> 0, DistanceRequest::maxTests), a
+            traversal that reaches it gives up: false, and \e gaveUp (if given) set true; it is set false
+            otherwise. A pair whose distance lies just beyond the margin is the costly kind to prove (the traversal
+            must open node pairs down to that small difference); one at twice the margin is cheap. */
+        bool pairApart(std::size_t k, double margin, RobotWarmStart &warm, std::size_t budget = 0,
+                       bool *gaveUp = nullptr) const;
         /** \brief At the state last placed in \e warm: the exact collision verdict of pair \e k (containment
             included). */
         bool pairCollides(std::size_t k, RobotWarmStart &warm) const;
