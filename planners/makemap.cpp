@@ -68,7 +68,7 @@ int main(int argc, char **argv)
             names.push_back(map.first);
         if (which != "all" && std::find(names.begin(), names.end(), which) == names.end())
             throw meshgap::Exception(
-                "--scene", "unknown scene " + quote(which) + " (valid: " + meshgap::joinNames(names) + ", all)");
+                "--scene", "unknown scene " + meshgap::quote(which) + " (valid: " + meshgap::joinNames(names) + ", all)");
         for (const auto &scene : scenes)
             if (which == "all" || which == scene.first)
                 writeScene(scene.second(), std::filesystem::path(out) / scene.first);

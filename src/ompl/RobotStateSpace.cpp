@@ -8,6 +8,7 @@
 #include <typeinfo>
 
 #include "meshgap/Exception.h"
+#include "meshgap/Text.h"
 
 namespace ob = ompl::base;
 
