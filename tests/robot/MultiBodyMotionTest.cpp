@@ -80,6 +80,20 @@ namespace meshgap
             return RobotModel::NONE;
         }
 
+        /** \brief How far any vertex of link \e link moved from the poses (\e framesA, \e linksA) to (\e framesB,
+            \e linksB), in frame \e c (the world for NONE). */
+        double largestMove(const RobotModel &robot, std::size_t link, std::size_t c,
+                           const std::vector<Eigen::Isometry3d> &framesA, const std::vector<Eigen::Isometry3d> &linksA,
+                           const std::vector<Eigen::Isometry3d> &framesB, const std::vector<Eigen::Isometry3d> &linksB)
+        {
+            const Eigen::Isometry3d XA = c == RobotModel::NONE ? linksA[link] : framesA[c].inverse() * linksA[link];
+            const Eigen::Isometry3d XB = c == RobotModel::NONE ? linksB[link] : framesB[c].inverse() * linksB[link];
+            double most = 0.0;
+            for (const Eigen::Vector3d &v : robot.links()[link].body->surface().vertices)
+                most = std::max(most, (XB * v - XA * v).norm());
+            return most;
+        }
+
         /** \brief Random motions of \e robot along OMPL's interpolation in its space, every vertex at 200 states
             each: at fraction t no vertex of a link is further than t times the link's bound from where it started,
             and no two links of a checked pair, in their nearest common frame (the world for two bodies), moved more
@@ -94,14 +108,7 @@ namespace meshgap
             std::vector<Eigen::Isometry3d> framesA, linksA, framesQ, linksQ;
             double tightest = 0.0;
             auto moved = [&](std::size_t link, std::size_t c)
-            {
-                const Eigen::Isometry3d XA = c == RobotModel::NONE ? linksA[link] : framesA[c].inverse() * linksA[link];
-                const Eigen::Isometry3d XQ = c == RobotModel::NONE ? linksQ[link] : framesQ[c].inverse() * linksQ[link];
-                double most = 0.0;
-                for (const Eigen::Vector3d &v : robot.links()[link].body->surface().vertices)
-                    most = std::max(most, (XQ * v - XA * v).norm());
-                return most;
-            };
+            { return largestMove(robot, link, c, framesA, linksA, framesQ, linksQ); };
             for (int trial = 0; trial < 40; ++trial)
             {
                 // Through OMPL's states, so that a and b are what the space holds (yaw wrapped, unit quaternions).
@@ -165,14 +172,7 @@ namespace meshgap
             double ratio = 0.0;
             int ratios = 0;
             auto moved = [&](std::size_t link, std::size_t c)
-            {
-                const Eigen::Isometry3d XM = c == RobotModel::NONE ? linksM[link] : framesM[c].inverse() * linksM[link];
-                const Eigen::Isometry3d XQ = c == RobotModel::NONE ? linksQ[link] : framesQ[c].inverse() * linksQ[link];
-                double most = 0.0;
-                for (const Eigen::Vector3d &v : robot.links()[link].body->surface().vertices)
-                    most = std::max(most, (XQ * v - XM * v).norm());
-                return most;
-            };
+            { return largestMove(robot, link, c, framesM, linksM, framesQ, linksQ); };
             for (int trial = 0; trial < 60 && !::testing::Test::HasFailure(); ++trial)
             {
                 robotStateFromVector(*space, randomState(robot, rng, joints), sa);
