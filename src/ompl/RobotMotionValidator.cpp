@@ -16,7 +16,8 @@ namespace meshgap
     {
         if (!scene_)
             throw Exception("RobotMotionValidator", "no robot scene");
-        if (scene_->links().size() != robot.links().size())
+        if (scene_->links().size() != robot.links().size() ||
+            scene_->robot().frames().size() != robot.frames().size())
             throw Exception("RobotMotionValidator", "the robot scene was built with another set of links");
         for (const auto &[a, b] : scene_->selfPairs())
             pairTerms_.push_back(bound_.pairTerms(a, b));
