@@ -208,7 +208,8 @@ namespace meshgap
                 }
                 else
                     setup.setPlanner(std::make_shared<og::RRTConnect>(si));
-                // A generous limit: a run under the sanitizers on a loaded machine is ten times slower, and this is no timing test.
+                // A generous limit: a run under the sanitizers on a loaded machine is ten times slower, and this is
+                // no timing test.
                 const bool exact = setup.solve(60.0) == ob::PlannerStatus::EXACT_SOLUTION;
                 si->setStateValidityCheckingResolution(kept);  // the state space is shared
                 if (!exact)
