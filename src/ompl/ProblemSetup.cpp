@@ -83,6 +83,23 @@ namespace meshgap
             return {start, goal};
         }
 
+        /** \brief The blimp turns about z only: its start and goal rotations must be rotations about z. */
+        void checkTurnsAboutZ(const ProblemConfig &config)
+        {
+            for (const bool start : {true, false})
+            {
+                const Eigen::Matrix3d R = start ? config.start.linear() : config.goal->linear();
+                if ((R.col(2) - Eigen::Vector3d::UnitZ()).norm() <= 1e-9)
+                    continue;
+                const Eigen::AngleAxisd turn(R);
+                std::ostringstream angle;
+                angle << turn.angle();
+                throw Exception(config.file, std::string(start ? "start" : "goal") +
+                                                 ": control = blimp turns about z only, but its rotation is about the "
+                                                 "axis " + point(turn.axis()) + " (angle " + angle.str() + ")");
+            }
+        }
+
         void checkVolumeAndGoal(const ProblemConfig &config)
         {
             if (!config.volume)
@@ -99,6 +116,14 @@ namespace meshgap
         checkVolumeAndGoal(config);
         if (config.control.empty())
             throw Exception(config.file, "no control key: a geometric problem (setupProblem())");
+        if (config.planar != controlModelIsPlanar(config.control))
+            throw Exception(config.file, "control = " + config.control +
+                                             (config.planar ? " moves in space (SE(3)): the problem must give start.z "
+                                                              "and goal.z (and the volume's z)" :
+                                                              " is a planar model (x, y, theta): the problem must be "
+                                                              "planar (no start.z)"));
+        if (config.control == "blimp")
+            checkTurnsAboutZ(config);
         ompl::control::SpaceInformationPtr si;
         try
         {
@@ -108,10 +133,6 @@ namespace meshgap
         {
             throw Exception(config.file, e.what());
         }
-        if (!config.planar)  // every modelled vehicle drives in the plane
-            throw Exception(config.file, "control = " + config.control +
-                                             " is a planar model (x, y, theta): the problem must be planar "
-                                             "(no start.z)");
         OmplControlProblem problem;
         problem.scene = Scene::fromMeshes(loadRobotMesh(config.robot, config.planar), loadMesh(config.world), bodies);
         problem.setup = std::make_shared<ompl::control::SimpleSetup>(si);
