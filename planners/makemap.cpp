@@ -15,6 +15,9 @@
 //   arm_fixture      a four-joint arm (URDF primitives) carrying a C-shaped payload through a window in a wall
 //   swap_se3         two L-shaped bodies swapping rooms through one door, in SE(3)
 //   swap_se2         the same in SE(2)
+//   car_chicane      OMPL.app's kinematic car through a chicane of two walls (control = kinematic_car)
+//   blimp_window     OMPL.app's blimp through a window above its start and goal (control = blimp)
+//   quadrotor_window OMPL.app's quadrotor through a window in a wall (control = quadrotor)
 //
 // Each body is built from planar-faced polyhedra (planners/support/Shapes.h) gridded at the paper's grid sizes. Each
 // pose is designed by hand and then slid along one direction until the exact (triangle-triangle) distance between
@@ -22,7 +25,7 @@
 // also a planning problem that forces a clearance trade-off (its straight line from start to goal runs into A; see
 //
 // The parts: makemap/MapScene.h (a scene and the helpers its recipes share), PaperScenes.cpp, SlottedWall.cpp,
-// Twisted.cpp (the recipes), MapWriter.cpp (writes, reports and checks a scene).
+// Twisted.cpp, RobotMaps.cpp, ControlMaps.cpp (the recipes), MapWriter.cpp (writes, reports and checks a scene).
 
 #include <algorithm>
 #include <boost/program_options.hpp>
@@ -47,14 +50,17 @@ int main(int argc, char **argv)
             {"battery_fixture", batteryFixture}, {"hand_bowl", handBowl}, {"handshake", handshake},
             {"slotted_wall", slottedWallScene}, {"twisted", twistedScene}};
         const std::vector<std::pair<std::string, std::function<void(const std::filesystem::path &)>>> robotMaps = {
-            {"arm_fixture", writeArmFixture}, {"swap_se3", writeSwapSE3}, {"swap_se2", writeSwapSE2}};
+            {"arm_fixture", writeArmFixture}, {"swap_se3", writeSwapSE3}, {"swap_se2", writeSwapSE2},
+            {"car_chicane", writeCarChicane}, {"blimp_window", writeBlimpWindow},
+            {"quadrotor_window", writeQuadrotorWindow}};
         po::options_description options("meshgap_makemap: write the paper's test scenes (meshes, poses, OMPL.app "
                                         "problems)");
         std::string out, which;
         options.add_options()("help,h", "show this help")(
             "out", po::value<std::string>(&out)->required(), "output directory (one sub-directory per scene)")(
             "scene", po::value<std::string>(&which)->default_value("all"),
-            "battery_fixture, hand_bowl, handshake, slotted_wall, twisted, arm_fixture, swap_se3, swap_se2 or all")(
+            "battery_fixture, hand_bowl, handshake, slotted_wall, twisted, arm_fixture, swap_se3, swap_se2, "
+            "car_chicane, blimp_window, quadrotor_window or all")(
             "battery-grid", po::value<double>(&batteryGrid),
             "largest edge of the battery and fixture meshes in cm (default 5 sqrt 2, Table II's grid; a larger value "
             "gives coarse meshes for adaptive node sizing to refine)");

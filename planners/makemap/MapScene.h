@@ -99,6 +99,12 @@ namespace meshgap
         void writeSwapSE3(const std::filesystem::path &directory);
         void writeSwapSE2(const std::filesystem::path &directory);
 
+        /** \brief The control maps (ControlMaps.cpp): OMPL.app control problems, each written into \e directory with
+            its meshes, then read back and set up as meshgap_plan sets it up (start and goal free). */
+        void writeCarChicane(const std::filesystem::path &directory);
+        void writeBlimpWindow(const std::filesystem::path &directory);
+        void writeQuadrotorWindow(const std::filesystem::path &directory);
+
         /** \brief Write \e s into \e directory (meshes, poses, the OMPL.app problem), then report and check it. */
         void writeScene(Scene s, const std::filesystem::path &directory);
     }  // namespace makemap
