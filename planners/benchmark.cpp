@@ -22,6 +22,10 @@
 // the same link poses with OMPL's discrete one ("fcl"). After each slice a line gives its valid paths per minute: runs
 // solved whose path FCL finds free, densely interpolated, per minute of planning.
 //
+// On a control problem (a "control" key: OMPL.app's kinematic_car, dynamic_car, blimp, quadrotor) the grid is the
+// control planners (kpiece, rrt, est, pdst, sst; the cfg's [planner] section less those meshgap does not offer) with
+// the clearance checker certified and fast, in OMPL's Benchmark, one .log per checker: benchmark/ControlBenchmark.h.
+//
 // The parts: benchmark/Checkers.h (the checkers by name), benchmark/MeasuredPlanner.h (reads the checker's counters
 // when solve() returns), benchmark/BenchmarkLog.h (the .log files), benchmark/BenchmarkConfig.h (the cfg's sections).
 
@@ -39,6 +43,7 @@
 #include "CliMain.h"
 #include "benchmark/BenchmarkConfig.h"
 #include "benchmark/BenchmarkLog.h"
+#include "benchmark/ControlBenchmark.h"
 #include "benchmark/Checkers.h"
 #include "benchmark/MeasuredPlanner.h"
 #include "benchmark/RobotCheckers.h"
@@ -367,6 +372,24 @@ namespace
         tally.print(name);
     }
 
+    /** \brief A control problem: benchmark/ControlBenchmark.h; the options of geometric problems refused. */
+    int runControl(const Options &o, const ProblemConfig &config)
+    {
+        for (const char *name : {"sampler", "objective", "param", "no-simplify"})
+            if (o.vm.count(name))
+                throw Exception(std::string("--") + name,
+                                "applies to geometric problems only (" + o.cfg + " is a control problem)");
+        if (o.shardText != "1/1")
+            throw Exception("--shard", "a control benchmark runs whole (" + o.cfg + " is a control problem)");
+        const ControlGrid grid = controlGrid(config, o.plannerList, o.checkerList);
+        const Settings settings = settingsOf(config, o.vm);
+        if (o.seed != 0)
+            ompl::RNG::setSeed(o.seed);
+        fs::create_directories(settings.outDir);
+        runControlBenchmark(config, settings, grid);
+        return 0;
+    }
+
     int run(int argc, char **argv)
     {
         Options o;
@@ -374,6 +397,9 @@ namespace
             return 0;
         const auto [shard, shards] = parseShard(o.shardText);
         const bool robot = isToolRobotProblem(o.cfg, o.moveit);
+        if (!robot)
+            if (const ProblemConfig config = readProblemConfig(o.cfg); !config.control.empty())
+                return runControl(o, config);
         std::optional<RobotProblem> robotProblem;
         if (robot)
             robotProblem = readToolRobotProblem(o.cfg, o.moveit);

@@ -44,6 +44,7 @@
 #include "support/PlanReport.h"
 #include "support/PlanRun.h"
 #include "support/MoveItOptions.h"
+#include "support/ControlRun.h"
 #include "support/RobotRun.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 
@@ -664,6 +665,51 @@ namespace
         return py::make_tuple(path, summary);
     }
 
+    /** \brief plan() on a control problem (support/ControlRun.h, meshgap_plan's run): the path's states one
+        propagation step apart as an (M, n) array of the model's state numbers (the rows --out writes), and the
+        summary dict (meshgap_plan's fields, its summary text). */
+    py::tuple planControl(const PlanOptions &o, ProblemConfig config)
+    {
+        std::unique_ptr<meshgap::cli::ControlPlanRun> run;
+        {
+            py::gil_scoped_release release;
+            const LogLevelScope logLevel(o.quiet);
+            setSeedQuietly(o.seed);
+            run = meshgap::cli::setUpControlPlan(o, std::move(config));
+            meshgap::cli::solveControlPlan(*run, o);
+            std::ostringstream log;
+            meshgap::cli::writeControlPlanFiles(*run, o, log);
+        }
+        const auto width = static_cast<py::ssize_t>(
+            ompl::base::ScopedState<>(run->problem.setup->getStateSpace()).reals().size());
+        py::array_t<double> path({static_cast<py::ssize_t>(run->states.size()), width});
+        auto view = path.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < run->states.size(); ++i)
+            for (py::ssize_t k = 0; k < width; ++k)
+                view(static_cast<py::ssize_t>(i), k) = run->states[i][static_cast<std::size_t>(k)];
+        const CheckerStats stats = run->problem.checker->stats();
+        py::dict summary;
+        summary["problem"] = run->config.name;
+        summary["control"] = run->config.control;
+        summary["planner"] = run->planner;
+        summary["checker"] = o.checker;
+        summary["status"] = run->status.asString();
+        summary["solved"] = run->havePath;
+        summary["exact"] = run->exact;
+        summary["planning_time"] = run->problem.setup->getLastPlanComputationTime();
+        summary["validity_calls"] = stats.validityCalls;
+        summary["query_time"] = stats.seconds;
+        summary["text"] = run->summary;
+        if (run->havePath)
+        {
+            summary["states"] = run->states.size();
+            summary["duration"] = run->duration;
+            summary["goal_distance"] = run->goalDistance;
+            summary["min_clearance"] = run->minClearance;
+        }
+        return py::make_tuple(path, summary);
+    }
+
     /** \brief meshgap_plan's run (support/PlanRun.h) with the keywords as its flags; returns the path's states and
         the summary dict. */
     py::tuple plan(const py::handle &cfgObject, const py::kwargs &kwargs)
@@ -677,6 +723,11 @@ namespace
         {
             checkPlanOptions(o);
             return planRobot(o);
+        }
+        if (ProblemConfig config = readProblemConfig(o.cfg); !config.control.empty())
+        {
+            checkPlanOptions(o);
+            return planControl(o, std::move(config));
         }
         std::unique_ptr<PlanRun> p;
         {
@@ -710,7 +761,12 @@ namespace
             "state numbers and the dict has problem, robot (True), planner, objective, status, solved, exact, "
             "planning_time, states, length, cost, min_clearance and limiting_pair (the pair that attains it) over the "
             "dense path, dense_path_free, text; with optimize, min_clearance_before and limiting_pair_before (the "
-            "planner's path) and optimize_failed.\n\nKeywords: meshgap_plan's flags, '-' written '_' "
+            "planner's path) and optimize_failed. A control problem (a 'control' key: kinematic_car, dynamic_car, "
+            "blimp, quadrotor) is planned with OMPL's control planners as meshgap_plan plans it: the path is an (M, n) "
+            "array of the model's state numbers one propagation step apart (the rows meshgap_plan --out writes) and "
+            "the dict has problem, control, planner, checker, status, solved, exact, planning_time, validity_calls, "
+            "query_time, text and, with a path, states, duration, goal_distance and min_clearance (certified, over "
+            "those states).\n\nKeywords: meshgap_plan's flags, '-' written '_' "
             "(None keeps the default; files as str or os.PathLike; param a list of str):\n";
         for (const PlanOption &row : planOptionTable())
             if (row.name != "cfg")

@@ -29,26 +29,6 @@ namespace meshgap
     {
         namespace
         {
-            ob::PlannerPtr allocControlPlanner(const std::string &name, const oc::SpaceInformationPtr &si)
-            {
-                const std::string lower = boost::algorithm::to_lower_copy(name);
-                if (lower == "kpiece")
-                    return std::make_shared<oc::KPIECE1>(si);
-                if (lower == "rrt")
-                    return std::make_shared<oc::RRT>(si);
-                if (lower == "est")
-                    return std::make_shared<oc::EST>(si);
-                if (lower == "pdst")
-                    return std::make_shared<oc::PDST>(si);
-                if (lower == "sst")
-                    return std::make_shared<oc::SST>(si);
-                std::string names;
-                for (const std::string &n : controlPlannerNames())
-                    names += (names.empty() ? "" : ", ") + n;
-                throw Exception("--planner " + name, "not a control planner (a control problem is planned by one "
-                                                     "of: " + names + ")");
-            }
-
             /** \brief Options of geometric problems only: refused by name when given. */
             void refuseGeometricOptions(const PlanOptions &o)
             {
@@ -78,24 +58,31 @@ namespace meshgap
                 text << padded << value << "\n";
             }
 
-            /** \brief The summary lines of the path. */
-            void summarizePath(const ControlPlanRun &p, std::ostringstream &text)
+            /** \brief The path's numbers into \e p, and its summary lines. */
+            void summarizePath(ControlPlanRun &p, std::ostringstream &text)
             {
                 const oc::PathControl &path = p.problem.setup->getSolutionPath();
                 const ompl::geometric::PathGeometric states = writtenPath(p);
-                double least = std::numeric_limits<double>::infinity();
+                const ob::StateSpace &space = *p.problem.setup->getStateSpace();
+                p.minClearance = std::numeric_limits<double>::infinity();
+                p.states.clear();
                 for (std::size_t i = 0; i < states.getStateCount(); ++i)
-                    least = std::min(least, p.problem.checker->clearance(states.getState(i)));
+                {
+                    p.minClearance = std::min(p.minClearance, p.problem.checker->clearance(states.getState(i)));
+                    space.copyToReals(p.states.emplace_back(), states.getState(i));
+                }
+                p.duration = path.length();
+                p.goalDistance = p.exact ? 0.0 : p.problem.setup->getProblemDefinition()->getSolutionDifference();
                 std::ostringstream value;
                 value.precision(6);
                 value << path.getControlCount() << " controls, " << states.getStateCount()
-                      << " states one propagation step apart, duration " << path.length();
+                      << " states one propagation step apart, duration " << p.duration;
                 line(text, "path", value.str());
                 value.str("");
-                value << p.problem.setup->getProblemDefinition()->getSolutionDifference();
+                value << p.goalDistance;
                 line(text, "goal distance", p.exact ? std::string("0 (exact)") : value.str());
                 value.str("");
-                value << least << " (certified, least over the path's states)";
+                value << p.minClearance << " (certified, least over the path's states)";
                 line(text, "min clearance", value.str());
             }
 
@@ -107,6 +94,27 @@ namespace meshgap
             return names;
         }
 
+        ob::PlannerPtr allocControlPlanner(const std::string &name, const oc::SpaceInformationPtr &si,
+                                           const std::string &where)
+        {
+            const std::string lower = boost::algorithm::to_lower_copy(name);
+            if (lower == "kpiece")
+                return std::make_shared<oc::KPIECE1>(si);
+            if (lower == "rrt")
+                return std::make_shared<oc::RRT>(si);
+            if (lower == "est")
+                return std::make_shared<oc::EST>(si);
+            if (lower == "pdst")
+                return std::make_shared<oc::PDST>(si);
+            if (lower == "sst")
+                return std::make_shared<oc::SST>(si);
+            std::string names;
+            for (const std::string &n : controlPlannerNames())
+                names += (names.empty() ? "" : ", ") + n;
+            throw Exception(where + " " + name,
+                            "not a control planner (a control problem is planned by one of: " + names + ")");
+        }
+
         std::unique_ptr<ControlPlanRun> setUpControlPlan(const PlanOptions &o, ProblemConfig config)
         {
             refuseGeometricOptions(o);
@@ -115,7 +123,8 @@ namespace meshgap
             p->problem = setupControlProblem(p->config, o.checker == "certified" ? ClearanceChecker::Mode::CERTIFIED :
                                                                                   ClearanceChecker::Mode::FAST);
             p->planner = o.isGiven("planner") ? o.planner : "kpiece";
-            const ob::PlannerPtr planner = allocControlPlanner(p->planner, p->problem.setup->getSpaceInformation());
+            const ob::PlannerPtr planner =
+                allocControlPlanner(p->planner, p->problem.setup->getSpaceInformation(), o.label("planner"));
             for (const std::string &text : o.params)
             {
                 const OwnedParam param = parseOwnedParam(text, "PLANNER", p->planner + ".goal_bias=0.1");

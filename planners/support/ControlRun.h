@@ -6,7 +6,9 @@
 // the path as OMPL.app writes a control path (its states, one propagation step apart, in OMPL's matrix format).
 
 #include <memory>
+#include <ompl/base/Planner.h>
 #include <ompl/base/PlannerStatus.h>
+#include <ompl/control/SpaceInformation.h>
 #include <string>
 #include <vector>
 
@@ -27,10 +29,22 @@ namespace meshgap
             ompl::base::PlannerStatus status;
             bool exact = false, havePath = false;
             std::string summary;
+            /** \brief With a path: its states one propagation step apart (each the state's reals, as --out writes
+                them), its duration, its distance to the goal (0 when exact) and the least certified clearance over
+                those states. */
+            std::vector<std::vector<double>> states;
+            double duration = 0.0, goalDistance = 0.0, minClearance = 0.0;
         };
 
         /** \brief The control planners meshgap_plan runs: kpiece, rrt, est, pdst, sst. */
         const std::vector<std::string> &controlPlannerNames();
+
+        /** \brief OMPL's control planner named \e name (one of controlPlannerNames(), any case) on \e si; throws
+            meshgap::Exception naming "WHERE NAME" (\e where: the option that gave it) and listing the valid names
+            for another name. */
+        ompl::base::PlannerPtr allocControlPlanner(const std::string &name,
+                                                   const ompl::control::SpaceInformationPtr &si,
+                                                   const std::string &where = "--planner");
 
         /** \brief Set up \e config (a control problem) as \e o says: the planner (kpiece unless --planner names one
             of controlPlannerNames(); --param as for a geometric problem), the checker (--checker), the seed. Throws
