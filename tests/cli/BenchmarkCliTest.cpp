@@ -310,3 +310,49 @@ TEST(BenchmarkCliInterrupted, AKilledBenchmarkKeepsEveryFinishedRun)
     }
     fs::remove_all(dir);
 }
+
+TEST(BenchmarkCliControl, ControlProblemsRunWithTheControlPlannersAndWriteOMPLsLog)
+{
+    // The blimp of maps/blimp_window: two control planners, 1 s a run; every run ends with a path (exact or
+    // approximate), and the .log reads back in OMPL's format with the checker's counters per run.
+    const fs::path dir = fs::temp_directory_path() / ("meshgap_benchmark_control_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    const std::string cfg = MAPS + "/blimp_window/blimp_window.cfg";
+    const CliRun r = benchmark("--cfg " + cfg + " --planner kpiece,RRT --checker certified --runs 2 --time 1 --seed 3"
+                               " --out " + dir.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("blimp_window (control: blimp): 2 planners x 1 checkers x 2 runs"), std::string::npos)
+        << r.err;
+    const ExperimentLog log = readLog(dir / "blimp_window.control.certified.log");
+    EXPECT_EQ(log.name, "blimp_window");
+    EXPECT_EQ(log.seed, "3");
+    ASSERT_EQ(log.planners.size(), 2u);
+    EXPECT_EQ(log.planners[0].name, "control_KPIECE1[meshgap-certified]");
+    EXPECT_EQ(log.planners[1].name, "control_RRT[meshgap-certified]");
+    for (const PlannerLog &planner : log.planners)
+    {
+        ASSERT_EQ(planner.runs.size(), 2u) << planner.name;
+        for (const auto &run : planner.runs)
+        {
+            const bool exact = run.at("solved BOOLEAN") == "1";
+            EXPECT_TRUE(exact || run.at("approximate solution BOOLEAN") == "1") << planner.name;
+            EXPECT_GT(std::stol(run.at("checker validity calls INTEGER")), 0) << planner.name;
+            EXPECT_GT(std::stod(run.at("checker query time REAL")), 0.0) << planner.name;
+        }
+    }
+    fs::remove_all(dir);
+    // Bad input: one error naming the option, exit 1.
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"--planner rrtconnect", "'rrtconnect' is not a control planner"},
+        {"--planner kpiece --checker fcl", "'fcl' does not check a control problem (its checkers: certified, fast)"},
+        {"--planner kpiece --sampler uniform", "--sampler: applies to geometric problems only"},
+        {"--planner kpiece --shard 1/2", "--shard: a control benchmark runs whole"},
+        {"--planner kpiece --objective length", "--objective: applies to geometric problems only"},
+    };
+    for (const auto &[args, mention] : cases)
+    {
+        const CliRun bad = benchmark("--cfg " + cfg + " --runs 1 --time 1 " + args);
+        EXPECT_EQ(bad.status, 1) << args << "\n" << bad.err;
+        EXPECT_NE(bad.err.find(mention), std::string::npos) << args << "\n" << bad.err;
+    }
+}

@@ -411,3 +411,56 @@ TEST(ControlModels, SetupControlProblemStartsAtRestAndRefusesMismatches)
     }
     fs::remove_all(dir);
 }
+
+TEST(ControlModels, SetupControlProblemRefusesBadBlimpAndQuadrotorProblems)
+{
+    const fs::path dir = fs::temp_directory_path() / ("meshgap_control3d_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    writeObj(test::transformed(test::box(0.5, 0.5, 0.5, 1), test::translation(0, 0, 2)), (dir / "w.obj").string());
+    writeObj(test::box(0.3, 0.15, 0.2, 1), (dir / "r.obj").string());
+    const std::string volume = "volume.min.x = -5\nvolume.min.y = -5\nvolume.max.x = 5\nvolume.max.y = 5\n";
+    const std::string space = volume + "volume.min.z = 0\nvolume.max.z = 4\ngoal.x = 3\ngoal.y = 0\ngoal.z = 1\n";
+    const std::string plane = volume + "goal.x = 3\ngoal.y = 0\ngoal.theta = 0\n";
+    const auto write = [&](const std::string &name, const std::string &model, const std::string &lines)
+    {
+        std::ofstream((dir / name).string()) << "[problem]\nrobot = r.obj\nworld = w.obj\ncontrol = " << model << "\n"
+                                             << lines;
+        return (dir / name).string();
+    };
+    const std::string at = "start.x = -3\nstart.y = 0\nstart.z = 1\n";
+    // Good: a blimp turned about z, a quadrotor turned any way; both start at rest.
+    const std::string turned = "start.axis.x = 0\nstart.axis.y = 0\nstart.axis.z = 1\nstart.theta = 0.5\n";
+    const std::string blimp = write("blimp.cfg", "blimp", at + turned + space);
+    const OmplControlProblem b = setupControlProblem(readProblemConfig(blimp), ClearanceChecker::Mode::CERTIFIED);
+    const std::vector<double> reals =
+        ob::ScopedState<>(b.setup->getStateSpace(), b.setup->getProblemDefinition()->getStartState(0)).reals();
+    ASSERT_EQ(reals.size(), 11u);
+    EXPECT_NEAR(reals[5], std::sin(0.25), 1e-15);
+    EXPECT_EQ(std::vector<double>(reals.begin() + 7, reals.end()), std::vector<double>(4, 0.0));
+    const std::string flipped = "start.axis.x = 1\nstart.axis.y = 0\nstart.axis.z = 0\nstart.theta = 3\n";
+    const std::string quad = write("quad.cfg", "quadrotor", at + flipped + space);
+    EXPECT_NO_THROW(setupControlProblem(readProblemConfig(quad), ClearanceChecker::Mode::CERTIFIED));
+    // Bad: a blimp tilted at its start; a blimp in a planar problem; a car in a 3D problem. One error naming the
+    // file and what is wrong.
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {write("tilted.cfg", "blimp",
+               at + "start.axis.x = 1\nstart.axis.y = 0\nstart.axis.z = 0\nstart.theta = 0.2\n" + space),
+         "tilted.cfg: start: control = blimp turns about z only, but its rotation is about the axis (1, 0, 0)"},
+        {write("flat.cfg", "blimp", "start.x = -3\nstart.y = 0\nstart.theta = 0\n" + plane),
+         "flat.cfg: control = blimp moves in space (SE(3))"},
+        {write("car3d.cfg", "kinematic_car", at + space), "car3d.cfg: control = kinematic_car is a planar model"},
+    };
+    for (const auto &[cfg, message] : cases)
+    {
+        try
+        {
+            setupControlProblem(readProblemConfig(cfg), ClearanceChecker::Mode::CERTIFIED);
+            ADD_FAILURE() << cfg;
+        }
+        catch (const Exception &e)
+        {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    }
+    fs::remove_all(dir);
+}
