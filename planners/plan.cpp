@@ -16,9 +16,9 @@
 // collision: the message says which, the obstacle and the distance). --optimize clearance runs the
 // ClearancePathOptimizer on the planner's path (its uncertified motions repaired first) before any of this.
 //
-// On a control problem (a "control" key: kinematic_car, dynamic_car) it plans with OMPL's control planners
-// (kpiece, the default, rrt, est, pdst, sst) over the model's propagated motions (support/ControlRun.h); the .path
-// holds the states one propagation step apart, as OMPL.app writes a control path.
+// On a control problem (a "control" key: kinematic_car, dynamic_car, blimp, quadrotor) it plans with OMPL's control
+// planners (kpiece, the default, rrt, est, pdst, sst) over the model's propagated motions (support/ControlRun.h); the
+// .path holds the states one propagation step apart, as OMPL.app writes a control path.
 //
 // On a robot problem (robot.urdf, or robot.1, robot.2, ...: meshgap/robot/RobotProblem.h) it plans in the robot's
 // joint space (support/RobotRun.h): exact whole-robot checks, every motion of the answer proven by the certified
