@@ -101,3 +101,16 @@ TEST(Text, ExcerptKeepsShortTextAndShortensLongTextAtBothEnds)
     const std::string odd = "x" + accents;  // every character boundary shifted by one byte
     EXPECT_EQ(excerpt(odd), odd.substr(0, 149) + "..." + odd.substr(401 - 50) + " (401 characters)");
 }
+
+TEST(Text, AnExceptionKeepsTheBeginningAndEndOfAnOverlongMessage)
+{
+    const std::string where = "scene.yaml:3";
+    const std::string what = "unknown name '" + std::string(1000000, 'n') + "' (valid: a, b)";
+    const std::string message = Exception(where, what).what();
+    EXPECT_LE(message.size(), MAX_MESSAGE + 40);
+    EXPECT_EQ(message.rfind(where + ": unknown name 'nnn", 0), 0u);
+    EXPECT_NE(message.find("' (valid: a, b) (" + std::to_string(where.size() + 2 + what.size()) + " characters)"),
+              std::string::npos);
+    const std::string shortWhat = "a value is not a number";
+    EXPECT_EQ(std::string(Exception(where, shortWhat).what()), where + ": " + shortWhat);
+}
