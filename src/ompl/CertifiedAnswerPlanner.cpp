@@ -28,6 +28,8 @@ namespace meshgap
             }
 
             void setFraction(double fraction) { fraction_ = fraction; }
+            /** \brief Check \e factor times as many states as the fraction says. */
+            void setRefinement(unsigned factor) { refinement_ = factor; }
 
             bool checkMotion(const ob::State *s1, const ob::State *s2) const override
             {
@@ -66,9 +68,9 @@ namespace meshgap
                 const ob::StateSpace &space = *si_->getStateSpace();
                 const unsigned own = space.validSegmentCount(s1, s2);
                 if (!(fraction_ > 0.0))
-                    return std::max(1u, own);
+                    return std::max(1u, own) * refinement_;
                 const double scaled = std::ceil(own * space.getLongestValidSegmentFraction() / fraction_);
-                return static_cast<unsigned>(std::max(1.0, scaled));
+                return static_cast<unsigned>(std::max(1.0, scaled)) * refinement_;
             }
 
             bool check(const ob::State *s1, const ob::State *s2) const
@@ -100,6 +102,7 @@ namespace meshgap
             }
 
             double fraction_{0.0};  ///< 0: the state space's own
+            unsigned refinement_{1};
         };
     }  // namespace
 
@@ -110,6 +113,13 @@ namespace meshgap
         if (si->getStateValidityChecker())
             searchSi_->setStateValidityChecker(si->getStateValidityChecker());
         searchSi_->setMotionValidator(std::make_shared<SampledMotionValidator>(searchSi_));
+        repairSi_ = std::make_shared<ob::SpaceInformation>(si->getStateSpace());
+        if (si->getStateValidityChecker())
+            repairSi_->setStateValidityChecker(si->getStateValidityChecker());
+        auto repairCheck = std::make_shared<SampledMotionValidator>(repairSi_);
+        repairCheck->setRefinement(REPAIR_REFINEMENT);
+        repairSi_->setMotionValidator(repairCheck);
+        certifier_.setSampledSpaceInformation(repairSi_);
         search_ = allocate ? allocate(searchSi_) : nullptr;
         if (!search_)
             throw Exception("CertifiedAnswerPlanner", "the allocator gave no planner");
@@ -126,6 +136,7 @@ namespace meshgap
             throw Exception("CertifiedAnswerPlanner", "the search resolution must be in [0, 1] (0: the space's)");
         searchResolution_ = fraction;
         std::static_pointer_cast<SampledMotionValidator>(searchSi_->getMotionValidator())->setFraction(fraction);
+        std::static_pointer_cast<SampledMotionValidator>(repairSi_->getMotionValidator())->setFraction(fraction);
     }
 
     void CertifiedAnswerPlanner::setProblemDefinition(const ob::ProblemDefinitionPtr &pdef)
@@ -136,8 +147,9 @@ namespace meshgap
 
     void CertifiedAnswerPlanner::syncSearchProblem()
     {
-        if (searchSi_->getStateValidityChecker() != si_->getStateValidityChecker())
-            searchSi_->setStateValidityChecker(si_->getStateValidityChecker());
+        for (const ob::SpaceInformationPtr &twin : {searchSi_, repairSi_})
+            if (twin->getStateValidityChecker() != si_->getStateValidityChecker())
+                twin->setStateValidityChecker(si_->getStateValidityChecker());
         if (!searchSi_->isSetup())
             searchSi_->setup();
         if (searchPdef_ && searchPdef_->getStartStateCount() == pdef_->getStartStateCount() &&
@@ -194,12 +206,15 @@ namespace meshgap
             for (const ob::State *s : searchPdef_->getSolutionPath()->as<og::PathGeometric>()->getStates())
                 path->append(s);
             const auto start = std::chrono::steady_clock::now();
+            if (!repairSi_->isSetup())
+                repairSi_->setup();
             const bool certified = certifier_.certify(*path, ptc);
             const PathCertifier::Stats &c = certifier_.lastStats();
             stats_.motions += c.motions;
             stats_.refused += c.refused;
             stats_.repaired += c.repaired;
             stats_.inserted += c.inserted;
+            stats_.sampledDetours += c.sampled;
             stats_.repairSeconds += c.repairSeconds;
             stats_.certifySeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (certified)
@@ -222,6 +237,7 @@ namespace meshgap
         data.properties["certified answer motions refused INTEGER"] = std::to_string(stats_.refused);
         data.properties["certified answer motions repaired INTEGER"] = std::to_string(stats_.repaired);
         data.properties["certified answer states inserted INTEGER"] = std::to_string(stats_.inserted);
+        data.properties["certified answer sampled detours INTEGER"] = std::to_string(stats_.sampledDetours);
         data.properties["certified answer paths rejected INTEGER"] = std::to_string(stats_.rejectedPaths);
         data.properties["certified answer time REAL"] = std::to_string(stats_.certifySeconds);
         data.properties["certified answer repair time REAL"] = std::to_string(stats_.repairSeconds);

@@ -25,16 +25,23 @@ namespace meshgap
         repairRange_ = fraction;
     }
 
-    bool PathCertifier::replan(const ob::State *a, const ob::State *b, std::vector<ob::State *> &out,
-                               const ob::PlannerTerminationCondition &ptc)
+    void PathCertifier::setSampledSpaceInformation(ob::SpaceInformationPtr sampled)
+    {
+        if (sampled && sampled->getStateSpace() != si_->getStateSpace())
+            throw Exception("PathCertifier", "the sampled SpaceInformation is on another state space");
+        sampled_ = std::move(sampled);
+    }
+
+    bool PathCertifier::search(const ob::SpaceInformationPtr &si, const ob::State *a, const ob::State *b,
+                               std::vector<ob::State *> &out, const ob::PlannerTerminationCondition &ptc) const
     {
         if (repairIterations_ == 0 || ptc())
             return false;
-        auto pdef = std::make_shared<ob::ProblemDefinition>(si_);
+        auto pdef = std::make_shared<ob::ProblemDefinition>(si);
         pdef->setStartAndGoalStates(a, b);
-        auto planner = std::make_shared<og::RRTConnect>(si_);
+        auto planner = std::make_shared<og::RRTConnect>(si);
         // Short steps: the detour stays near the motion it replaces, and each certified step is cheap to prove.
-        planner->setRange(repairRange_ * si_->distance(a, b));
+        planner->setRange(repairRange_ * si->distance(a, b));
         planner->setProblemDefinition(pdef);
         planner->setup();
         unsigned calls = 0;
@@ -45,12 +52,59 @@ namespace meshgap
         const auto &path = *pdef->getSolutionPath()->as<og::PathGeometric>();
         const std::size_t n = path.getStateCount();
         // The planner's path runs from copies of a and b (its goal region's tolerance is 0 for a single state, but
-        // the ends are checked rather than assumed); every motion of it was accepted by the certified validator.
-        if (n < 2 || si_->distance(path.getState(0), a) != 0.0 || si_->distance(path.getState(n - 1), b) != 0.0)
+        // the ends are checked rather than assumed).
+        if (n < 2 || si->distance(path.getState(0), a) != 0.0 || si->distance(path.getState(n - 1), b) != 0.0)
             return false;
         for (std::size_t k = 1; k + 1 < n; ++k)
             out.push_back(si_->cloneState(path.getState(k)));
         return true;
+    }
+
+    bool PathCertifier::proveDetour(const ob::State *a, const ob::State *b, const std::vector<ob::State *> &rough,
+                                    unsigned depth, std::vector<ob::State *> &out,
+                                    const ob::PlannerTerminationCondition &ptc)
+    {
+        // Every state of rough ends in out (in order, with the states of nested detours) or is freed.
+        std::vector<ob::State *> local;
+        std::size_t k = 0;
+        bool free = true;
+        for (const ob::State *from = a; free && k <= rough.size(); ++k)
+        {
+            const ob::State *to = k < rough.size() ? rough[k] : b;
+            if (!si_->checkMotion(from, to))
+            {
+                ++stats_.detourRefused;
+                free = detour(from, to, depth + 1, local, ptc);
+            }
+            if (free && k < rough.size())
+                local.push_back(rough[k]);
+            from = to;
+        }
+        if (free)
+        {
+            out.insert(out.end(), local.begin(), local.end());
+            return true;
+        }
+        for (ob::State *s : local)
+            si_->freeState(s);
+        for (--k; k < rough.size(); ++k)
+            si_->freeState(rough[k]);
+        return false;
+    }
+
+    bool PathCertifier::detour(const ob::State *a, const ob::State *b, unsigned depth, std::vector<ob::State *> &out,
+                               const ob::PlannerTerminationCondition &ptc)
+    {
+        std::vector<ob::State *> rough;
+        // A sampled search first (rough stays empty when it fails), its motions proven in turn.
+        if (sampled_ && depth < SAMPLED_DEPTH && search(sampled_, a, b, rough, ptc) &&
+            proveDetour(a, b, rough, depth, out, ptc))
+        {
+            ++stats_.sampled;
+            return true;
+        }
+        // The certified search: every motion of its path was accepted by the certified validator.
+        return search(si_, a, b, out, ptc);
     }
 
     bool PathCertifier::certify(og::PathGeometric &path, const ob::PlannerTerminationCondition &ptc)
@@ -70,7 +124,7 @@ namespace meshgap
             ++stats_.refused;
             between.clear();
             const auto repairStart = std::chrono::steady_clock::now();
-            free = replan(states[i], states[i + 1], between, ptc);
+            free = detour(states[i], states[i + 1], 0, between, ptc);
             stats_.repairSeconds +=
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - repairStart).count();
             if (free)

@@ -7,6 +7,7 @@
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/SpaceInformation.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/util/Console.h>
@@ -162,6 +163,106 @@ namespace meshgap
         EXPECT_EQ(densePathCollisions(arm, path), 0u);
         test::Note() << "a motion the sampled check at 5 % misses, replanned into " << path.getStateCount() - 1
                      << " certified motions";
+        arm.si->freeState(a);
+        arm.si->freeState(b);
+    }
+
+    namespace
+    {
+        /** \brief A sampled motion check of its own: the end state and \e n - 1 evenly spaced states between
+            (n = 1: the end state alone, which lets every motion between free states through). */
+        class EvenlySampledValidator : public ob::MotionValidator
+        {
+        public:
+            EvenlySampledValidator(const ob::SpaceInformationPtr &si, unsigned n) : ob::MotionValidator(si), n_(n)
+            {
+            }
+
+            bool checkMotion(const ob::State *s1, const ob::State *s2) const override
+            {
+                ob::State *s = si_->allocState();
+                bool free = true;
+                for (unsigned k = 1; free && k <= n_; ++k)
+                {
+                    si_->getStateSpace()->interpolate(s1, s2, double(k) / n_, s);
+                    free = si_->isValid(s);
+                }
+                si_->freeState(s);
+                return free;
+            }
+
+            bool checkMotion(const ob::State *s1, const ob::State *s2,
+                             std::pair<ob::State *, double> &lastValid) const override
+            {
+                const bool free = checkMotion(s1, s2);
+                if (!free && lastValid.first)
+                    si_->copyState(lastValid.first, s1);
+                lastValid.second = 0.0;
+                return free;
+            }
+
+        private:
+            unsigned n_;
+        };
+
+        /** \brief A twin of \e arm's SpaceInformation whose motion check is EvenlySampledValidator(n). */
+        ob::SpaceInformationPtr sampledTwin(const ArmSetup &arm, unsigned n)
+        {
+            auto twin = std::make_shared<ob::SpaceInformation>(arm.si->getStateSpace());
+            twin->setStateValidityChecker(arm.si->getStateValidityChecker());
+            twin->setMotionValidator(std::make_shared<EvenlySampledValidator>(twin, n));
+            twin->setup();
+            return twin;
+        }
+
+        /** \brief Certify a -> b (a motion that collides) with \e certifier; the path returned runs from a to b,
+            every motion of it accepted by the certified validator and free at steps of 1e-4 rad. */
+        void expectCertifiedDetour(const ArmSetup &arm, PathCertifier &certifier, const ob::State *a,
+                                   const ob::State *b)
+        {
+            og::PathGeometric path(arm.si, a, b);
+            seed(3);
+            ASSERT_TRUE(certifier.certify(path, ob::plannerNonTerminatingCondition()));
+            EXPECT_EQ(certifier.lastStats().refused, 1u);
+            EXPECT_EQ(certifier.lastStats().repaired, 1u);
+            ASSERT_GE(path.getStateCount(), 3u);
+            EXPECT_EQ(certifier.lastStats().inserted, path.getStateCount() - 2);
+            EXPECT_EQ(arm.si->distance(path.getState(0), a), 0.0);
+            EXPECT_EQ(arm.si->distance(path.getState(path.getStateCount() - 1), b), 0.0);
+            for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i)
+                EXPECT_TRUE(arm.si->checkMotion(path.getState(i), path.getState(i + 1))) << "motion " << i;
+            EXPECT_EQ(densePathCollisions(arm, path), 0u);
+        }
+    }  // namespace
+
+    TEST(PathCertifier, ProvesADetourFoundWithASampledCheckAndReplansWhatItLetsThrough)
+    {
+        const ArmSetup arm(ARM_FIXTURE);
+        ob::State *a = arm.si->allocState(), *b = arm.si->allocState();
+        ASSERT_TRUE(findMissedCollision(arm, 0.05, a, b)) << "no motion found that the sampled check misses";
+        ASSERT_FALSE(arm.si->checkMotion(a, b)) << "the certified validator passes a colliding motion";
+
+        // A fine sampled check: the detour it finds is proven, no certified search needed.
+        PathCertifier fine(arm.si);
+        fine.setSampledSpaceInformation(sampledTwin(arm, 200));
+        expectCertifiedDetour(arm, fine, a, b);
+        EXPECT_GE(fine.lastStats().sampled, 1u);
+        const std::size_t fineStates = fine.lastStats().inserted;
+
+        // A check of the end state alone lets the straight motion through again and again: each motion of its
+        // detours that collides is refused and replanned, down to the certified search.
+        PathCertifier blind(arm.si);
+        blind.setSampledSpaceInformation(sampledTwin(arm, 1));
+        expectCertifiedDetour(arm, blind, a, b);
+        EXPECT_GT(blind.lastStats().detourRefused, 0u);
+        test::Note() << "a motion the sampled check at 5 % misses: a detour of " << fineStates + 1
+                     << " motions found at 200 states a motion and proven (" << fine.lastStats().detourRefused
+                     << " of its motions refused); with the end state alone, " << blind.lastStats().detourRefused
+                     << " motions of the detours refused and replanned, " << blind.lastStats().inserted + 1
+                     << " motions in the end";
+
+        auto other = std::make_shared<ob::SpaceInformation>(std::make_shared<ob::RealVectorStateSpace>(2));
+        EXPECT_THROW(fine.setSampledSpaceInformation(other), Exception);
         arm.si->freeState(a);
         arm.si->freeState(b);
     }

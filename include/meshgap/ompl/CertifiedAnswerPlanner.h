@@ -17,9 +17,11 @@ namespace meshgap
        space and validity checker but a sampled motion check (states at searchResolution() of the space's extent
        apart, OMPL's order: the end state, then halves of halves); the path it finds is then put, motion by motion,
        to the SpaceInformation's own motion validator, the certified one (RobotMotionValidator,
-       ClearanceMotionValidator), and a motion it refuses is replanned between its two states with that validator
-       (PathCertifier). Only the answer pays for the proof: the search's thousands of motion checks are sampled,
-       the answer's few are proven. When a refused motion cannot be repaired, the search starts again (cleared) and
+       ClearanceMotionValidator), and a motion it refuses is replanned between its two states (PathCertifier): first
+       by RRTConnect in a second twin whose sampled check is REPAIR_REFINEMENT times as fine as the search's, that
+       detour's motions then proven in turn, and by RRTConnect with the certified validator only where that fails.
+       Only the answer pays for the proof: the search's thousands of motion checks are sampled, the answer's few
+       are proven. When a refused motion cannot be repaired, the search starts again (cleared) and
        its next path is certified in turn, until the termination condition. So what solve() adds to the problem
        definition is certified whatever the sampled check let through; an approximate solution of the search is
        certified the same way and reported approximate. A planner that searches until the termination condition
@@ -42,6 +44,7 @@ namespace meshgap
             unsigned refused{0};   ///< of those, refused
             unsigned repaired{0};  ///< of those, replaced by a certified detour
             unsigned inserted{0};  ///< states the repairs inserted
+            unsigned sampledDetours{0};    ///< detours found by a sampled search and proven (PathCertifier)
             unsigned rejectedPaths{0};     ///< paths of the search that could not be certified
             double certifySeconds{0.0};    ///< time certifying and repairing
             double repairSeconds{0.0};     ///< of which repairing
@@ -74,6 +77,9 @@ namespace meshgap
         void syncSearchProblem();
 
         ompl::base::SpaceInformationPtr searchSi_;
+        /** \brief The repairs' twin: the search's sampled check, REPAIR_REFINEMENT times as fine. */
+        ompl::base::SpaceInformationPtr repairSi_;
+        static constexpr unsigned REPAIR_REFINEMENT = 4;
         ompl::base::PlannerPtr search_;
         ompl::base::ProblemDefinitionPtr searchPdef_;
         PathCertifier certifier_;

@@ -19,7 +19,11 @@ namespace meshgap
        states with RRTConnect in that same SpaceInformation, so that every motion of the detour is one the
        validator accepted, in steps of repairRange() of the motion's length, for at most repairIterations()
        iterations of the planner (and until the termination condition). The path's own states are never moved,
-       only states inserted between them. Unlike CertifiedPathRepair (one rigid body, bisection up the exact clearance gradient first), it needs
+       only states inserted between them. Given a SpaceInformation with a sampled motion check
+       (setSampledSpaceInformation(): the search's), a refused motion is first replanned there, at the price of
+       sampled checks, and each motion of that detour is then put to the certified validator in turn, a refused one
+       replanned the same way (up to three levels deep); only when that fails is the detour searched with the
+       certified validator itself. Unlike CertifiedPathRepair (one rigid body, bisection up the exact clearance gradient first), it needs
        nothing but the validator: any state space, any robot. Not thread-safe (one path at a time).
     */
     class PathCertifier
@@ -32,6 +36,8 @@ namespace meshgap
             unsigned refused{0};   ///< of those, refused
             unsigned repaired{0};  ///< of those, replaced by a certified detour
             unsigned inserted{0};  ///< states inserted into the path
+            unsigned sampled{0};   ///< detours found by the sampled search and proven (nested ones included)
+            unsigned detourRefused{0};  ///< motions of sampled detours the certified validator refused
             double seconds{0.0};        ///< the whole certify()
             double repairSeconds{0.0};  ///< of which replanning
         };
@@ -55,17 +61,36 @@ namespace meshgap
             own, a fifth of the space's extent, makes each step a long motion, costly to prove). */
         void setRepairRange(double fraction);
         double repairRange() const { return repairRange_; }
+        /** \brief The SpaceInformation whose (sampled) motion check searches a detour first, on the same state
+            space (null, the default: every detour searched with the certified validator). Throws
+            meshgap::Exception for another state space. */
+        void setSampledSpaceInformation(ompl::base::SpaceInformationPtr sampled);
 
     private:
-        /** \brief The interior states of a certified path from \e a to \e b, appended to \e out (every one
-            allocated here); false, \e out as it was, when none is found. */
-        bool replan(const ompl::base::State *a, const ompl::base::State *b, std::vector<ompl::base::State *> &out,
-                    const ompl::base::PlannerTerminationCondition &ptc);
+        /** \brief The interior states of a path from \e a to \e b found by RRTConnect in \e si (its motions
+            accepted by \e si's motion validator), appended to \e out (each allocated here); false, \e out as it
+            was, when none is found within repairIterations(). */
+        bool search(const ompl::base::SpaceInformationPtr &si, const ompl::base::State *a,
+                    const ompl::base::State *b, std::vector<ompl::base::State *> &out,
+                    const ompl::base::PlannerTerminationCondition &ptc) const;
+        /** \brief The interior states of a certified path from \e a to \e b appended to \e out: a sampled
+            search's, proven (proveDetour()), when \e depth allows, else the certified search's. */
+        bool detour(const ompl::base::State *a, const ompl::base::State *b, unsigned depth,
+                    std::vector<ompl::base::State *> &out, const ompl::base::PlannerTerminationCondition &ptc);
+        /** \brief Put each motion of a -> rough -> b to the certified validator, a refused one replaced by a
+            detour one level deeper; on success the states (rough's and the nested detours') appended to \e out,
+            else every one of them freed. */
+        bool proveDetour(const ompl::base::State *a, const ompl::base::State *b,
+                         const std::vector<ompl::base::State *> &rough, unsigned depth,
+                         std::vector<ompl::base::State *> &out, const ompl::base::PlannerTerminationCondition &ptc);
 
         ompl::base::SpaceInformationPtr si_;
         Stats stats_;
         unsigned repairIterations_{2000};
         double repairRange_{0.1};
+        ompl::base::SpaceInformationPtr sampled_;
+        /** \brief Levels of sampled detours at most (a refused motion of the third is searched certified). */
+        static constexpr unsigned SAMPLED_DEPTH = 3;
     };
 }  // namespace meshgap
 
