@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "TestMeshes.h"
+#include "TestScale.h"
 #include "meshgap/geometry/BoxBound.h"
 #include "meshgap/geometry/TriangleBvh.h"
 #include "meshgap/geometry/TriangleDistance.h"
@@ -138,7 +139,7 @@ TEST(BoxBound, ExactAcrossAFaceAnEdgeOrACorner)
 
 TEST(BoxBound, EveryNodePairOfTwoTreesBoundsItsTriangles)
 {
-    for (std::uint32_t seed = 1; seed <= 3; ++seed)
+    for (std::uint32_t seed = 1; seed <= static_cast<std::uint32_t>(test::scaled(3)); ++seed)
     {
         const Mesh ma = plates(seed), mb = plates(100 + seed);
         const TriangleBvh a(ma), b(mb);

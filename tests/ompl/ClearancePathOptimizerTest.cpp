@@ -17,6 +17,7 @@
 #include <tuple>
 
 #include "TestMeshes.h"
+#include "TestScale.h"
 #include "TestSpaces.h"
 #include "meshgap/Exception.h"
 #include "meshgap/ompl/ClearanceOptimizingPlanner.h"
@@ -253,7 +254,7 @@ TEST(ClearancePathOptimizer, RefusesAnInvalidInputPath)
 TEST(ClearancePathOptimizer, NeverLessClearOnSlottedWall)
 {
     const fs::path cfg = fs::path(MESHGAP_SOURCE_DIR) / "maps" / "slotted_wall" / "slotted_wall.cfg";
-    for (int seed = 1; seed <= 3; ++seed)
+    for (int seed = 1; seed <= test::scaled(3); ++seed)
     {
         OmplProblem problem = setupProblem(readProblemConfig(cfg.string()), ClearanceChecker::Mode::CERTIFIED);
         const ob::SpaceInformationPtr si = problem.setup->getSpaceInformation();

@@ -7,6 +7,7 @@
 #include <ompl/base/spaces/SE3StateSpace.h>
 
 #include "TestMeshes.h"
+#include "TestScale.h"
 #include "TestSpaces.h"
 #include "meshgap/ompl/RetractionSampler.h"
 #include "meshgap/ompl/SamplerFactory.h"
@@ -168,7 +169,7 @@ TEST(WorkspaceMedialSampler, PassageSamplesCrowdIntoTheChannel)
     medial.setUniformProbability(0.0);  // passage samples only
     RetractionSampler retraction(si.get());
     const auto uniform = validStateSamplerAllocator("uniform")(si.get());
-    const int n = 200;
+    const int n = test::scaled(200, 100);  // the counts below are shares of n
     int returnedMedial, returnedRetraction, returnedUniform;
     const int inMedial = channelSamples(si, medial, n, returnedMedial);
     const int inRetraction = channelSamples(si, retraction, n, returnedRetraction);

@@ -16,6 +16,7 @@
 #include "meshgap/robot/RobotProblem.h"
 #include "meshgap/robot/UrdfRobot.h"
 #include "TestNote.h"
+#include "TestScale.h"
 
 namespace ob = ompl::base;
 
@@ -24,7 +25,7 @@ namespace meshgap
     TEST(ArmMotionSampling, CertifiedMotionsAreFreeAtEveryTenThousandthOfARadian)
     {
         const char *env = std::getenv("MESHGAP_ARM_MOTIONS");
-        const long wanted = env ? std::atol(env) : 300;
+        const long wanted = env ? std::atol(env) : test::scaled(300);  // 300 by default, scaled by test::scale()
         ASSERT_GT(wanted, 0) << "MESHGAP_ARM_MOTIONS must be a positive count";
         const RobotProblem p = readRobotProblem(std::string(MESHGAP_SOURCE_DIR) + "/maps/arm_fixture/arm_fixture.cfg");
         const auto scene = std::make_shared<RobotScene>(p.robot, p.obstacles);

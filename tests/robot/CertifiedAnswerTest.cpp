@@ -28,6 +28,7 @@
 #include "meshgap/robot/RobotProblem.h"
 #include "meshgap/robot/UrdfRobot.h"
 #include "TestNote.h"
+#include "TestScale.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -360,7 +361,7 @@ namespace meshgap
 
     TEST(CertifiedAnswerPlanner, EveryArmFixturePathIsFreeAtATenThousandthOfARadian)
     {
-        expectCertifiedAnswersFree(ArmSetup(ARM_FIXTURE), "arm_fixture", 5);
+        expectCertifiedAnswersFree(ArmSetup(ARM_FIXTURE), "arm_fixture", static_cast<unsigned>(test::scaled(5)));
     }
 
     TEST(CertifiedAnswerPlanner, EveryFanucPathIsFreeAtATenThousandthOfARadian)
@@ -394,7 +395,8 @@ namespace meshgap
             << "arm_fixture_payload.obj link_6 0.1 0 0 0 0 0 1\nstart.joints = 0 -0.9 -0.9 0 -1.5 0\n"
             << "goal.joints = 0 0 0 0 0 0\n";
         cfg.close();
-        expectCertifiedAnswersFree(ArmSetup((dir / "fanuc_payload.cfg").string()), "fanuc + payload", 3);
+        expectCertifiedAnswersFree(ArmSetup((dir / "fanuc_payload.cfg").string()), "fanuc + payload",
+                                   static_cast<unsigned>(test::scaled(3)));
     }
 }  // namespace meshgap
 

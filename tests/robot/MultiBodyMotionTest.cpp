@@ -16,6 +16,7 @@
 #include "FclOracle.h"
 #include "TestMeshes.h"
 #include "TestNote.h"
+#include "TestScale.h"
 #include "meshgap/ompl/RobotMotionValidator.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 #include "meshgap/robot/MultiBodyRobot.h"
@@ -109,7 +110,7 @@ namespace meshgap
             double tightest = 0.0;
             auto moved = [&](std::size_t link, std::size_t c)
             { return largestMove(robot, link, c, framesA, linksA, framesQ, linksQ); };
-            for (int trial = 0; trial < 40; ++trial)
+            for (int trial = 0; trial < test::scaled(40); ++trial)
             {
                 // Through OMPL's states, so that a and b are what the space holds (yaw wrapped, unit quaternions).
                 robotStateFromVector(*space, randomState(robot, rng, joints), sa);
@@ -173,7 +174,7 @@ namespace meshgap
             int ratios = 0;
             auto moved = [&](std::size_t link, std::size_t c)
             { return largestMove(robot, link, c, framesM, linksM, framesQ, linksQ); };
-            for (int trial = 0; trial < 60 && !::testing::Test::HasFailure(); ++trial)
+            for (int trial = 0; trial < test::scaled(60) && !::testing::Test::HasFailure(); ++trial)
             {
                 robotStateFromVector(*space, randomState(robot, rng, joints), sa);
                 robotStateFromVector(*space, randomState(robot, rng, joints), sb);

@@ -14,6 +14,7 @@
 #include "meshgap/robot/Primitives.h"
 #include "FclOracle.h"
 #include "TestMeshes.h"
+#include "TestScale.h"
 
 namespace meshgap
 {
@@ -146,7 +147,7 @@ namespace meshgap
                 EXPECT_GE(v.norm(), r);
                 EXPECT_LE(v.norm(), r + excess + 1e-15);
             }
-            for (int k = 0; k < 2000; ++k)
+            for (int k = 0; k < test::scaled(2000); ++k)
             {
                 const Eigen::Vector3d u = Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized();
                 EXPECT_GE(depthInside(m, r * u), -1e-15) << n << " " << u.transpose();

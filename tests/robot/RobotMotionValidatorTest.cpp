@@ -12,6 +12,7 @@
 #include "TestMeshes.h"
 #include "robot/TestTree.h"
 #include "TestNote.h"
+#include "TestScale.h"
 
 namespace ob = ompl::base;
 
@@ -69,7 +70,7 @@ namespace meshgap
         double tightest = 0.0, saving = 0.0;
         std::vector<double> moves;
         std::vector<Eigen::Isometry3d> framesA, framesQ, linksA, linksQ;
-        for (int trial = 0; trial < 60; ++trial)
+        for (int trial = 0; trial < test::scaled(60); ++trial)
         {
             const std::vector<double> a = {1.5 * u(rng), 2.5 * u(rng), 0.1 + 0.2 * u(rng), 1.5 * u(rng), u(rng)};
             const std::vector<double> b = {1.5 * u(rng), 2.5 * u(rng), 0.1 + 0.2 * u(rng), 1.5 * u(rng), u(rng)};
@@ -88,11 +89,11 @@ namespace meshgap
                     double moved = 0.0;  // each link's largest vertex move in the common frame, summed
                     for (std::size_t link : {first, second})
                     {
+                        const Eigen::Isometry3d XQ = framesQ[c].inverse() * linksQ[link];
+                        const Eigen::Isometry3d XA = framesA[c].inverse() * linksA[link];
                         double most = 0.0;
                         for (const Eigen::Vector3d &v : robot->links()[link].body->surface().vertices)
-                            most = std::max(most, (framesQ[c].inverse() * linksQ[link] * v -
-                                                   framesA[c].inverse() * linksA[link] * v)
-                                                      .norm());
+                            most = std::max(most, (XQ * v - XA * v).norm());
                         moved += most;
                     }
                     const double pair = bound.pairDisplacement(first, second, a, b);
@@ -127,9 +128,9 @@ namespace meshgap
         std::size_t certified = 0, rejected = 0, dense = 0;
         std::vector<double> q;
         RobotWarmStart warm;
-        // MESHGAP_ROBOT_MOTIONS raises the count of motions tried.
+        // MESHGAP_ROBOT_MOTIONS sets the count of motions tried (300 by default, scaled by test::scale()).
         const char *count = std::getenv("MESHGAP_ROBOT_MOTIONS");
-        const int motions = count ? std::atoi(count) : 300;
+        const int motions = count ? std::atoi(count) : test::scaled(300, 150);
         for (int m = 0; m < motions; ++m)
         {
             do

@@ -146,12 +146,14 @@ namespace meshgap
         // Every waypoint is free, by a whole-robot query of its own; with the certified validator, every state of
         // the path at steps of 1e-3 (OMPL's discrete validator only samples at its resolution: it may miss a
         // collision between samples, so its path is checked at its waypoints only).
+        // A warm start carried along (the answer is the cold one, Scene's contract): the dense states are close.
         std::vector<double> q;
+        RobotWarmStart warm;
+        RobotResult r;
         for (ob::State *s : path.getStates())
         {
             robotStateToVector(*setup.getStateSpace(), s, q);
-            RobotResult r;
-            scene->distance(q, RobotRequest(), r);
+            scene->distance(q.data(), q.size(), RobotRequest(), warm, r);
             EXPECT_GE(r.distance, 0.0);
         }
     }

@@ -22,6 +22,7 @@
 #include "FclOracle.h"
 #include "TestMeshes.h"
 #include "TestNote.h"
+#include "TestScale.h"
 #include "robot/TestTree.h"
 
 namespace meshgap
@@ -304,7 +305,7 @@ namespace meshgap
             UrdfRobot::load(std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/meshgap_test_description/urdf/tree.urdf");
         Mesh payload = cShape(0.1);
         robot->attach("payload", payload, "tool", test::translation(0.0, 0.0, 0.05));
-        const std::vector<std::vector<double>> states = randomJointStates(*robot, 300, 5);
+        const std::vector<std::vector<double>> states = randomJointStates(*robot, test::scaled(300, 100), 5);
         const RobotScene scene(robot, world(reach(*robot, std::vector<double>(5, 0.0)), Eigen::Vector3d::Zero()));
         FclTally tally;
         compareWithFcl(scene, states, tally);
@@ -312,7 +313,8 @@ namespace meshgap
                      << " self), " << tally.free << " free, " << tally.contained << " contained; worst relative "
                      << tally.worstRelative;
         EXPECT_GT(tally.colliding, 10u);
-        expectPrunedMatchesEveryPair(scene, std::vector<std::vector<double>>(states.begin(), states.begin() + 100));
+        expectPrunedMatchesEveryPair(
+            scene, std::vector<std::vector<double>>(states.begin(), states.begin() + test::scaled(100)));
 #endif
     }
 
@@ -333,10 +335,10 @@ namespace meshgap
         const std::vector<double> zero(robot->dimension(), 0.0);
         const double r = reach(*robot, zero);
         robot->attach("payload", cShape(0.15 * r), "tool0", test::translation(0.0, 0.0, 0.1 * r));
-        // MESHGAP_ROBOT_STATES raises the count (10,000 for the full check; 1,000 by default).
+        // MESHGAP_ROBOT_STATES sets the count (10,000 for the full check; 1,000 by default, scaled by test::scale()).
         const char *count = std::getenv("MESHGAP_ROBOT_STATES");
         const std::vector<std::vector<double>> states =
-            randomJointStates(*robot, count ? std::strtoul(count, nullptr, 10) : 1000, 17);
+            randomJointStates(*robot, count ? std::strtoul(count, nullptr, 10) : test::scaled(1000), 17);
         const RobotScene scene(robot, world(r, Eigen::Vector3d::Zero()));
         FclTally tally;
         compareWithFcl(scene, states, tally);
@@ -345,7 +347,8 @@ namespace meshgap
                      << " contained; worst relative " << tally.worstRelative;
         EXPECT_GT(tally.selfColliding, 0u);
         EXPECT_GT(tally.colliding, 0u);
-        expectPrunedMatchesEveryPair(scene, std::vector<std::vector<double>>(states.begin(), states.begin() + 100));
+        const auto pruned = std::min<std::ptrdiff_t>(test::scaled(100), static_cast<std::ptrdiff_t>(states.size()));
+        expectPrunedMatchesEveryPair(scene, std::vector<std::vector<double>>(states.begin(), states.begin() + pruned));
 #endif
     }
 
@@ -362,7 +365,7 @@ namespace meshgap
         RobotWarmStart warm;
         RobotResult exact;
         std::size_t apart = 0, within = 0, colliding = 0;
-        for (int trial = 0; trial < 300; ++trial)
+        for (int trial = 0; trial < test::scaled(300, 100); ++trial)
         {
             const std::vector<double> q = {3 * u(rng), 2.5 * u(rng), 0.05 + 0.05 * u(rng), 3 * u(rng), u(rng)};
             scene.distance(q, every, exact);
