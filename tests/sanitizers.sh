@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The test suite under the sanitizers, as CI runs it after the Release suite:
-#   1. AddressSanitizer + UndefinedBehaviorSanitizer: every test, the executables the CLI tests run included;
+#   1. AddressSanitizer + UndefinedBehaviorSanitizer: every test, the executables the CLI tests run included (the
+#      test files themselves without UBSan, tests/CMakeLists.txt);
 #   2. ThreadSanitizer: the tests that query one checker or scene from several threads (their files only built).
 # Each has its own build directory beside `build`. No Python module there (an instrumented .so cannot be loaded by
 # an uninstrumented python3). A sanitizer report fails the run (UBSan does not recover).
