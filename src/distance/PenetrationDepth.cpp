@@ -288,6 +288,10 @@ namespace meshgap
                 p = R_ * mover_.node(mover_.clusterOrder()[position]) + t_;
                 if (root_.outside(p))
                     return false;
+                // The node's cell bounds its distance to the surface, roundoff included.
+                const SurfaceGrid::Cell *cell = grid_.cell(p);
+                if (cell && pad(cell->hi) <= floor)
+                    return false;
                 const double dc = c.centreDistance, offset = (p - c.centre).norm();
                 // Depth bounds, as the cluster's (Candidate::bound) with |p - c| for the radius (never above it, so
                 // that the cluster's bound is never below its nodes').
