@@ -470,6 +470,21 @@ namespace meshgap
         }
     }  // namespace
 
+    namespace
+    {
+        /** \brief Just below the deepest of the nodes the closed bodies' grids point to (NodeSearch::seedFromGrid()),
+            or 0: a depth below the answer's. \e search makes the search of each host. */
+        template <class Search>
+        double gridSeed(const Search &search, bool closedA, bool closedB)
+        {
+            double seed = 0.0;
+            for (const bool hostIsA : {true, false})
+                if (hostIsA ? closedA : closedB)
+                    seed = std::max(seed, search(hostIsA).seedFromGrid());
+            return seed > 0.0 ? std::nextafter(seed, 0.0) : 0.0;
+        }
+    }  // namespace
+
     PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB,
                                          PenetrationWarmStart *warm)
     {
@@ -512,15 +527,11 @@ namespace meshgap
                     best.depth = std::nextafter(seed, 0.0);
             }
         }
-        // A deep node the grid points to: its depth, found exactly as the search would, is a lower bound to start
-        // from too (the answer stays the same, as with a warm start's).
-        for (const bool hostIsA : {true, false})
-            if (hostIsA ? closedA : closedB)
-            {
-                const double seed = search(hostIsA).seedFromGrid();
-                if (seed > 0.0 && std::nextafter(seed, 0.0) > best.depth)
-                    best.depth = std::nextafter(seed, 0.0);
-            }
+        // Without a warm seed, a deep node the grids point to: its depth, found exactly as the search would, is a
+        // lower bound to start from too (the answer stays the same, as with a warm start's). Along a run of poses
+        // the carried node is as deep, and costs less.
+        if (!(best.depth > 0.0))
+            best.depth = gridSeed(search, closedA, closedB);
         const bool seeded = best.depth > 0.0;
         if (closedA)
             search(true).run(best);
