@@ -2,6 +2,7 @@
 #define MESHGAP_GEOMETRY_SURFACE_GRID_H
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -53,12 +54,12 @@ namespace meshgap
         const Cell *cell(const Eigen::Vector3d &p) const
         {
             const Eigen::Vector3d f = (p - origin_) * inverseSize_;
-            if (!(f.minCoeff() >= 0.0))
+            // Compared as doubles first (false for NaN): a cast of a value beyond the grid could overflow.
+            if (!(f.minCoeff() >= 0.0 && f.x() < double(n_[0]) && f.y() < double(n_[1]) && f.z() < double(n_[2])))
                 return nullptr;
-            const auto i = static_cast<std::size_t>(f.x()), j = static_cast<std::size_t>(f.y()),
-                       k = static_cast<std::size_t>(f.z());
-            if (i >= n_[0] || j >= n_[1] || k >= n_[2])
-                return nullptr;
+            const auto i = std::min(static_cast<std::size_t>(f.x()), n_[0] - 1),
+                       j = std::min(static_cast<std::size_t>(f.y()), n_[1] - 1),
+                       k = std::min(static_cast<std::size_t>(f.z()), n_[2] - 1);
             return &cells_[(k * n_[1] + j) * n_[0] + i];
         }
 
