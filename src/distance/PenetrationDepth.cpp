@@ -7,6 +7,7 @@
 
 #include "meshgap/ThreadScratch.h"
 #include "meshgap/distance/ExactDistance.h"
+#include "meshgap/geometry/SurfaceGrid.h"
 #include "meshgap/geometry/TriangleDistance.h"
 
 namespace meshgap
@@ -123,6 +124,7 @@ namespace meshgap
                 : host_(host),
                   mover_(mover),
                   root_(host.bvh().nodes()[0]),
+                  grid_(host.surfaceGrid()),
                   R_(X_HM.linear()),
                   t_(X_HM.translation()),
                   orient_(host.orientation()),
@@ -142,9 +144,15 @@ namespace meshgap
                 std::vector<Candidate> &candidates = scratch.get();
                 candidates.clear();
                 Candidate next;
+                // Clusters next to each other in index order lie next to each other (a median split): the triangle
+                // nearest to one centre bounds the next centre's distance, and so its point query.
+                std::uint32_t hint = NONE;
                 for (std::uint32_t k = 0; k < mover_.clusters().size(); ++k)
-                    if (candidate(k, best.depth, next))
+                    if (candidate(k, best.depth, next, hint))
+                    {
                         candidates.push_back(next);
+                        hint = next.nearest.triangle;
+                    }
                 // Largest bound first; ties by cluster index (a fixed order: the answer is a function of the pose).
                 std::sort(candidates.begin(), candidates.end(),
                           [](const Candidate &x, const Candidate &y)
@@ -156,11 +164,12 @@ namespace meshgap
                     if (candidate.oneSide && !centreInside(candidate))
                         continue;  // a ball wholly outside
                     const NodeCluster &cluster = mover_.clusters()[candidate.cluster];
+                    std::uint32_t last = NONE;  // the triangle nearest to the last node measured: near the next one
                     for (std::uint32_t k = cluster.begin; k < cluster.end; ++k)
                     {
                         Eigen::Vector3d p;
                         BvhPointResult r;
-                        if (!deeper(candidate, k, best.depth, p, r))
+                        if (!deeper(candidate, k, best.depth, p, r, last))
                             continue;
                         best.depth = r.distance;
                         best.found = true;
@@ -183,13 +192,61 @@ namespace meshgap
                 Candidate c;
                 Eigen::Vector3d p;
                 BvhPointResult r;
-                return candidate(k, 0.0, c) && deeper(c, position, 0.0, p, r) ? r.distance : 0.0;
+                std::uint32_t hint = NONE;
+                return candidate(k, 0.0, c, hint) && deeper(c, position, 0.0, p, r, hint) ? r.distance : 0.0;
+            }
+
+            /** \brief A depth some node reaches, as run() finds it (0 if none is found): the node whose grid cell
+                is the deepest of those in the cluster whose centre lies deepest by the grid. A lower bound on what
+                run() finds, then, found with one cluster's point queries. */
+            double seedFromGrid()
+            {
+                double deepest = 0.0;
+                std::uint32_t best = NONE;
+                const std::vector<NodeCluster> &clusters = mover_.clusters();
+                for (std::uint32_t k = 0; k < clusters.size(); ++k)
+                {
+                    const SurfaceGrid::Cell *cell = grid_.cell(R_ * clusters[k].center + t_);
+                    if (cell && cell->side == SurfaceGrid::Side::INSIDE && cell->lo > deepest)
+                    {
+                        deepest = cell->lo;
+                        best = k;
+                    }
+                }
+                if (best == NONE)
+                    return 0.0;
+                deepest = 0.0;
+                std::uint32_t position = NONE;
+                for (std::uint32_t k = clusters[best].begin; k < clusters[best].end; ++k)
+                {
+                    const SurfaceGrid::Cell *cell = grid_.cell(R_ * mover_.node(mover_.clusterOrder()[k]) + t_);
+                    if (cell && cell->side == SurfaceGrid::Side::INSIDE && cell->lo >= deepest)
+                    {
+                        deepest = cell->lo;
+                        position = k;
+                    }
+                }
+                return position == NONE ? 0.0 : depthOf(best, position);
             }
 
         private:
             /** \brief \e x raised above the roundoff of the distances it bounds (relative, and absolute at the scale
                 of the host's coordinates): a node whose computed depth exceeds a depth d has a padded bound above d. */
             double pad(double x) const { return x * (1.0 + 1e-9) + slack_; }
+
+            /** \brief No triangle (a hint or a cache entry that names none). */
+            static constexpr std::uint32_t NONE = UINT32_MAX;
+
+            /** \brief The distance from \e p to host triangle \e t: the value the point query gives that triangle, so
+                an upper bound on \e p's distance to the surface, exactly. */
+            double toTriangle(const Eigen::Vector3d &p, std::uint32_t t)
+            {
+                const Mesh &m = host_.surface();
+                const Triangle &f = m.triangles[t];
+                Eigen::Vector3d on;
+                ++estimate_.triangleTests;
+                return pointTriangleDistance(p, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], on);
+            }
 
             /** \brief A cluster of the mover that may hold nodes inside the host, at this pose. */
             struct Candidate
@@ -223,11 +280,17 @@ namespace meshgap
             /** \brief Whether the node at \e position of the mover's clusterOrder() (in cluster \e c) lies inside the
                 host deeper than \e floor: then \e p is the node and \e r its nearest surface point. Every test that
                 rules it out before the exact distance is a sound bound, so the verdict and \e r do not depend on
-                \e floor, for a node deeper than it. */
-            bool deeper(Candidate &c, std::uint32_t position, double floor, Eigen::Vector3d &p, BvhPointResult &r)
+                \e floor, for a node deeper than it. \e hint: a host triangle near the node, or NONE; set to the
+                triangle nearest to the node when its point query is made. */
+            bool deeper(Candidate &c, std::uint32_t position, double floor, Eigen::Vector3d &p, BvhPointResult &r,
+                        std::uint32_t &hint)
             {
                 p = R_ * mover_.node(mover_.clusterOrder()[position]) + t_;
                 if (root_.outside(p))
+                    return false;
+                // The node's cell bounds its distance to the surface, roundoff included.
+                const SurfaceGrid::Cell *cell = grid_.cell(p);
+                if (cell && pad(cell->hi) <= floor)
                     return false;
                 const double dc = c.centreDistance, offset = (p - c.centre).norm();
                 // Depth bounds, as the cluster's (Candidate::bound) with |p - c| for the radius (never above it, so
@@ -240,25 +303,26 @@ namespace meshgap
                 // node's distance is at most that, exactly. False when that rules the node out.
                 auto boundedBy = [&](std::uint32_t triangle)
                 {
-                    const Mesh &m = host_.surface();
-                    const Triangle &f = m.triangles[triangle];
-                    Eigen::Vector3d on;
-                    ++estimate_.triangleTests;
-                    const double d = pointTriangleDistance(p, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], on);
+                    const double d = toTriangle(p, triangle);
                     upper = std::min(upper, pad(d));
                     return d > floor;
                 };
-                // The centre's nearest triangle, then the one nearest to this node at an earlier pose (usually
-                // much tighter).
-                if (!c.oneSide && !boundedBy(c.nearest.triangle))
+                // The triangle nearest to this node at an earlier pose, then the one nearest to the node measured
+                // before it (both usually tight), then the centre's nearest triangle.
+                const std::uint32_t cached = nearest_ ? nearest_[position] : NONE;
+                if (cached < host_.surface().triangles.size() && !boundedBy(cached))
                     return false;
-                if (nearest_ && nearest_[position] < host_.surface().triangles.size() && !boundedBy(nearest_[position]))
+                if (hint != NONE && hint != cached && !boundedBy(hint))
+                    return false;
+                if (!c.oneSide && c.nearest.triangle != hint && c.nearest.triangle != cached &&
+                    !boundedBy(c.nearest.triangle))
                     return false;
                 ++estimate_.nodesTested;
                 bvhPointDistance(host_.bvh(), p, upper, floor, r);
                 if (!r.found)
                     bvhPointDistance(host_.bvh(), p, std::numeric_limits<double>::infinity(), floor, r);  // never
                 estimate_.triangleTests += r.triangleTests;
+                hint = r.triangle;
                 if (nearest_)
                     nearest_[position] = r.triangle;
                 if (!(r.distance > floor))
@@ -274,12 +338,18 @@ namespace meshgap
             }
 
             /** \brief Cluster \e k as a candidate (false when none of its nodes can lie in the host's box, or be deeper
-                than \e floor). */
-            bool candidate(std::uint32_t k, double floor, Candidate &out)
+                than \e floor). \e hint: a host triangle near the cluster, or NONE. */
+            bool candidate(std::uint32_t k, double floor, Candidate &out, std::uint32_t hint)
             {
                 const NodeCluster &cluster = mover_.clusters()[k];
                 out.centre = R_ * cluster.center + t_;
                 if ((root_.local(out.centre).cwiseAbs() - root_.half).cwiseMax(0.0).norm() > cluster.radius)
+                    return false;
+                // The grid's bounds: no node deeper than the cell's hi + r, none inside when the ball lies in a cell
+                // wholly outside more than r from the surface. Either way run() would skip the cluster.
+                const SurfaceGrid::Cell *cell = grid_.cell(out.centre);
+                if (cell && (pad(cell->hi + cluster.radius) <= floor ||
+                             (cell->side == SurfaceGrid::Side::OUTSIDE && pad(cluster.radius) < cell->lo)))
                     return false;
                 // A centre within floor - r of the surface: no node of the cluster is deeper than \e floor (whatever
                 // side the centre is on), and run() would skip it; the point query may stop as soon as it knows.
@@ -288,19 +358,17 @@ namespace meshgap
                 const double infinity = std::numeric_limits<double>::infinity();
                 double upper = infinity;
                 std::uint32_t *cached = clusterNearest_ ? clusterNearest_ + k : nullptr;
-                if (cached && *cached < host_.surface().triangles.size())
+                // The triangle nearest to the centre at an earlier pose, and the hint: dc is at most their distances
+                // (the values the query would give them), which may settle the cluster at once, and bounds the query.
+                const std::uint32_t last = cached ? *cached : NONE, triangles = host_.surface().triangles.size();
+                for (const std::uint32_t t : {last, hint != last ? hint : NONE})
                 {
-                    // The triangle nearest to the centre at an earlier pose: dc is at most its distance (the same
-                    // value the query would give it), which may settle the cluster at once, and bounds the query.
-                    const Mesh &m = host_.surface();
-                    const Triangle &f = m.triangles[*cached];
-                    Eigen::Vector3d on;
-                    ++estimate_.triangleTests;
-                    const double d =
-                        pointTriangleDistance(out.centre, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], on);
+                    if (t >= triangles)
+                        continue;
+                    const double d = toTriangle(out.centre, t);
                     if (pad(d + cluster.radius) <= floor)
                         return false;
-                    upper = pad(d);
+                    upper = std::min(upper, pad(d));
                 }
                 bvhPointDistance(host_.bvh(), out.centre, upper, stop, out.nearest);
                 estimate_.triangleTests += out.nearest.triangleTests;
@@ -323,7 +391,10 @@ namespace meshgap
                 out.oneSide = out.centreDistance > cluster.radius;
                 out.centreOutside =
                     localSide(host_, out.centre, out.nearest.triangle, out.nearest.closest, orient_) > 0;
-                out.inside = -1;
+                // A centre in a cell the surface does not reach lies on that cell's side: insideClosedBody()'s
+                // answer, known (the winding number is the same all over a region free of surface).
+                const SurfaceGrid::Side side = cell ? cell->side : SurfaceGrid::Side::UNKNOWN;
+                out.inside = side == SurfaceGrid::Side::INSIDE ? 1 : side == SurfaceGrid::Side::OUTSIDE ? 0 : -1;
                 out.bound =
                     out.centreOutside ? cluster.radius - out.centreDistance : out.centreDistance + cluster.radius;
                 return true;
@@ -339,6 +410,7 @@ namespace meshgap
 
             const Body &host_, &mover_;
             const TriangleBvh::Node &root_;
+            const SurfaceGrid &grid_;
             const Eigen::Matrix3d R_;
             const Eigen::Vector3d t_;
             const double orient_, slack_;
@@ -398,6 +470,21 @@ namespace meshgap
         }
     }  // namespace
 
+    namespace
+    {
+        /** \brief Just below the deepest of the nodes the closed bodies' grids point to (NodeSearch::seedFromGrid()),
+            or 0: a depth below the answer's. \e search makes the search of each host. */
+        template <class Search>
+        double gridSeed(const Search &search, bool closedA, bool closedB)
+        {
+            double seed = 0.0;
+            for (const bool hostIsA : {true, false})
+                if (hostIsA ? closedA : closedB)
+                    seed = std::max(seed, search(hostIsA).seedFromGrid());
+            return seed > 0.0 ? std::nextafter(seed, 0.0) : 0.0;
+        }
+    }  // namespace
+
     PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB,
                                          PenetrationWarmStart *warm)
     {
@@ -440,6 +527,11 @@ namespace meshgap
                     best.depth = std::nextafter(seed, 0.0);
             }
         }
+        // Without a warm seed, a deep node the grids point to: its depth, found exactly as the search would, is a
+        // lower bound to start from too (the answer stays the same, as with a warm start's). Along a run of poses
+        // the carried node is as deep, and costs less.
+        if (!(best.depth > 0.0))
+            best.depth = gridSeed(search, closedA, closedB);
         const bool seeded = best.depth > 0.0;
         if (closedA)
             search(true).run(best);

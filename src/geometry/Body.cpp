@@ -72,6 +72,13 @@ namespace meshgap
         return *layer_.load(std::memory_order_acquire);
     }
 
+    const SurfaceGrid &Body::surfaceGrid() const
+    {
+        std::call_once(gridOnce_,
+                       [this] { grid_ = std::make_unique<const SurfaceGrid>(SurfaceGrid::build(*bvh_, closed_)); });
+        return *grid_;
+    }
+
     const MeshDistances &Body::distances() const
     {
         std::call_once(distancesOnce_, [this] {

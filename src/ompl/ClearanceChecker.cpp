@@ -242,6 +242,11 @@ namespace meshgap
         return query(state, false);
     }
 
+    SceneResult ClearanceChecker::query(const ompl::base::State *state, const SceneRequest &request) const
+    {
+        return query(state, false, request);
+    }
+
     SceneResult ClearanceChecker::query(const ompl::base::State *state, bool countAsValidity,
                                         SceneRequest request) const
     {

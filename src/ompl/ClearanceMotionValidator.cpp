@@ -28,11 +28,13 @@ namespace meshgap
         ompl::base::State *state = si_->allocState();
         double f = 0.0;
         bool reached = false;
+        SceneRequest request;
+        request.computeDepth = false;  // a state in collision ends the advance: its verdict is enough
         for (;;)
         {
             space.interpolate(s1, s2, f, state);
             counts_.add(QUERIES, 1);
-            const SceneResult r = checker_->query(state);
+            const SceneResult r = checker_->query(state, request);
             if (r.inCollision || !(r.distance > 0.0))  // signed: never step on a zero or negative clearance
                 break;
             // The certified distance may exceed the true minimum by the BVH's tie slack (1e-12 relative): step on

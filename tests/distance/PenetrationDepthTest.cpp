@@ -536,3 +536,43 @@ TEST(PenetrationDepth, AWarmSeedNeverChangesWhichTiedNodeWins)
     stale.cluster = 1000000;
     expectSameEstimate(penetrationDepth(*a, *b, X, &stale), cold, "stale seed");
 }
+
+TEST(PenetrationDepth, DeepRandomPosesEqualBruteForceAndTheGridPrunes)
+{
+    // Thick bodies pushed deep into each other at random poses (seeded), where the surface grid seeds the search
+    // with a deep node and skips the clusters that cannot beat it: a U of three overlapping shells (winding 2 where
+    // they overlap), a refined box, an icosphere, and a small sphere that fits wholly inside the box. Every depth
+    // must equal brute force over every node and triangle (the largest over both bodies), the witness points must
+    // be that far apart, and a warm start carried along must change nothing.
+    const BodyPtr u = Body::build(uShape()), box = Body::build(test::box(0.9, 0.7, 0.6, 3)),
+                  ball = Body::build(test::icosphere(0.6, 3)), pebble = Body::build(test::icosphere(0.2, 2));
+    const std::vector<std::pair<const Body *, const Body *>> pairs = {
+        {u.get(), box.get()}, {box.get(), ball.get()}, {ball.get(), u.get()}, {box.get(), pebble.get()}};
+    std::size_t checked = 0, deep = 0, nodes = 0, clusters = 0;
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+    {
+        const Body &a = *pairs[k].first, &b = *pairs[k].second;
+        PenetrationWarmStart warm;
+        for (std::uint32_t i = 0; i < 40; ++i)
+        {
+            const Eigen::Isometry3d X = test::randomPose(1000 * (k + 1) + i, 0.5);
+            if (!inCollision(a, b, X))
+                continue;
+            const PenetrationEstimate e = penetrationDepth(a, b, X);
+            const double truth = std::max(bruteDeepest(a, b, X), bruteDeepest(b, a, X.inverse()));
+            const std::string where = "pair " + std::to_string(k) + " pose " + std::to_string(i);
+            EXPECT_NEAR(e.depth, truth, 1e-12) << where;
+            if (e.kind == Penetration::DEEPEST_NODE)
+                EXPECT_NEAR((e.onA - e.onB).norm(), e.depth, 1e-12) << where;
+            expectSameEstimate(penetrationDepth(a, b, X, &warm), e, where + " warm");
+            ++checked;
+            deep += truth > 0.25;
+            nodes += e.nodesTested;
+            clusters += b.clusters().size() + a.clusters().size();
+        }
+    }
+    test::Note() << "[ deep     ] " << checked << " colliding poses (" << deep << " deeper than 0.25) equal brute force; "
+                 << nodes << " nodes measured of " << clusters << " clusters\n";
+    EXPECT_GT(checked, 60u);
+    EXPECT_GT(deep, 20u);
+}

@@ -94,3 +94,46 @@ TEST(ClearanceMotionValidator, NeedsACertifiedChecker)
     auto fast = std::make_shared<ClearanceChecker>(si, scene, ClearanceChecker::Mode::FAST);
     EXPECT_THROW(ClearanceMotionValidator(si, fast), std::exception);
 }
+
+TEST(ClearanceMotionValidator, TheAdvanceQueryGivesTheFullQuerysVerdictAndFreeClearanceWithoutTheDepth)
+{
+    // What the advance asks (ClearanceChecker::query with computeDepth false) against the full query, at random
+    // states (seeded) around a thick box: the same verdict, the same distance where free, and in collision the
+    // verdict alone (no depth computed: CONTACT_DISTANCE, NOT_COMPUTED) where the full query measures a depth.
+    const ScenePtr scene = Scene::fromMeshes(test::box(0.4, 0.3, 0.2, 2), test::box(1.0, 1.0, 1.0, 2));
+    auto space = test::se3Space(2);
+    auto si = std::make_shared<ob::SpaceInformation>(space);
+    auto checker = std::make_shared<ClearanceChecker>(si, scene);
+    si->setStateValidityChecker(checker);
+    si->setup();
+    SceneRequest verdict;
+    verdict.computeDepth = false;
+    ob::ScopedState<ob::SE3StateSpace> s(space);
+    int colliding = 0, free = 0;
+    for (int i = 0; i < 300; ++i)
+    {
+        const Eigen::Isometry3d X = test::randomPose(500 + i, 1.6);  // seeded: the same states in any test order
+        const Eigen::Quaterniond q(X.linear());
+        s->setXYZ(X.translation().x(), X.translation().y(), X.translation().z());
+        s->rotation().x = q.x();
+        s->rotation().y = q.y();
+        s->rotation().z = q.z();
+        s->rotation().w = q.w();
+        const SceneResult full = checker->query(s.get()), quick = checker->query(s.get(), verdict);
+        ASSERT_EQ(quick.inCollision, full.inCollision) << i;
+        if (full.inCollision)
+        {
+            ++colliding;
+            EXPECT_NE(full.penetration, Penetration::NOT_COMPUTED) << i;
+            EXPECT_EQ(quick.penetration, Penetration::NOT_COMPUTED) << i;
+            EXPECT_EQ(quick.distance, CONTACT_DISTANCE) << i;
+        }
+        else
+        {
+            ++free;
+            EXPECT_EQ(quick.distance, full.distance) << i;
+        }
+    }
+    EXPECT_GT(colliding, 20);
+    EXPECT_GT(free, 20);
+}

@@ -62,8 +62,13 @@ namespace meshgap
         when three directions are all ambiguous). Candidates are visited by branch and bound over the node
         clusters (deepest possible first; a cluster whose ball the surface does not cross takes one inside test),
         and a local side test at the nearest surface point (angle-weighted pseudonormal) filters the inside tests.
-        A verdict-only query (stopBelow >= 0) skips it (its cost per colliding pair: bench/README.md, "Penetration
-        depth").
+        Each closed body's SurfaceGrid (Body::surfaceGrid(), built on first use) bounds, at the price of a cell
+        look-up, how deep a cluster's nodes can be (the cell's hi plus the radius) and says when a ball lies wholly
+        outside: the search starts from the depth of the node the grid finds deepest (measured exactly, as the
+        search would) and skips without a point query every cluster that cannot beat it; the triangle found nearest
+        to the last cluster centre, and to the last node, bounds the next point query. A verdict-only query
+        (stopBelow >= 0, or computeDepth false) skips it all (its cost per colliding pair: bench/README.md,
+        "Penetration depth").
 
         What it estimates. If a point p of B lies inside closed A at distance d from A's surface, every translation
         of B shorter than d keeps p inside A, so the bodies still collide: d, and so the returned depth, is a

@@ -16,6 +16,7 @@
 #include "meshgap/mesh/Refine.h"
 #include "meshgap/mesh/SurfaceGraph.h"
 #include "meshgap/geometry/Primitive.h"
+#include "meshgap/geometry/SurfaceGrid.h"
 
 namespace meshgap
 {
@@ -131,6 +132,10 @@ namespace meshgap
         std::uint32_t numNodes() const { return static_cast<std::uint32_t>(nodeLayer().mesh.vertices.size()); }
         const Eigen::Vector3d &node(std::uint32_t i) const { return nodeLayer().mesh.vertices[i]; }
 
+        /** \brief The grid of distance bounds and sides around the surface (SurfaceGrid), built on the first call
+            (penetration depth reads it for a closed body). */
+        const SurfaceGrid &surfaceGrid() const;
+
         /** \brief Mesh distances D and P, built on the first call. */
         const MeshDistances &distances() const;
 
@@ -184,6 +189,8 @@ namespace meshgap
         mutable std::once_flag layerOnce_;
         mutable std::unique_ptr<const NodeLayer> layerStore_;
         mutable std::atomic<const NodeLayer *> layer_{nullptr};
+        mutable std::once_flag gridOnce_;
+        mutable std::unique_ptr<const SurfaceGrid> grid_;
         mutable std::once_flag distancesOnce_;
         mutable MeshDistancesConstPtr distances_;
     };

@@ -141,6 +141,10 @@ namespace meshgap
 
         /** \brief The full answer for one state (the same query clearance() makes). */
         SceneResult query(const ompl::base::State *state) const;
+        /** \brief The answer for one state to \e request (its stopBelow, upperBound, computeDepth; this checker's mode,
+            fast solver and setComputeDepth() apply), counted as a clearance call: computeDepth false for a caller
+            that needs the verdict in collision and the clearance of a free state (ClearanceMotionValidator). */
+        SceneResult query(const ompl::base::State *state, const SceneRequest &request) const;
 
     private:
         /** \brief The query, counted as a validity or a clearance call: \e request (its stopBelow, upperBound)
