@@ -31,6 +31,8 @@ namespace meshgap
                 return std::make_shared<fcl::Cylinderd>(p.size.x(), p.size.y());
             case Primitive::Kind::CONE:
                 return std::make_shared<fcl::Coned>(p.size.x(), p.size.y());
+            case Primitive::Kind::CAPSULE:
+                return std::make_shared<fcl::Capsuled>(p.size.x(), p.size.y());
         }
         return nullptr;
     }
