@@ -21,12 +21,12 @@ namespace meshgap
                 for (std::uint32_t i = 0; i < pa.size(); ++i)
                     for (std::uint32_t j = 0; j < pb.size(); ++j)
                     {
-                        if (best.d <= stopBelow)
+                        if (best.found && best.d <= stopBelow)
                             return;
                         ++best.triangleTests;
                         const SolidGap g = primitiveGap(pa[i], identity, pb[j], X_AB, best.d);
                         if (g.distance < best.d)
-                            best = {g.distance, i, j, g.onA, g.onB, best.boxTests, best.triangleTests, false};
+                            best = {g.distance, true, i, j, g.onA, g.onB, best.boxTests, best.triangleTests, false};
                     }
             }
 
@@ -43,7 +43,7 @@ namespace meshgap
                 {
                     // The seed's solid first (its distance prunes the rest), then the others in order.
                     const std::uint32_t j = seedSolid < n ? (k == 0 ? seedSolid : k <= seedSolid ? k - 1 : k) : k;
-                    if (best.d <= stopBelow || best.exhausted)
+                    if ((best.found && best.d <= stopBelow) || best.exhausted)
                         return;
                     BvhSolidResult r;
                     const std::size_t spent = best.boxTests + best.triangleTests;
@@ -56,6 +56,7 @@ namespace meshgap
                     if (!r.found)
                         continue;
                     best.d = r.distance;
+                    best.found = true;
                     best.partA = meshIsA ? r.triangle : j;
                     best.partB = meshIsA ? j : r.triangle;
                     best.onA = X_AM * (meshIsA ? r.onMesh : r.onSolid);
@@ -69,7 +70,7 @@ namespace meshgap
         {
             Nearest best;
             best.d = upperBound;
-            const bool solidA = !a.primitives().empty(), solidB = !b.primitives().empty();
+            const bool solidA = asSolids(a), solidB = asSolids(b);
             if (solidA && solidB)
                 solidsAgainstSolids(a, b, X_AB, stopBelow, best);
             else if (solidB)
@@ -84,7 +85,7 @@ namespace meshgap
 
         bool touch(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)
         {
-            const bool solidA = !a.primitives().empty(), solidB = !b.primitives().empty();
+            const bool solidA = asSolids(a), solidB = asSolids(b);
             if (solidA && solidB)
                 return nearest(a, b, X_AB, std::numeric_limits<double>::min(), 0.0, 0).d == 0.0;
             const Body &mesh = solidA ? b : a, &solid = solidA ? a : b;
@@ -95,7 +96,7 @@ namespace meshgap
 
         bool inside(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)
         {
-            const bool solidA = !a.primitives().empty(), solidB = !b.primitives().empty();
+            const bool solidA = asSolids(a), solidB = asSolids(b);
             if (solidA == solidB)
                 return false;  // two bodies of solids: overlap is touching; two meshes are not answered here
             const Body &mesh = solidA ? b : a, &solid = solidA ? a : b;

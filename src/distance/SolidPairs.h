@@ -15,10 +15,20 @@ namespace meshgap
 {
     namespace solids
     {
+        /** \brief True when \e body is answered as its solids: it was built from primitives, not boxes alone (a box's
+            mesh, boxMesh(), is the box itself: the triangle traversal, with its fronts, answers it exactly). */
+        inline bool asSolids(const Body &body)
+        {
+            for (const Primitive &p : body.primitives())
+                if (p.kind != Primitive::Kind::BOX)
+                    return true;
+            return false;
+        }
+
         /** \brief True when either body is answered as its solids. */
         inline bool answered(const Body &a, const Body &b)
         {
-            return !a.primitives().empty() || !b.primitives().empty();
+            return asSolids(a) || asSolids(b);
         }
 
         /** \brief The closest pair of parts found: a triangle or solid of A (\e partA: its triangle index for a
@@ -26,6 +36,7 @@ namespace meshgap
         struct Nearest
         {
             double d{std::numeric_limits<double>::infinity()};
+            bool found{false};  ///< a pair below the upper bound was found (d is its distance, else the bound)
             std::uint32_t partA{0}, partB{0};
             Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};
             std::size_t boxTests{0}, triangleTests{0};

@@ -174,6 +174,29 @@ TEST(SolidBodyTest, TwoSolidBodiesAndTheBoundsOfARequest)
     EXPECT_TRUE(inCollision(*a, *b, test::translation(0.0, 0.0, 0.5)));
 }
 
+TEST(SolidBodyTest, ABoundedQuestionAtItsOwnStopFindsWhatIsBelowIt)
+{
+    // Regression: the question a certified motion asks ("anything at or below the bound?": upperBound and stopBelow
+    // both the bound) must find a pair below it, a touching one included, for solids against solids and against a
+    // mesh alike.
+    const BodyPtr a = solidBody({solid(Primitive::Kind::CAPSULE, 0.1, 0.5)});
+    const BodyPtr b = solidBody({solid(Primitive::Kind::CYLINDER, 0.2, 0.4)});
+    const BodyPtr mesh = test::unrefinedBody(test::icosphere(0.3, 2));
+    DistanceRequest bounded;
+    bounded.upperBound = bounded.stopBelow = 0.3;
+    bounded.computeDepth = false;
+    for (const double z : {0.5, 0.6, 0.8})  // touching, 0.05 apart, 0.25 apart
+    {
+        const DistanceResult ab = exact(*a, *b, test::translation(0.0, 0.0, z), bounded);
+        EXPECT_LE(ab.distance, 0.3) << z;
+        EXPECT_EQ(ab.inCollision, z == 0.5) << z;
+        const DistanceResult am = exact(*mesh, *a, test::translation(0.0, 0.0, z + 0.1), bounded);
+        EXPECT_LE(am.distance, 0.3) << z;
+        const DistanceResult ma = exact(*a, *mesh, test::translation(0.0, 0.0, -z - 0.1), bounded);
+        EXPECT_LE(ma.distance, 0.3) << z;
+    }
+}
+
 TEST(SolidBodyTest, SceneAnswersARobotOfSolidsAsItsSolids)
 {
     const BodyPtr robot = solidBody({solid(Primitive::Kind::CYLINDER, 0.1, 0.8)});
