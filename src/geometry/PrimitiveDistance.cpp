@@ -204,9 +204,10 @@ namespace meshgap
             return std::max(lo - (centre + extent), (centre - extent) - hi) / length;
         }
 
-        /** \brief Whether some axis separates \e box from \e other (a point, segment, triangle or box): the box's
-            face normals, the other's, and the cross products of their edge directions. */
-        bool separated(const Core &box, const Core &other, const Polytope &q)
+        /** \brief The largest gap between \e box and \e other (a point, segment, triangle or box) along the
+            separating axes of the pair: the box's face normals, the other's, and the cross products of their edge
+            directions. Positive: they are apart, and it is a lower bound of their distance; else they overlap. */
+        double separation(const Core &box, const Core &other, const Polytope &q)
         {
             Eigen::Vector3d axes[8];
             int n = 0;
@@ -217,9 +218,9 @@ namespace meshgap
                     axes[n++] = other.R.col(i);
             else if (other.type == Core::TRIANGLE)
                 axes[n++] = (other.p[1] - other.p[0]).cross(other.p[2] - other.p[0]);
+            double gap = -std::numeric_limits<double>::infinity();
             for (int i = 0; i < n; ++i)
-                if (gapAlong(axes[i], box, q) > 0.0)
-                    return true;
+                gap = std::max(gap, gapAlong(axes[i], box, q));
             Eigen::Vector3d edges[3];
             int m = 0;
             if (other.type == Core::BOX)
@@ -230,17 +231,20 @@ namespace meshgap
                     edges[m++] = q.v[q.e[k][1]] - q.v[q.e[k][0]];
             for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < m; ++j)
-                    if (gapAlong(box.R.col(i).cross(edges[j]), box, q) > 0.0)
-                        return true;
-            return false;
+                    gap = std::max(gap, gapAlong(box.R.col(i).cross(edges[j]), box, q));
+            return gap;
         }
 
-        /** \brief Box against a point, segment, triangle or box: 0 when no axis separates them, else the least of
-            the vertex-to-solid and edge-edge distances (exact for disjoint polytopes). onA on the box. */
-        CoreGap boxGap(const Core &box, const Core &other)
+        /** \brief Box against a point, segment, triangle or box: 0 when no axis separates them, the separating gap
+            when it exceeds \e enough, else the least of the vertex-to-solid and edge-edge distances (exact for
+            disjoint polytopes). onA on the box. */
+        CoreGap boxGap(const Core &box, const Core &other, double enough)
         {
             CoreGap g;
             const Polytope p(box), q(other);
+            const double gap = separation(box, other, q);
+            if (gap > enough)  // a lower bound the caller prunes above: nothing more to compute
+                return (g.lower = gap, g.upper = std::numeric_limits<double>::infinity(), g);
             Nearest best;
             for (int k = 0; k < q.nv; ++k)
                 best.offer(boxPoint(box, q.v[k]), q.v[k]);
@@ -255,7 +259,7 @@ namespace meshgap
                 }
             g.onA = best.onA;
             g.onB = best.onB;
-            g.overlap = !separated(box, other, q);
+            g.overlap = !(gap > 0.0);
             g.lower = g.upper = g.overlap ? 0.0 : std::sqrt(best.d2);
             return g;
         }
@@ -291,13 +295,14 @@ namespace meshgap
 
         CoreGap coreGap(const Core &a, const Core &b, double scale, double enough)
         {
-            if (a.curved() || b.curved())
+            // GJK for the curved solids, and for two boxes (polytopes: it ends exact, cheaper than 144 edge pairs).
+            if (a.curved() || b.curved() || (a.type == Core::BOX && b.type == Core::BOX))
                 return solid::gjk(a, b, scale, enough);
             if (a.type == Core::BOX)
-                return boxGap(a, b);
+                return boxGap(a, b, enough);
             if (b.type == Core::BOX)
             {
-                CoreGap g = boxGap(b, a);
+                CoreGap g = boxGap(b, a, enough);
                 std::swap(g.onA, g.onB);
                 return g;
             }

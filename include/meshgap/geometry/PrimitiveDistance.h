@@ -13,9 +13,10 @@ namespace meshgap
 
         distance is a lower bound of the true distance, and equal to it to 1e-12 relative:
         - closed forms (a sphere or capsule against a sphere, capsule or triangle: point and segment distances, the
-          radii subtracted; a box against a sphere, capsule, triangle or box: the vertex-feature and edge-edge pairs,
-          a separating-axis test for overlap) are exact up to roundoff, as triangleDistance();
-        - a cylinder or cone against anything: GJK on the support functions, whose support-plane gap is a
+          radii subtracted; a box against a sphere, capsule or triangle: the vertex-feature and edge-edge pairs, a
+          separating-axis test for overlap) are exact up to roundoff, as triangleDistance();
+        - a cylinder or cone against anything, and two boxes: GJK on the support functions (for two boxes, polytopes,
+          it ends at the exact distance), whose support-plane gap is a
           certified lower bound (every point of A - B lies beyond the plane through the last support point normal to
           the current direction) and whose current simplex point an upper bound; iterated until the two agree to
           1e-12 relative (or 1e-14 of the scale below), or until roundoff in the simplex stops its progress (they
