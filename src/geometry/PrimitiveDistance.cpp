@@ -326,7 +326,8 @@ namespace meshgap
             {
                 const double t = radii > 0.0 ? std::min(1.0, a.radius / radii) * std::min(length, radii) : 0.0;
                 s.distance = s.upper = 0.0;
-                s.onA = s.onB = radii > 0.0 ? Eigen::Vector3d(g.onA + t * unit) : Eigen::Vector3d(0.5 * (g.onA + g.onB));
+                s.onA = s.onB =
+                    radii > 0.0 ? Eigen::Vector3d(g.onA + t * unit) : Eigen::Vector3d(0.5 * (g.onA + g.onB));
                 return s;
             }
             s.onA = g.onA + a.radius * unit;

@@ -157,7 +157,8 @@ TEST(SolidBodyTest, ContainmentEitherWayCollides)
 
 TEST(SolidBodyTest, TwoSolidBodiesAndTheBoundsOfARequest)
 {
-    const BodyPtr a = solidBody({solid(Primitive::Kind::CAPSULE, 0.1, 0.5), solid(Primitive::Kind::BOX, 0.2, 0.2, 0.2)});
+    const BodyPtr a =
+        solidBody({solid(Primitive::Kind::CAPSULE, 0.1, 0.5), solid(Primitive::Kind::BOX, 0.2, 0.2, 0.2)});
     const BodyPtr b = solidBody({solid(Primitive::Kind::CONE, 0.2, 0.4)});
     const Isometry3d X = test::translation(0.0, 0.0, 0.8);  // the cone's base at 0.6, the capsule's top at 0.35
     EXPECT_NEAR(exact(*a, *b, X).distance, 0.25, 1e-12);

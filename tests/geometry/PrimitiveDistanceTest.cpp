@@ -109,8 +109,10 @@ TEST(PrimitiveDistanceTest, SolidPairsMatchTheClosedForm)
     {
         const double h = gap(rng);
         const Isometry3d X = randomMotion(rng);
-        const Primitive sphere = solid(Primitive::Kind::SPHERE, 0.25), capsule = solid(Primitive::Kind::CAPSULE, 0.2, 1.0);
-        const Primitive box = solid(Primitive::Kind::BOX, 0.4, 0.6, 1.0), cylinder = solid(Primitive::Kind::CYLINDER, 0.3, 0.8);
+        const Primitive sphere = solid(Primitive::Kind::SPHERE, 0.25);
+        const Primitive capsule = solid(Primitive::Kind::CAPSULE, 0.2, 1.0);
+        const Primitive box = solid(Primitive::Kind::BOX, 0.4, 0.6, 1.0);
+        const Primitive cylinder = solid(Primitive::Kind::CYLINDER, 0.3, 0.8);
         const Primitive cone = solid(Primitive::Kind::CONE, 0.3, 0.8);
         const Vector3d side = Vector3d(u(rng), u(rng), 0.0).normalized();
         expectGap(primitiveGap(sphere, X, sphere, X * pose(Vector3d(0.5 + h, 0, 0))), h, "sphere-sphere");
@@ -141,8 +143,8 @@ TEST(PrimitiveDistanceTest, TouchingAndOverlappingSolidsAreAtZero)
     planeTriangle(Vector3d(0.5, 0.0, 0.0), Vector3d(1, 2, 3), 0.3, t);
     EXPECT_EQ(primitiveTriangleGap(box, X, X * t[0], X * t[1], X * t[2]).distance, 0.0);
     planeTriangle(Vector3d(0.0, 0.0, 0.1), Vector3d(1, 2, 3), 0.05, t);
-    EXPECT_EQ(primitiveTriangleGap(solid(Primitive::Kind::CYLINDER, 0.3, 0.8), X, X * t[0], X * t[1], X * t[2]).distance,
-              0.0);
+    const Primitive cylinder = solid(Primitive::Kind::CYLINDER, 0.3, 0.8);
+    EXPECT_EQ(primitiveTriangleGap(cylinder, X, X * t[0], X * t[1], X * t[2]).distance, 0.0);
     EXPECT_EQ(primitiveTriangleGap(solid(Primitive::Kind::CONE, 0.3, 0.8), X, X * t[0], X * t[1], X * t[2]).distance,
               0.0);
     // Solids: nested, crossing, touching along a face.
@@ -165,7 +167,8 @@ TEST(PrimitiveDistanceTest, GjkBoundsBracketTheDistance)
     // relative, or, where roundoff in the simplex stops GJK first, to 1e-11 of the scale (the solids' reach from the
     // origin, here at most 5).
     std::mt19937 rng(5);
-    const Primitive cylinder = solid(Primitive::Kind::CYLINDER, 0.3, 0.8), cone = solid(Primitive::Kind::CONE, 0.4, 0.5);
+    const Primitive cylinder = solid(Primitive::Kind::CYLINDER, 0.3, 0.8);
+    const Primitive cone = solid(Primitive::Kind::CONE, 0.4, 0.5);
     int iterations = 0;
     for (int trial = 0; trial < 2000; ++trial)
     {
