@@ -38,8 +38,9 @@ namespace meshgap
             // Cylinder or cone: in the solid's frame, the rim point along d's part across the axis.
             const Eigen::Vector3d l = R.transpose() * d;
             const double rho = std::hypot(l.x(), l.y());
-            const double scale = rho > 0.0 ? half.x() / rho : 0.0;
-            const Eigen::Vector3d across(scale * l.x(), scale * l.y(), 0.0);
+            Eigen::Vector3d across = Eigen::Vector3d::Zero();
+            if (rho > 0.0)
+                across = Eigen::Vector3d(half.x() * l.x() / rho, half.x() * l.y() / rho, 0.0);
             if (type == CYLINDER)
                 return c + R * (across + Eigen::Vector3d(0.0, 0.0, l.z() >= 0.0 ? half.z() : -half.z()));
             const Eigen::Vector3d apex(0.0, 0.0, half.z()), rim = across - apex;

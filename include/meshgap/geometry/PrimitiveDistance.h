@@ -15,13 +15,13 @@ namespace meshgap
         - closed forms (a sphere or capsule against a sphere, capsule or triangle: point and segment distances, the
           radii subtracted; a box against a sphere, capsule or triangle: the vertex-feature and edge-edge pairs, a
           separating-axis test for overlap) are exact up to roundoff, as triangleDistance();
-        - a cylinder or cone against anything, and two boxes: GJK on the support functions (for two boxes, polytopes,
-          it ends at the exact distance), whose support-plane gap is a
-          certified lower bound (every point of A - B lies beyond the plane through the last support point normal to
-          the current direction) and whose current simplex point an upper bound; iterated until the two agree to
-          1e-12 relative (or 1e-14 of the scale below), or until roundoff in the simplex stops its progress (they
-          then agree to about 1e-11 of the scale: tests/geometry/PrimitiveDistanceTest.cpp), and the lower bound
-          reported, less a pad of 4e-15 times the scale. Never larger than the true distance.
+        - a cylinder or cone against anything, and two boxes: GJK on the support functions (for two boxes,
+          polytopes, it ends at the exact distance), whose support-plane gap is a certified lower bound (every point
+          of A - B lies beyond the plane through the last support point normal to the current direction) and whose
+          current simplex point an upper bound; iterated until the two agree to 1e-12 relative (or 1e-14 of the
+          scale below), or until roundoff in the simplex stops its progress (they then agree to about 1e-11 of the
+          scale, 1e-10 at most in tests/geometry/PrimitiveDistanceTest.cpp), and the lower bound reported, less a
+          pad of 4e-15 times the scale. Never larger than the true distance.
 
         Touching or overlapping solids have distance exactly 0 (onA == onB, a point in both up to the tolerance):
         so is a pair closer than TRIANGLE_CONTACT_TOLERANCE times the scale (the larger of the two solids' reach
