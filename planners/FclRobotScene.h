@@ -31,6 +31,8 @@ namespace meshgap
                 return std::make_shared<fcl::Cylinderd>(p.size.x(), p.size.y());
             case Primitive::Kind::CONE:
                 return std::make_shared<fcl::Coned>(p.size.x(), p.size.y());
+            case Primitive::Kind::CAPSULE:
+                return std::make_shared<fcl::Capsuled>(p.size.x(), p.size.y());
         }
         return nullptr;
     }
@@ -49,10 +51,9 @@ namespace meshgap
        Shapes as MoveIt gives them to FCL: a body built from primitive solids (Body::primitives(): a URDF link of
        boxes, cylinders and spheres, a MoveIt scene's primitive) is one FCL object per solid, fcl::Box,
        fcl::Cylinder, fcl::Sphere or fcl::Cone, the true shape; any other body is one BVHModel<OBBRSS> of its
-       surface. meshgap answers the circumscribed meshes of those solids (README, "Primitives are circumscribed"),
-       so on a scene of primitives the two answer slightly different shapes: a state free for meshgap is free for
-       FCL; a distance of meshgap's is at most FCL's. With \e primitives false every body is the BVHModel of its
-       surface: the same triangles as meshgap's.
+       surface. meshgap's exact queries answer those solids as the shapes they are too (refineExact(), 5), so the
+       two answer the same shapes (FCL's GJK to its tolerance). With \e primitives false every body is the
+       BVHModel of its surface: the same triangles as meshgap's.
 
        Thread-safe: the obstacles' manager is only read by queries; each query borrows a robot manager of its own
        from a pool (one per thread that queries at once), so threads never share one.

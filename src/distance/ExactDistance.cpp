@@ -8,6 +8,7 @@
 #include "meshgap/distance/HillClimb.h"
 #include "meshgap/distance/PenetrationDepth.h"
 #include "meshgap/geometry/TriangleDistance.h"
+#include "SolidPairs.h"
 
 namespace meshgap
 {
@@ -166,36 +167,55 @@ namespace meshgap
 
     bool inCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, ExactWarmStart *warm)
     {
+        if (solids::answered(a, b))
+            return solids::touch(a, b, X_AB) || solids::inside(a, b, X_AB);
         const bool touching =
             warm ? bvhCollide(a.bvh(), b.bvh(), X_AB, warm->collision) : bvhCollide(a.bvh(), b.bvh(), X_AB);
         return touching || oneInsideTheOther(a, b, X_AB);
     }
 
-    void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
-                     const DistanceRequest &request, ExactWarmStart *warm)
+    namespace
     {
-        const double stopBelow = request.stopBelow, upperBound = request.upperBound;
-        result.nodeDistance = result.distance;
-        result.openBody = !a.isClosed() || !b.isClosed();
-        TriangleCandidate best;
-        if (warm && warm->valid && warm->triangleA < a.surface().triangles.size() &&
-            warm->triangleB < b.surface().triangles.size())
+        /** \brief The closest pair of parts as the solids they are (solids::nearest()), seeded by the warm start's
+            last pair; into \e best, \e exhausted. */
+        void nearestSolids(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, const DistanceRequest &request,
+                           const ExactWarmStart *warm, TriangleCandidate &best, bool &exhausted, DistanceResult &result)
         {
-            // The last closest pair: one test, and most often still the closest pair (or near it).
-            consider(a, b, X_AB, warm->triangleA, warm->triangleB, best, result.triangleTests);
+            const bool seeded = warm && warm->valid;
+            const solids::Nearest n =
+                solids::nearest(a, b, X_AB, request.upperBound, request.stopBelow >= 0.0 ? request.stopBelow : 0.0,
+                                request.maxTests, seeded ? warm->triangleA : UINT32_MAX,
+                                seeded ? warm->triangleB : UINT32_MAX);
+            result.triangleTests += n.triangleTests;
+            result.boxTests += n.boxTests;
+            exhausted = n.exhausted;
+            if (n.d < request.upperBound)
+                best = {n.d, n.partA, n.partB, n.onA, n.onB};
         }
-        // A seed whose nodes are not below the caller's bound is not worth its descent: the traversal, pruned at the
-        // bound, is then cheaper than walking the surface towards a pair that most likely does not matter.
-        else if (result.distance < upperBound && result.nodes.a < a.numNodes() && result.nodes.b < b.numNodes())
-            best = seedFromNodes(a, b, X_AB, result.nodes, result.triangleTests);
 
-        // With an early stop, a seed at or below stopBelow is already the answer. Otherwise the traversal stops at
-        // the first pair at or below max(stopBelow, 0) (0: a touching pair, nothing can be closer).
-        const bool mayStop = stopBelow >= 0.0;
-        const bool verdictOnly = mayStop || !request.computeDepth;  // a collision gets no depth
-        bool exhausted = false;
-        if (!(mayStop && best.d <= stopBelow))
+        /** \brief The closest surface triangle pair: a seed (the warm start's pair, or the surface around the
+            result's node pair), then the BVH traversal below it (bvhDistance()); into \e best, \e exhausted. */
+        void nearestTriangles(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB,
+                              const DistanceRequest &request, ExactWarmStart *warm, TriangleCandidate &best,
+                              bool &exhausted, DistanceResult &result)
         {
+            const double stopBelow = request.stopBelow, upperBound = request.upperBound;
+            if (warm && warm->valid && warm->triangleA < a.surface().triangles.size() &&
+                warm->triangleB < b.surface().triangles.size())
+            {
+                // The last closest pair: one test, and most often still the closest pair (or near it).
+                consider(a, b, X_AB, warm->triangleA, warm->triangleB, best, result.triangleTests);
+            }
+            // A seed whose nodes are not below the caller's bound is not worth its descent: the traversal, pruned at
+            // the bound, is then cheaper than walking the surface towards a pair that most likely does not matter.
+            else if (result.distance < upperBound && result.nodes.a < a.numNodes() && result.nodes.b < b.numNodes())
+                best = seedFromNodes(a, b, X_AB, result.nodes, result.triangleTests);
+
+            // With an early stop, a seed at or below stopBelow is already the answer. Otherwise the traversal stops
+            // at the first pair at or below max(stopBelow, 0) (0: a touching pair, nothing can be closer).
+            const bool mayStop = stopBelow >= 0.0;
+            if (mayStop && best.d <= stopBelow)
+                return;
             BvhDistanceResult traversal;
             const bool seeded = std::isfinite(best.d);
             // A seed that is the starting bound, apart, is not tested again: its distance and direction are known.
@@ -211,6 +231,25 @@ namespace meshgap
             if (traversal.found)
                 best = {traversal.distance, traversal.triangleA, traversal.triangleB, traversal.onA, traversal.onB};
         }
+    }  // namespace
+
+    void refineExact(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, DistanceResult &result,
+                     const DistanceRequest &request, ExactWarmStart *warm)
+    {
+        const double stopBelow = request.stopBelow, upperBound = request.upperBound;
+        result.nodeDistance = result.distance;
+        result.openBody = !a.isClosed() || !b.isClosed();
+        const bool mayStop = stopBelow >= 0.0;
+        const bool verdictOnly = mayStop || !request.computeDepth;  // a collision gets no depth
+        const bool solid = solids::answered(a, b);
+        TriangleCandidate best;
+        bool exhausted = false;
+        if (solid)
+            nearestSolids(a, b, X_AB, request, warm, best, exhausted, result);
+        else
+            nearestTriangles(a, b, X_AB, request, warm, best, exhausted, result);
+        // A part of one body inside the other, when no part touches.
+        auto inside = [&] { return solid ? solids::inside(a, b, X_AB) : oneInsideTheOther(a, b, X_AB); };
         if (a.surface().triangles.empty() || b.surface().triangles.empty())
             throw Exception("exact distance", "a body has no triangles");
         if (!(best.d < upperBound))
@@ -219,7 +258,7 @@ namespace meshgap
             // report. A part of one body may still lie inside the other.
             result.distance = std::numeric_limits<double>::infinity();
             result.certified = !exhausted;
-            result.inCollision = oneInsideTheOther(a, b, X_AB);
+            result.inCollision = inside();
             finishCollision(a, b, X_AB, verdictOnly, result, warm);
             return;
         }
@@ -241,7 +280,7 @@ namespace meshgap
         const bool stoppedEarly = mayStop && best.d <= stopBelow && !result.inCollision;
         result.certified = !stoppedEarly && (!exhausted || result.inCollision);
         if (!result.inCollision && !stoppedEarly)
-            result.inCollision = oneInsideTheOther(a, b, X_AB);  // the witnesses stay the closest surface points
+            result.inCollision = inside();  // the witnesses stay the closest surface points
         finishCollision(a, b, X_AB, verdictOnly, result, warm);
     }
 

@@ -1,4 +1,5 @@
 #include "meshgap/geometry/Body.h"
+#include "meshgap/geometry/PrimitiveDistance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,6 +36,8 @@ namespace meshgap
 
     BodyPtr Body::build(Mesh mesh, std::vector<Primitive> primitives, const BodyOptions &options)
     {
+        for (const Primitive &p : primitives)
+            checkPrimitive(p);
         BodyPtr body = build(std::move(mesh), options);
         body->primitives_ = std::move(primitives);
         return body;

@@ -599,9 +599,10 @@ namespace meshgap
                 continue;  // a frame only
             // Adjacent links touch by design: a new link is allowed with its nearest ancestor that has geometry.
             const std::size_t owner = f == 0 ? RobotModel::NONE : robot.ownerLink(robot.frames()[f].parent);
-            const std::size_t link =
-                robot.addLink(name, Body::build(std::move(mesh), std::move(primitives), options.body), f,
-                              Eigen::Isometry3d::Identity(), false);
+            if (!options.solids)
+                primitives.clear();
+            BodyPtr body = Body::build(std::move(mesh), std::move(primitives), options.body);
+            const std::size_t link = robot.addLink(name, body, f, Eigen::Isometry3d::Identity(), false);
             if (owner != RobotModel::NONE)
                 robot.allowCollision(owner, link);
         }

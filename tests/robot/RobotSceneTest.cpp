@@ -301,8 +301,10 @@ namespace meshgap
 #ifndef MESHGAP_HAVE_FCL
         GTEST_SKIP() << "FCL not found: no oracle";
 #else
-        const UrdfRobotPtr robot =
-            UrdfRobot::load(std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/meshgap_test_description/urdf/tree.urdf");
+        UrdfOptions options;
+        options.solids = false;  // the oracle is FCL on the same triangles
+        const UrdfRobotPtr robot = UrdfRobot::load(
+            std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/meshgap_test_description/urdf/tree.urdf", options);
         Mesh payload = cShape(0.1);
         robot->attach("payload", payload, "tool", test::translation(0.0, 0.0, 0.05));
         const std::vector<std::vector<double>> states = randomJointStates(*robot, test::scaled(300, 100), 5);

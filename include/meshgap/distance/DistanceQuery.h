@@ -113,7 +113,9 @@ namespace meshgap
             and is 0 when there is none (distance CONTACT_DISTANCE; penetration NO_NODE_INSIDE, or OPEN_BODIES when
             both are open). Between two closed bodies it is false and nothing above applies. */
         bool openBody{false};
-        std::uint32_t triangleA{0}, triangleB{0};  ///< closest surface triangles (Body::surface() indices)
+        /** \brief Closest surface triangles (Body::surface() indices); for a body answered as its primitive solids
+            (Body::primitives()), by an exact query, the index of its closest solid. */
+        std::uint32_t triangleA{0}, triangleB{0};
         std::size_t triangleTests{0};              ///< exact triangle-pair (and point-triangle) tests made
         std::size_t boxTests{0};                   ///< bounding-volume pairs tested by the distance traversal
         /** \brief Best value after each iteration, when DistanceRequest::recordHistory is set. */

@@ -48,6 +48,15 @@ namespace meshgap
            seed (a pure function of the pose).
         4. Open bodies: openBody is set when either body is not closed (DistanceResult::openBody says what the
            answer then means).
+        5. Primitive solids: a body built from primitives (Body::primitives(), a URDF link of boxes, cylinders and
+           spheres, a MoveIt primitive) is answered as its solids, not its circumscribed mesh: steps 1 and 2 become
+           the other body's triangle BVH traversed against each solid (bvhSolidDistance(), leaves by
+           primitiveTriangleGap()), or every solid against every solid (primitiveGap()) when both bodies are solids;
+           the distance is then a lower bound of the solids', exact for
+           the closed forms, GJK's certified lower bound for cylinders and cones), and a collision is the solids'
+           (touching, or a solid inside the other, closed, mesh: one point of it decides). triangleA / triangleB
+           name the closest solid on a body of solids. In collision the depth is still that of the meshes
+           (penetrationDepth() reads the node layer): the circumscribed mesh's, which may exceed the solid's.
 
         Overwrites distance, onA/onB, triangleA/B, certified, inCollision, penetrationDepth, penetration, openBody,
         nodeDistance and adds to triangleTests; keeps nodes and the node-level counters.
@@ -73,7 +82,8 @@ namespace meshgap
                      const DistanceRequest &request = DistanceRequest(), ExactWarmStart *warm = nullptr);
 
     /** \brief Exact collision test alone: a touching or intersecting surface triangle pair (bvhCollide()), or one
-        closed body wholly inside the other. Cheaper than refineExact(); the same verdict. With \e warm, the
+        closed body wholly inside the other; for a body of primitive solids, its solids' contact (as refineExact(),
+        5). Cheaper than refineExact(); the same verdict. With \e warm, the
         surface test carries its front from the caller's last test (warm->collision, bvhCollide() with a front):
         the same verdict at a fraction of the cost along a run of nearby poses. */
     bool inCollision(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, ExactWarmStart *warm = nullptr);

@@ -6,9 +6,9 @@
 namespace meshgap
 {
     /** \brief A primitive solid as URDF and MoveIt name it (shape_msgs/SolidPrimitive): what a body's mesh was built
-        from when it was built from primitives (Body::primitives()). meshgap answers the body's mesh, which
-        circumscribes the solid (boxMesh(), cylinderMesh(), sphereMesh(), coneMesh()); a peer that answers
-        primitives as such (FCL, as MoveIt uses it) may take the solid itself. */
+        from when it was built from primitives (Body::primitives()), whose mesh circumscribes the solid (boxMesh(),
+        cylinderMesh(), sphereMesh(), coneMesh()). Exact distance and collision answer such a body as its solids
+        (PrimitiveDistance.h, BvhSolid.h); the node solvers and penetration depth read its mesh. */
     struct Primitive
     {
         enum class Kind
@@ -16,7 +16,8 @@ namespace meshgap
             BOX,       ///< edge lengths size.x(), size.y(), size.z(), centred on the origin
             SPHERE,    ///< radius size.x() about the origin
             CYLINDER,  ///< radius size.x(), length size.y(), about the z axis, centred on the origin
-            CONE       ///< base radius size.x() at z = -size.y() / 2, apex at z = +size.y() / 2
+            CONE,      ///< base radius size.x() at z = -size.y() / 2, apex at z = +size.y() / 2
+            CAPSULE    ///< the points within size.x() of the segment from z = -size.y() / 2 to +size.y() / 2 (FCL's)
         };
         Kind kind{Kind::BOX};
         /** \brief The dimensions, as \e kind reads them (unused entries 0). */

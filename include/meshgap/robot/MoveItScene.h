@@ -42,9 +42,9 @@ namespace meshgap
           mesh_poses, each pose within the object's own pose ("pose", identity when absent), in the frame of the
           object's header.frame_id: empty, a fixed_frame_transforms child frame (its transform applied) or a link of
           the robot (its pose at the scene's robot state). One obstacle body per primitive or mesh, named after its
-          object (RobotProblem::obstacleNames). Primitives are circumscribed meshes (cylinderMesh(), sphereMesh(),
-          coneMesh(); boxMesh() exact): a state free for them is free for the true shapes. Each such body keeps its
-          primitive as the solid it is, in the world frame (Body::primitives()).
+          object (RobotProblem::obstacleNames). Each primitive is a body of its circumscribed mesh (cylinderMesh(),
+          sphereMesh(), coneMesh(); boxMesh() exact) that keeps the primitive as the solid it is, in the world frame
+          (Body::primitives()): the exact queries answer the solid (refineExact(), 5), the node solvers the mesh.
         - allowed_collision_matrix: entry_names and entry_values (rows as lists of booleans, or {enabled: [...]});
           default_entry_names and default_entry_values (a name allowed against everything). An allowed pair of two
           links is never checked (as the SRDF's disable_collisions, which are honoured too); of a link and an object,

@@ -21,6 +21,10 @@ namespace meshgap
         bool floatingBase{false};
         /** \brief Facets around a cylinder and a sphere (cylinderMesh(), sphereMesh()). */
         unsigned int segments{32};
+        /** \brief A link of boxes, cylinders and spheres keeps them as solids (Body::primitives()), which the exact
+            queries answer as the shapes they are (refineExact(), 5); false: its circumscribed mesh alone (what an
+            oracle on the same triangles, FCL's BVHModel, answers). */
+        bool solids{true};
         /** \brief How each link's mesh becomes a body. */
         BodyOptions body;
     };

@@ -1,0 +1,150 @@
+#include "meshgap/geometry/BvhSolid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "BvhDetail.h"
+#include "meshgap/geometry/PrimitiveDistance.h"
+#include "meshgap/geometry/TriangleBvh.h"
+#include "meshgap/geometry/TriangleDistance.h"
+
+namespace meshgap
+{
+    namespace
+    {
+        /** \brief A node still to open and the lower bound of its distance to the solid. */
+        struct Open
+        {
+            std::uint32_t node;
+            double bound;
+        };
+
+        /** \brief Lower bound of the distance between anything in node \e n's box and the ball (\e c, \e r). */
+        double nodeBound(const TriangleBvh::Node &n, const Eigen::Vector3d &c, double r)
+        {
+            const double sphere = (c - n.center).norm() - n.radius - r;
+            const Eigen::Vector3d outside = (n.local(c).cwiseAbs() - n.half).cwiseMax(0.0);
+            return std::max(sphere, outside.norm() - r) * (1.0 - 1e-12);
+        }
+
+        /** \brief The traversal: depth first, nearer child first, pruning above the best distance so far. */
+        class SolidTraversal
+        {
+        public:
+            SolidTraversal(const TriangleBvh &mesh, const Primitive &s, const Eigen::Isometry3d &X,
+                           double stopBelow, BvhSolidResult &result, std::size_t budget)
+                : mesh_(mesh), s_(s), X_(X), stopBelow_(stopBelow), result_(result), budget_(budget)
+            {
+                double radius;
+                Eigen::Vector3d centre;
+                primitiveBoundingBall(s, centre, radius);
+                centre_ = X * centre;
+                radius_ = radius;
+            }
+
+            /** \brief Test triangle \e t; true when it became the best. */
+            bool test(std::uint32_t t)
+            {
+                const Mesh &m = mesh_.mesh();
+                const Triangle &f = m.triangles[t];
+                const Eigen::Vector3d &a = m.vertices[f[0]], &b = m.vertices[f[1]], &c = m.vertices[f[2]];
+                Eigen::Vector3d on;
+                // The ball holding the solid first: a triangle farther from its centre than the best plus the radius
+                // cannot win.
+                if (result_.found || std::isfinite(result_.distance))
+                    if (pointTriangleDistance(centre_, a, b, c, on) * (1.0 - 1e-12) - radius_ > result_.distance)
+                        return false;
+                ++result_.triangleTests;
+                const SolidGap g = primitiveTriangleGap(s_, X_, a, b, c, result_.distance);
+                const bool wins = g.distance < result_.distance ||
+                                  (result_.found && g.distance == result_.distance && t < result_.triangle);
+                if (!wins)
+                    return false;
+                result_.distance = g.distance;
+                result_.found = true;
+                result_.triangle = t;
+                result_.onSolid = g.onA;
+                result_.onMesh = g.onB;
+                return true;
+            }
+
+            void run()
+            {
+                std::vector<Open> &stack = bvh::threadStack<Open, 7>();
+                const TriangleBvh::Node *nodes = mesh_.nodes().data();
+                stack.push_back({0u, nodeBound(nodes[0], centre_, radius_)});
+                while (!stack.empty())
+                {
+                    const Open o = stack.back();
+                    stack.pop_back();
+                    if (done())
+                        return;
+                    if (o.bound > result_.distance)
+                        continue;
+                    const TriangleBvh::Node &n = nodes[o.node];
+                    if (n.isLeaf())
+                    {
+                        for (std::uint32_t i = n.first; i < n.first + n.count && !done(); ++i)
+                            test(mesh_.order()[i]);
+                        continue;
+                    }
+                    result_.boxTests += 2;
+                    Open l{n.first, nodeBound(nodes[n.first], centre_, radius_)};
+                    Open r{n.first + 1, nodeBound(nodes[n.first + 1], centre_, radius_)};
+                    if (l.bound < r.bound)
+                        std::swap(l, r);  // the nearer one on top
+                    stack.push_back(l);
+                    stack.push_back(r);
+                }
+            }
+
+        private:
+            /** \brief The early stop reached, or the budget spent (then exhausted). */
+            bool done()
+            {
+                if (result_.found && result_.distance <= stopBelow_)
+                    return true;
+                if (budget_ > 0 && result_.boxTests + result_.triangleTests >= budget_)
+                    return (result_.exhausted = true);
+                return false;
+            }
+
+            const TriangleBvh &mesh_;
+            const Primitive &s_;
+            const Eigen::Isometry3d &X_;
+            const double stopBelow_;
+            BvhSolidResult &result_;
+            const std::size_t budget_;
+            Eigen::Vector3d centre_;
+            double radius_{0.0};
+        };
+    }  // namespace
+
+    void bvhSolidDistance(const TriangleBvh &mesh, const Primitive &s, const Eigen::Isometry3d &X_MS,
+                          double upperBound, double stopBelow, BvhSolidResult &result, std::uint32_t seed,
+                          std::size_t budget)
+    {
+        result.distance = upperBound;
+        result.found = false;
+        if (mesh.nodes().empty())
+            return;
+        SolidTraversal traversal(mesh, s, X_MS, stopBelow, result, budget);
+        if (seed < mesh.mesh().triangles.size())
+            traversal.test(seed);
+        traversal.run();
+    }
+
+    bool bvhSolidCollide(const TriangleBvh &mesh, const Primitive &s, const Eigen::Isometry3d &X_MS,
+                         std::uint32_t *hit)
+    {
+        // Only a touching triangle counts: the bound is the least positive number (a node or triangle proven apart
+        // by any gap is pruned), the search ends at the first distance 0.
+        BvhSolidResult r;
+        bvhSolidDistance(mesh, s, X_MS, std::numeric_limits<double>::min(), 0.0, r);
+        if (r.found && hit)
+            *hit = r.triangle;
+        return r.found;
+    }
+}  // namespace meshgap
