@@ -24,6 +24,7 @@
 #include <fcl/fcl.h>
 
 #include "FclOracle.h"
+#include "FclRobotScene.h"
 #endif
 
 using namespace meshgap;
@@ -61,24 +62,6 @@ namespace
     }
 
 #ifdef MESHGAP_HAVE_FCL
-    std::shared_ptr<fcl::CollisionGeometryd> fclShape(const Primitive &p)
-    {
-        switch (p.kind)
-        {
-            case Primitive::Kind::BOX:
-                return std::make_shared<fcl::Boxd>(p.size.x(), p.size.y(), p.size.z());
-            case Primitive::Kind::SPHERE:
-                return std::make_shared<fcl::Sphered>(p.size.x());
-            case Primitive::Kind::CYLINDER:
-                return std::make_shared<fcl::Cylinderd>(p.size.x(), p.size.y());
-            case Primitive::Kind::CONE:
-                return std::make_shared<fcl::Coned>(p.size.x(), p.size.y());
-            case Primitive::Kind::CAPSULE:
-                return std::make_shared<fcl::Capsuled>(p.size.x(), p.size.y());
-        }
-        return nullptr;
-    }
-
     double fclDistance(const fcl::CollisionObjectd &a, const fcl::CollisionObjectd &b)
     {
         fcl::DistanceRequestd request;
@@ -115,7 +98,7 @@ namespace
         std::string fcl = "n/a | n/a | n/a";
 #ifdef MESHGAP_HAVE_FCL
         const fcl::CollisionObjectd mesh(test::fclModel(bvh.mesh()), fcl::Transform3d::Identity());
-        const auto shape = fclShape(p);
+        const auto shape = fclSolidOf(p);
         std::size_t k = 0;
         double worst = 0.0;
         const double tFcl = microseconds(poses,
@@ -154,8 +137,8 @@ namespace
         sink += static_cast<double>(hits);
         std::string fcl = "n/a | n/a | n/a";
 #ifdef MESHGAP_HAVE_FCL
-        const fcl::CollisionObjectd oa(fclShape(a), fcl::Transform3d::Identity());
-        const auto shape = fclShape(b);
+        const fcl::CollisionObjectd oa(fclSolidOf(a), fcl::Transform3d::Identity());
+        const auto shape = fclSolidOf(b);
         std::size_t k = 0;
         double worst = 0.0;
         const double tFcl = microseconds(poses,

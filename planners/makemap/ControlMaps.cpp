@@ -12,6 +12,7 @@
 #include "meshgap/Exception.h"
 #include <ompl/base/goals/GoalState.h>
 
+#include "meshgap/mesh/MeshOperations.h"
 #include "meshgap/ompl/ProblemSetup.h"
 #include "support/MeshWriter.h"
 #include "support/Shapes.h"
@@ -24,38 +25,6 @@ namespace meshgap
     {
         namespace
         {
-            void writeFile(const fs::path &path, const std::string &text)
-            {
-                std::ofstream out(path);
-                out << text;
-                if (!out)
-                    throw Exception(path.string(), "cannot write the file");
-            }
-
-            /** \brief A box between corners \e lo and \e hi, one grid cell per \e h. */
-            Mesh boxFrom(const Vector3d &lo, const Vector3d &hi, double h)
-            {
-                return posed(makeBox(hi - lo, h), pose(0.5 * (lo + hi)));
-            }
-
-            /** \brief Meshes merged into one (disjoint closed components). */
-            Mesh merged(const std::vector<Mesh> &parts)
-            {
-                Mesh all;
-                for (const Mesh &part : parts)
-                {
-                    const auto base = static_cast<std::uint32_t>(all.vertices.size());
-                    all.vertices.insert(all.vertices.end(), part.vertices.begin(), part.vertices.end());
-                    for (Triangle t : part.triangles)
-                    {
-                        for (auto &v : t)
-                            v += base;
-                        all.triangles.push_back(t);
-                    }
-                }
-                return all;
-            }
-
             /** \brief A wall across the hall, x in [-0.15, 0.15], y in [-3, 3], z in [0, 4], with a window
                 y in [-1, 1], z in [\e low, \e high]: drawn in (y, z), extruded along x. */
             Mesh wallWithWindow(double low, double high)
@@ -91,11 +60,12 @@ namespace meshgap
         {
             fs::create_directories(directory);
             // Two walls across the yard, the first open at the top, the second at the bottom: the car drives an S.
-            writeObj(merged({boxFrom(Vector3d(-1.65, -4.0, -0.5), Vector3d(-1.35, 1.0, 0.5), 1.0),
-                             boxFrom(Vector3d(1.35, -1.0, -0.5), Vector3d(1.65, 4.0, 0.5), 1.0)}),
+            writeObj(mergeMeshes({boxBetween(Vector3d(-1.65, -4.0, -0.5), Vector3d(-1.35, 1.0, 0.5), 1.0),
+                                  boxBetween(Vector3d(1.35, -1.0, -0.5), Vector3d(1.65, 4.0, 0.5), 1.0)},
+                                 ""),
                      (directory / "car_chicane_world.obj").string());
             writeObj(makeBox(Vector3d(1.0, 0.5, 0.3), 0.5), (directory / "car_chicane_robot.obj").string());
-            writeFile(directory / "car_chicane.cfg",
+            writeText(directory / "car_chicane.cfg",
                       std::string("[problem]\nname = car_chicane\nrobot = car_chicane_robot.obj\n"
                                   "world = car_chicane_world.obj\ncontrol = kinematic_car\n"
                                   "start.x = -4.5\nstart.y = 0\nstart.theta = 0\n"
@@ -112,7 +82,7 @@ namespace meshgap
             writeObj(wallWithWindow(2.0, 3.2), (directory / "blimp_window_world.obj").string());
             writeObj(makeCapsule(Vector3d(-0.3, 0, 0), Vector3d(0.3, 0, 0), 0.18, 8, 2, 0.2),
                      (directory / "blimp_window_robot.obj").string());
-            writeFile(directory / "blimp_window.cfg",
+            writeText(directory / "blimp_window.cfg",
                       std::string("[problem]\nname = blimp_window\nrobot = blimp_window_robot.obj\n"
                                   "world = blimp_window_world.obj\ncontrol = blimp\n"
                                   "start.x = -3\nstart.y = 0\nstart.z = 1\n"
@@ -131,9 +101,9 @@ namespace meshgap
             writeObj(wallWithWindow(1.5, 3.0), (directory / "quadrotor_window_world.obj").string());
             // A flat cross of two arms; OMPL.app's quadrotor thrusts along its body's -z, so it flies upside down
             // (turned by pi about x), which the symmetric cross does not show.
-            writeObj(merged({makeBox(Vector3d(0.6, 0.1, 0.06), 0.2), makeBox(Vector3d(0.1, 0.6, 0.06), 0.2)}),
+            writeObj(mergeMeshes({makeBox(Vector3d(0.6, 0.1, 0.06), 0.2), makeBox(Vector3d(0.1, 0.6, 0.06), 0.2)}, ""),
                      (directory / "quadrotor_window_robot.obj").string());
-            writeFile(directory / "quadrotor_window.cfg",
+            writeText(directory / "quadrotor_window.cfg",
                       std::string("[problem]\nname = quadrotor_window\nrobot = quadrotor_window_robot.obj\n"
                                   "world = quadrotor_window_world.obj\ncontrol = quadrotor\n"
                                   "start.x = -3\nstart.y = 0\nstart.z = 2\n"

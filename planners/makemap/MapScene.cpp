@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "meshgap/AtomicFile.h"
 #include "meshgap/Exception.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/mesh/MeshOperations.h"
@@ -68,6 +69,16 @@ namespace meshgap
             Mesh m = body;
             meshgap::transformMesh(m, X);
             return m;
+        }
+
+        Mesh boxBetween(const Vector3d &lo, const Vector3d &hi, double h)
+        {
+            return posed(makeBox(hi - lo, h), pose(0.5 * (lo + hi)));
+        }
+
+        void writeText(const std::filesystem::path &path, const std::string &text)
+        {
+            writeStreamAtomically(path.string(), [&text](std::ostream &out) { out << text; });
         }
 
         /** \brief A mesh as a body for exact queries: its surface kept as it is (no refinement), so triangle indices

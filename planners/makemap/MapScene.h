@@ -74,6 +74,12 @@ namespace meshgap
         /** \brief \e body moved by \e X. */
         Mesh posed(const Mesh &body, const Eigen::Isometry3d &X);
 
+        /** \brief A box between corners \e lo and \e hi, one grid cell per \e h. */
+        Mesh boxBetween(const Vector3d &lo, const Vector3d &hi, double h);
+
+        /** \brief \e text written to \e path (a .cfg, a URDF) whole or not at all (writeStreamAtomically()). */
+        void writeText(const std::filesystem::path &path, const std::string &text);
+
         /** \brief A mesh as a body for exact queries: its surface kept as it is (no refinement), so triangle indices
             in a DistanceResult are the mesh's own. */
         BodyPtr exactBody(const Mesh &mesh);

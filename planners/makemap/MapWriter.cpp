@@ -33,11 +33,6 @@ namespace meshgap
                 return buffer;
             }
 
-            void writeText(const std::filesystem::path &path, const std::string &text)
-            {
-                writeStreamAtomically(path.string(), [&](std::ostream &out) { out << text; });
-            }
-
             std::size_t closedEdgeFaults(const Mesh &m)
             {
                 std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;

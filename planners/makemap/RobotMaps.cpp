@@ -25,38 +25,6 @@ namespace meshgap
     {
         namespace
         {
-            void writeText(const fs::path &path, const std::string &text)
-            {
-                std::ofstream out(path);
-                out << text;
-                if (!out)
-                    throw Exception(path.string(), "cannot write the file");
-            }
-
-            /** \brief A box between corners \e lo and \e hi, coarse (one grid cell per \e h). */
-            Mesh boxBetween(const Vector3d &lo, const Vector3d &hi, double h)
-            {
-                return posed(makeBox(hi - lo, h), pose(0.5 * (lo + hi)));
-            }
-
-            /** \brief Parts merged into one mesh (disjoint closed components). */
-            Mesh mergedParts(const std::vector<Mesh> &parts)
-            {
-                Mesh all;
-                for (const Mesh &part : parts)
-                {
-                    const auto base = static_cast<std::uint32_t>(all.vertices.size());
-                    all.vertices.insert(all.vertices.end(), part.vertices.begin(), part.vertices.end());
-                    for (Triangle t : part.triangles)
-                    {
-                        for (auto &v : t)
-                            v += base;
-                        all.triangles.push_back(t);
-                    }
-                }
-                return all;
-            }
-
             /** \brief Read the problem back: its start and goal must be free; print their exact clearance. */
             void checkProblem(const fs::path &cfg)
             {
@@ -197,7 +165,7 @@ namespace meshgap
                     wall.transform(X);
                     parts.push_back(wall.mesh(uniformSizing(h), "wall"));
                 }
-                writeObj(mergedParts(parts), (directory / (name + "_world.obj")).string());
+                writeObj(mergeMeshes(parts, ""), (directory / (name + "_world.obj")).string());
                 writeObj(lShape(0.6, 0.2, planar ? 0.2 : 0.3, 0.2), (directory / (name + "_robot.obj")).string());
                 const Vector3d a(-3.3, -1.2, 1.0), b(3.3, 1.2, 1.0);
                 std::ostringstream cfg;

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "FclOracle.h"
+#include "FclRobotScene.h"
 #include "TestMeshes.h"
 #include "meshgap/geometry/BvhSolid.h"
 #include "meshgap/geometry/PrimitiveDistance.h"
@@ -25,24 +26,6 @@ namespace
     /** \brief How far FCL's GJK (GST_INDEP, distance tolerance 1e-10) may be off: measured at most about 1e-9 on
         these poses; a margin of a hundred. */
     constexpr double FCL_TOLERANCE = 1e-7;
-
-    std::shared_ptr<fcl::CollisionGeometryd> fclShape(const Primitive &p)
-    {
-        switch (p.kind)
-        {
-            case Primitive::Kind::BOX:
-                return std::make_shared<fcl::Boxd>(p.size.x(), p.size.y(), p.size.z());
-            case Primitive::Kind::SPHERE:
-                return std::make_shared<fcl::Sphered>(p.size.x());
-            case Primitive::Kind::CYLINDER:
-                return std::make_shared<fcl::Cylinderd>(p.size.x(), p.size.y());
-            case Primitive::Kind::CONE:
-                return std::make_shared<fcl::Coned>(p.size.x(), p.size.y());
-            case Primitive::Kind::CAPSULE:
-                return std::make_shared<fcl::Capsuled>(p.size.x(), p.size.y());
-        }
-        return nullptr;
-    }
 
     std::vector<Primitive> shapes()
     {
@@ -142,7 +125,7 @@ TEST(PrimitiveFclTest, EachSolidAgainstATriangleMeshAgreesWithFcl)
     Tally tally;
     for (const Primitive &p : shapes())
     {
-        const auto shape = fclShape(p);
+        const auto shape = fclSolidOf(p);
         for (int trial = 0; trial < 10000; ++trial)
         {
             const Isometry3d X = test::randomPose(static_cast<std::uint32_t>(rng()), 1.3);
@@ -178,7 +161,7 @@ TEST(PrimitiveFclTest, SolidPairsAgreeWithFcl)
     for (std::size_t i = 0; i < all.size(); ++i)
         for (std::size_t j = i; j < all.size(); ++j)
         {
-            const auto a = fclShape(all[i]), b = fclShape(all[j]);
+            const auto a = fclSolidOf(all[i]), b = fclSolidOf(all[j]);
             for (int trial = 0; trial < 10000 / 15 + 1; ++trial)
             {
                 const Isometry3d Xa = test::randomPose(static_cast<std::uint32_t>(rng()), 0.6);
