@@ -112,13 +112,8 @@ TEST(ClearanceMotionValidator, TheAdvanceQueryGivesTheFullQuerysVerdictAndFreeCl
     int colliding = 0, free = 0;
     for (int i = 0; i < 300; ++i)
     {
-        const Eigen::Isometry3d X = test::randomPose(500 + i, 1.6);  // seeded: the same states in any test order
-        const Eigen::Quaterniond q(X.linear());
-        s->setXYZ(X.translation().x(), X.translation().y(), X.translation().z());
-        s->rotation().x = q.x();
-        s->rotation().y = q.y();
-        s->rotation().z = q.z();
-        s->rotation().w = q.w();
+        // Seeded: the same states in any test order.
+        stateFromPose(*space, test::randomPose(500 + i, 1.6), s.get());
         const SceneResult full = checker->query(s.get()), quick = checker->query(s.get(), verdict);
         ASSERT_EQ(quick.inCollision, full.inCollision) << i;
         if (full.inCollision)

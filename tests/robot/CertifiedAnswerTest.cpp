@@ -129,6 +129,22 @@ namespace meshgap
             coarse->setStateValidityCheckingResolution(kept);
             return found;
         }
+
+        /** \brief After a certify() that refused the one motion a-b and repaired it: the path still runs from a to b,
+            every motion accepted by the certified validator and free at steps of 1e-4 rad. */
+        void expectRepaired(const ArmSetup &arm, const PathCertifier &certifier, const og::PathGeometric &path,
+                            const ob::State *a, const ob::State *b)
+        {
+            EXPECT_EQ(certifier.lastStats().refused, 1u);
+            EXPECT_EQ(certifier.lastStats().repaired, 1u);
+            ASSERT_GE(path.getStateCount(), 3u);
+            EXPECT_EQ(certifier.lastStats().inserted, path.getStateCount() - 2);
+            EXPECT_EQ(arm.si->distance(path.getState(0), a), 0.0);
+            EXPECT_EQ(arm.si->distance(path.getState(path.getStateCount() - 1), b), 0.0);
+            for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i)
+                EXPECT_TRUE(arm.si->checkMotion(path.getState(i), path.getState(i + 1))) << "motion " << i;
+            EXPECT_EQ(densePathCollisions(arm, path), 0u);
+        }
     }  // namespace
 
     TEST(PathCertifier, ReplansAMotionTheSampledCheckLetsThroughIntoCertifiedMotions)
@@ -153,15 +169,7 @@ namespace meshgap
         certifier.setRepairIterations(20000);
         ASSERT_TRUE(certifier.certify(path, ob::plannerNonTerminatingCondition()));
         EXPECT_EQ(certifier.lastStats().motions, 1u);
-        EXPECT_EQ(certifier.lastStats().refused, 1u);
-        EXPECT_EQ(certifier.lastStats().repaired, 1u);
-        ASSERT_GE(path.getStateCount(), 3u);
-        EXPECT_EQ(certifier.lastStats().inserted, path.getStateCount() - 2);
-        EXPECT_EQ(arm.si->distance(path.getState(0), a), 0.0);
-        EXPECT_EQ(arm.si->distance(path.getState(path.getStateCount() - 1), b), 0.0);
-        for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i)
-            EXPECT_TRUE(arm.si->checkMotion(path.getState(i), path.getState(i + 1))) << "motion " << i;
-        EXPECT_EQ(densePathCollisions(arm, path), 0u);
+        expectRepaired(arm, certifier, path, a, b);
         test::Note() << "a motion the sampled check at 5 % misses, replanned into " << path.getStateCount() - 1
                      << " certified motions";
         arm.si->freeState(a);
@@ -224,15 +232,7 @@ namespace meshgap
             og::PathGeometric path(arm.si, a, b);
             seed(3);
             ASSERT_TRUE(certifier.certify(path, ob::plannerNonTerminatingCondition()));
-            EXPECT_EQ(certifier.lastStats().refused, 1u);
-            EXPECT_EQ(certifier.lastStats().repaired, 1u);
-            ASSERT_GE(path.getStateCount(), 3u);
-            EXPECT_EQ(certifier.lastStats().inserted, path.getStateCount() - 2);
-            EXPECT_EQ(arm.si->distance(path.getState(0), a), 0.0);
-            EXPECT_EQ(arm.si->distance(path.getState(path.getStateCount() - 1), b), 0.0);
-            for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i)
-                EXPECT_TRUE(arm.si->checkMotion(path.getState(i), path.getState(i + 1))) << "motion " << i;
-            EXPECT_EQ(densePathCollisions(arm, path), 0u);
+            expectRepaired(arm, certifier, path, a, b);
         }
     }  // namespace
 
