@@ -9,7 +9,7 @@ namespace meshgap
 {
     ClearanceMotionValidator::ClearanceMotionValidator(const ompl::base::SpaceInformationPtr &si,
                                                        ClearanceCheckerPtr checker)
-      : ompl::base::MotionValidator(si), checker_(std::move(checker))
+      : ompl::base::MotionValidator(si), checker_(std::move(checker)), states_(si->getStateSpace())
     {
         if (!checker_)
             throw Exception("ClearanceMotionValidator", "no checker");
@@ -25,7 +25,8 @@ namespace meshgap
         lastFree = 0.0;
         if (sweep == 0.0)
             return true;  // s2 == s1 in pose
-        ompl::base::State *state = si_->allocState();
+        const StatePool::Lease lease(states_);
+        ompl::base::State *state = lease.get();
         double f = 0.0;
         bool reached = false;
         SceneRequest request;
@@ -50,7 +51,6 @@ namespace meshgap
                 break;  // grazing: refuse rather than creep (the motion is reported invalid from here)
             f += step;
         }
-        si_->freeState(state);
         return reached;
     }
 
@@ -62,7 +62,8 @@ namespace meshgap
         const unsigned n = std::min(space.validSegmentCount(s1, s2), PROBE_SEGMENTS);
         if (n < 2)
             return false;
-        ompl::base::State *state = si_->allocState();
+        const StatePool::Lease lease(states_);
+        ompl::base::State *state = lease.get();
         bool collides = false;
         // The middle first, then the others of the n - 1 states at k / n.
         const unsigned middle = n / 2;
@@ -75,7 +76,6 @@ namespace meshgap
             counts_.add(PROBES, 1);
             collides = !checker_->isValid(state);
         }
-        si_->freeState(state);
         return collides;
     }
 

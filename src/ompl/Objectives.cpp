@@ -79,7 +79,7 @@ namespace meshgap
     }  // namespace
 
     MaxMinClearanceObjective::MaxMinClearanceObjective(const ompl::base::SpaceInformationPtr &si)
-      : ompl::base::MaximizeMinClearanceObjective(si)
+      : ompl::base::MaximizeMinClearanceObjective(si), states_(si->getStateSpace())
     {
     }
 
@@ -133,7 +133,8 @@ namespace meshgap
         const auto higher = [](const Gap &a, const Gap &b) { return a.bound > b.bound; };
         gaps.clear();
         gaps.push_back(makeGap(0, n, c1, c2, step));
-        ompl::base::State *state = si_->allocState();
+        const StatePool::Lease lease(states_);
+        ompl::base::State *state = lease.get();
         while (!gaps.empty() && gaps.front().bound < lowest)
         {
             std::pop_heap(gaps.begin(), gaps.end(), higher);
@@ -166,7 +167,6 @@ namespace meshgap
                 std::push_heap(gaps.begin(), gaps.end(), higher);
             }
         }
-        si_->freeState(state);
         return ompl::base::Cost(lowest);
     }
 

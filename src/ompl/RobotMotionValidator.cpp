@@ -12,7 +12,7 @@ namespace meshgap
 {
     RobotMotionValidator::RobotMotionValidator(const ompl::base::SpaceInformationPtr &si, RobotSceneConstPtr scene,
                                                const RobotModel &robot)
-        : ompl::base::MotionValidator(si), scene_(std::move(scene)), bound_(robot)
+        : ompl::base::MotionValidator(si), scene_(std::move(scene)), bound_(robot), states_(si->getStateSpace())
     {
         if (!scene_)
             throw Exception("RobotMotionValidator", "no robot scene");
@@ -87,7 +87,8 @@ namespace meshgap
         for (std::size_t k = 0; k < pairs; ++k)
             w.pending.push_back({k, 0});
         w.pieces.assign(1, Piece{0.0, 1.0, 0, pairs, 0});
-        ompl::base::State *middle = si_->allocState();
+        const StatePool::Lease lease(states_);
+        ompl::base::State *middle = lease.get();
         bool free = true;
         for (std::size_t head = 0; free && head < w.pieces.size(); ++head)
         {
@@ -117,7 +118,6 @@ namespace meshgap
             w.pieces.push_back({p.t0, t, start, left, p.depth + 1});
             w.pieces.push_back({t, p.t1, start, left, p.depth + 1});
         }
-        si_->freeState(middle);
         if (w.pieces.capacity() > KEPT_PIECES)
         {
             w.pieces = std::vector<Piece>();

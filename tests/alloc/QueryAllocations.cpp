@@ -1,13 +1,16 @@
 // No query path allocates once warmed up on a thread: Scene::distance() in every mode (certified cold and warm,
 // fast, collision-only, in collision with penetration depth, fast with on-demand mesh distances) and
-// Scene::inCollision(). This executable replaces the global operator new / new[] and malloc / calloc / realloc and
+// Scene::inCollision(), and ClearanceMotionValidator::checkMotion() with its checker. This executable replaces the global operator new / new[] and malloc / calloc / realloc and
 // counts, per thread, every allocation; each mode runs its queries once to warm up, then once more counted, and the
 // second pass must allocate nothing (and give the same answers). Not built under sanitizers (they replace the
 // allocator themselves).
 
 #include <gtest/gtest.h>
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
@@ -17,6 +20,7 @@
 
 #include "TestMeshes.h"
 #include "alloc/ThreadAllocations.h"
+#include "meshgap/ompl/ClearanceMotionValidator.h"
 #include "meshgap/scene/Scene.h"
 
 namespace meshgap
@@ -286,6 +290,48 @@ namespace meshgap
         {
             check(*onDemand_, exact(), true, false);
             check(*onDemand_, exact(), false, false);
+        }
+
+        TEST_F(QueryAllocations, CertifiedMotions)
+        {
+            namespace ob = ompl::base;
+            auto space = std::make_shared<ob::SE3StateSpace>();
+            ob::RealVectorBounds bounds(3);
+            bounds.setLow(-2.0);
+            bounds.setHigh(7.0);
+            space->setBounds(bounds);
+            const auto si = std::make_shared<ob::SpaceInformation>(space);
+            const auto checker = std::make_shared<ClearanceChecker>(si, dense_);
+            si->setStateValidityChecker(checker);
+            const auto validator = std::make_shared<ClearanceMotionValidator>(si, checker);
+            si->setMotionValidator(validator);
+            si->setup();
+            // Motions between the rows (free) and through the boxes (refused), each pose to the next. The checker's
+            // warm start is its own and carries over from pass to pass (its certificates grow to the largest front
+            // they hold), so the path runs a few times before the counted pass.
+            constexpr int PASSES = 4;
+            std::vector<Eigen::Isometry3d> poses = motion(0.5), through = motion(0.1);
+            poses.insert(poses.end(), through.begin(), through.end());
+            ob::State *a = si->allocState(), *b = si->allocState();
+            std::vector<bool> first, second;
+            std::size_t counted = 0;
+            for (int pass = 0; pass < PASSES; ++pass)
+                for (std::size_t k = 0; k + 1 < poses.size(); ++k)
+                {
+                    stateFromPose(*space, poses[k], a);
+                    stateFromPose(*space, poses[k + 1], b);
+                    const std::size_t before = test::threadAllocations();
+                    const bool free = validator->checkMotion(a, b);
+                    counted += pass == PASSES - 1 ? test::threadAllocations() - before : 0;
+                    if (pass == 0 || pass == PASSES - 1)
+                        (pass == 0 ? first : second).push_back(free);
+                }
+            si->freeState(a);
+            si->freeState(b);
+            EXPECT_EQ(first, second);
+            EXPECT_NE(std::count(second.begin(), second.end(), true), 0);
+            EXPECT_NE(std::count(second.begin(), second.end(), false), 0);
+            EXPECT_EQ(counted, 0u);
         }
     }  // namespace
 

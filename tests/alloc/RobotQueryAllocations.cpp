@@ -1,12 +1,14 @@
 // No whole-robot query allocates once warmed up on a thread: RobotScene::distance() (pruned, every pair, with an
 // early stop, in collision) and RobotScene::inCollision(), for a kinematic tree carrying a payload among obstacles,
-// along a joint-space path. The global allocation functions are replaced and counted per thread (as
+// along a joint-space path, and RobotMotionValidator::checkMotion() along its motions. The global allocation functions are replaced and counted per thread (as
 // QueryAllocations.cpp does); each mode runs the path once to warm up, then once more counted, and the second pass
 // must allocate nothing and give the same answers. Not built under sanitizers.
 
 #include <gtest/gtest.h>
+#include <ompl/base/SpaceInformation.h>
 #include <ompl/util/Console.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -14,6 +16,8 @@
 #include "TestMeshes.h"
 #include "robot/TestTree.h"
 #include "alloc/ThreadAllocations.h"
+#include "meshgap/ompl/RobotMotionValidator.h"
+#include "meshgap/ompl/RobotStateSpace.h"
 #include "meshgap/robot/RobotScene.h"
 #include "meshgap/robot/UrdfRobot.h"
 
@@ -116,6 +120,40 @@ namespace meshgap
             }
             EXPECT_EQ(counted, 0u);
             EXPECT_GT(collisions, 0u);
+        }
+
+        TEST_F(RobotQueryAllocations, MotionValidator)
+        {
+            namespace ob = ompl::base;
+            ob::RealVectorBounds bounds(3);
+            bounds.setLow(-1.0);
+            bounds.setHigh(1.0);
+            const auto si = std::make_shared<ob::SpaceInformation>(robotStateSpace(scene_->robot(), bounds));
+            si->setStateValidityChecker([](const ob::State *) { return true; });
+            const auto validator = std::make_shared<RobotMotionValidator>(si, scene_, scene_->robot());
+            si->setMotionValidator(validator);
+            si->setup();
+            const std::vector<std::vector<double>> states = path();
+            ob::State *a = si->allocState(), *b = si->allocState();
+            std::vector<bool> first, second;
+            std::size_t counted = 0;
+            for (int pass = 0; pass < 2; ++pass)
+                for (std::size_t k = 0; k + 3 < states.size(); k += 3)
+                {
+                    robotStateFromVector(*si->getStateSpace(), states[k], a);
+                    robotStateFromVector(*si->getStateSpace(), states[k + 3], b);
+                    const std::size_t before = test::threadAllocations();
+                    const bool free = validator->checkMotion(a, b);
+                    counted += pass == 1 ? test::threadAllocations() - before : 0;
+                    (pass == 0 ? first : second).push_back(free);
+                }
+            si->freeState(a);
+            si->freeState(b);
+            EXPECT_EQ(first, second);
+            // The path meets the posts: some motions are proven free, some refused.
+            EXPECT_NE(std::count(second.begin(), second.end(), true), 0);
+            EXPECT_NE(std::count(second.begin(), second.end(), false), 0);
+            EXPECT_EQ(counted, 0u);
         }
     }  // namespace
 }  // namespace meshgap

@@ -5,6 +5,7 @@
 
 #include "meshgap/ThreadCounters.h"
 #include "meshgap/ompl/ClearanceChecker.h"
+#include "meshgap/ompl/StatePool.h"
 
 namespace meshgap
 {
@@ -56,6 +57,7 @@ namespace meshgap
             PROBES,
             COUNTS
         };
+        mutable StatePool states_;  ///< the working state of each thread checking a motion
         mutable ThreadCounters<COUNTS> counts_;  ///< per thread: threads sharing the validator share no cache line
     };
 }  // namespace meshgap

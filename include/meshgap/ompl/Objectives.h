@@ -8,6 +8,7 @@
 
 #include "meshgap/ClassForward.h"
 #include "meshgap/ThreadCounters.h"
+#include "meshgap/ompl/StatePool.h"
 
 namespace meshgap
 {
@@ -91,6 +92,7 @@ namespace meshgap
             QUERIED,
             COUNTS
         };
+        mutable StatePool states_;  ///< the working state of each thread costing a motion
         mutable ThreadCounters<COUNTS> counts_;  ///< per thread: threads sharing the objective share no cache line
     };
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "meshgap/ompl/RobotChecker.h"
+#include "meshgap/ompl/StatePool.h"
 #include "meshgap/robot/MotionBound.h"
 
 namespace meshgap
@@ -61,6 +62,7 @@ namespace meshgap
         MotionBound bound_;
         /** \brief Per self pair, MotionBound::pairTerms(). */
         std::vector<std::pair<std::size_t, std::size_t>> pairTerms_;
+        mutable StatePool states_;  ///< the working state of each thread checking a motion
     };
 }  // namespace meshgap
 
