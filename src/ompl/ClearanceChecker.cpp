@@ -7,10 +7,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <unordered_map>
 
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
+#include "meshgap/ThreadInstances.h"
 #include "meshgap/distance/SolverFactory.h"
 
 namespace meshgap
@@ -89,28 +89,16 @@ namespace meshgap
 
     namespace
     {
-        std::atomic<std::uint64_t> nextCheckerId{1};
-
-        /** \brief A thread keeps the warm starts of its last few checkers: a warm start holds certificates (up to
-            megabytes on large meshes), and a benchmark makes a checker per run, so the oldest (the smallest id, a
-            checker made earlier) goes when a new one arrives. A checker whose warm start went starts cold again. */
+        /** \brief A thread keeps the warm starts of its last few checkers (threadInstanceFor()): a warm start holds
+            certificates (up to megabytes on large meshes), and a benchmark makes a checker per run. */
         constexpr std::size_t WARM_STARTS_PER_THREAD = 8;
         /** \brief Certificates each of them keeps (SceneWarmStart): a planner's queries return to a few regions in
             turn (the two trees of RRTConnect, the motions out of a tree node), each carried from its own. */
         constexpr std::size_t CERTIFICATES_PER_WARM_START = 4;
 
-        /** \brief This thread's warm starts, one per checker (keyed by the checker's unique id, never its address,
-            which a later checker could reuse). */
         SceneWarmStart &warmStartFor(std::uint64_t id)
         {
-            thread_local std::unordered_map<std::uint64_t, SceneWarmStart> warm;
-            auto found = warm.find(id);
-            if (found != warm.end())
-                return found->second;
-            if (warm.size() >= WARM_STARTS_PER_THREAD)
-                warm.erase(std::min_element(warm.begin(), warm.end(),
-                                            [](const auto &p, const auto &q) { return p.first < q.first; }));
-            return warm.try_emplace(id, CERTIFICATES_PER_WARM_START).first->second;
+            return threadInstanceFor<SceneWarmStart, WARM_STARTS_PER_THREAD>(id, CERTIFICATES_PER_WARM_START);
         }
 
         std::uint64_t nanosecondsSince(std::chrono::steady_clock::time_point start)
@@ -137,7 +125,7 @@ namespace meshgap
     ClearanceChecker::ClearanceChecker(const ompl::base::SpaceInformationPtr &si, SceneConstPtr scene, Mode mode,
                                        std::string fastSolver)
       : ompl::base::StateValidityChecker(si), scene_(std::move(scene)), mode_(mode), fastSolver_(std::move(fastSolver)),
-        id_(nextCheckerId++)
+        id_(newInstanceId())
     {
         if (!scene_)
             throw Exception("ClearanceChecker", "no scene");

@@ -1,11 +1,10 @@
 #include "meshgap/ompl/RobotChecker.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <unordered_map>
 
 #include "meshgap/Exception.h"
+#include "meshgap/ThreadInstances.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 #include "meshgap/robot/JointGradient.h"
 
@@ -13,8 +12,6 @@ namespace meshgap
 {
     namespace
     {
-        std::atomic<std::uint64_t> nextCheckerId{1};
-
         /** \brief This thread's working memory for one checker (keyed by the checker's unique id). */
         struct ThreadState
         {
@@ -24,17 +21,19 @@ namespace meshgap
             RobotResult result;
         };
 
+        /** \brief A thread keeps its working memory for its last few checkers (threadInstanceFor()). */
+        constexpr std::size_t STATES_PER_THREAD = 8;
+
         ThreadState &threadStateFor(std::uint64_t id)
         {
-            thread_local std::unordered_map<std::uint64_t, ThreadState> states;
-            return states[id];
+            return threadInstanceFor<ThreadState, STATES_PER_THREAD>(id);
         }
     }  // namespace
 
     RobotChecker::RobotChecker(const ompl::base::SpaceInformationPtr &si, RobotSceneConstPtr scene)
         : ompl::base::StateValidityChecker(si),
           scene_(scene ? std::move(scene) : throw Exception("RobotChecker", "no robot scene")),
-          id_(nextCheckerId++),
+          id_(newInstanceId()),
           bound_(scene_->robot())
     {
         specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::EXACT;
