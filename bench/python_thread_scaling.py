@@ -1,14 +1,14 @@
 #!/usr/bin/python3
 """Threads sharing one scene in a Python batch against as many single-thread processes: scene.distance(poses,
 threads=T) in one process against T processes each answering its share of the poses with threads=1, alternating,
-REPS times each. Every process loads the scene, makes the poses and warms up before a common start, so only the
+REPS times each; each process answers its poses --repeat times. Every process loads the scene, makes the poses and warms up before a common start, so only the
 queries are timed; throughput is the poses answered over the wall time from the first start to the last end.
 
 Streams: "path" (OMPL.app cubicles' .path interpolated to --states poses, warm certified: each thread carries its
 warm start across the blocks it takes) or "random" (uniform poses in the cfg's volume, random rotations, fixed seed).
 
     PYTHONPATH=build/python /usr/bin/python3 bench/python_thread_scaling.py [--threads 2] [--states 20000]
-        [--reps 5] [--stream path|random] [--cfg ../shared/data/omplapp/cubicles.cfg]
+        [--reps 5] [--repeat 10] [--stream path|random] [--cfg ../shared/data/omplapp/cubicles.cfg]
 """
 import argparse
 import json
@@ -48,7 +48,8 @@ def child(args):
     print("ready", flush=True)
     sys.stdin.readline()
     start, cpu = time.time(), time.process_time()
-    scene.distance(mine, exact=True, warm=True, threads=args.threads)
+    for _ in range(args.repeat):
+        scene.distance(mine, exact=True, warm=True, threads=args.threads)
     end = time.time()
     print(json.dumps({"start": start, "end": end, "cpu": time.process_time() - cpu}), flush=True)
 
@@ -56,11 +57,14 @@ def child(args):
 def run(args, shares, threads):
     """The poses split into \e shares processes of \e threads threads each: (poses per second, CPU seconds)."""
     env = dict(os.environ)
+    # The children run in this folder (to import python_batch): the module's path made absolute.
+    env["PYTHONPATH"] = os.pathsep.join(os.path.abspath(p) for p in env.get("PYTHONPATH", "").split(os.pathsep) if p)
     cuts = [round(k * args.states / shares) for k in range(shares + 1)]
     procs = [subprocess.Popen([sys.executable, os.path.abspath(__file__), "--child", "--cfg", args.cfg, "--stream",
                                args.stream, "--states", str(args.states), "--first", str(cuts[k]), "--last",
-                               str(cuts[k + 1]), "--threads", str(threads)], stdin=subprocess.PIPE,
-                              stdout=subprocess.PIPE, text=True, env=env, cwd=HERE) for k in range(shares)]
+                               str(cuts[k + 1]), "--threads", str(threads), "--repeat", str(args.repeat)],
+                              stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
+                              env=env, cwd=HERE) for k in range(shares)]
     for p in procs:
         assert p.stdout.readline().strip() == "ready"
     for p in procs:
@@ -70,7 +74,7 @@ def run(args, shares, threads):
     for p in procs:
         p.wait()
     wall = max(t["end"] for t in times) - min(t["start"] for t in times)
-    return args.states / wall, sum(t["cpu"] for t in times)
+    return args.repeat * args.states / wall, sum(t["cpu"] for t in times)
 
 
 def main():
@@ -78,6 +82,7 @@ def main():
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--states", type=int, default=20000)
     parser.add_argument("--reps", type=int, default=5)
+    parser.add_argument("--repeat", type=int, default=10, help="batches each process answers in a run")
     parser.add_argument("--stream", choices=["path", "random"], default="path")
     parser.add_argument("--cfg", default=os.path.join(DATA, "cubicles.cfg"))
     parser.add_argument("--child", action="store_true", help=argparse.SUPPRESS)

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <atomic>
 #include <condition_variable>
+#include <cstdint>
 #include <mutex>
 #include <set>
 #include <thread>
 #include <vector>
 
+#include "meshgap/CacheAligned.h"
 #include "meshgap/ThreadCounters.h"
 
 using namespace meshgap;
@@ -95,4 +97,18 @@ TEST(ThreadCounters, ShardsAreCacheLinesApart)
     EXPECT_GE(alignof(ThreadCounters<1>), FALSE_SHARING_BYTES);
     EXPECT_EQ(sizeof(ThreadCounters<1>), FALSE_SHARING_BYTES * ThreadCounters<1>::SHARDS);
     EXPECT_EQ(sizeof(ThreadCounters<17>), 2 * FALSE_SHARING_BYTES * ThreadCounters<17>::SHARDS);
+}
+
+// Per-thread objects in one array (a batch's warm starts) each on lines of their own, whatever their size.
+TEST(ThreadCounters, CacheAlignedElementsShareNoLine)
+{
+    struct Odd
+    {
+        char bytes[336];  // a warm start's size: not a multiple of a line
+    };
+    std::vector<CacheAligned<Odd>> perThread(3);
+    for (const CacheAligned<Odd> &e : perThread)
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(&e) % FALSE_SHARING_BYTES, 0u);
+    EXPECT_EQ(sizeof(CacheAligned<Odd>) % FALSE_SHARING_BYTES, 0u);
+    EXPECT_GE(sizeof(CacheAligned<Odd>), sizeof(Odd));
 }
