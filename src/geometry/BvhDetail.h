@@ -123,12 +123,13 @@ namespace meshgap
         };
 
         /** \brief Lower bound on the distance between anything in box \e a and anything in box \e b (B's frame),
-            from the sphere gap (cheapest), then the gaps on b's face axes (boxbound::gapOnFacesOfB()), then the gap
-            along the direction between the boxes' nearest points (boxbound::gapAlongNearest()); <= 0 means the boxes
-            may touch. Once a partial bound exceeds \e enough (the caller prunes above it) that one is returned: still
-            a lower bound, just not the best of the three. The order, and b's face axes rather than a's, measured on
-            flat CAD parts (where the nearest direction prunes most) and on twisted's slender slanted triangles (where
-            b's face axes do): bench/README.md, "Instruction counts". */
+            from the sphere gap (cheapest), then the gap along the direction between the boxes' nearest points
+            (boxbound::gapAlongNearest()), then the gaps on b's face axes (boxbound::gapOnFacesOfB()); <= 0 means the
+            boxes may touch. Once a partial bound exceeds \e enough (the caller prunes above it) that one is returned:
+            still a lower bound, just not the best of the three. The order by how often each prunes where the caller
+            prunes (the nearest direction alone prunes 94-99.6 % of the pairs the three prune, on flat CAD parts and
+            on twisted's slender slanted triangles alike), and b's face axes rather than a's: bench/README.md,
+            "Instruction counts". */
         inline double lowerBound(const TriangleBvh::Node &a, const TriangleBvh::Node &b, const RelativePose &X,
                                  double enough = std::numeric_limits<double>::infinity())
         {
@@ -139,10 +140,10 @@ namespace meshgap
                 return bound;
             const BoxPair P(a, placed, offset);
             const double pad = 1e-12 * (P.T->cwiseAbs().sum() + a.half.sum() + b.half.sum());
-            bound = std::max(bound, boxbound::gapOnFacesOfB(a.half, b.half, *P.C, *P.T, pad));
+            bound = std::max(bound, boxbound::gapAlongNearest(a.half, b.half, *P.C, *P.T, pad));
             if (bound > enough)
                 return bound;
-            return std::max(bound, boxbound::gapAlongNearest(a.half, b.half, *P.C, *P.T, pad));
+            return std::max(bound, boxbound::gapOnFacesOfB(a.half, b.half, *P.C, *P.T, pad));
         }
 
         /** \brief The gap between triangles p and q along unit axis \e n, either way round, and that axis pointing
