@@ -181,13 +181,13 @@ namespace meshgap::bench
             const std::vector<Eigen::Isometry3d> drawn = protocolPoses(protocol, a, b, poses, seed);
             const Tally t = run(a, b, drawn, tolerance);
             const auto name = [](const std::string &path) { return path.substr(path.find_last_of('/') + 1); };
-            std::printf("| protocol | meshes | triangles | poses (apart / colliding) | meshgap distance s | FCL distance s "
-                        "| ratio | meshgap collide s | FCL collide s | ratio | largest relative error where apart | "
-                        "beyond %.0e | verdicts differing |\n",
+            std::printf("| protocol | meshes | triangles | poses (apart / colliding) | meshgap distance s "
+                        "| FCL distance s | ratio | meshgap collide s | FCL collide s | ratio "
+                        "| largest relative error where apart | beyond %.0e | verdicts differing |\n",
                         tolerance);
             std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-            std::printf("| %s | %s / %s | %zu / %zu | %zu (%zu / %zu) | %.4f | %.4f | **%.2f** | %.4f | %.4f | **%.2f** | "
-                        "%.1e | %zu | %zu |\n",
+            std::printf("| %s | %s / %s | %zu / %zu | %zu (%zu / %zu) | %.4f | %.4f | **%.2f** | %.4f | %.4f "
+                        "| **%.2f** | %.1e | %zu | %zu |\n",
                         protocol.c_str(), name(protocol == "coal" ? robot : mesh).c_str(),
                         name(protocol == "coal" ? world : mesh).c_str(), a.triangles.size(), b.triangles.size(),
                         drawn.size(), t.separated, t.colliding, t.meshgapDistance, t.fclDistance,

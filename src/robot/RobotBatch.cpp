@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "meshgap/Exception.h"
+#include "meshgap/CacheAligned.h"
 #include "meshgap/scene/BatchBlocks.h"
 
 namespace meshgap
@@ -30,11 +31,12 @@ namespace meshgap
     {
         results.resize(count);
         const std::size_t dof = scene.robot().dimension(), blocks = (count + SCENE_BATCH_BLOCK - 1) / SCENE_BATCH_BLOCK;
-        std::vector<RobotWarmStart> starts(std::max(1u, threads));
+        // One warm start per thread, each on cache lines of its own: written at every query, never falsely shared.
+        std::vector<CacheAligned<RobotWarmStart>> starts(std::max(1u, threads));
         forEachBatchBlock(blocks, threads,
                           [&](std::size_t b, std::size_t run)
                           {
-                              RobotWarmStart &start = starts[run];
+                              RobotWarmStart &start = starts[run].value;
                               start.reset();  // ties between pairs aside, answers never depend on it; still afresh
                               for (std::size_t i = b * SCENE_BATCH_BLOCK;
                                    i < std::min(count, (b + 1) * SCENE_BATCH_BLOCK); ++i)
@@ -47,7 +49,7 @@ namespace meshgap
     {
         results.assign(count, 0);
         const std::size_t dof = scene.robot().dimension(), blocks = (count + SCENE_BATCH_BLOCK - 1) / SCENE_BATCH_BLOCK;
-        std::vector<RobotWarmStart> starts(std::max(1u, threads));
+        std::vector<CacheAligned<RobotWarmStart>> starts(std::max(1u, threads));
         forEachBatchBlock(blocks, threads,
                           [&](std::size_t b, std::size_t run)
                           {
@@ -56,8 +58,8 @@ namespace meshgap
                                   atRow(i,
                                         [&]
                                         {
-                                            results[i] =
-                                                scene.inCollision(states + i * dof, dof, starts[run], selfCollision);
+                                            RobotWarmStart &start = starts[run].value;
+                                            results[i] = scene.inCollision(states + i * dof, dof, start, selfCollision);
                                         });
                           });
     }

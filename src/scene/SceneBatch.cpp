@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "meshgap/CacheAligned.h"
 #include "meshgap/scene/BatchBlocks.h"
 
 namespace meshgap
@@ -16,11 +17,12 @@ namespace meshgap
         // which colliding obstacle is met first) starts
         // each block afresh, so that it depends on the block alone, never on which thread took which block.
         const bool carry = request.exact && request.stopBelow < 0.0 && request.computeDepth;
-        std::vector<SceneWarmStart> starts(std::max(1u, threads));
+        // One warm start per thread, each on cache lines of its own: written at every query, never falsely shared.
+        std::vector<CacheAligned<SceneWarmStart>> starts(std::max(1u, threads));
         forEachBatchBlock(blocks, threads,
                      [&](std::size_t b, std::size_t run)
                      {
-                         SceneWarmStart &start = starts[run];
+                         SceneWarmStart &start = starts[run].value;
                          if (!carry)
                              start.reset();
                          for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
@@ -40,12 +42,12 @@ namespace meshgap
         const std::size_t n = poses.size(), blocks = (n + SCENE_BATCH_BLOCK - 1) / SCENE_BATCH_BLOCK;
         // The verdict does not depend on the warm start: each thread carries its own (collision fronts) across
         // the blocks it takes, which pays along a trajectory and costs next to nothing between unrelated poses.
-        std::vector<SceneWarmStart> starts(std::max(1u, threads));
+        std::vector<CacheAligned<SceneWarmStart>> starts(std::max(1u, threads));
         forEachBatchBlock(blocks, threads,
                      [&](std::size_t b, std::size_t run)
                      {
                          for (std::size_t i = b * SCENE_BATCH_BLOCK; i < std::min(n, (b + 1) * SCENE_BATCH_BLOCK); ++i)
-                             results[i] = scene.inCollision(poses[i], starts[run]) ? 1 : 0;
+                             results[i] = scene.inCollision(poses[i], starts[run].value) ? 1 : 0;
                      });
     }
 }  // namespace meshgap

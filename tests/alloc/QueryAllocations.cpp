@@ -1,9 +1,10 @@
 // No query path allocates once warmed up on a thread: Scene::distance() in every mode (certified cold and warm,
-// fast, collision-only, in collision with penetration depth, fast with on-demand mesh distances) and
-// Scene::inCollision(), and ClearanceMotionValidator::checkMotion() with its checker. This executable replaces the global operator new / new[] and malloc / calloc / realloc and
-// counts, per thread, every allocation; each mode runs its queries once to warm up, then once more counted, and the
-// second pass must allocate nothing (and give the same answers). Not built under sanitizers (they replace the
-// allocator themselves).
+// fast, collision-only, in collision with penetration depth, fast with on-demand mesh distances),
+// Scene::inCollision(), ClearanceMotionValidator::checkMotion() with its checker, and ClearanceChecker's queries on
+// threads sharing one checker. This executable replaces the global operator new / new[] and malloc / calloc /
+// realloc and counts, per thread, every allocation; each mode runs its queries once to warm up, then once more
+// counted, and the second pass must allocate nothing (and give the same answers). Not built under sanitizers (they
+// replace the allocator themselves).
 
 #include <gtest/gtest.h>
 #include <ompl/base/SpaceInformation.h>
@@ -16,11 +17,13 @@
 #include <functional>
 #include <new>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "TestMeshes.h"
 #include "alloc/ThreadAllocations.h"
 #include "meshgap/ompl/ClearanceMotionValidator.h"
+#include "meshgap/ompl/ClearanceChecker.h"
 #include "meshgap/scene/Scene.h"
 
 namespace meshgap
@@ -332,6 +335,82 @@ namespace meshgap
             EXPECT_NE(std::count(second.begin(), second.end(), true), 0);
             EXPECT_NE(std::count(second.begin(), second.end(), false), 0);
             EXPECT_EQ(counted, 0u);
+        }
+
+        /** \brief Every query of a checker (\e checkers: certified and fast), asked at each of \e states in turn. */
+        void askEverything(const std::vector<const ClearanceChecker *> &checkers,
+                           const std::vector<ompl::base::State *> &states, std::vector<double> &answers)
+        {
+            answers.clear();
+            for (const ompl::base::State *s : states)
+                for (const ClearanceChecker *c : checkers)
+                {
+                    double d = 0.0;
+                    answers.push_back(c->isValid(s) ? 1.0 : 0.0);
+                    answers.push_back(c->isValid(s, d) ? d : -1.0);
+                    answers.push_back(c->clearance(s));
+                    answers.push_back(c->clearanceOrContact(s));
+                    answers.push_back(c->clearanceBelow(s, 0.2));
+                }
+        }
+
+        TEST_F(QueryAllocations, CheckerSharedByThreads)
+        {
+            // ClearanceChecker's queries (validity, clearance, early stops; certified and fast) from two threads
+            // sharing one checker per mode: once a thread has walked the states twice (its warm starts, scratch
+            // arrays and counter shard made), a third walk allocates nothing on either thread. The states run along a
+            // row of boxes in small steps (warm starts carried), half of them in collision, at every thread's pace.
+            auto space = std::make_shared<ompl::base::SE3StateSpace>();
+            ompl::base::RealVectorBounds bounds(3);
+            bounds.setLow(-2.0);
+            bounds.setHigh(7.0);
+            space->setBounds(bounds);
+            auto si = std::make_shared<ompl::base::SpaceInformation>(space);
+            const ClearanceChecker certified(si, dense_, ClearanceChecker::Mode::CERTIFIED);
+            const ClearanceChecker fastChecker(si, dense_, ClearanceChecker::Mode::FAST);
+            std::vector<ompl::base::State *> states;
+            for (const double y : {0.5, 0.1})
+                for (int k = 0; k < 60; ++k)
+                {
+                    Eigen::Isometry3d X = test::translation(-0.5 + 0.05 * k, y, 0.0);
+                    X.linear() =
+                        Eigen::AngleAxisd(0.02 * k, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+                    states.push_back(si->allocState());
+                    stateFromPose(*space, X, states.back());
+                }
+            const std::vector<const ClearanceChecker *> checkers{&certified, &fastChecker};
+            constexpr int THREADS = 2;
+            std::size_t first[THREADS] = {0, 0}, counted[THREADS] = {0, 0}, collisions[THREADS] = {0, 0};
+            std::vector<double> answers[THREADS][3];
+            std::vector<std::thread> threads;
+            for (int t = 0; t < THREADS; ++t)
+                threads.emplace_back([&, t] {
+                    for (int pass = 0; pass < 3; ++pass)
+                    {
+                        answers[t][pass].reserve(10 * states.size());
+                        const std::size_t before = test::threadAllocations();
+                        askEverything(checkers, states, answers[t][pass]);
+                        (pass == 0 ? first[t] : counted[t]) = test::threadAllocations() - before;
+                    }
+                    for (std::size_t i = 0; i < answers[t][2].size(); i += 10)
+                        collisions[t] += answers[t][2][i] == 0.0;
+                });
+            for (std::thread &thread : threads)
+                thread.join();
+            for (int t = 0; t < THREADS; ++t)
+            {
+                EXPECT_GT(first[t], 0u) << "thread " << t << ": the first walk's allocations went uncounted";
+                EXPECT_EQ(counted[t], 0u) << "thread " << t << ": allocations over " << states.size() << " states";
+                EXPECT_GT(collisions[t], 0u) << "thread " << t;
+                EXPECT_LT(collisions[t], states.size()) << "thread " << t;
+                // The certified verdicts and complete answers do not depend on the history (early stops in collision
+                // may meet another obstacle first).
+                for (std::size_t i = 0; i < answers[t][2].size(); i += 10)
+                    for (const std::size_t k : {i, i + 1, i + 2})
+                        EXPECT_EQ(answers[t][2][k], answers[0][0][k]) << "thread " << t << " answer " << k;
+            }
+            for (ompl::base::State *s : states)
+                si->freeState(s);
         }
     }  // namespace
 

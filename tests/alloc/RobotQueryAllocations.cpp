@@ -1,8 +1,9 @@
 // No whole-robot query allocates once warmed up on a thread: RobotScene::distance() (pruned, every pair, with an
 // early stop, in collision) and RobotScene::inCollision(), for a kinematic tree carrying a payload among obstacles,
-// along a joint-space path, and RobotMotionValidator::checkMotion() along its motions. The global allocation functions are replaced and counted per thread (as
-// QueryAllocations.cpp does); each mode runs the path once to warm up, then once more counted, and the second pass
-// must allocate nothing and give the same answers. Not built under sanitizers.
+// along a joint-space path, and RobotMotionValidator::checkMotion() along its motions. The global allocation
+// functions are replaced and counted per thread (as QueryAllocations.cpp does); each mode runs the path once to warm
+// up, then once more counted, and the second pass must allocate nothing and give the same answers. Not built under
+// sanitizers.
 
 #include <gtest/gtest.h>
 #include <ompl/base/SpaceInformation.h>

@@ -10,7 +10,9 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include <array>
 #include <random>
+#include <thread>
 
 #include "meshgap/ompl/RobotChecker.h"
 #include "meshgap/ompl/RobotMotionValidator.h"
@@ -98,6 +100,62 @@ namespace meshgap
         si->freeState(state);
         EXPECT_GT(invalid, 10u);
         EXPECT_LT(invalid, 290u);
+    }
+
+    TEST(RobotOmpl, ThreadsSharingACheckerGiveTheSingleThreadedAnswers)
+    {
+        // One RobotChecker queried from 4 threads at once, each visiting the states in its own order (strides
+        // coprime to the state count) and asking validity, clearance and the bounded clearances: every answer equals
+        // a single-threaded checker's bit for bit (a thread's warm start and working arrays are its own).
+        constexpr int THREADS = 4;
+        const UrdfRobotPtr robot = UrdfRobot::load(test::TREE_URDF);
+        const auto scene = std::make_shared<RobotScene>(robot, test::postsAroundTree());
+        auto si = std::make_shared<ob::SpaceInformation>(robotStateSpace(*robot, cube(1.0)));
+        const auto shared = std::make_shared<RobotChecker>(si, scene);
+        si->setStateValidityChecker(shared);
+        si->setup();
+        ompl::RNG::setSeed(5);
+        ob::StateSamplerPtr sampler = si->allocStateSampler();
+        constexpr std::size_t N = 61;  // prime: every stride visits every state
+        std::vector<ob::State *> states(N);
+        for (ob::State *&state : states)
+        {
+            state = si->allocState();
+            sampler->sampleUniform(state);
+        }
+        auto answers = [&si](const RobotChecker &checker, const ob::State *state) {
+            return std::array<double, 4>{checker.isValid(state) ? 1.0 : 0.0, checker.clearance(state),
+                                         checker.clearanceOrContact(state), checker.clearanceBelow(state, 0.05)};
+        };
+        std::vector<std::array<double, 4>> expected(N);
+        {
+            const RobotChecker reference(si, scene);
+            for (std::size_t i = 0; i < N; ++i)
+                expected[i] = answers(reference, states[i]);
+        }
+        std::vector<std::vector<std::array<double, 4>>> got(THREADS, std::vector<std::array<double, 4>>(N));
+        std::vector<std::thread> threads;
+        for (int t = 0; t < THREADS; ++t)
+            threads.emplace_back([&, t] {
+                for (std::size_t k = 0; k < N; ++k)
+                {
+                    const std::size_t i = (k * static_cast<std::size_t>(2 * t + 1) + static_cast<std::size_t>(t)) % N;
+                    got[t][i] = answers(*shared, states[i]);
+                }
+            });
+        for (std::thread &thread : threads)
+            thread.join();
+        std::size_t invalid = 0;
+        for (std::size_t i = 0; i < N; ++i)
+            invalid += expected[i][0] == 0.0;
+        EXPECT_GT(invalid, 0u) << "no state collides: the verdicts went untested";
+        EXPECT_LT(invalid, N);
+        for (int t = 0; t < THREADS; ++t)
+            for (std::size_t i = 0; i < N; ++i)
+                for (int k = 0; k < 4; ++k)
+                    EXPECT_EQ(got[t][i][k], expected[i][k]) << "thread " << t << " state " << i << " answer " << k;
+        for (ob::State *state : states)
+            si->freeState(state);
     }
 
     /** \brief RRTConnect on the tree among boxes; with \e certified, RobotMotionValidator validates the motions
