@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "CliMain.h"
@@ -318,15 +319,16 @@ namespace
         std::vector<Eigen::Isometry3d> poses;
     };
 
-    Input loadInput(const Options &o)
+    /** \brief \e single: the single-body problem of --cfg, if given. */
+    Input loadInput(const Options &o, const std::optional<ProblemConfig> &single)
     {
         Input in;
         Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-        if (!o.cfg.empty())
+        if (single)
         {
             if (!o.meshes.empty())
                 throw Exception("command line", "give either --cfg or two mesh files, not both");
-            const ProblemConfig problem = readProblemConfig(o.cfg);
+            const ProblemConfig &problem = *single;
             in.a = loadMesh(problem.world, &in.reportA);
             in.b = loadRobotMesh(problem.robot, problem.planar, &in.reportB);  // OMPL.app's centring, 2D or 3D
             pose = problem.start;
@@ -440,15 +442,21 @@ namespace
         Options o;
         if (!parseOptions(argc, argv, o))
             return 0;
-        if (cli::isToolRobotProblem(o.cfg, o.moveit))
+        std::optional<ProblemConfig> single;
+        if (!o.cfg.empty() || cli::moveItGiven(o.moveit))
         {
-            if (o.algorithmGiven || o.cold || o.json || !o.settings.empty() || !o.meshes.empty())
-                throw Exception("command line", "a robot problem (" + o.cfg + o.moveit.urdf +
-                                                ") is answered by the exact "
-                                                "whole-robot scene: --algorithm, --param, --cold and --json apply to "
-                                                "single bodies");
-            cli::robotDistance(o.cfg, o.moveit, o.poseText, o.posesFile, std::cout);
-            return 0;
+            Problem problem = cli::readToolProblem(o.cfg, o.moveit);
+            if (problem.robot)
+            {
+                if (o.algorithmGiven || o.cold || o.json || !o.settings.empty() || !o.meshes.empty())
+                    throw Exception("command line", "a robot problem (" + o.cfg + o.moveit.urdf +
+                                                        ") is answered by the exact "
+                                                        "whole-robot scene: --algorithm, --param, --cold and --json "
+                                                        "apply to single bodies");
+                cli::robotDistance(*problem.robot, o.poseText, o.posesFile, std::cout);
+                return 0;
+            }
+            single = std::move(problem.rigidBody);
         }
         const DistanceSolverPtr solver = solverOf(o);
         const double hA = gridValue(o.gridA.empty() ? o.grid : o.gridA, o.gridA.empty() ? "grid" : "grid-a");
@@ -456,7 +464,7 @@ namespace
         MeshDistancesOptions distances;
         distances.memoryBudgetBytes = static_cast<std::size_t>(o.budgetMiB * 1024 * 1024);
         distances.cacheDir = o.cacheDir;
-        const Input in = loadInput(o);
+        const Input in = loadInput(o, single);
         if (o.scene())
         {
             BodyOptions options;  // exact answers use each surface as given, whatever the grid

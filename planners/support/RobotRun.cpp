@@ -12,8 +12,6 @@
 #include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/RobotStateSpace.h"
-#include "meshgap/robot/MultiBodyRobot.h"
-#include "meshgap/robot/UrdfRobot.h"
 #include "OptimizeOption.h"
 #include "support/PathFile.h"
 #include "support/PlanOutputs.h"
@@ -103,12 +101,7 @@ namespace meshgap
             {
                 std::ostringstream text;
                 const RobotModel &robot = *run.problem.robot;
-                if (const auto *urdf = dynamic_cast<const UrdfRobot *>(&robot))
-                    text << "URDF " << quote(urdf->name()) << (urdf->floatingBase() ? ", floating base" : "") << ", "
-                         << urdf->variables().size() << " joints, ";
-                else
-                    text << robot.links().size() << " bodies in " << (run.problem.planar ? "SE(2)" : "SE(3)") << ", ";
-                text << robot.links().size() << " links, " << run.scene->selfPairs().size() << " self pairs, "
+                text << robot.description() << ", " << robot.links().size() << " links, " << run.scene->selfPairs().size() << " self pairs, "
                      << run.problem.obstacles.size() << " obstacles";
                 return text.str();
             }
@@ -189,12 +182,12 @@ namespace meshgap
             }
         }  // namespace
 
-        std::unique_ptr<RobotPlanRun> setUpRobotPlan(const PlanOptions &o)
+        std::unique_ptr<RobotPlanRun> setUpRobotPlan(const PlanOptions &o, RobotProblem problem)
         {
             checkPlanOptions(o);
             checkRobotOptions(o);
             auto run = std::make_unique<RobotPlanRun>();
-            run->problem = readToolRobotProblem(o.cfg, o.moveit);
+            run->problem = std::move(problem);
             const RobotProblem &p = run->problem;
             if (p.robot->dimension() == 0)
                 throw Exception(p.file, "the robot has no movable joint (a fixed robot): there is nothing to plan; "
@@ -373,10 +366,9 @@ namespace meshgap
             }
         }  // namespace
 
-        void robotDistance(const std::string &cfg, const MoveItFiles &moveit, const std::string &stateText,
-                           const std::string &statesFile, std::ostream &out)
+        void robotDistance(const RobotProblem &p, const std::string &stateText, const std::string &statesFile,
+                           std::ostream &out)
         {
-            const RobotProblem p = readToolRobotProblem(cfg, moveit);
             const RobotScene scene(p.robot, p.obstacles, p.allowedObstacles);
             const std::size_t n = p.robot->dimension();
             std::vector<std::vector<double>> states = {p.start};

@@ -69,6 +69,11 @@ namespace meshgap
         return links;
     }
 
+    std::string RobotModel::description() const
+    {
+        return std::to_string(links_.size()) + " links";
+    }
+
     std::size_t RobotModel::ownerLink(std::size_t frame) const
     {
         for (std::size_t f = frame; f != NONE; f = frames_[f].parent)
