@@ -38,7 +38,8 @@ namespace meshgap
             if (std::abs(state[i]) > MAX_MAGNITUDE)
             {
                 std::ostringstream text;
-                text << "state number " << i << " = " << state[i] << " is beyond 1e12 in magnitude, the largest "
+                text << "state number " << i << " (" << stateName(i) << ") = " << state[i]
+                     << " is beyond 1e12 in magnitude, the largest "
                      << "meshgap's geometry answers reliably";
                 throw Exception(where_, text.str());
             }

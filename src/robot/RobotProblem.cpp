@@ -402,9 +402,6 @@ namespace meshgap
 
     RobotProblem rigidBodyProblem(const ProblemConfig &config, const BodyOptions &options)
     {
-        if (!config.control.empty())
-            throw Exception(excerpt(config.file), "a control problem (control = " + config.control +
-                                                      "): its state is not a pose, it is no robot of one link");
         RobotProblem problem;
         problem.file = config.file;
         problem.name = config.name;

@@ -345,20 +345,15 @@ namespace meshgap
         ASSERT_TRUE(config.planar);
         expectOneLinkRobotAnswersAsTheScene(config, 80, 2);
         EXPECT_EQ(readAnyRobotProblem(path).robot->description(), "one body in SE(2)");
-        // A control problem is no robot of one link: one error naming the file.
+        // A control problem's body is a robot of one link too: its pose, the geometric part of the car's state.
         const std::string car =
-            cfg({"[problem]", "robot = " + CUBE, "world = world.obj", "start.x = 0", "start.y = 0",
-                 "control = kinematic_car"},
+            cfg({"[problem]", "robot = " + CUBE, "world = world.obj", "start.x = 0", "start.y = 0.5",
+                 "start.theta = 0.1", "control = kinematic_car"},
                 "car.cfg");
-        try
-        {
-            readAnyRobotProblem(car);
-            ADD_FAILURE() << "a control problem read as a robot of one link";
-        }
-        catch (const Exception &e)
-        {
-            EXPECT_NE(std::string(e.what()).find("car.cfg"), std::string::npos) << e.what();
-            EXPECT_NE(std::string(e.what()).find("control problem"), std::string::npos) << e.what();
-        }
+        const RobotProblem asCar = readAnyRobotProblem(car);
+        EXPECT_EQ(asCar.robot->description(), "one body in SE(2)");
+        ASSERT_EQ(asCar.start.size(), 3u);
+        EXPECT_NEAR(asCar.start[1], 0.5, 1e-15);
+        EXPECT_NEAR(asCar.start[2], 0.1, 1e-15);
     }
 }  // namespace meshgap

@@ -83,8 +83,8 @@ namespace meshgap
     /** \brief A single-body problem as a robot problem: a one-link RigidBodyRobot named "robot" (the robot mesh
         centred as OMPL.app centres it, in SE(2) when the problem is planar, else SE(3)), the world's connected parts
         as obstacles, the start and goal as states (rigidState()), and the volume, objective, sampler and sections
-        as they are. Throws meshgap::Exception naming the file for a control problem (its state is not a pose) and
-        as the mesh loader does. */
+        as they are. A control problem's body too: its state is then the body's pose, the geometric part of the
+        control state. Throws as the mesh loader does. */
     RobotProblem rigidBodyProblem(const ProblemConfig &config, const BodyOptions &options = BodyOptions());
 
     /** \brief Any problem as a robot problem: readProblem(), a single body through rigidBodyProblem(). */
