@@ -461,7 +461,7 @@ namespace meshgap
             const bool many = !statesFile.empty();
             if (many)
                 states = readRobotPathFile(statesFile, *p.robot);
-            OMPL_INFORM("%s: %s, %zu links, %zu self pairs, %zu obstacles; exact, every pair, %s", p.name.c_str(),
+            OMPL_INFORM("%s: %s, links %zu, self pairs %zu, obstacles %zu; exact, every pair, %s", p.name.c_str(),
                         p.robot->description().c_str(), scene.links().size(), scene.selfPairs().size(),
                         scene.obstacles().size(), options.cold ? "a cold query per state (--cold)" :
                                                                  "one warm start carried from state to state");
