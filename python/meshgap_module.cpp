@@ -723,6 +723,7 @@ namespace
         Problem problem;
         {
             py::gil_scoped_release release;
+            const LogLevelScope logLevel(o.quiet);  // a robot's meshes load here: their warnings follow quiet
             problem = meshgap::cli::readToolProblem(o.cfg, o.moveit);
         }
         if (problem.robot)

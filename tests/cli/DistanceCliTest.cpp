@@ -47,6 +47,11 @@ TEST(DistanceCli, BadInputGivesOneErrorNamingTheFileAndExitOne)
         {RES + "/cube.obj " + RES + "/cube.obj --sizing bogus", "bogus"},
         {RES + "/cube.obj", "two mesh files"},
         {RES + "/cube.obj " + RES + "/cube.obj --cold", "--cold"},  // the scene's answer only
+        // A single body's state through the one-link robot: the count, and a quaternion that is no rotation.
+        {"--cfg " + std::string(MESHGAP_SOURCE_DIR) + "/maps/twisted/twisted.cfg --pose '1 2 3'", "--pose: a state of "
+                                                                                              "this problem has 7"},
+        {"--cfg " + std::string(MESHGAP_SOURCE_DIR) + "/maps/twisted/twisted.cfg --pose '1 2 3 0 0 0 0'",
+         "--pose: SE(3) state: the quaternion"},
         // Solver parameters: ALGORITHM.NAME=VALUE, as meshgap_plan's and meshgap_benchmark's PLANNER.NAME=VALUE.
         {RES + "/cube.obj " + RES + "/cube.obj --algorithm comb-GA-wl --param comb-GA-wl.population=1",
          "not a valid parameter of comb-GA-wl"},  // comb-GA needs at least 2: the value reached the solver
