@@ -396,16 +396,14 @@ namespace
         if (!parseOptions(argc, argv, o))
             return 0;
         const auto [shard, shards] = parseShard(o.shardText);
-        const bool robot = isToolRobotProblem(o.cfg, o.moveit);
-        if (!robot)
-            if (const ProblemConfig config = readProblemConfig(o.cfg); !config.control.empty())
-                return runControl(o, config);
-        std::optional<RobotProblem> robotProblem;
-        if (robot)
-            robotProblem = readToolRobotProblem(o.cfg, o.moveit);
+        const Problem read = readToolProblem(o.cfg, o.moveit);
+        const std::optional<RobotProblem> &robotProblem = read.robot;
+        const bool robot = robotProblem.has_value();
+        if (!robot && !read.rigidBody->control.empty())
+            return runControl(o, *read.rigidBody);
         const std::vector<std::pair<std::string, std::string>> setups =
             checkerSetups(o, robot ? robotCheckerNames(robotProblem->robot.get()) : checkerNames());
-        const ProblemConfig config = robot ? benchmarkConfigOf(*robotProblem) : readProblemConfig(o.cfg);
+        const ProblemConfig config = robot ? benchmarkConfigOf(*robotProblem) : *read.rigidBody;
         const Settings settings = settingsOf(config, o.vm);
         const std::vector<PlannerSpec> planners = plannerSpecs(o, config);
         if (o.seed != 0)

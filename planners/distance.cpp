@@ -4,19 +4,18 @@
 //   meshgap_distance --cfg problem.cfg [--pose ...] [--poses path.path] [--cold] [--json]
 //   meshgap_distance --cfg problem.cfg --algorithm NAME [--exact] [--pose ...] [--poses path.path] [--json]
 //
-// A is fixed (the world frame); B is placed by the pose. With --cfg, A is the problem's world and B its robot in
-// OMPL.app's conventions (robot shifted by its centre; the pose is the robot's state), and the default pose is the
-// problem's start. With --cfg and no --algorithm the answer is the one the checker gives (ClearanceChecker,
-// certified): the Scene (the world split into its parts, the broad phase), exact and certified, with one warm start
-// carried from pose to pose (--cold: none, a cold query per pose). With --algorithm (or two mesh files) it is the named
-// node-level solver on the two whole bodies, refined to the exact distance with --exact. Results go to stdout (text,
-// CSV with --poses, or JSON with --json); the log, and with --poses the time per query (median and mean), go to
-// stderr. In collision (always decided exactly) the distance is signed: negative, minus a penetration depth estimate.
-//
-// On a robot problem (meshgap/robot/RobotProblem.h) --cfg F [--pose "v1 v2 ..."] [--poses STATES] [--exact] gives,
-// per state (the numbers of start.joints; default the start), the whole robot's exact signed clearance, the pair
-// that attains it (a link and an obstacle, or two links) with its witness points, and every link's clearance: a
-// text block for one state, CSV with a header for --poses (support/RobotRun.h, ROBOT_CSV_COLUMNS).
+// With two mesh files, A is fixed (the world frame) and B placed by the pose; the answer is the named node-level
+// solver's (--algorithm, default enumeration) on the two whole bodies, refined to the exact distance with --exact.
+// With --cfg F (any problem: one rigid body, a URDF robot, several bodies; or the MoveIt flags) and no --algorithm,
+// the answer is the checker's, the same for every kind (a single body is a robot of one link, rigidBodyProblem()):
+// per state of the problem (its start by default; --pose "v1 v2 ...", or --poses STATES one a line, as a .path of
+// the problem: x y theta or x y z qx qy qz qw for a single body) the whole robot's exact signed clearance, the pair
+// that attains it (a link and an obstacle, or two links) with its witness points, and every link's clearance; one
+// warm start carried from state to state (--cold: none). A text block for one state, CSV with a header for --poses
+// (support/RobotRun.h, ROBOT_CSV_COLUMNS), JSON with --json; with --poses the time per query (median and mean) goes
+// to stderr. --cfg with --algorithm (a single body only) puts the named solver to the problem's world (A) and robot
+// (B, centred as OMPL.app centres it), the pose then "x y z qx qy qz qw". In collision (always decided exactly) the
+// distance is signed: negative, minus a penetration depth estimate (--no-depth: the verdict alone).
 
 #include <ompl/util/Console.h>
 
@@ -26,6 +25,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "CliMain.h"
@@ -148,86 +148,6 @@ namespace
                      label.c_str(), sorted[sorted.size() / 2], sum / double(micros.size()));
     }
 
-    std::string sceneJson(const SceneResult &r, bool warm, double micros)
-    {
-        std::ostringstream out;
-        out.precision(17);
-        out << "{\"answer\": \"scene\", \"warm_start\": " << (warm ? "true" : "false")
-            << ", \"distance\": " << r.distance << ", \"obstacle\": " << r.obstacle << ", \"witness_a\": ["
-            << vec(r.onObstacle, ", ") << "], \"witness_b\": [" << vec(r.onRobot, ", ") << "], \"time_us\": " << micros
-            << ", \"in_collision\": " << (r.inCollision ? "true" : "false")
-            << ", \"certified\": " << (r.certified ? "true" : "false") << ", \"pairs_checked\": " << r.pairsChecked
-            << ", \"warm_start_hit\": " << (r.warmStartHit ? "true" : "false")
-            << ", \"open_body\": " << (r.openBody ? "true" : "false") << "}";
-        return out.str();
-    }
-
-    /** \brief The checker's answer (ClearanceChecker, certified mode) at each pose: Scene::distance() on the world
-        split into its parts, exact and certified, one SceneWarmStart carried from pose to pose (none with \e cold:
-        a cold query per pose); in collision without the depth unless \e depth. */
-    int answerWithScene(const Mesh &robot, const Mesh &world, const BodyOptions &options,
-                        const std::vector<Eigen::Isometry3d> &poses, bool many, bool asJson, bool cold, bool depth)
-    {
-        const ScenePtr scene = Scene::fromMeshes(robot, world, options);
-        OMPL_INFORM("scene: robot %zu triangles, world %zu triangles in %zu parts (obstacles); %s",
-                    robot.triangles.size(), world.triangles.size(), scene->obstacles().size(),
-                    cold ? "no warm start, a cold query per pose (--cold)" : "one warm start carried from pose to pose");
-        OMPL_INFORM("scene: %s", sceneSurfacesText(*scene).c_str());
-        SceneRequest request;  // exact and certified, no bound: the checker's clearance()
-        request.computeDepth = depth;
-        SceneWarmStart warm;
-        std::vector<double> micros;
-        if (many)
-            std::cout << (asJson ? "[\n"
-                                 : "index,distance,time_us,obstacle,witness_a_x,witness_a_y,witness_a_z,"
-                                   "witness_b_x,witness_b_y,witness_b_z,in_collision,certified,pairs_checked,"
-                                   "warm_start_hit\n");
-        auto lastReport = std::chrono::steady_clock::now();
-        for (std::size_t i = 0; i < poses.size(); ++i)
-        {
-            SceneResult r;
-            const auto queryStart = std::chrono::steady_clock::now();
-            if (cold)
-                scene->distance(poses[i], request, r);  // no warm start: a cold query
-            else
-                scene->distance(poses[i], request, warm, r);
-            const double us =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - queryStart).count() * 1e6;
-            micros.push_back(us);
-            if (asJson)
-                std::cout << (many ? "  " : "") << sceneJson(r, !cold, us)
-                          << (many && i + 1 < poses.size() ? ",\n" : "\n");
-            else if (many)
-                std::printf("%zu,%.17g,%.3f,%zu,%s,%s,%d,%d,%zu,%d\n", i, r.distance, us, r.obstacle,
-                            vec(r.onObstacle, ",").c_str(), vec(r.onRobot, ",").c_str(), r.inCollision ? 1 : 0,
-                            r.certified ? 1 : 0, r.pairsChecked, r.warmStartHit ? 1 : 0);
-            else
-                std::printf(
-                    "answer         scene (the checker's: broad phase over the world's parts, %zu)\n"
-                    "distance       %.10g (%s)\nin collision   %s\nobstacle       %zu\n"
-                    "witness on A   %s\nwitness on B   %s\ntime           %.3f ms\n",
-                    scene->obstacles().size(), r.distance,
-                    r.inCollision ? penetrationText(r.penetration)
-                    : r.certified ? "exact, certified"
-                                  : "exact, not certified",
-                    r.inCollision ? "yes" : "no", r.obstacle, vec(r.onObstacle, " ").c_str(),
-                    vec(r.onRobot, " ").c_str(), us * 1e-3);
-            if (!asJson && !many && r.openBody)
-                std::printf("%s", OPEN_BODY_LINE);
-            const auto now = std::chrono::steady_clock::now();
-            if (now - lastReport > std::chrono::seconds(2))
-            {
-                OMPL_INFORM("pose %zu of %zu", i + 1, poses.size());
-                lastReport = now;
-            }
-        }
-        if (many && asJson)
-            std::cout << "]\n";
-        if (many)
-            printTimes(micros, std::string("scene, ") + (cold ? "cold" : "warm start carried"));
-        return 0;
-    }
-
     /** \brief The command line. */
     struct Options
     {
@@ -251,8 +171,9 @@ namespace
         po::options_description visible("meshgap_distance [options] [A B]\n\nOptions");
         visible.add_options()("help,h", "print this help")
             ("cfg", po::value(&o.cfg), "OMPL.app problem file: A = its world, B = its robot (pose = robot state)")
-            ("pose", po::value(&o.poseText), "pose of B in A's frame: \"x y z qx qy qz qw\" (default: identity, or the cfg's start)")
-            ("poses", po::value(&o.posesFile), "file of poses (a robot problem: states), one per line (OMPL.app .path format); prints CSV "
+            ("pose", po::value(&o.poseText), "pose of B in A's frame: \"x y z qx qy qz qw\" (default: identity); with --cfg the "
+                                           "problem's state (default: its start): a single body's x y theta or x y z qx qy qz qw, a robot's numbers")
+            ("poses", po::value(&o.posesFile), "file of poses (with --cfg: the problem's states), one per line (OMPL.app .path format); prints CSV "
                                            "with a header")
             ("algorithm,a", po::value(&o.algorithm), "solver name (unknown names list the valid ones)")
             ("seed", po::value(&o.seed), "random seed (same seed, same answer)")
@@ -264,7 +185,7 @@ namespace
             ("cache", po::value(&o.cacheDir), "folder for cached mesh-distance tables")
             ("memory-budget", po::value(&o.budgetMiB), "largest all-pairs mesh-distance table, MiB (default 512)")
             ("exact", "refine the answer to the exact, certified surface distance (triangles + BVH)")
-            ("cold", "with --cfg and no --algorithm: a cold query at every pose, no warm start (default: one carried along)")
+            ("cold", "with --cfg and no --algorithm: a cold query at every state, no warm start (default: one carried along)")
             ("no-depth", "with --cfg and no --algorithm: in collision the verdict alone (distance -2.2e-308, a zero below zero, as FCL answers 0), no penetration depth")
             ("json", "print JSON instead of text or CSV")
             ("quiet,q", "print errors only (no log, no warnings such as a mesh's open surface)");
@@ -285,6 +206,27 @@ namespace
         o.json = vm.count("json") > 0;
         o.exact = vm.count("exact") > 0;
         return true;
+    }
+
+    /** \brief The checker's answer at each state of \e problem, whatever its kind (a single body as a robot of one
+        link, rigidBodyProblem()): the whole robot's exact, certified signed clearance (cli::robotDistance()). */
+    int answerWithScene(const Options &o, Problem problem)
+    {
+        if (!o.meshes.empty())
+            throw Exception("command line", "give either --cfg or two mesh files, not both");
+        if (problem.robot && o.algorithmGiven)
+            throw Exception("--algorithm", "a robot problem (" + o.cfg + o.moveit.urdf +
+                                               ") is answered by the exact whole-robot scene; the node-level solvers "
+                                               "take single bodies");
+        if (!o.settings.empty())
+            throw Exception("--param", "solver parameters need --algorithm (with --cfg alone the answer is the scene's)");
+        const RobotProblem p = problem.robot ? std::move(*problem.robot) : rigidBodyProblem(*problem.rigidBody);
+        cli::RobotDistanceOptions options;
+        options.json = o.json;
+        options.cold = o.cold;
+        options.depth = !o.noDepth;
+        cli::robotDistance(p, o.poseText, o.posesFile, options, std::cout);
+        return 0;
     }
 
     /** \brief The named solver with its --param values; fails on a bad name or parameter before any loading. */
@@ -318,15 +260,16 @@ namespace
         std::vector<Eigen::Isometry3d> poses;
     };
 
-    Input loadInput(const Options &o)
+    /** \brief \e single: the single-body problem of --cfg, if given. */
+    Input loadInput(const Options &o, const std::optional<ProblemConfig> &single)
     {
         Input in;
         Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-        if (!o.cfg.empty())
+        if (single)
         {
             if (!o.meshes.empty())
                 throw Exception("command line", "give either --cfg or two mesh files, not both");
-            const ProblemConfig problem = readProblemConfig(o.cfg);
+            const ProblemConfig &problem = *single;
             in.a = loadMesh(problem.world, &in.reportA);
             in.b = loadRobotMesh(problem.robot, problem.planar, &in.reportB);  // OMPL.app's centring, 2D or 3D
             pose = problem.start;
@@ -440,15 +383,13 @@ namespace
         Options o;
         if (!parseOptions(argc, argv, o))
             return 0;
-        if (cli::isToolRobotProblem(o.cfg, o.moveit))
+        std::optional<ProblemConfig> single;
+        if (!o.cfg.empty() || cli::moveItGiven(o.moveit))
         {
-            if (o.algorithmGiven || o.cold || o.json || !o.settings.empty() || !o.meshes.empty())
-                throw Exception("command line", "a robot problem (" + o.cfg + o.moveit.urdf +
-                                                ") is answered by the exact "
-                                                "whole-robot scene: --algorithm, --param, --cold and --json apply to "
-                                                "single bodies");
-            cli::robotDistance(o.cfg, o.moveit, o.poseText, o.posesFile, std::cout);
-            return 0;
+            Problem problem = cli::readToolProblem(o.cfg, o.moveit);
+            if (problem.robot || !o.algorithmGiven)
+                return answerWithScene(o, std::move(problem));
+            single = std::move(problem.rigidBody);
         }
         const DistanceSolverPtr solver = solverOf(o);
         const double hA = gridValue(o.gridA.empty() ? o.grid : o.gridA, o.gridA.empty() ? "grid" : "grid-a");
@@ -456,14 +397,7 @@ namespace
         MeshDistancesOptions distances;
         distances.memoryBudgetBytes = static_cast<std::size_t>(o.budgetMiB * 1024 * 1024);
         distances.cacheDir = o.cacheDir;
-        const Input in = loadInput(o);
-        if (o.scene())
-        {
-            BodyOptions options;  // exact answers use each surface as given, whatever the grid
-            options.gridSize = hA;
-            options.distances = distances;
-            return answerWithScene(in.b, in.a, options, in.poses, o.many(), o.json, o.cold, !o.noDepth);
-        }
+        const Input in = loadInput(o, single);
         const BodyPtr a = makeBody(in.a, in.reportA, hA, o.sizing == "adaptive", distances, "A");
         const BodyPtr b = makeBody(in.b, in.reportB, hB, o.sizing == "adaptive", distances, "B");
         return answerWithSolver(*a, *b, *solver, in.poses, o);

@@ -92,9 +92,9 @@ namespace
     }
 
     /** \brief A robot problem (a URDF robot, or several bodies): support/RobotRun.h. */
-    int runRobot(const PlanOptions &o)
+    int runRobot(const PlanOptions &o, RobotProblem problem)
     {
-        const std::unique_ptr<RobotPlanRun> p = setUpRobotPlan(o);
+        const std::unique_ptr<RobotPlanRun> p = setUpRobotPlan(o, std::move(problem));
         OMPL_INFORM("%s: robot problem, %zu state numbers, %zu obstacles, planner %s", p->problem.name.c_str(),
                     p->problem.robot->dimension(), p->problem.obstacles.size(), o.planner.c_str());
         solveRobotPlan(*p, o);
@@ -131,11 +131,12 @@ namespace
         if (!parseOptions(argc, argv, o))
             return 0;
         ompl::RNG::setSeed(o.seed);
-        if (isToolRobotProblem(o.cfg, o.moveit))
-            return runRobot(o);
-        if (ProblemConfig config = readProblemConfig(o.cfg); !config.control.empty())
-            return runControl(o, std::move(config));
-        const std::unique_ptr<PlanRun> p = setUpPlan(o);
+        Problem problem = readToolProblem(o.cfg, o.moveit);
+        if (problem.robot)
+            return runRobot(o, std::move(*problem.robot));
+        if (!problem.rigidBody->control.empty())
+            return runControl(o, std::move(*problem.rigidBody));
+        const std::unique_ptr<PlanRun> p = setUpPlan(o, std::move(*problem.rigidBody));
         OMPL_INFORM("%s: %s, %zu obstacles, planner %s, objective %s, clearance %s, motion %s", p->config.name.c_str(),
                     p->config.planar ? "SE(2)" : "SE(3)", p->problem.scene->obstacles().size(), o.planner.c_str(),
                     p->problem.objective.c_str(), o.checker.c_str(), o.motion.c_str());

@@ -89,9 +89,10 @@ namespace
         if (dense < 1)
             throw Exception("--dense", "must be at least 1");
 
-        if (cli::isToolRobotProblem(cfg, moveit))
-            return robotReport(cli::readToolRobotProblem(cfg, moveit), pathFile, out, dense);
-        const ProblemConfig config = readProblemConfig(cfg);
+        const Problem read = cli::readToolProblem(cfg, moveit);
+        if (read.robot)
+            return robotReport(*read.robot, pathFile, out, dense);
+        const ProblemConfig &config = *read.rigidBody;
         const OmplProblem problem = setupProblem(config, ClearanceChecker::Mode::CERTIFIED);
         problem.setup->getSpaceInformation()->setup();  // the longest valid segment, which the dense path uses
         const ompl::geometric::PathGeometric path = readPathFile(pathFile, problem.setup->getSpaceInformation());

@@ -366,10 +366,11 @@ namespace
         const std::string path = pathArg(pathObject, "cfg");
         PyScene s;
         py::gil_scoped_release release;
-        if (isRobotProblemFile(path))
+        const Problem problem = readProblem(path);
+        if (!problem.rigidBody)
             throw Exception(path, "a robot problem (robot.urdf, or robot.1 and more bodies): open it with "
                                   "meshgap.RobotScene.from_cfg");
-        const ProblemConfig config = readProblemConfig(path);
+        const ProblemConfig &config = *problem.rigidBody;
         s.scene = Scene::fromMeshes(loadRobotMesh(config.robot, config.planar), loadMesh(config.world));
         s.config = config;
         return s;
@@ -614,7 +615,7 @@ namespace
 
     /** \brief plan() on a robot problem (support/RobotRun.h, meshgap_plan's run): the path's states as an (M, dof)
         array of the problem's state numbers, and the summary dict (meshgap_plan's fields, its summary text). */
-    py::tuple planRobot(const PlanOptions &o)
+    py::tuple planRobot(const PlanOptions &o, RobotProblem problem)
     {
         std::unique_ptr<meshgap::cli::RobotPlanRun> run;
         std::vector<std::vector<double>> states;
@@ -622,7 +623,7 @@ namespace
             py::gil_scoped_release release;
             const LogLevelScope logLevel(o.quiet);
             setSeedQuietly(o.seed);
-            run = meshgap::cli::setUpRobotPlan(o);
+            run = meshgap::cli::setUpRobotPlan(o, std::move(problem));
             meshgap::cli::solveRobotPlan(*run, o);
             std::ostringstream log;
             meshgap::cli::writeRobotPlanFiles(*run, o, log);
@@ -719,15 +720,21 @@ namespace
         o.quiet = true;  // plan() returns its summary: no progress line unless quiet=False
         o.cfg = pathArg(cfgObject, "cfg");
         planOptionsFromKeywords(o, kwargs);
-        if (meshgap::cli::isToolRobotProblem(o.cfg, o.moveit))
+        Problem problem;
         {
-            checkPlanOptions(o);
-            return planRobot(o);
+            py::gil_scoped_release release;
+            const LogLevelScope logLevel(o.quiet);  // a robot's meshes load here: their warnings follow quiet
+            problem = meshgap::cli::readToolProblem(o.cfg, o.moveit);
         }
-        if (ProblemConfig config = readProblemConfig(o.cfg); !config.control.empty())
+        if (problem.robot)
         {
             checkPlanOptions(o);
-            return planControl(o, std::move(config));
+            return planRobot(o, std::move(*problem.robot));
+        }
+        if (!problem.rigidBody->control.empty())
+        {
+            checkPlanOptions(o);
+            return planControl(o, std::move(*problem.rigidBody));
         }
         std::unique_ptr<PlanRun> p;
         {
@@ -735,7 +742,7 @@ namespace
             const LogLevelScope logLevel(o.quiet);
             checkPlanOptions(o);
             setSeedQuietly(o.seed);
-            p = setUpPlan(o);
+            p = setUpPlan(o, std::move(*problem.rigidBody));
             solvePlan(*p, o);
             std::ostringstream log;  // meshgap_plan's "path written ..." lines: the caller knows what it asked for
             writePlanFiles(*p, o, log);
@@ -959,7 +966,8 @@ namespace
         return robotSceneOf([&files] { return readMoveItProblem(files); });
     }
 
-    /** \brief A robot problem file (RobotProblem.h): its robot among its world, its start and goal. */
+    /** \brief A problem file of any kind (readAnyRobotProblem(): a single body is a robot of one link): its robot
+        among its world, its start and goal. */
     PyRobotScene robotSceneFromCfg(const py::handle &pathObject)
     {
         const std::string path = pathArg(pathObject, "cfg");
@@ -969,9 +977,7 @@ namespace
                 if (std::error_code error; !std::filesystem::exists(path, error))
                     throw Exception(excerpt(path),
                                     error ? "cannot be read (" + error.message() + ")" : "no such file");
-                if (!isRobotProblemFile(path))
-                    throw Exception(path, "a single-body problem (robot = FILE): open it with meshgap.Scene.from_cfg");
-                return readRobotProblem(path);
+                return readAnyRobotProblem(path);
             });
     }
 
@@ -1159,9 +1165,9 @@ namespace
             "(a planar joint's x y theta, a floating joint's x y z qx qy qz qw; state_names).")
             .def_static("from_cfg", &robotSceneFromCfg, py::arg("path"),
                         "A robot problem file (robot.urdf = FILE with robot.srdf, robot.package_path, world, attach, "
-                        "start.joints and goal.joints; or several bodies robot.1 = FILE, ...): its robot among its "
-                        "world; start and goal its states. A single-body OMPL.app file is refused (meshgap.Scene."
-                        "from_cfg reads those, and refuses robot problems).")
+                        "start.joints and goal.joints; or several bodies robot.1 = FILE, ...), or a single-body "
+                        "OMPL.app file (robot = FILE: a robot of one link named 'robot', its state the pose, x y "
+                        "theta or x y z qx qy qz qw): its robot among its world; start and goal its states.")
             .def_static("from_moveit", &robotSceneFromMoveIt, py::arg("urdf"), py::arg("srdf") = py::none(),
                         py::arg("scene") = py::none(), py::kw_only(), py::arg("request") = py::none(),
                         py::arg("package_path") = py::none(),

@@ -10,6 +10,7 @@
 
 #include "meshgap/Exception.h"
 #include "meshgap/robot/MoveItScene.h"
+#include "meshgap/robot/RobotProblem.h"
 
 namespace meshgap
 {
@@ -35,25 +36,25 @@ namespace meshgap
             return !files.urdf.empty() || !files.srdf.empty() || !files.scene.empty() || !files.request.empty();
         }
 
-        /** \brief True when the tool's problem is a robot problem: the MoveIt flags, or a robot .cfg. Throws
-            meshgap::Exception for --cfg with the MoveIt flags, and for the MoveIt flags without --urdf. */
-        inline bool isToolRobotProblem(const std::string &cfg, const MoveItFiles &files)
+        /** \brief The tool's problem, whatever its kind: --cfg as readProblem() reads it (the library tells the kinds
+            apart), or the MoveIt flags' robot problem. Throws meshgap::Exception for --cfg with the MoveIt flags, for
+            the MoveIt flags without --urdf, for neither, and as the readers do. */
+        inline Problem readToolProblem(const std::string &cfg, const MoveItFiles &files)
         {
             if (!moveItGiven(files))
-                return !cfg.empty() && isRobotProblemFile(cfg);
+            {
+                if (cfg.empty())
+                    throw Exception("command line", "--cfg FILE (or --urdf with --scene and --request) is required; "
+                                                    "see --help");
+                return readProblem(cfg);
+            }
             if (!cfg.empty())
                 throw Exception("command line", "give either --cfg or --urdf with --scene and --request, not both");
             if (files.urdf.empty())
                 throw Exception("command line", "--srdf, --scene and --request need --urdf (the robot)");
-            return true;
-        }
-
-        /** \brief The robot problem of --cfg, or of the MoveIt flags (isToolRobotProblem() checked first). */
-        inline RobotProblem readToolRobotProblem(const std::string &cfg, const MoveItFiles &files)
-        {
-            if (!isToolRobotProblem(cfg, files))
-                throw Exception(cfg.empty() ? "command line" : cfg, "not a robot problem");
-            return moveItGiven(files) ? readMoveItProblem(files) : readRobotProblem(cfg);
+            Problem problem;
+            problem.robot = readMoveItProblem(files);
+            return problem;
         }
     }  // namespace cli
 }  // namespace meshgap

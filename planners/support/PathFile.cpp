@@ -78,7 +78,8 @@ namespace meshgap
                                        "found " + std::to_string(q.size()));
         try
         {
-            robot.checkState(q.data(), q.size());
+            std::vector<Eigen::Isometry3d> frames;  // the frames too: a state may place no frame (a zero quaternion)
+            robot.framePoses(q.data(), q.size(), frames);
         }
         catch (const Exception &e)
         {

@@ -146,11 +146,11 @@ namespace meshgap
             return planner(o, si);
         }
 
-        std::unique_ptr<PlanRun> setUpPlan(const PlanOptions &o)
+        std::unique_ptr<PlanRun> setUpPlan(const PlanOptions &o, ProblemConfig config)
         {
             checkPlanOptions(o);
             auto p = std::make_unique<PlanRun>();
-            p->config = readProblemConfig(o.cfg);
+            p->config = std::move(config);
             const std::string chosen = !o.objective.empty() ? o.objective : p->config.objective;
             if (o.isGiven("weight") && chosen != "weighted")
                 throw Exception(o.label("weight"), "applies to " + o.label("objective") +

@@ -40,9 +40,10 @@ namespace meshgap
             naming the option at fault. */
         ompl::base::PlannerPtr allocPlanPlanner(const PlanOptions &o, const ompl::base::SpaceInformationPtr &si);
 
-        /** \brief Load the problem and set up the planner as \e o says (OMPL's seed is the caller's to set first);
-            throws meshgap::Exception naming the option or file at fault. */
-        std::unique_ptr<PlanRun> setUpPlan(const PlanOptions &o);
+        /** \brief Load the single-body problem \e config (o.cfg's, readToolProblem()) and set up the planner as \e o
+            says (OMPL's seed is the caller's to set first); throws meshgap::Exception naming the option or file at
+            fault. */
+        std::unique_ptr<PlanRun> setUpPlan(const PlanOptions &o, ProblemConfig config);
 
         /** \brief Solve (with the progress line on stderr unless o.quiet), optimise the path if o.optimize asks, then
             the dense clearance and the summary. */

@@ -48,11 +48,11 @@ namespace meshgap
             std::string summary;
         };
 
-        /** \brief Read the robot problem o.cfg (or o.moveit's files) and set up the planner; throws
+        /** \brief Set up the planner on \e problem (o.cfg's, or o.moveit's files', readToolProblem()); throws
             meshgap::Exception naming the option that does not apply to robot problems, a problem without a goal (or,
             for rigid bodies, a volume), and a start or goal out of bounds or in collision (the pair and its
             distance). */
-        std::unique_ptr<RobotPlanRun> setUpRobotPlan(const PlanOptions &o);
+        std::unique_ptr<RobotPlanRun> setUpRobotPlan(const PlanOptions &o, RobotProblem problem);
 
         /** \brief Solve (then, with --optimize clearance, raise the path's clearance: ClearancePathOptimizer on the
             whole robot's clearance, every motion it makes certified), then the summary: the path's length, cost
@@ -75,14 +75,24 @@ namespace meshgap
             "index,distance,in_collision,certified,link,other_link,obstacle,witness_link_x,witness_link_y,"
             "witness_link_z,witness_other_x,witness_other_y,witness_other_z";
 
-        /** \brief meshgap_distance on a robot problem (\e cfg, or the MoveIt files \e moveit): at the start
+        /** \brief How meshgap_distance answers a problem (robotDistance()). */
+        struct RobotDistanceOptions
+        {
+            bool json{false};   ///< JSON instead of text or CSV: one object, or an array with states
+            bool cold{false};   ///< no warm start: a cold query at every state
+            bool depth{true};   ///< in collision, the penetration depth (RobotRequest::computeDepth)
+        };
+
+        /** \brief meshgap_distance on the problem \e p (any kind: a single body is a robot of one link): at the start
             (\e stateText empty and \e statesFile empty) or at the state \e stateText, a text block of the whole
             robot's exact signed clearance, the pair that attains it (a link and an obstacle, or two links), its
             witnesses and every link's clearance; at every state of \e statesFile (one a line, as a .path of the
-            problem), the same as CSV (ROBOT_CSV_COLUMNS). Throws meshgap::Exception naming file:line for a state of
-            the wrong dimension or a malformed number. */
-        void robotDistance(const std::string &cfg, const MoveItFiles &moveit, const std::string &stateText,
-                           const std::string &statesFile, std::ostream &out);
+            problem), the same as CSV (ROBOT_CSV_COLUMNS), and the time per query (median, mean) on stderr; with
+            options.json, JSON objects of the same fields and the time. One warm start is carried from state to
+            state unless options.cold. Throws meshgap::Exception naming file:line for a state of the wrong dimension
+            or a malformed number. */
+        void robotDistance(const RobotProblem &p, const std::string &stateText, const std::string &statesFile,
+                           const RobotDistanceOptions &options, std::ostream &out);
     }  // namespace cli
 }  // namespace meshgap
 

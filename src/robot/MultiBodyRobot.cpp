@@ -1,5 +1,7 @@
 #include "meshgap/robot/MultiBodyRobot.h"
 
+#include <algorithm>
+
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
 
@@ -27,5 +29,13 @@ namespace meshgap
             dimension += rigidSpaceDimension(part.space);
         }
         setDimension(dimension);
+    }
+
+    std::string MultiBodyRobot::description() const
+    {
+        const auto planar = std::count(spaces_.begin(), spaces_.end(), RigidSpace::SE2);
+        const std::size_t n = spaces_.size();
+        return std::to_string(n) + " bodies in " +
+               (planar == 0 ? "SE(3)" : std::size_t(planar) == n ? "SE(2)" : "SE(2) and SE(3)");
     }
 }  // namespace meshgap

@@ -17,6 +17,15 @@ namespace meshgap
         return space == RigidSpace::SE2 ? poseFromSE2(state) : poseFromSE3(state);
     }
 
+    std::vector<double> rigidState(RigidSpace space, const Eigen::Isometry3d &pose)
+    {
+        const Eigen::Vector3d t = pose.translation();
+        if (space == RigidSpace::SE2)
+            return {t.x(), t.y(), std::atan2(pose.linear()(1, 0), pose.linear()(0, 0))};
+        const Eigen::Quaterniond q(pose.linear());
+        return {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()};
+    }
+
     JointConstPtr rigidJoint(RigidSpace space)
     {
         JointSpec spec;
@@ -34,5 +43,10 @@ namespace meshgap
         joint.variable = 0;
         setFrameJoint(0, joint);
         setDimension(rigidSpaceDimension(space));
+    }
+
+    std::string RigidBodyRobot::description() const
+    {
+        return space_ == RigidSpace::SE2 ? "one body in SE(2)" : "one body in SE(3)";
     }
 }  // namespace meshgap

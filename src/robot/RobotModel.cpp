@@ -38,7 +38,8 @@ namespace meshgap
             if (std::abs(state[i]) > MAX_MAGNITUDE)
             {
                 std::ostringstream text;
-                text << "state number " << i << " = " << state[i] << " is beyond 1e12 in magnitude, the largest "
+                text << "state number " << i << " (" << stateName(i) << ") = " << state[i]
+                     << " is beyond 1e12 in magnitude, the largest "
                      << "meshgap's geometry answers reliably";
                 throw Exception(where_, text.str());
             }
@@ -67,6 +68,11 @@ namespace meshgap
         std::vector<Eigen::Isometry3d> frames, links;
         linkPoses(state.data(), state.size(), frames, links);
         return links;
+    }
+
+    std::string RobotModel::description() const
+    {
+        return std::to_string(links_.size()) + " links";
     }
 
     std::size_t RobotModel::ownerLink(std::size_t frame) const

@@ -390,9 +390,44 @@ namespace meshgap
         }
     }  // namespace
 
-    bool isRobotProblemFile(const std::string &path)
+    Problem readProblem(const std::string &path, const BodyOptions &options)
     {
-        return robotProblemKey(readConfigFile(path)) != nullptr;
+        Problem problem;
+        if (robotProblemKey(readConfigFile(path)))
+            problem.robot = readRobotProblem(path, options);
+        else
+            problem.rigidBody = readProblemConfig(path);
+        return problem;
+    }
+
+    RobotProblem rigidBodyProblem(const ProblemConfig &config, const BodyOptions &options)
+    {
+        RobotProblem problem;
+        problem.file = config.file;
+        problem.name = config.name;
+        problem.planar = config.planar;
+        const RigidSpace space = config.planar ? RigidSpace::SE2 : RigidSpace::SE3;
+        problem.robot = std::make_shared<RigidBodyRobot>(
+            Body::build(loadRobotMesh(config.robot, config.planar), options), space);
+        problem.world = config.world;
+        for (Mesh &part : splitComponents(loadMesh(config.world)))
+            problem.obstacles.push_back(Body::build(std::move(part), options));  // as Scene::fromMeshes() splits it
+        problem.start = rigidState(space, config.start);
+        if (config.goal)
+            problem.goal = rigidState(space, *config.goal);
+        problem.volume = config.volume;
+        problem.objective = config.objective;
+        problem.objectiveThreshold = config.objectiveThreshold;
+        problem.sampler = config.sampler;
+        problem.benchmark = config.benchmark;
+        problem.planners = config.planners;
+        return problem;
+    }
+
+    RobotProblem readAnyRobotProblem(const std::string &path, const BodyOptions &options)
+    {
+        Problem problem = readProblem(path, options);
+        return problem.robot ? std::move(*problem.robot) : rigidBodyProblem(*problem.rigidBody, options);
     }
 
     RobotProblem readRobotProblem(const std::string &path, const BodyOptions &options)

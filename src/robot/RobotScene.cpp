@@ -153,6 +153,7 @@ namespace meshgap
         SceneRequest sceneRequest;
         sceneRequest.stopBelow = request.stopBelow;
         sceneRequest.upperBound = bound;
+        sceneRequest.computeDepth = request.computeDepth;
         SceneResult s;
         scenes_[i]->distance(warm.poses[i], sceneRequest, warm.links[i], s);
         best.pairsChecked += s.pairsChecked > 0 ? 1 : 0;
@@ -186,6 +187,7 @@ namespace meshgap
         DistanceRequest pairRequest;
         pairRequest.stopBelow = request.stopBelow;
         pairRequest.upperBound = bound;
+        pairRequest.computeDepth = request.computeDepth;
         DistanceResult r;
         refineExact(*links_[a].body, *links_[b].body, warm.poses[a].inverse() * warm.poses[b], r, pairRequest,
                     &warm.self[p]);

@@ -608,6 +608,12 @@ namespace meshgap
         }
     }
 
+    std::string UrdfRobot::description() const
+    {
+        return "URDF " + quote(name_) + (floatingBase_ ? ", floating base" : "") + ", " +
+               std::to_string(variables_.size()) + " joints";
+    }
+
     UrdfRobotPtr UrdfRobot::load(const std::string &path, const UrdfOptions &options)
     {
         const std::string xml = readInputFile(path);

@@ -11,11 +11,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <regex>
 #include <sstream>
 
 #include "CliRun.h"
 #include "FclOracle.h"
 #include "TestMeshes.h"
+#include "meshgap/distance/DistanceQuery.h"
 #include "meshgap/distance/Enumeration.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/scene/ProblemConfig.h"
@@ -45,6 +47,11 @@ TEST(DistanceCli, BadInputGivesOneErrorNamingTheFileAndExitOne)
         {RES + "/cube.obj " + RES + "/cube.obj --sizing bogus", "bogus"},
         {RES + "/cube.obj", "two mesh files"},
         {RES + "/cube.obj " + RES + "/cube.obj --cold", "--cold"},  // the scene's answer only
+        // A single body's state through the one-link robot: the count, and a quaternion that is no rotation.
+        {"--cfg " + std::string(MESHGAP_SOURCE_DIR) + "/maps/twisted/twisted.cfg --pose '1 2 3'", "--pose: a state of "
+                                                                                              "this problem has 7"},
+        {"--cfg " + std::string(MESHGAP_SOURCE_DIR) + "/maps/twisted/twisted.cfg --pose '1 2 3 0 0 0 0'",
+         "--pose: SE(3) state: the quaternion"},
         // Solver parameters: ALGORITHM.NAME=VALUE, as meshgap_plan's and meshgap_benchmark's PLANNER.NAME=VALUE.
         {RES + "/cube.obj " + RES + "/cube.obj --algorithm comb-GA-wl --param comb-GA-wl.population=1",
          "not a valid parameter of comb-GA-wl"},  // comb-GA needs at least 2: the value reached the solver
@@ -247,10 +254,12 @@ namespace
 
 TEST(DistanceCli, CfgPosesGiveTheSceneAnswerWarmOrCold)
 {
-    // --cfg without --algorithm answers as the checker does: the scene (handshake's world, a hand, splits into its
-    // six parts), exact and certified, one warm start carried from pose to pose, or a fresh one with --cold. Poses:
-    // the cfg's start, the goal and the straight line between them, which runs through the world (colliding
-    // stretch). Oracle: FCL's distance and collision on the same meshes; warm and cold must agree to 1e-12.
+    // --cfg without --algorithm answers as the checker does, for a single body as for a robot (a robot of one link,
+    // the robot problems' CSV): the scene (handshake's world, a hand, splits into its six parts), exact and
+    // certified, one warm start carried from pose to pose, or a fresh one with --cold. Poses: the cfg's start, the
+    // goal and the straight line between them, which runs through the world (colliding stretch). Oracle: FCL's
+    // distance and collision on the same meshes; warm and cold must agree to 1e-12; --json gives the same numbers,
+    // --no-depth the same verdicts with the contact distance in collision.
     const fs::path cfg = fs::path(MESHGAP_SOURCE_DIR) / "maps" / "handshake" / "handshake.cfg";
     const ProblemConfig problem = readProblemConfig(cfg.string());
     ASSERT_TRUE(problem.goal.has_value());
@@ -273,10 +282,22 @@ TEST(DistanceCli, CfgPosesGiveTheSceneAnswerWarmOrCold)
                 << " " << q.y() << " " << q.z() << " " << q.w() << "\n";
         }
     }
-    const std::string header = "index,distance,time_us,obstacle,";
+    const std::string header = "index,distance,in_collision,certified,link,other_link,obstacle,witness_link_x,";
     const CliRun warm = run("--cfg " + cfg.string() + " --poses " + file + " -q");
     const CliRun cold = run("--cfg " + cfg.string() + " --poses " + file + " --cold -q");
+    const CliRun json = run("--cfg " + cfg.string() + " --poses " + file + " --json -q");
+    const CliRun noDepth = run("--cfg " + cfg.string() + " --poses " + file + " --no-depth -q");
     fs::remove(file);
+    ASSERT_EQ(json.status, 0) << json.err;
+    ASSERT_EQ(noDepth.status, 0) << noDepth.err;
+    std::vector<double> jsonDistances;
+    const std::regex field("\"distance\": ([-+0-9.eE]+),");
+    for (auto it = std::sregex_iterator(json.out.begin(), json.out.end(), field); it != std::sregex_iterator(); ++it)
+        jsonDistances.push_back(std::stod((*it)[1]));
+    EXPECT_EQ(json.out.front(), '[') << json.out;
+    ASSERT_EQ(jsonDistances.size(), poses.size()) << json.out;
+    const auto flat = csvRows(noDepth.out, header);
+    ASSERT_EQ(flat.size(), poses.size());
     ASSERT_EQ(warm.status, 0) << warm.err;
     ASSERT_EQ(cold.status, 0) << cold.err;
     EXPECT_NE(warm.err.find("median"), std::string::npos) << warm.err;  // time per query, on stderr
@@ -284,17 +305,33 @@ TEST(DistanceCli, CfgPosesGiveTheSceneAnswerWarmOrCold)
     const auto w = csvRows(warm.out, header), c = csvRows(cold.out, header);
     ASSERT_EQ(w.size(), poses.size());
     ASSERT_EQ(c.size(), poses.size());
-    const std::size_t collision = 10, certified = 11;
+    const std::size_t collision = 2, certified = 3;
     std::size_t colliding = 0;
     for (std::size_t i = 0; i < poses.size(); ++i)
     {
         SCOPED_TRACE("pose " + std::to_string(i));
-        ASSERT_EQ(w[i].size(), 14u);
+        ASSERT_EQ(w[i].size(), 14u);  // the columns, then clearance_robot: the robot's one link
+        EXPECT_EQ(w[i][4], "robot");
+        EXPECT_EQ(w[i][5], "");  // against an obstacle, not another link
         EXPECT_EQ(w[i][collision], c[i][collision]);
         const double dw = std::stod(w[i][1]), dc = std::stod(c[i][1]);
         EXPECT_LE(std::abs(dw - dc), 1e-12 * std::max(std::abs(dw), std::abs(dc)));
+        EXPECT_EQ(jsonDistances[i], dw);
+        EXPECT_EQ(std::stod(w[i][13]), dw);  // the one link's clearance is the robot's
         EXPECT_EQ(w[i][certified], "1");
         EXPECT_EQ(c[i][certified], "1");
+        EXPECT_EQ(flat[i][collision], w[i][collision]);
+        if (w[i][collision] == "1")
+        {
+            EXPECT_EQ(std::stod(flat[i][1]), CONTACT_DISTANCE);  // the verdict alone
+        }
+        else
+        {
+            EXPECT_EQ(flat[i][1], w[i][1]);
+            const Eigen::Vector3d onRobot(std::stod(w[i][7]), std::stod(w[i][8]), std::stod(w[i][9]));
+            const Eigen::Vector3d onWorld(std::stod(w[i][10]), std::stod(w[i][11]), std::stod(w[i][12]));
+            EXPECT_NEAR((onRobot - onWorld).norm(), dw, 1e-9 * dw);
+        }
         colliding += w[i][collision] == "1";
 #ifdef MESHGAP_HAVE_FCL
         static const auto world = test::fclModel(loadMesh(problem.world)),

@@ -138,7 +138,7 @@ TEST(HostileInputCorpus, HostileCommandLinesGetOneErrorEach)
         {"meshgap_distance", arm + " --pose 1.5", {"--pose", "joint 'j' = 1.5 is outside its limits [-1, 1]"}},
         {"meshgap_distance", arm + " --poses '" + HOSTILE + "/joint_outside_limits.path'",
          {"joint_outside_limits.path:4", "joint 'j' = 1.5 is outside its limits"}},
-        {"meshgap_distance", arm + " --pose 1e300", {"--pose", "state number 0 = 1e+300", "beyond 1e12"}},
+        {"meshgap_distance", arm + " --pose 1e300", {"--pose", "state number 0 (", ") = 1e+300", "beyond 1e12"}},
         // Folders and devices as meshes say what they are.
         {"meshgap_distance", "'" + HOSTILE + "' '" + cube + "'", {HOSTILE, "is a folder, not a file"}},
         {"meshgap_distance", "/dev/null '" + cube + "'", {"/dev/null", "is not a regular file"}},
@@ -161,7 +161,7 @@ TEST(HostileInputCorpus, PoseBeyondDoubleGeometryIsRefusedNotAnsweredWrong)
     const std::string cfg = MAPS + "/hand_bowl/hand_bowl.cfg";
     const std::string args = "--cfg '" + cfg + "' --pose '1e300 0 0 0 0 0 1'";
     expectOneClearError("meshgap_distance " + args, meshgap::test::runExecutable("meshgap_distance", args, 120),
-                        {"--pose", "position x", "beyond 1e12"});
+                        {"--pose", "state number 0 (robot.x) = 1e+300", "beyond 1e12"});
 }
 
 TEST_F(HostileCli, FifoAsProblemFileIsRefusedWithoutBlocking)

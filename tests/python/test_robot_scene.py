@@ -302,14 +302,28 @@ def test_from_cfg_is_from_urdf(files):
     np.testing.assert_allclose(poses[0, scene.link_names.index("payload")], expected, atol=1e-12)
 
 
-def test_single_body_and_robot_files_each_refused_by_the_other(files):
+def test_robot_scene_takes_every_problem_and_scene_refuses_robots(files):
     cfg = write_cfg(files)
     with pytest.raises(ValueError, match="robot problem .*meshgap.RobotScene.from_cfg"):
         meshgap.Scene.from_cfg(cfg)
+    # A single body is a robot of one link: its answers are the single-body scene's, pose for pose.
     single = files / "single.cfg"
-    single.write_text("[problem]\nrobot = payload.obj\nworld = world.obj\nstart.x = 0\nstart.y = 0\nstart.z = 5\n")
-    with pytest.raises(ValueError, match="single-body problem .*meshgap.Scene.from_cfg"):
-        meshgap.RobotScene.from_cfg(single)
+    single.write_text("[problem]\nrobot = payload.obj\nworld = world.obj\nstart.x = 0\nstart.y = 0\nstart.z = 5\n"
+                      "goal.x = 0\ngoal.y = 2.75\ngoal.z = 0.75\n")  # the goal inside a box of the world
+    robot, body = meshgap.RobotScene.from_cfg(single), meshgap.Scene.from_cfg(single)
+    assert robot.link_names == ["robot"] and robot.dimension == 7 and robot.obstacles == body.obstacles
+    np.testing.assert_allclose(robot.start, [0, 0, 5, 0, 0, 0, 1], atol=1e-15)
+    np.testing.assert_allclose(robot.goal, [0, 2.75, 0.75, 0, 0, 0, 1], atol=1e-15)
+    rng = np.random.default_rng(5)
+    s = rng.uniform(0, 1, (300, 1))
+    poses = (1 - s) * robot.start + s * robot.goal
+    poses[:, :3] += rng.normal(scale=0.5, size=(300, 3))
+    poses[:, 3:] = rng.normal(size=(300, 4))
+    poses[:, 3:] /= np.linalg.norm(poses[:, 3:], axis=1, keepdims=True)
+    a, b = robot.distance(poses), body.distance(poses)
+    np.testing.assert_array_equal(a["in_collision"], b["in_collision"])
+    assert 0 < a["in_collision"].sum() < len(poses)
+    np.testing.assert_allclose(a["distance"], b["distance"], rtol=1e-12, atol=1e-12)
     with pytest.raises(FileNotFoundError):
         meshgap.RobotScene.from_cfg(files / "missing.cfg")
     bad = files / "bad.cfg"

@@ -313,7 +313,9 @@ goal_constraints:
         ASSERT_TRUE(p.goal);
         EXPECT_EQ(*p.goal, (std::vector<double>{1.0, 0.2}));
         EXPECT_EQ(p.allowedObstacles.size(), 1u);
-        EXPECT_TRUE(isRobotProblemFile((dir_ / "p.cfg").string()));
+        const Problem any = readProblem((dir_ / "p.cfg").string());
+        EXPECT_TRUE(any.robot && !any.rigidBody);
+        EXPECT_EQ(any.robot->obstacles.size(), 5u);
         // start.joints replaces the request's start; a missing scene is named by its key.
         const RobotProblem q = readRobotProblem(write("q.cfg", lines + "start.joints = 0.1 0.3\n"));
         EXPECT_EQ(q.start, (std::vector<double>{0.1, 0.3}));

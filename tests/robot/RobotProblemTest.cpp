@@ -5,13 +5,18 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <unistd.h>
 
 #include "meshgap/Exception.h"
+#include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/robot/MultiBodyRobot.h"
 #include "meshgap/robot/RobotProblem.h"
+#include "meshgap/robot/RobotScene.h"
 #include "meshgap/robot/UrdfRobot.h"
 #include "meshgap/scene/ProblemConfig.h"
+#include "meshgap/scene/RobotMesh.h"
+#include "meshgap/scene/Scene.h"
 
 namespace fs = std::filesystem;
 
@@ -238,7 +243,10 @@ namespace meshgap
     TEST_F(RobotProblemFiles, EachReaderSendsTheOtherKindOfFileAway)
     {
         const std::string robot = cfg(armLines("0 0"));
-        EXPECT_TRUE(isRobotProblemFile(robot));
+        const Problem asRobot = readProblem(robot);
+        ASSERT_TRUE(asRobot.robot);
+        EXPECT_FALSE(asRobot.rigidBody);
+        EXPECT_EQ(asRobot.robot->start, (std::vector<double>{0.0, 0.0}));
         try
         {
             readProblemConfig(robot);
@@ -252,7 +260,100 @@ namespace meshgap
         }
         const std::string single =
             cfg({"[problem]", "robot = " + CUBE, "world = world.obj", "start.x = 0", "start.y = 0"}, "single.cfg");
-        EXPECT_FALSE(isRobotProblemFile(single));
+        const Problem asSingle = readProblem(single);
+        ASSERT_TRUE(asSingle.rigidBody);
+        EXPECT_FALSE(asSingle.robot);
+        EXPECT_NE(asSingle.rigidBody->robot.find("cube.obj"), std::string::npos);
         EXPECT_NO_THROW(readProblemConfig(single));
+    }
+}  // namespace meshgap
+
+namespace meshgap
+{
+    namespace
+    {
+        /** \brief The one-link robot of \e config against the single-body scene of the same meshes (Scene::fromMeshes,
+            the checker's): the same exact signed distance, collision verdict and witnesses at \e count poses between
+            the start and the goal, nudged by \e seed's random steps. */
+        void expectOneLinkRobotAnswersAsTheScene(const ProblemConfig &config, int count, unsigned seed)
+        {
+            const RobotProblem problem = rigidBodyProblem(config);
+            ASSERT_EQ(problem.robot->links().size(), 1u);
+            ASSERT_EQ(problem.robot->dimension(), config.planar ? 3u : 7u);
+            EXPECT_EQ(problem.planar, config.planar);
+            EXPECT_TRUE(problem.robot->selfPairs().empty());
+            // The start and goal states place the body where the cfg's poses do.
+            const RigidSpace space = config.planar ? RigidSpace::SE2 : RigidSpace::SE3;
+            EXPECT_TRUE(rigidPose(space, problem.start.data()).isApprox(config.start, 1e-12));
+            ASSERT_TRUE(problem.goal && config.goal);
+            EXPECT_TRUE(rigidPose(space, problem.goal->data()).isApprox(*config.goal, 1e-12));
+            const ScenePtr scene =
+                Scene::fromMeshes(loadRobotMesh(config.robot, config.planar), loadMesh(config.world));
+            const RobotScene robot(problem.robot, problem.obstacles);
+            ASSERT_EQ(robot.obstacles().size(), scene->obstacles().size());
+            std::mt19937 rng(seed);
+            std::normal_distribution<double> noise(0.0, 0.3);
+            const double size = scene->robot().bvh().nodes()[0].radius;
+            RobotWarmStart warm;
+            int colliding = 0;
+            for (int i = 0; i < count; ++i)
+            {
+                std::vector<double> q(problem.start.size());
+                for (std::size_t k = 0; k < q.size(); ++k)
+                    q[k] = problem.start[k] + (double(i) / (count - 1)) * ((*problem.goal)[k] - problem.start[k]) +
+                           noise(rng) * (k < (config.planar ? 2u : 3u) ? size : 1.0);
+                if (!config.planar)
+                    Eigen::Map<Eigen::Vector4d>(q.data() + 3).normalize();
+                SceneResult s;
+                scene->distance(rigidPose(space, q.data()), SceneRequest(), s);
+                RobotResult r;
+                robot.distance(q.data(), q.size(), RobotRequest(), warm, r);
+                EXPECT_EQ(r.inCollision, s.inCollision) << "pose " << i;
+                EXPECT_NEAR(r.distance, s.distance, 1e-9 * size) << "pose " << i;
+                EXPECT_TRUE(r.certified) << "pose " << i;
+                if (!s.inCollision)
+                {
+                    EXPECT_NEAR((r.onLink - r.onOther).norm(), s.distance, 1e-9 * size) << "pose " << i;
+                }
+                colliding += s.inCollision ? 1 : 0;
+            }
+            EXPECT_LT(colliding, count);
+        }
+    }  // namespace
+
+    TEST(RigidBodyProblem, ASingleBodyIsARobotOfOneLinkWithTheScenesAnswers)
+    {
+        const ProblemConfig config =
+            readProblemConfig(std::string(MESHGAP_SOURCE_DIR) + "/maps/slotted_wall/slotted_wall.cfg");
+        expectOneLinkRobotAnswersAsTheScene(config, 60, 1);
+        const RobotProblem problem = readAnyRobotProblem(config.file);
+        EXPECT_EQ(problem.robot->description(), "one body in SE(3)");
+        EXPECT_EQ(problem.name, "slotted_wall");
+        ASSERT_TRUE(problem.volume);
+        EXPECT_TRUE(problem.volume->isApprox(*config.volume));
+        EXPECT_EQ(problem.benchmark, config.benchmark);
+    }
+
+    TEST_F(RobotProblemFiles, APlanarSingleBodyIsARobotOfOneLinkInSE2)
+    {
+        const std::string path = cfg({"[problem]", "robot = " + CUBE, "world = world.obj", "start.x = -0.5",
+                                      "start.y = 0.5", "start.theta = 0.3", "goal.x = 0.5", "goal.y = 0.5",
+                                      "goal.theta = 2.5", "volume.min.x = -5", "volume.min.y = -5",
+                                      "volume.max.x = 5", "volume.max.y = 5"},
+                                     "planar.cfg");
+        const ProblemConfig config = readProblemConfig(path);
+        ASSERT_TRUE(config.planar);
+        expectOneLinkRobotAnswersAsTheScene(config, 80, 2);
+        EXPECT_EQ(readAnyRobotProblem(path).robot->description(), "one body in SE(2)");
+        // A control problem's body is a robot of one link too: its pose, the geometric part of the car's state.
+        const std::string car =
+            cfg({"[problem]", "robot = " + CUBE, "world = world.obj", "start.x = 0", "start.y = 0.5",
+                 "start.theta = 0.1", "control = kinematic_car"},
+                "car.cfg");
+        const RobotProblem asCar = readAnyRobotProblem(car);
+        EXPECT_EQ(asCar.robot->description(), "one body in SE(2)");
+        ASSERT_EQ(asCar.start.size(), 3u);
+        EXPECT_NEAR(asCar.start[1], 0.5, 1e-15);
+        EXPECT_NEAR(asCar.start[2], 0.1, 1e-15);
     }
 }  // namespace meshgap

@@ -31,6 +31,9 @@ namespace meshgap
         std::size_t offset(std::size_t i) const { return offsets_[i]; }
         RigidSpace space(std::size_t i) const { return spaces_[i]; }
 
+        /** \brief "N bodies in SE(2)" (or SE(3), or "SE(2) and SE(3)" when they differ). */
+        std::string description() const override;
+
     private:
         std::vector<RigidSpace> spaces_;
         std::vector<std::size_t> offsets_;

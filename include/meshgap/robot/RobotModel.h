@@ -183,6 +183,10 @@ namespace meshgap
         virtual void pointJacobian(const double *state, const std::vector<Eigen::Isometry3d> &frames,
                                    std::size_t frame, const Eigen::Vector3d &p, Eigen::Matrix3Xd &J) const;
 
+        /** \brief What the robot is, in a few words, for a tool's summary: by default "N links"; each kind says
+            more ("URDF 'arm', 6 joints", "2 bodies in SE(2)", "one body in SE(3)"). */
+        virtual std::string description() const;
+
         /** \brief The link of frame \e frame or, when that frame has none, of its nearest ancestor with one (NONE
             if none has): what a body fixed to that frame is adjacent to. */
         std::size_t ownerLink(std::size_t frame) const;

@@ -9,6 +9,7 @@
 
 #include "meshgap/geometry/Body.h"
 #include "meshgap/robot/RobotModel.h"
+#include "meshgap/scene/ProblemConfig.h"
 
 namespace meshgap
 {
@@ -63,9 +64,31 @@ namespace meshgap
         std::vector<std::pair<std::string, std::string>> planners;   ///< [planner] entries
     };
 
-    /** \brief True when \e path is a robot problem (robotProblemKey()); throws as readConfigFile() for a file that
-        cannot be read. */
-    bool isRobotProblemFile(const std::string &path);
+    /** \brief A problem file of any kind, read once by readProblem(), the one place that tells the kinds apart:
+        exactly one of the two is set. */
+    struct Problem
+    {
+        /** \brief A single rigid body (robot = FILE: one mesh in SE(2) or SE(3), or OMPL.app's control problem), as
+            readProblemConfig() reads it; rigidBodyProblem() gives it as a robot problem. */
+        std::optional<ProblemConfig> rigidBody;
+        /** \brief A robot problem (robot.urdf, robot.1, ...), as readRobotProblem() reads it. */
+        std::optional<RobotProblem> robot;
+    };
+
+    /** \brief Read the problem \e path, whatever its kind (a robot problem's bodies built with \e options; a single
+        body's meshes are not loaded). Throws as readProblemConfig() or readRobotProblem() for the kind the file is,
+        and as readConfigFile() for a file that cannot be read. */
+    Problem readProblem(const std::string &path, const BodyOptions &options = BodyOptions());
+
+    /** \brief A single-body problem as a robot problem: a one-link RigidBodyRobot named "robot" (the robot mesh
+        centred as OMPL.app centres it, in SE(2) when the problem is planar, else SE(3)), the world's connected parts
+        as obstacles, the start and goal as states (rigidState()), and the volume, objective, sampler and sections
+        as they are. A control problem's body too: its state is then the body's pose, the geometric part of the
+        control state. Throws as the mesh loader does. */
+    RobotProblem rigidBodyProblem(const ProblemConfig &config, const BodyOptions &options = BodyOptions());
+
+    /** \brief Any problem as a robot problem: readProblem(), a single body through rigidBodyProblem(). */
+    RobotProblem readAnyRobotProblem(const std::string &path, const BodyOptions &options = BodyOptions());
 
     /** \brief Read the robot problem \e path, building every body with \e options. Throws meshgap::Exception naming
         "file:line" for a malformed line or number, an unknown key, a single-body key (robot = FILE: such files are

@@ -27,6 +27,9 @@ namespace meshgap
         /** \brief Answer every pair exactly (the clearance of every link and every pair, RobotResult::pairs),
             rather than pruning each pair at the best distance found so far (cheaper; the minimum is the same). */
         bool everyPair{false};
+        /** \brief In collision, estimate the penetration depth (the distance then minus it); false: the verdict
+            alone, the distance of a colliding pair CONTACT_DISTANCE (as DistanceRequest::computeDepth). */
+        bool computeDepth{true};
         /** \brief Check link against link (the pairs RobotModel::selfPairs() gives), not only against the world. */
         bool selfCollision{true};
     };

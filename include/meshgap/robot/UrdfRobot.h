@@ -89,6 +89,9 @@ namespace meshgap
         /** \brief The URDF's robot name. */
         const std::string &name() const { return name_; }
 
+        /** \brief "URDF 'NAME', floating base, N joints" (N: the joint values of a state). */
+        std::string description() const override;
+
     private:
         UrdfRobot() = default;
         friend struct UrdfBuilder;
