@@ -10,7 +10,7 @@
 #   bench/refresh.sh --dry-run    every block written from made-up output into copies of the pages, then checked
 #                                 (no build, no benchmark run: what the ctest entry runs)
 #
-# --quick: small counts, a few minutes in all on 2 cores; without it the counts of the by-hand tables (an hour or so).
+# --quick: small counts, a minute or two in all on 2 cores; without it the counts of the by-hand tables (an hour or so).
 # The shared data (../shared/data) is optional: without it the query table runs on maps/ alone and the load table on
 # the test meshes.
 set -euo pipefail
@@ -41,14 +41,14 @@ data=""
 [ -d "$shared/omplapp" ] || data="--data ''"
 add queries bench/queries.md meshgap_bench_queries \
     "$B/meshgap_bench_queries $data --states 1000 --random 1000 --skip fast,enumeration" \
-    "$B/meshgap_bench_queries $data --problems Easy,Twistycool,cubicles,hand_bowl,twisted --states 200 --random 200 --skip fast,enumeration"
+    "$B/meshgap_bench_queries $data --problems Easy,Twistycool,cubicles,hand_bowl,twisted --states 500 --random 500 --skip fast,enumeration"
 add primitive_distance bench/primitives.md meshgap_bench_primitive_distance \
     "$B/meshgap_bench_primitive_distance --poses 10000 --seed 1" \
-    "$B/meshgap_bench_primitive_distance --poses 1000 --seed 1"
+    "$B/meshgap_bench_primitive_distance --poses 2000 --seed 1"
 if [ -d "$fanuc" ]; then
     add build bench/scaling.md meshgap_bench_build \
         "python3 bench/build_inputs.py >/dev/null && $B/meshgap_bench_build --repeat 7 $fanuc/*.stl /tmp/meshgap_build_inputs/*.obj" \
-        "$B/meshgap_bench_build --repeat 3 $fanuc/*.stl"
+        "$B/meshgap_bench_build --repeat 5 $fanuc/*.stl"
 else
     add build bench/scaling.md meshgap_bench_build \
         "$B/meshgap_bench_build --repeat 7 tests/resources/cube.obj tests/resources/two_parts.obj" \
@@ -56,10 +56,10 @@ else
 fi
 add scaling bench/scaling.md meshgap_bench_scaling \
     "$B/meshgap_bench_scaling" \
-    "$B/meshgap_bench_scaling --max 4096 --poses 20 --fast-on-demand 2"
+    "$B/meshgap_bench_scaling --max 16384 --poses 50 --fast-on-demand 3"
 add stress bench/scaling.md meshgap_bench_stress \
     "$B/meshgap_bench_stress --queries 1000000 --threads 2" \
-    "$B/meshgap_bench_stress --queries 100000 --threads 2"
+    "$B/meshgap_bench_stress --queries 200000 --threads 2"
 
 chosen=()
 for b in "${blocks[@]}"; do
