@@ -37,11 +37,11 @@ B=$build/bench
 # name | page | target | command (full) | command (quick). Each command is run from the repository's root.
 blocks=()
 add() { blocks+=("$1|$2|$3|$4|$5"); }
-data=""
-[ -d "$shared/omplapp" ] || data="--data ''"
+data="" few=Easy,Twistycool,cubicles,hand_bowl,twisted
+[ -d "$shared/omplapp" ] || { data="--data ''"; few=hand_bowl,slotted_wall,twisted; }
 add queries bench/queries.md meshgap_bench_queries \
     "$B/meshgap_bench_queries $data --states 1000 --random 1000 --skip fast,enumeration" \
-    "$B/meshgap_bench_queries $data --problems Easy,Twistycool,cubicles,hand_bowl,twisted --states 500 --random 500 --skip fast,enumeration"
+    "$B/meshgap_bench_queries $data --problems $few --states 500 --random 500 --skip fast,enumeration"
 add primitive_distance bench/primitives.md meshgap_bench_primitive_distance \
     "$B/meshgap_bench_primitive_distance --poses 10000 --seed 1" \
     "$B/meshgap_bench_primitive_distance --poses 2000 --seed 1"
