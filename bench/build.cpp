@@ -9,7 +9,7 @@
 // whole file. Each file is run --repeat times, the two sides interleaved; the table gives the median of each phase in
 // ms and the ratio of the totals (meshgap / FCL).
 //
-// The generated inputs of bench/README.md (a world of 100 parts, a 250k-triangle mesh) come from
+// The generated inputs of bench/scaling.md (a world of 100 parts, a 250k-triangle mesh) come from
 // bench/build_inputs.py.
 //
 //   build/bench/meshgap_bench_build [--repeat 5] [--nodes] FILE...

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The planning tables of bench/README.md from meshgap_benchmark .log files (bench/clearance_table.sh writes them).
+"""The planning tables of bench/planning.md from meshgap_benchmark .log files (bench/clearance_table.sh writes them).
 
     python3 bench/clearance_summary.py solve DIR/solve/*.log
     python3 bench/clearance_summary.py clearance DIR/clearance/*/*.log

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The two planning tables of bench/README.md, from meshgap_benchmark runs (OMPL .log files) summarised by
+# The two planning tables of bench/planning.md, from meshgap_benchmark runs (OMPL .log files) summarised by
 # clearance_summary.py:
 #
 #   solve:     RRTConnect on every OMPL.app problem in ../shared/data/omplapp and every map in maps/, RUNS runs each

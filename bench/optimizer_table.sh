@@ -9,7 +9,7 @@
 # Settings (environment): RUNS (5), SEED (1), MAPS (the four maps, TIME_MAPS s a run, default 10), PROBLEMS (cubicles
 # Easy, TIME_PROBLEMS s, default 5), TWISTY (Twistycool runs, default 3, TIME_TWISTY s, default 60; 0 skips it),
 # BASELINES (1: also RRT* max-min and RRTConnect on PROBLEMS and Twistycool in the same run; default 1). The maps'
-# baselines are clearance_table.sh's (bench/README.md). Paths are not simplified (--no-simplify): the planners' own.
+# baselines are clearance_table.sh's (bench/planning.md). Paths are not simplified (--no-simplify): the planners' own.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${1:-$here/../build}"

@@ -1,7 +1,7 @@
 // Certified joint-space motions on maps/arm_fixture (the arm carrying its C-shaped payload by the fixture's window):
 // every motion the certified motion validator accepts, checked at steps of at most 1e-4 rad by the exact collision
 // test (every link against the fixture, every self pair, containment included), must be free. The count of accepted
-// motions is MESHGAP_ARM_MOTIONS (default 300, a few seconds; bench/README.md records a run of 10,000).
+// motions is MESHGAP_ARM_MOTIONS (default 300, a few seconds; bench/robots.md records a run of 10,000).
 #include <gtest/gtest.h>
 
 #include <ompl/base/SpaceInformation.h>

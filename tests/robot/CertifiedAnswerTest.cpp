@@ -372,7 +372,7 @@ namespace meshgap
         if (!std::filesystem::exists(urdf) || !std::filesystem::exists(srdf))
             GTEST_SKIP() << "the fanuc arm is not in " << folder << " (see ../shared/data/robots/README.md)";
         // arm_fixture's wall, moved so that its window is at the height of the fanuc's forearm, and its C-shaped
-        // payload on link_6 (bench/README.md, "Robots of many bodies: planning").
+        // payload on link_6 (bench/robots.md, "Robots of many bodies: planning").
         const std::filesystem::path dir = std::filesystem::temp_directory_path() / "meshgap_certified_answer_fanuc";
         std::filesystem::create_directories(dir);
         const std::string maps = std::string(MESHGAP_SOURCE_DIR) + "/maps/arm_fixture/";

@@ -1,0 +1,128 @@
+#!/usr/bin/env bash
+# Regenerates the benchmark tables of bench/*.md that one command each produces, in place, between their
+# `<!-- refresh:NAME -->` ... `<!-- /refresh:NAME -->` markers, each stamped with the commit (`dirty` if the tree has
+# uncommitted changes), the date, the machine's load and the command. Builds only the bench targets it runs
+# (`cmake --build BUILD --target ...`). The other tables of bench/ are measurements by hand, each with its commit
+# (bench/README.md lists both kinds).
+#
+#   bench/refresh.sh [--quick] [--build DIR] [--only NAME[,NAME...]] [--no-build]
+#   bench/refresh.sh --list       the blocks: NAME PAGE
+#   bench/refresh.sh --dry-run    every block written from made-up output into copies of the pages, then checked
+#                                 (no build, no benchmark run: what the ctest entry runs)
+#
+# --quick: small counts, a minute or two in all on 2 cores; without it the counts of the by-hand tables (an hour or so).
+# The shared data (../shared/data) is optional: without it the query table runs on maps/ alone and the load table on
+# the test meshes.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+build=build quick=0 only="" dry=0 list=0 nobuild=0
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --quick) quick=1 ;;
+        --build) build=${2:?--build needs a folder}; shift ;;
+        --only) only=${2:?--only needs block names}; shift ;;
+        --no-build) nobuild=1 ;;
+        --dry-run) dry=1 ;;
+        --list) list=1 ;;
+        -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        *) echo "bench/refresh.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+    esac
+    shift
+done
+shared=${MESHGAP_SHARED_DATA_DIR:-$root/../shared/data}
+fanuc=$shared/robots/moveit_resources_fanuc_description/meshes/collision
+B=$build/bench
+
+# name | page | target | command (full) | command (quick). Each command is run from the repository's root.
+blocks=()
+add() { blocks+=("$1|$2|$3|$4|$5"); }
+data="" few=Easy,Twistycool,cubicles,hand_bowl,twisted
+[ -d "$shared/omplapp" ] || { data="--data ''"; few=hand_bowl,slotted_wall,twisted; }
+add queries bench/queries.md meshgap_bench_queries \
+    "$B/meshgap_bench_queries $data --states 1000 --random 1000 --skip fast,enumeration" \
+    "$B/meshgap_bench_queries $data --problems $few --states 500 --random 500 --skip fast,enumeration"
+add primitive_distance bench/primitives.md meshgap_bench_primitive_distance \
+    "$B/meshgap_bench_primitive_distance --poses 10000 --seed 1" \
+    "$B/meshgap_bench_primitive_distance --poses 2000 --seed 1"
+if [ -d "$fanuc" ]; then
+    add build bench/scaling.md meshgap_bench_build \
+        "python3 bench/build_inputs.py >/dev/null && $B/meshgap_bench_build --repeat 7 $fanuc/*.stl /tmp/meshgap_build_inputs/*.obj" \
+        "$B/meshgap_bench_build --repeat 5 $fanuc/*.stl"
+else
+    add build bench/scaling.md meshgap_bench_build \
+        "$B/meshgap_bench_build --repeat 7 tests/resources/cube.obj tests/resources/two_parts.obj" \
+        "$B/meshgap_bench_build --repeat 3 tests/resources/cube.obj tests/resources/two_parts.obj"
+fi
+add scaling bench/scaling.md meshgap_bench_scaling \
+    "$B/meshgap_bench_scaling" \
+    "$B/meshgap_bench_scaling --max 16384 --poses 50 --fast-on-demand 3"
+add stress bench/scaling.md meshgap_bench_stress \
+    "$B/meshgap_bench_stress --queries 1000000 --threads 2" \
+    "$B/meshgap_bench_stress --queries 200000 --threads 2"
+
+chosen=()
+for b in "${blocks[@]}"; do
+    name=${b%%|*}
+    if [ -z "$only" ] || [[ ",$only," == *",$name,"* ]]; then
+        chosen+=("$b")
+    fi
+done
+if [ -n "$only" ]; then
+    for n in ${only//,/ }; do
+        printf '%s\n' "${chosen[@]}" | grep -q "^$n|" || { echo "bench/refresh.sh: no block '$n' (see --list)" >&2; exit 2; }
+    done
+fi
+
+if [ $list = 1 ]; then
+    for b in "${chosen[@]}"; do IFS='|' read -r name page _ <<< "$b"; echo "$name $page"; done
+    exit 0
+fi
+
+pages=$(for b in "${chosen[@]}"; do IFS='|' read -r _ page _ <<< "$b"; echo "$page"; done | sort -u)
+expect=$(for b in "${chosen[@]}"; do IFS='|' read -r name page _ <<< "$b"; echo "$page:$name"; done)
+
+if [ $dry = 1 ]; then
+    tmp=$(mktemp -d)
+    trap 'rm -rf "$tmp"' EXIT
+    for p in $pages; do cp "$p" "$tmp/$(basename "$p")"; done
+    # shellcheck disable=SC2086
+    python3 bench/refresh_tables.py check $(for p in $pages; do echo "$tmp/$(basename "$p")"; done) --expect $expect
+    for b in "${chosen[@]}"; do
+        IFS='|' read -r name page target full short <<< "$b"
+        cmd=$([ $quick = 1 ] && echo "$short" || echo "$full")
+        printf 'Rows of %s (made up):\n\n| a | b |\n|---|---|\n| 1 | 2 |\n' "$name" > "$tmp/$name.out"
+        python3 bench/refresh_tables.py write "$tmp/$(basename "$page")" "$name" "$tmp/$name.out" \
+            --stamp "Dry run." --command "$cmd"
+        grep -q "^Rows of $name (made up):\$" "$tmp/$(basename "$page")" || { echo "refresh:$name not written" >&2; exit 1; }
+    done
+    # shellcheck disable=SC2086
+    python3 bench/refresh_tables.py check $(for p in $pages; do echo "$tmp/$(basename "$p")"; done) --expect $expect
+    echo "dry run: ${#chosen[@]} block(s) written and checked"
+    exit 0
+fi
+
+if [ $nobuild = 0 ]; then
+    targets=$(for b in "${chosen[@]}"; do IFS='|' read -r _ _ target _ <<< "$b"; echo "$target"; done | sort -u)
+    # shellcheck disable=SC2086
+    cmake --build "$build" -j"${MESHGAP_JOBS:-2}" --target $targets
+fi
+# shellcheck disable=SC2086
+python3 bench/refresh_tables.py check $pages --expect $expect
+commit=$(git rev-parse --short HEAD)
+if [ -n "$(git status --porcelain --untracked-files=no)" ]; then commit="$commit dirty"; fi
+mode=$([ $quick = 1 ] && echo " --quick" || echo "")
+out=$(mktemp)
+trap 'rm -f "$out"' EXIT
+for b in "${chosen[@]}"; do
+    IFS='|' read -r name page target full short <<< "$b"
+    cmd=$([ $quick = 1 ] && echo "$short" || echo "$full")
+    before=$(cut -d' ' -f1 /proc/loadavg)
+    start=$(date +%s)
+    echo "== $name: $cmd" >&2
+    bash -c "$cmd" > "$out"
+    after=$(cut -d' ' -f1 /proc/loadavg)
+    stamp="Measured by \`bench/refresh.sh$mode\` at $commit, $(date -u '+%Y-%m-%d %H:%M') UTC, in $(( $(date +%s) - start )) s;"
+    stamp="$stamp load $before at the start, $after at the end (1-minute average, $(nproc) cores)."
+    python3 bench/refresh_tables.py write "$page" "$name" "$out" --stamp "$stamp" --command "${cmd//$root\//}"
+done
