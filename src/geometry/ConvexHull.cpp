@@ -268,20 +268,38 @@ namespace meshgap
 
     Eigen::Vector3d ConvexHull::support(const Eigen::Vector3d &d) const
     {
+        // Four interleaved lanes, each keeping its largest value and where (branch-free: the compiler vectorises it),
+        // then the largest of the four, ties to the smaller index.
+        constexpr std::size_t LANES = 4;
         const std::size_t n = xs_.size();
         const double dx = d.x(), dy = d.y(), dz = d.z();
-        std::size_t best = 0;
-        double most = -std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < n; ++i)
+        double most[LANES];
+        std::size_t where[LANES];
+        std::fill(most, most + LANES, -std::numeric_limits<double>::infinity());
+        std::fill(where, where + LANES, std::size_t{0});
+        std::size_t i = 0;
+        for (; i + LANES <= n; i += LANES)
+            for (std::size_t k = 0; k < LANES; ++k)
+            {
+                const double s = dx * xs_[i + k] + dy * ys_[i + k] + dz * zs_[i + k];
+                const bool above = s > most[k];
+                most[k] = above ? s : most[k];
+                where[k] = above ? i + k : where[k];
+            }
+        for (; i < n; ++i)
         {
             const double s = dx * xs_[i] + dy * ys_[i] + dz * zs_[i];
-            if (s > most)
+            if (s > most[i % LANES])
             {
-                most = s;
-                best = i;
+                most[i % LANES] = s;
+                where[i % LANES] = i;
             }
         }
-        return vertices_[best];
+        std::size_t best = 0;
+        for (std::size_t k = 1; k < LANES; ++k)
+            if (most[k] > most[best] || (most[k] == most[best] && where[k] < where[best]))
+                best = k;
+        return vertices_[where[best]];
     }
 
     namespace
