@@ -64,7 +64,10 @@ namespace meshgap
                     }
                     // As qh_facet3vertex() orders a simplicial facet's vertices (qh_ORIENTclock is 0).
                     auto id = [&](int k)
-                    { return static_cast<std::uint32_t>(qh_pointid(qh, SETelemt_(facet->vertices, k, vertexT)->point)); };
+                    {
+                        const vertexT *vertex = SETelemt_(facet->vertices, k, vertexT);
+                        return static_cast<std::uint32_t>(qh_pointid(qh, vertex->point));
+                    };
                     const bool top = facet->toporient;
                     out.triangles.push_back({id(top ? 0 : 1), id(top ? 1 : 0), id(2)});
                     out.normals.emplace_back(facet->normal[0], facet->normal[1], facet->normal[2]);

@@ -244,7 +244,9 @@ TEST(ConvexHull, GapNeverExceedsTheMeshDistanceToASolid)
                 apart += gap > 0.0 ? 1 : 0;
                 ASSERT_LE(gap, exact * (1.0 + 1e-9) + 1e-12) << "mesh " << i << " solid " << k << " seed " << seed;
                 if (i == 2)  // a convex mesh: its hull is itself, so the bound is its distance
+                {
                     EXPECT_GE(gap, exact - 1e-9) << "solid " << k << " seed " << seed;
+                }
             }
     }
     EXPECT_EQ(poses, 3000u);
@@ -293,7 +295,8 @@ TEST(ConvexHull, BoundedQuestionsAnswerAsTheTraversal)
             DistanceResult r0, r1;
             refineExact(*obstacle, *link, X, r0, plain);
             refineExact(*obstacle, *link, X, r1, outer);
-            const bool apart0 = !r0.inCollision && !(r0.distance < bound), apart1 = !r1.inCollision && !(r1.distance < bound);
+            const bool apart0 = !r0.inCollision && !(r0.distance < bound);
+            const bool apart1 = !r1.inCollision && !(r1.distance < bound);
             ASSERT_EQ(apart0, apart1) << seed << " " << bound;
             proofs += r1.outerBoundProofs;
         }
