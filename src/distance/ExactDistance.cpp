@@ -241,6 +241,19 @@ namespace meshgap
         result.openBody = !a.isClosed() || !b.isClosed();
         const bool mayStop = stopBelow >= 0.0;
         const bool verdictOnly = mayStop || !request.computeDepth;  // a collision gets no depth
+        if (request.outerBoundFirst && upperBound < std::numeric_limits<double>::infinity() &&
+            solids::outerApart(a, b, X_AB, upperBound))
+        {
+            // The convex outer bounds are apart by more than the bound: no pair is closer, none touches, neither
+            // body holds the other (each lies in its own outer bound).
+            result.distance = std::numeric_limits<double>::infinity();
+            result.certified = true;
+            result.inCollision = false;
+            result.penetrationDepth = 0.0;
+            result.penetration = Penetration::NONE;
+            ++result.outerBoundProofs;
+            return;
+        }
         const bool solid = solids::answered(a, b);
         TriangleCandidate best;
         bool exhausted = false;

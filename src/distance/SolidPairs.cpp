@@ -4,6 +4,7 @@
 
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/geometry/BvhSolid.h"
+#include "meshgap/geometry/ConvexHull.h"
 #include "meshgap/geometry/PrimitiveDistance.h"
 
 namespace meshgap
@@ -92,6 +93,32 @@ namespace meshgap
             const Eigen::Isometry3d X_MS = solidA ? X_AB.inverse() : X_AB;
             return std::any_of(solid.primitives().begin(), solid.primitives().end(),
                                [&](const Primitive &p) { return bvhSolidCollide(mesh.bvh(), p, X_MS); });
+        }
+
+        bool outerApart(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, double bound)
+        {
+            const std::vector<Primitive> &pa = a.primitives(), &pb = b.primitives();
+            const ConvexHull *ha = pa.empty() ? a.convexHull() : nullptr;
+            const ConvexHull *hb = pb.empty() ? b.convexHull() : nullptr;
+            if ((pa.empty() && ha == nullptr) || (pb.empty() && hb == nullptr))
+                return false;
+            if (ha != nullptr && hb != nullptr)
+                return hullGap(*ha, *hb, X_AB, bound) > bound;
+            const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
+            if (ha != nullptr)
+                return std::all_of(pb.begin(), pb.end(),
+                                   [&](const Primitive &p) { return hullPrimitiveGap(*ha, p, X_AB, bound) > bound; });
+            if (hb != nullptr)
+            {
+                const Eigen::Isometry3d X_BA = X_AB.inverse();
+                return std::all_of(pa.begin(), pa.end(),
+                                   [&](const Primitive &p) { return hullPrimitiveGap(*hb, p, X_BA, bound) > bound; });
+            }
+            for (const Primitive &p : pa)
+                for (const Primitive &q : pb)
+                    if (!(primitiveGap(p, identity, q, X_AB, bound).distance > bound))
+                        return false;
+            return true;
         }
 
         bool inside(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)

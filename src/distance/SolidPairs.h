@@ -53,6 +53,12 @@ namespace meshgap
         /** \brief Whether some part of \e a touches or enters some part of \e b. */
         bool touch(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB);
 
+        /** \brief True when the convex outer bounds of \e a and \e b (at \e X_AB) are proven more than \e bound
+            apart: each body's solids (Body::primitives(); a box's mesh is that box), else its hull grown by its
+            margin (Body::convexHull()), every pair's GJK lower bound above \e bound. False when a body has neither
+            (no claim). */
+        bool outerApart(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB, double bound);
+
         /** \brief With no part touching: whether a solid of one body lies inside the other, closed, mesh body (one
             point of the solid decides, insideClosedBody()). */
         bool inside(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB);

@@ -82,6 +82,12 @@ namespace meshgap
         return *grid_;
     }
 
+    const ConvexHull *Body::convexHull() const
+    {
+        std::call_once(hullOnce_, [this] { hull_ = ConvexHull::build(surface_.vertices); });
+        return hull_.get();
+    }
+
     const MeshDistances &Body::distances() const
     {
         std::call_once(distancesOnce_, [this] {

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "SolidCore.h"
+#include "meshgap/geometry/ConvexHull.h"
 
 namespace meshgap
 {
@@ -32,6 +33,8 @@ namespace meshgap
                                             l.z() >= 0.0 ? half.z() : -half.z());
                     return c + R * q;
                 }
+                case HULL:
+                    return c + R * hull->support(R.transpose() * d);
                 default:
                     break;
             }
@@ -57,6 +60,8 @@ namespace meshgap
                     return 0.5 * (p[0] + p[1]);
                 case TRIANGLE:
                     return (p[0] + p[1] + p[2]) / 3.0;
+                case HULL:
+                    return c + R * hull->center();
                 default:
                     return c;
             }
@@ -72,6 +77,8 @@ namespace meshgap
                     return std::max(p[0].norm(), p[1].norm()) + radius;
                 case TRIANGLE:
                     return std::max({p[0].norm(), p[1].norm(), p[2].norm()}) + radius;
+                case HULL:
+                    return c.norm() + hull->reach() + radius;
                 default:
                     return c.norm() + half.norm() + radius;
             }

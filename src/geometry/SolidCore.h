@@ -10,10 +10,12 @@
 
 namespace meshgap
 {
+    class ConvexHull;
+
     namespace solid
     {
-        /** \brief A convex solid: a core (a point, segment, triangle, box, cylinder or cone) swept by a ball of
-            \e radius (a sphere is a point swept, a capsule a segment), placed in the query frame. */
+        /** \brief A convex solid: a core (a point, segment, triangle, box, cylinder, cone or the hull of a point set)
+            swept by a ball of \e radius (a sphere is a point swept, a capsule a segment), placed in the query frame. */
         struct Core
         {
             enum Type
@@ -23,7 +25,8 @@ namespace meshgap
                 TRIANGLE,
                 BOX,
                 CYLINDER,
-                CONE
+                CONE,
+                HULL  ///< conv(hull->vertices()) placed by R and c
             };
             Type type{POINT};
             Eigen::Vector3d p[3]{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
@@ -31,6 +34,7 @@ namespace meshgap
             Eigen::Vector3d c{Eigen::Vector3d::Zero()};      ///< BOX, CYLINDER, CONE: its centre
             Eigen::Vector3d half{Eigen::Vector3d::Zero()};   ///< BOX: half edges; CYLINDER, CONE: (r, r, half length)
             double radius{0.0};
+            const ConvexHull *hull{nullptr};  ///< HULL: the vertex set, in its own frame
 
             /** \brief A point of the core farthest along \e d (the support point). */
             Eigen::Vector3d support(const Eigen::Vector3d &d) const;

@@ -292,6 +292,7 @@ namespace meshgap
             request.stopBelow = bound;
             request.computeDepth = false;
             request.maxTests = budget;
+            request.outerBoundFirst = true;
             SceneResult s;
             scenes_[k]->distance(warm.poses[k], request, warm.links[k], s);
             const bool apart = s.atLeast && !s.inCollision;
@@ -309,6 +310,7 @@ namespace meshgap
         request.stopBelow = bound;
         request.computeDepth = false;
         request.maxTests = budget;
+        request.outerBoundFirst = true;
         DistanceResult r;
         refineExact(*links_[a].body, *links_[b].body, warm.poses[a].inverse() * warm.poses[b], r, request,
                     &warm.self[p]);

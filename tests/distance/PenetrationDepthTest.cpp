@@ -566,7 +566,9 @@ TEST(PenetrationDepth, DeepRandomPosesEqualBruteForceAndTheGridPrunes)
             const std::string where = "pair " + std::to_string(k) + " pose " + std::to_string(i);
             EXPECT_NEAR(e.depth, truth, 1e-12) << where;
             if (e.kind == Penetration::DEEPEST_NODE)
+            {
                 EXPECT_NEAR((e.onA - e.onB).norm(), e.depth, 1e-12) << where;
+            }
             expectSameEstimate(penetrationDepth(a, b, X, &warm), e, where + " warm");
             ++checked;
             deep += truth > 0.25;

@@ -49,6 +49,13 @@ namespace meshgap
             atLeast not claimed): a caller that can ask a cheaper question instead (a smaller bound) saves the
             price of one whose answer lies just beyond its bound. 0 (the default): no limit. */
         std::size_t maxTests{0};
+        /** \brief Exact stage and scene, for bounded questions (a finite upperBound): first ask the bodies' convex
+            outer bounds (a body's solids, Body::primitives(), else its hull grown by its margin, Body::convexHull())
+            by GJK; when every pair of them is more than upperBound apart, nothing is closer (proven: the same
+            answer as the traversal's, distance infinity, certified) and no triangle is visited. Otherwise the
+            question is answered as without it. Pays when the bodies are near but their hulls are not (a link close
+            to a table); costs a GJK per pair otherwise. */
+        bool outerBoundFirst{false};
     };
 
     /** \brief What a colliding pair's (negative) distance is: how its penetration depth was found. */
@@ -118,6 +125,8 @@ namespace meshgap
         std::uint32_t triangleA{0}, triangleB{0};
         std::size_t triangleTests{0};              ///< exact triangle-pair (and point-triangle) tests made
         std::size_t boxTests{0};                   ///< bounding-volume pairs tested by the distance traversal
+        /** \brief Questions answered by the convex outer bounds alone (DistanceRequest::outerBoundFirst). */
+        std::size_t outerBoundProofs{0};
         /** \brief Best value after each iteration, when DistanceRequest::recordHistory is set. */
         std::vector<double> history;
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "meshgap/ClassForward.h"
+#include "meshgap/geometry/ConvexHull.h"
 #include "meshgap/geometry/TriangleBvh.h"
 #include "meshgap/mesh/Mesh.h"
 #include "meshgap/mesh/MeshDistances.h"
@@ -136,6 +137,11 @@ namespace meshgap
             (penetration depth reads it for a closed body). */
         const SurfaceGrid &surfaceGrid() const;
 
+        /** \brief A conservative convex outer bound of the surface (ConvexHull: its vertices' hull grown by a margin
+            that holds every vertex), built on the first call (once, thread-safely); null when the surface has none
+            (flat, fewer than four vertices, a qhull failure): ask the mesh then. */
+        const ConvexHull *convexHull() const;
+
         /** \brief Mesh distances D and P, built on the first call. */
         const MeshDistances &distances() const;
 
@@ -191,6 +197,8 @@ namespace meshgap
         mutable std::atomic<const NodeLayer *> layer_{nullptr};
         mutable std::once_flag gridOnce_;
         mutable std::unique_ptr<const SurfaceGrid> grid_;
+        mutable std::once_flag hullOnce_;
+        mutable std::shared_ptr<const ConvexHull> hull_;
         mutable std::once_flag distancesOnce_;
         mutable MeshDistancesConstPtr distances_;
     };

@@ -1,0 +1,339 @@
+// A conservative convex outer bound of a point set: qhull's hull vertices, and a margin that holds every point,
+// certified by our own arithmetic (ConvexHull.h).
+
+#include "meshgap/geometry/ConvexHull.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <utility>
+
+extern "C"
+{
+#include <libqhull_r/qhull_ra.h>
+}
+
+#include "SolidCore.h"
+#include "meshgap/geometry/TriangleDistance.h"
+
+namespace meshgap
+{
+    namespace
+    {
+        using Triangle3 = std::array<std::uint32_t, 3>;
+
+        /** \brief What qhull's triangulated hull gave: its triangles (indices of the points given, oriented by
+            qhull) and each one's outward unit normal. */
+        struct Hulled
+        {
+            std::vector<Triangle3> triangles;
+            std::vector<Eigen::Vector3d> normals;
+        };
+
+        /** \brief Run qhull ("Qt": triangulated output) on \e points; false on any qhull error (a flat or tiny
+            set, too few points), whose message goes to a memory stream that is dropped. */
+        bool runQhull(const std::vector<Eigen::Vector3d> &points, Hulled &out)
+        {
+            if (points.size() < 4 || points.size() > static_cast<std::size_t>(INT32_MAX / 3))
+                return false;
+            std::vector<coordT> coords(3 * points.size());
+            for (std::size_t i = 0; i < points.size(); ++i)
+                for (int k = 0; k < 3; ++k)
+                    coords[3 * i + k] = points[i][k];
+            char *message = nullptr;
+            std::size_t length = 0;
+            FILE *errors = open_memstream(&message, &length);
+            if (errors == nullptr)
+                return false;
+            qhT state;
+            qhT *qh = &state;
+            qh_zero(qh, errors);
+            char options[] = "qhull Qt";
+            bool ok = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords.data(), False, options, nullptr,
+                                   errors) == 0;
+            if (ok)
+            {
+                facetT *facet;
+                FORALLfacets
+                {
+                    if (!facet->simplicial || facet->normal == nullptr || qh_setsize(qh, facet->vertices) != 3)
+                    {
+                        ok = false;
+                        break;
+                    }
+                    // As qh_facet3vertex() orders a simplicial facet's vertices (qh_ORIENTclock is 0).
+                    auto id = [&](int k)
+                    {
+                        const vertexT *vertex = SETelemt_(facet->vertices, k, vertexT);
+                        return static_cast<std::uint32_t>(qh_pointid(qh, vertex->point));
+                    };
+                    const bool top = facet->toporient;
+                    out.triangles.push_back({id(top ? 0 : 1), id(top ? 1 : 0), id(2)});
+                    out.normals.emplace_back(facet->normal[0], facet->normal[1], facet->normal[2]);
+                }
+            }
+            qh_freeqhull(qh, !qh_ALL);
+            int longLeft = 0, totalLeft = 0;
+            qh_memfreeshort(qh, &longLeft, &totalLeft);
+            std::fclose(errors);
+            std::free(message);
+            return ok && out.triangles.size() >= 4;
+        }
+
+        /** \brief The points the triangles of \e hulled use, in increasing order. */
+        std::vector<std::uint32_t> vertexIds(const Hulled &hulled)
+        {
+            std::vector<std::uint32_t> ids;
+            for (const Triangle3 &t : hulled.triangles)
+                ids.insert(ids.end(), t.begin(), t.end());
+            std::sort(ids.begin(), ids.end());
+            ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+            return ids;
+        }
+
+        /** \brief A hull of more vertices than this is coarsened (coarsen()): support() costs one dot product a
+            vertex. */
+        constexpr std::size_t MAX_VERTICES = 1024;
+        /** \brief The directions coarsen() keeps a vertex for. */
+        constexpr int COARSE_DIRECTIONS = 4096;
+
+        /** \brief Replace the hull of \e ids (indices of \e points) by the hull of the vertices extreme along
+            COARSE_DIRECTIONS directions spread over the sphere (a Fibonacci lattice), fewer vertices; the points
+            it leaves out are then covered by the margin, which build() computes over every point. */
+        bool coarsen(const std::vector<Eigen::Vector3d> &points, std::vector<std::uint32_t> &ids, Hulled &hulled)
+        {
+            std::vector<std::uint32_t> kept;
+            const double golden = M_PI * (3.0 - std::sqrt(5.0));
+            for (int k = 0; k < COARSE_DIRECTIONS; ++k)
+            {
+                const double z = 1.0 - (2.0 * k + 1.0) / COARSE_DIRECTIONS, r = std::sqrt(1.0 - z * z);
+                const Eigen::Vector3d d(r * std::cos(golden * k), r * std::sin(golden * k), z);
+                std::uint32_t best = ids[0];
+                for (std::uint32_t i : ids)
+                    if (d.dot(points[i]) > d.dot(points[best]))
+                        best = i;
+                kept.push_back(best);
+            }
+            std::sort(kept.begin(), kept.end());
+            kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+            std::vector<Eigen::Vector3d> subset;
+            for (std::uint32_t i : kept)
+                subset.push_back(points[i]);
+            Hulled coarse;
+            if (!runQhull(subset, coarse))
+                return false;
+            for (Triangle3 &t : coarse.triangles)
+                for (std::uint32_t &i : t)
+                    i = kept[i];
+            hulled = std::move(coarse);
+            ids = vertexIds(hulled);
+            return true;
+        }
+
+        /** \brief Every directed edge of \e triangles once, and its reverse once: a closed surface, oriented alike. */
+        bool closedAndOriented(const std::vector<Triangle3> &triangles)
+        {
+            std::vector<std::pair<std::uint32_t, std::uint32_t>> edges, reversed;
+            edges.reserve(3 * triangles.size());
+            reversed.reserve(3 * triangles.size());
+            for (const Triangle3 &t : triangles)
+                for (int k = 0; k < 3; ++k)
+                {
+                    edges.emplace_back(t[k], t[(k + 1) % 3]);
+                    reversed.emplace_back(t[(k + 1) % 3], t[k]);
+                }
+            std::sort(edges.begin(), edges.end());
+            std::sort(reversed.begin(), reversed.end());
+            return std::adjacent_find(edges.begin(), edges.end()) == edges.end() && edges == reversed;
+        }
+
+        /** \brief Solid angle of triangle (a, b, c) seen from the origin (Van Oosterom and Strackee, 1983). */
+        double solidAngle(const Eigen::Vector3d &a, const Eigen::Vector3d &b, const Eigen::Vector3d &c)
+        {
+            const double la = a.norm(), lb = b.norm(), lc = c.norm();
+            const double numerator = a.dot(b.cross(c));
+            const double denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+            return 2.0 * std::atan2(numerator, denominator);
+        }
+
+        /** \brief The triangles' normals and the level each triangle's vertices are all above, less the dot
+            products' error bound: fl(n . p) < below[t] proves n . p < n . v for every vertex v of t. */
+        struct Planes
+        {
+            std::vector<double> nx, ny, nz, below;
+
+            Planes(const std::vector<Eigen::Vector3d> &points, const Hulled &hull, double tolerance)
+            {
+                for (std::size_t t = 0; t < hull.triangles.size(); ++t)
+                {
+                    const Eigen::Vector3d &n = hull.normals[t];
+                    double least = std::numeric_limits<double>::infinity();
+                    for (std::uint32_t v : hull.triangles[t])
+                        least = std::min(least, n.dot(points[v]));
+                    nx.push_back(n.x());
+                    ny.push_back(n.y());
+                    nz.push_back(n.z());
+                    below.push_back(least - tolerance);
+                }
+            }
+
+            /** \brief The largest of fl(n . p) - below over the triangles: negative proves \e p below them all. */
+            double excess(const Eigen::Vector3d &p) const
+            {
+                double most = -std::numeric_limits<double>::infinity();
+                const std::size_t n = below.size();
+                for (std::size_t t = 0; t < n; ++t)
+                    most = std::max(most, nx[t] * p.x() + ny[t] * p.y() + nz[t] * p.z() - below[t]);
+                return most;
+            }
+        };
+
+        /** \brief An upper bound of the distance from \e p to conv(hull vertices): 0 when \e p is proven below
+            every triangle, else the least distance to a triangle it is not proven below. */
+        double distanceToHull(const std::vector<Eigen::Vector3d> &points, const Hulled &hull, const Planes &planes,
+                              const Eigen::Vector3d &p)
+        {
+            if (planes.excess(p) < 0.0)
+                return 0.0;
+            double least = std::numeric_limits<double>::infinity();
+            for (std::size_t t = 0; t < hull.triangles.size(); ++t)
+                if (planes.nx[t] * p.x() + planes.ny[t] * p.y() + planes.nz[t] * p.z() >= planes.below[t])
+                {
+                    const Triangle3 &f = hull.triangles[t];
+                    Eigen::Vector3d on;
+                    least = std::min(least, pointTriangleDistance(p, points[f[0]], points[f[1]], points[f[2]], on));
+                }
+            return least;
+        }
+    }  // namespace
+
+    std::shared_ptr<const ConvexHull> ConvexHull::build(const std::vector<Eigen::Vector3d> &points)
+    {
+        double reach = 0.0;
+        for (const Eigen::Vector3d &p : points)
+        {
+            if (!p.allFinite())
+                return nullptr;
+            reach = std::max(reach, p.norm());
+        }
+        Hulled hulled;
+        if (!runQhull(points, hulled))
+            return nullptr;
+        std::vector<std::uint32_t> ids = vertexIds(hulled);
+        if (ids.size() > MAX_VERTICES && !coarsen(points, ids, hulled))
+            return nullptr;
+        if (!closedAndOriented(hulled.triangles))
+            return nullptr;
+        Eigen::Vector3d center = Eigen::Vector3d::Zero();
+        for (std::uint32_t i : ids)
+            center += points[i];
+        center /= static_cast<double>(ids.size());
+
+        // |fl(n . x) - n . x| <= gamma_3 sum |n_i x_i| <= 3.4e-16 |x| for a unit n; 1e-14 of the reach covers both
+        // dot products of a comparison many times over.
+        const Planes planes(points, hulled, 1e-14 * reach + 1e-300);
+        if (!(planes.excess(center) < 0.0))
+            return nullptr;  // the centre is not proven inside every triangle (a sliver of a hull)
+        double angles = 0.0;
+        for (const Triangle3 &t : hulled.triangles)
+            angles += solidAngle(points[t[0]] - center, points[t[1]] - center, points[t[2]] - center);
+        if (!(std::abs(angles) > 2.0 * M_PI))
+            return nullptr;  // winding number 0 about the centre
+
+        std::vector<bool> isVertex(points.size(), false);
+        for (std::uint32_t i : ids)
+            isVertex[i] = true;
+        double epsilon = 0.0;
+        for (std::size_t i = 0; i < points.size(); ++i)
+            if (!isVertex[i])
+                epsilon = std::max(epsilon, distanceToHull(points, hulled, planes, points[i]));
+        if (!std::isfinite(epsilon))
+            return nullptr;
+
+        std::shared_ptr<ConvexHull> hull(new ConvexHull());
+        std::vector<std::uint32_t> index(points.size(), 0);
+        for (std::uint32_t i : ids)
+        {
+            index[i] = static_cast<std::uint32_t>(hull->vertices_.size());
+            hull->vertices_.push_back(points[i]);
+            hull->xs_.push_back(points[i].x());
+            hull->ys_.push_back(points[i].y());
+            hull->zs_.push_back(points[i].z());
+            hull->reach_ = std::max(hull->reach_, points[i].norm());
+        }
+        for (const Triangle3 &t : hulled.triangles)
+            hull->triangles_.push_back({index[t[0]], index[t[1]], index[t[2]]});
+        hull->center_ = center;
+        hull->margin_ = epsilon * (1.0 + 1e-9) + 1e-12 * reach;
+        return hull;
+    }
+
+    Eigen::Vector3d ConvexHull::support(const Eigen::Vector3d &d) const
+    {
+        // Four interleaved lanes, each keeping its largest value and where (branch-free: the compiler vectorises it),
+        // then the largest of the four, ties to the smaller index.
+        constexpr std::size_t LANES = 4;
+        const std::size_t n = xs_.size();
+        const double dx = d.x(), dy = d.y(), dz = d.z();
+        double most[LANES];
+        std::size_t where[LANES];
+        std::fill(most, most + LANES, -std::numeric_limits<double>::infinity());
+        std::fill(where, where + LANES, std::size_t{0});
+        std::size_t i = 0;
+        for (; i + LANES <= n; i += LANES)
+            for (std::size_t k = 0; k < LANES; ++k)
+            {
+                const double s = dx * xs_[i + k] + dy * ys_[i + k] + dz * zs_[i + k];
+                const bool above = s > most[k];
+                most[k] = above ? s : most[k];
+                where[k] = above ? i + k : where[k];
+            }
+        for (; i < n; ++i)
+        {
+            const double s = dx * xs_[i] + dy * ys_[i] + dz * zs_[i];
+            if (s > most[i % LANES])
+            {
+                most[i % LANES] = s;
+                where[i % LANES] = i;
+            }
+        }
+        std::size_t best = 0;
+        for (std::size_t k = 1; k < LANES; ++k)
+            if (most[k] > most[best] || (most[k] == most[best] && where[k] < where[best]))
+                best = k;
+        return vertices_[where[best]];
+    }
+
+    namespace
+    {
+        /** \brief The lower bound of two placed solids' distance (their balls' radii subtracted), by GJK. */
+        double coresGap(const solid::Core &a, const solid::Core &b, double enough)
+        {
+            const double radii = a.radius + b.radius;
+            const solid::CoreGap g = solid::gjk(a, b, std::max(a.reach(), b.reach()), enough + radii);
+            return g.overlap ? 0.0 : std::max(0.0, g.lower - radii);
+        }
+
+        solid::Core hullCore(const ConvexHull &hull, const Eigen::Isometry3d &X)
+        {
+            solid::Core core;
+            core.type = solid::Core::HULL;
+            core.hull = &hull;
+            core.R = X.linear();
+            core.c = X.translation();
+            core.radius = hull.margin();
+            return core;
+        }
+    }  // namespace
+
+    double hullGap(const ConvexHull &a, const ConvexHull &b, const Eigen::Isometry3d &X_AB, double enough)
+    {
+        return coresGap(hullCore(a, Eigen::Isometry3d::Identity()), hullCore(b, X_AB), enough);
+    }
+
+    double hullPrimitiveGap(const ConvexHull &a, const Primitive &p, const Eigen::Isometry3d &X_AP, double enough)
+    {
+        return coresGap(hullCore(a, Eigen::Isometry3d::Identity()), solid::coreOf(p, X_AP), enough);
+    }
+}  // namespace meshgap

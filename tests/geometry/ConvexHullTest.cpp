@@ -1,0 +1,305 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "TestMeshes.h"
+#include "meshgap/distance/ExactDistance.h"
+#include "meshgap/geometry/Body.h"
+#include "meshgap/geometry/ConvexHull.h"
+#include "meshgap/robot/Primitives.h"
+
+using namespace meshgap;
+using Eigen::Isometry3d;
+using Eigen::Vector3d;
+
+// The convex outer bound of a body: its hull's vertices grown by a margin must hold every vertex of the mesh (checked
+// along random directions and each dropped vertex's own direction, with no use of qhull), and the GJK lower bound
+// between it and a solid or another hull must never exceed the exact distance of the meshes (refineExact, the
+// traversal) over thousands of random poses; degenerate point sets have no hull and answer as before.
+namespace
+{
+    /** \brief A sphere of \e r with every vertex pushed in by up to a fifth at random: non-convex, most vertices
+        inside the hull. */
+    Mesh bumpySphere(double r, int level, std::uint32_t seed)
+    {
+        Mesh m = test::icosphere(r, level);
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<double> u(0.8, 1.0);
+        for (Vector3d &v : m.vertices)
+            v *= u(rng);
+        m.source = "bumpy sphere";
+        return m;
+    }
+
+    /** \brief An L of two boxes (non-convex, coplanar faces of many vertices), off the origin. */
+    Mesh lShape()
+    {
+        return test::transformed(test::merged(test::box(0.5, 0.1, 0.1, 4),
+                                              test::transformed(test::box(0.1, 0.4, 0.1, 3),
+                                                                test::translation(0.4, 0.5, 0.0))),
+                                 test::translation(0.3, -0.2, 0.7));
+    }
+
+    std::vector<Vector3d> directions(std::size_t n, std::uint32_t seed)
+    {
+        std::mt19937 rng(seed);
+        std::normal_distribution<double> g;
+        std::vector<Vector3d> d(n);
+        for (Vector3d &x : d)
+            x = Vector3d(g(rng), g(rng), g(rng)).normalized();
+        return d;
+    }
+
+    /** \brief The largest excess of a point's support over the grown vertex set's, over \e dirs: the points lie in
+        conv(vertices) + Ball(margin) only if it is at most 0 (brute force; no use of the hull's triangles). */
+    double worstExcess(const std::vector<Vector3d> &vertices, double margin, const std::vector<Vector3d> &points,
+                       const std::vector<Vector3d> &dirs)
+    {
+        double worst = -std::numeric_limits<double>::infinity();
+        for (const Vector3d &d : dirs)
+        {
+            double p = -std::numeric_limits<double>::infinity(), v = p;
+            for (const Vector3d &x : points)
+                p = std::max(p, d.dot(x));
+            for (const Vector3d &x : vertices)
+                v = std::max(v, d.dot(x));
+            worst = std::max(worst, p - v - margin);
+        }
+        return worst;
+    }
+
+    /** \brief The directions in which hull vertex \e k is extreme: the mean of its triangles' normals (and random
+        ones): dropping that vertex must show in them. */
+    std::vector<Vector3d> vertexDirections(const ConvexHull &hull, std::uint32_t k)
+    {
+        Vector3d sum = Vector3d::Zero();
+        for (const auto &t : hull.triangles())
+            if (t[0] == k || t[1] == k || t[2] == k)
+            {
+                const std::vector<Vector3d> &v = hull.vertices();
+                const Vector3d n = (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
+                if (n.norm() > 0.0)
+                    sum += n.normalized() * (n.dot(v[t[0]] - hull.center()) >= 0.0 ? 1.0 : -1.0);
+            }
+        std::vector<Vector3d> d = directions(200, 7 + k);
+        d.push_back(sum.normalized());
+        return d;
+    }
+
+    void expectHolds(const Mesh &m, const char *what)
+    {
+        SCOPED_TRACE(what);
+        const std::shared_ptr<const ConvexHull> hull = ConvexHull::build(m.vertices);
+        ASSERT_TRUE(hull) << what << ": no hull";
+        EXPECT_GE(hull->vertices().size(), 4u);
+        EXPECT_LE(hull->vertices().size(), m.vertices.size());
+        for (const Vector3d &v : hull->vertices())  // the vertices are points of the mesh
+            EXPECT_TRUE(std::find(m.vertices.begin(), m.vertices.end(), v) != m.vertices.end());
+        EXPECT_GE(hull->margin(), 0.0);
+        EXPECT_LT(hull->margin(), 1e-9) << "a margin far above roundoff";
+        EXPECT_LE(worstExcess(hull->vertices(), hull->margin(), m.vertices, directions(2000, 3)), 0.0);
+        for (const Vector3d &p : m.vertices)  // and each vertex's own direction
+            EXPECT_LE(worstExcess(hull->vertices(), hull->margin(), m.vertices, {(p - hull->center()).normalized()}),
+                      0.0);
+    }
+
+    Primitive solid(Primitive::Kind kind, double x, double y, double z, const Isometry3d &pose)
+    {
+        Primitive p;
+        p.kind = kind;
+        p.size = Vector3d(x, y, z);
+        p.pose = pose;
+        return p;
+    }
+
+    /** \brief A body of the solid \e p (its mesh at its pose, as a MoveIt scene builds one). */
+    BodyPtr solidBody(const Primitive &p)
+    {
+        Mesh m;
+        switch (p.kind)
+        {
+            case Primitive::Kind::BOX:
+                m = boxMesh(p.size);
+                break;
+            case Primitive::Kind::SPHERE:
+                m = sphereMesh(p.size.x(), 16);
+                break;
+            case Primitive::Kind::CONE:
+                m = coneMesh(p.size.x(), p.size.y(), 16);
+                break;
+            default:  // a capsule inside its cylinder's mesh grown by the radius
+                m = cylinderMesh(p.size.x(), p.size.y() + (p.kind == Primitive::Kind::CAPSULE ? 2 * p.size.x() : 0.0),
+                                 16);
+        }
+        BodyOptions options;
+        options.gridSize = 0;
+        return Body::build(test::transformed(m, p.pose), {p}, options);
+    }
+
+    /** \brief The distance of two bodies as refineExact() finds it, taken as the distance its witness points achieve
+        (an upper bound of the true distance: for a curved solid, refineExact()'s distance is GJK's lower bound, which
+        may lie below the truth by 1e-10 of the scale); 0 in collision. */
+    double exactDistance(const Body &a, const Body &b, const Isometry3d &X_AB)
+    {
+        DistanceResult r;
+        refineExact(a, b, X_AB, r);
+        return r.inCollision ? 0.0 : std::max(r.distance, (r.onA - r.onB).norm());
+    }
+}  // namespace
+
+TEST(ConvexHull, HoldsEveryVertex)
+{
+    expectHolds(test::icosphere(0.3, 2), "icosphere");
+    expectHolds(bumpySphere(0.4, 3, 1), "bumpy sphere");
+    expectHolds(lShape(), "L of boxes");
+    expectHolds(test::box(0.2, 0.3, 0.05, 6), "box of 6 x 6 squares a face");
+    expectHolds(test::transformed(bumpySphere(2e-3, 2, 5), test::translation(40.0, -30.0, 10.0)), "small, far");
+    // Coplanar points are not vertices: a box of many squares a face has its 8 corners.
+    EXPECT_EQ(ConvexHull::build(test::box(0.2, 0.3, 0.05, 6).vertices)->vertices().size(), 8u);
+}
+
+TEST(ConvexHull, AFineRoundPartIsCoarsenedAndStillHeld)
+{
+    // 10,242 vertices all on the hull: more than build() keeps, so it keeps those extreme along its directions and the
+    // margin covers the others (the sagitta between kept vertices: well under a hundredth of the radius).
+    const Mesh fine = test::transformed(test::icosphere(0.05, 5), test::translation(0.2, 0.1, -0.3));
+    ASSERT_GT(fine.vertices.size(), 10000u);
+    const std::shared_ptr<const ConvexHull> hull = ConvexHull::build(fine.vertices);
+    ASSERT_TRUE(hull);
+    EXPECT_LE(hull->vertices().size(), 4096u);
+    EXPECT_LT(hull->vertices().size(), fine.vertices.size());
+    EXPECT_GT(hull->margin(), 0.0);
+    EXPECT_LT(hull->margin(), 0.01 * 0.05);
+    EXPECT_LE(worstExcess(hull->vertices(), hull->margin(), fine.vertices, directions(3000, 11)), 0.0);
+    EXPECT_GT(worstExcess(hull->vertices(), 0.0, fine.vertices, directions(3000, 11)), 0.0)
+        << "without its margin the coarse hull leaves vertices out";
+}
+
+TEST(ConvexHull, TheOracleCatchesAShrunkHull)
+{
+    // A check that never fails proves nothing: with the margin made negative, or one vertex dropped, the brute-force
+    // oracle of HoldsEveryVertex must find a mesh vertex outside.
+    const Mesh m = bumpySphere(0.4, 3, 1);
+    const std::shared_ptr<const ConvexHull> hull = ConvexHull::build(m.vertices);
+    ASSERT_TRUE(hull);
+    EXPECT_GT(worstExcess(hull->vertices(), -1e-6, m.vertices, directions(2000, 3)), 0.0);
+    for (std::uint32_t k : {0u, 5u, 17u})
+    {
+        std::vector<Vector3d> dropped = hull->vertices();
+        dropped.erase(dropped.begin() + k);
+        EXPECT_GT(worstExcess(dropped, hull->margin(), m.vertices, vertexDirections(*hull, k)), 0.0) << k;
+    }
+}
+
+TEST(ConvexHull, DegenerateSetsHaveNoHull)
+{
+    const Vector3d o = Vector3d::Zero(), x = Vector3d::UnitX(), y = Vector3d::UnitY();
+    EXPECT_FALSE(ConvexHull::build({}));
+    EXPECT_FALSE(ConvexHull::build({o, x, y}));                                        // a single triangle
+    EXPECT_FALSE(ConvexHull::build({o, x, y, x + y}));                                 // a flat quad
+    EXPECT_FALSE(ConvexHull::build({o, x, 2 * x, 3 * x, 4 * x}));                      // collinear
+    EXPECT_FALSE(ConvexHull::build({x, x, x, x, x}));                                  // one point
+    EXPECT_FALSE(ConvexHull::build(test::grid(1.0, 2.0, 5, 7).vertices));             // a flat grid
+    EXPECT_FALSE(ConvexHull::build({o, x, y, Vector3d(0, 0, std::nan(""))}));          // not finite
+    const BodyPtr flat = test::unrefinedBody(test::grid(1.0, 2.0, 5, 7));
+    EXPECT_EQ(flat->convexHull(), nullptr);
+    // A flat body answers a bounded question with the outer bound asked as without it.
+    const BodyPtr ball = test::unrefinedBody(test::icosphere(0.2, 1));
+    for (double z : {0.1, 0.25, 0.5, 1.0})
+    {
+        DistanceRequest plain, outer;
+        plain.upperBound = outer.upperBound = 0.3;
+        outer.outerBoundFirst = true;
+        DistanceResult r0, r1;
+        refineExact(*flat, *ball, test::translation(0.5, 0.5, z), r0, plain);
+        refineExact(*flat, *ball, test::translation(0.5, 0.5, z), r1, outer);
+        EXPECT_EQ(r0.distance, r1.distance) << z;
+        EXPECT_EQ(r1.outerBoundProofs, 0u);
+    }
+}
+
+TEST(ConvexHull, GapNeverExceedsTheMeshDistanceToASolid)
+{
+    const Mesh meshes[] = {bumpySphere(0.3, 3, 2), lShape(), test::icosphere(0.25, 2)};
+    const Primitive::Kind kinds[] = {Primitive::Kind::BOX, Primitive::Kind::SPHERE, Primitive::Kind::CYLINDER,
+                                     Primitive::Kind::CONE, Primitive::Kind::CAPSULE};
+    std::size_t poses = 0, apart = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+    {
+        const BodyPtr body = test::unrefinedBody(meshes[i]);
+        ASSERT_NE(body->convexHull(), nullptr);
+        for (std::size_t k = 0; k < 5; ++k)
+            for (std::uint32_t seed = 0; seed < 200; ++seed)
+            {
+                const Primitive p = solid(kinds[k], 0.2, 0.5, 0.3, test::randomPose(1000 * k + seed, 0.1));
+                const BodyPtr obstacle = solidBody(p);
+                const Isometry3d X = test::randomPose(7 + 31 * seed + 1000 * i, 1.0);
+                const double exact = exactDistance(*body, *obstacle, X);
+                const double gap = hullPrimitiveGap(*body->convexHull(), p, X);
+                ++poses;
+                apart += gap > 0.0 ? 1 : 0;
+                ASSERT_LE(gap, exact * (1.0 + 1e-9) + 1e-12) << "mesh " << i << " solid " << k << " seed " << seed;
+                if (i == 2)  // a convex mesh: its hull is itself, so the bound is its distance
+                {
+                    EXPECT_GE(gap, exact - 1e-9) << "solid " << k << " seed " << seed;
+                }
+            }
+    }
+    EXPECT_EQ(poses, 3000u);
+    EXPECT_GT(apart, 1000u) << "the poses should be mostly apart";
+}
+
+TEST(ConvexHull, GapNeverExceedsTheDistanceBetweenMeshes)
+{
+    const BodyPtr a = test::unrefinedBody(bumpySphere(0.3, 3, 3)), b = test::unrefinedBody(lShape());
+    const BodyPtr c = test::unrefinedBody(test::icosphere(0.25, 2));
+    std::size_t apart = 0;
+    for (std::uint32_t seed = 0; seed < 1000; ++seed)
+    {
+        const Isometry3d X = test::randomPose(seed, 1.2);
+        const double exact = exactDistance(*a, *b, X);
+        const double gap = hullGap(*a->convexHull(), *b->convexHull(), X);
+        apart += gap > 0.0 ? 1 : 0;
+        ASSERT_LE(gap, exact * (1.0 + 1e-9) + 1e-12) << seed;
+        const double convex = exactDistance(*c, *c, X);  // two convex meshes: the bound is their distance
+        const double both = hullGap(*c->convexHull(), *c->convexHull(), X);
+        ASSERT_LE(both, convex * (1.0 + 1e-9) + 1e-12) << seed;
+        EXPECT_GE(both, convex - 1e-9) << seed;
+    }
+    EXPECT_GT(apart, 300u);
+}
+
+TEST(ConvexHull, BoundedQuestionsAnswerAsTheTraversal)
+{
+    // refineExact with the outer bound asked first: the same verdict ("nothing below the bound", or a pair below it)
+    // as without, over random poses and bounds, with some answered by the outer bounds alone.
+    const BodyPtr link = test::unrefinedBody(bumpySphere(0.3, 3, 4));
+    const Primitive table = solid(Primitive::Kind::BOX, 2.0, 2.0, 0.1, test::translation(0.0, 0.0, -0.05));
+    const BodyPtr tableBody = solidBody(table), other = test::unrefinedBody(lShape());
+    std::size_t proofs = 0;
+    for (std::uint32_t seed = 0; seed < 600; ++seed)
+    {
+        const BodyPtr &obstacle = seed % 2 ? tableBody : other;
+        Isometry3d X = test::randomPose(seed, 0.6);
+        X.translation().z() += 0.35;
+        for (double bound : {0.01, 0.05, 0.2})
+        {
+            DistanceRequest plain, outer;
+            plain.upperBound = outer.upperBound = plain.stopBelow = outer.stopBelow = bound;
+            plain.computeDepth = outer.computeDepth = false;
+            outer.outerBoundFirst = true;
+            DistanceResult r0, r1;
+            refineExact(*obstacle, *link, X, r0, plain);
+            refineExact(*obstacle, *link, X, r1, outer);
+            const bool apart0 = !r0.inCollision && !(r0.distance < bound);
+            const bool apart1 = !r1.inCollision && !(r1.distance < bound);
+            ASSERT_EQ(apart0, apart1) << seed << " " << bound;
+            proofs += r1.outerBoundProofs;
+        }
+    }
+    EXPECT_GT(proofs, 100u);
+}
