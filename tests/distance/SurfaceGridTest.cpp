@@ -56,8 +56,10 @@ namespace
                 EXPECT_EQ(cell->side == SurfaceGrid::Side::INSIDE, containsPoint(body, p)) << name << " point " << i;
             }
             if (!body.isClosed())
+            {
                 EXPECT_TRUE(cell->side == SurfaceGrid::Side::CROSSING || cell->side == SurfaceGrid::Side::UNKNOWN)
                     << name;
+            }
         }
         EXPECT_GT(outsideGrid, 0u) << name;  // the sampled box reaches beyond the grid: null cells are seen
         return decided;
@@ -87,7 +89,9 @@ TEST(SurfaceGrid, BoundsAndSidesAgainstBruteForce)
         EXPECT_LE(body->surfaceGrid().numCells(), limit) << meshes[k].first;
         const std::size_t here = checkGrid(*body, 7 + k, 1500, meshes[k].first);
         if (meshes[k].first == "U" || meshes[k].first == "sphere")
+        {
             EXPECT_GT(here, 300u) << meshes[k].first;  // the check saw decided cells, inside and outside
+        }
         decided += here;
     }
     test::Note() << "[ grid     ] " << decided << " random points in decided cells, on their cell's side\n";
