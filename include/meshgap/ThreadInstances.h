@@ -33,8 +33,8 @@ namespace meshgap
         keeps the instances of its last \e Kept objects: when another arrives, the oldest object's (the smallest id)
         goes, so that a process making object after object (a benchmark's runs, a loop in Python) does not grow
         without bound; an object whose instance went starts afresh. The reference returned stays valid until this
-        thread asks for the instance of a newer object while \e Kept are held: a caller holding it must not ask for
-        another object's instance meanwhile (no checker calls another checker). */
+        thread asks for an instance it does not hold while \e Kept are held (that drops the oldest object's): a
+        caller holding one must not ask for another object's meanwhile (no checker calls another checker). */
     template <typename T, std::size_t Kept, typename... Args>
     T &threadInstanceFor(std::uint64_t id, Args &&...args)
     {
