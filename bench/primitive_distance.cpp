@@ -17,6 +17,7 @@
 
 #include "CliMain.h"
 #include "TestMeshes.h"
+#include "TestSolids.h"
 #include "meshgap/geometry/BvhSolid.h"
 #include "meshgap/geometry/PrimitiveDistance.h"
 #include "meshgap/geometry/TriangleBvh.h"
@@ -33,17 +34,6 @@ using Eigen::Vector3d;
 
 namespace
 {
-    std::vector<Primitive> solids()
-    {
-        std::vector<Primitive> all(5);
-        all[0].kind = Primitive::Kind::BOX, all[0].size = Vector3d(0.3, 0.5, 0.8);
-        all[1].kind = Primitive::Kind::SPHERE, all[1].size = Vector3d(0.35, 0, 0);
-        all[2].kind = Primitive::Kind::CYLINDER, all[2].size = Vector3d(0.25, 0.9, 0);
-        all[3].kind = Primitive::Kind::CAPSULE, all[3].size = Vector3d(0.2, 0.7, 0);
-        all[4].kind = Primitive::Kind::CONE, all[4].size = Vector3d(0.3, 0.8, 0);
-        return all;
-    }
-
     const char *name(Primitive::Kind kind)
     {
         static const char *names[] = {"box", "sphere", "cylinder", "cone", "capsule"};
@@ -187,7 +177,7 @@ static int run(int argc, char **argv)
     double sink = 0.0;
     std::printf("| solid / other | touching | meshgap distance | meshgap collision | FCL distance | FCL collision | "
                 "largest distance difference |\n|---|---|---|---|---|---|---|\n");
-    const std::vector<Primitive> all = solids();
+    const std::vector<Primitive> all = test::oneSolidOfEachKind();
     for (const Primitive &p : all)
         meshRow(p, bvh, poses, sink);
     for (std::size_t i = 0; i < all.size(); ++i)

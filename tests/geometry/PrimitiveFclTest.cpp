@@ -9,6 +9,7 @@
 #include "FclRobotScene.h"
 #include "TestMeshes.h"
 #include "TestScale.h"
+#include "TestSolids.h"
 #include "meshgap/geometry/BvhSolid.h"
 #include "meshgap/geometry/PrimitiveDistance.h"
 #include "meshgap/geometry/TriangleBvh.h"
@@ -30,12 +31,7 @@ namespace
 
     std::vector<Primitive> shapes()
     {
-        std::vector<Primitive> all(5);
-        all[0].kind = Primitive::Kind::BOX, all[0].size = Vector3d(0.3, 0.5, 0.8);
-        all[1].kind = Primitive::Kind::SPHERE, all[1].size = Vector3d(0.35, 0, 0);
-        all[2].kind = Primitive::Kind::CYLINDER, all[2].size = Vector3d(0.25, 0.9, 0);
-        all[3].kind = Primitive::Kind::CAPSULE, all[3].size = Vector3d(0.2, 0.7, 0);
-        all[4].kind = Primitive::Kind::CONE, all[4].size = Vector3d(0.3, 0.8, 0);
+        std::vector<Primitive> all = test::oneSolidOfEachKind();
         for (Primitive &p : all)  // a pose of its own in its body's frame
             p.pose = test::randomPose(static_cast<std::uint32_t>(p.kind) + 100, 0.1);
         return all;
