@@ -1,45 +1,41 @@
 #ifndef MESHGAP_PLANNERS_FCL_CHECKER_H
 #define MESHGAP_PLANNERS_FCL_CHECKER_H
 
-// The peer checker of meshgap_benchmark: FCL 0.7 as OMPL.app uses it. Header-only (every planners/*.cpp is an
-// executable); needs MESHGAP_HAVE_FCL and the fcl target.
+// The peer checker of meshgap_benchmark, for a problem of any kind (a single body is a robot of one link): FCL 0.7 as
+// MoveIt uses it (FclRobotScene.h). Header-only (every planners/*.cpp is an executable); needs MESHGAP_HAVE_FCL and
+// the fcl target.
 
 #ifdef MESHGAP_HAVE_FCL
 #include <atomic>
 #include <chrono>
-#include <fcl/fcl.h>
 #include <memory>
 #include <ompl/base/StateValidityChecker.h>
+#include <vector>
 
-#include "meshgap/mesh/Mesh.h"
+#include "FclRobotScene.h"
 #include "meshgap/ompl/ClearanceChecker.h"
+#include "meshgap/ompl/RobotStateSpace.h"
 
 namespace meshgap
 {
-    /** \brief An FCL BVHModel<OBBRSS> of a mesh, in the mesh's own frame. */
-    inline std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> fclModelOf(const Mesh &mesh)
-    {
-        auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
-        const std::vector<fcl::Vector3d> points(mesh.vertices.begin(), mesh.vertices.end());
-        std::vector<fcl::Triangle> triangles;
-        triangles.reserve(mesh.triangles.size());
-        for (const Triangle &t : mesh.triangles)
-            triangles.emplace_back(t[0], t[1], t[2]);
-        model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
-        model->addSubModel(points, triangles);
-        model->endModel();
-        model->computeLocalAABB();
-        return model;
-    }
-
-    /** \brief What the FCL peer checkers share: isValid() (within the space's bounds, and Derived::inCollision()
-        false at Derived::pose()) and clearance() (Derived::distance() there), each counted and timed;
-        thread-safe. */
-    template <typename Derived>
-    class FclTimedChecker : public ompl::base::StateValidityChecker
+    /**
+       @anchor mgFclChecker
+       @par Short description
+       A state validity checker for a robot in a space made by robotStateSpace() (or the space of its one state
+       block: a single body's SE(2) or SE(3)), by FCL as MoveIt's collision_detection_fcl checks a state:
+       FclRobotScene (the obstacles in one broad-phase manager, the links in another updated to each state's link
+       poses, the pairs RobotScene checks put to FCL's narrow phase; primitive solids as FCL's own shapes, other bodies
+       as BVHModel<OBBRSS>). A single body is its mesh, centred as OMPL.app centres it, against the world's connected
+       parts, each the BVHModel<OBBRSS> of its triangles: the same triangles OMPL.app's FCL checker is given, placed
+       at the same pose for the same state. isValid() is FCL's collide, stopping at the first contact; clearance()
+       FCL's least distance (0 in collision, as FCL answers). A state out of the space's bounds is invalid. Counts its
+       queries and their time (CheckerStats: evaluations and warm-start hits stay 0); thread-safe.
+    */
+    class FclChecker : public ompl::base::StateValidityChecker
     {
     public:
-        explicit FclTimedChecker(const ompl::base::SpaceInformationPtr &si) : ompl::base::StateValidityChecker(si)
+        FclChecker(const ompl::base::SpaceInformationPtr &si, RobotSceneConstPtr scene)
+          : ompl::base::StateValidityChecker(si), fcl_(std::move(scene))
         {
             specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::EXACT;
         }
@@ -48,7 +44,7 @@ namespace meshgap
         {
             const auto start = std::chrono::steady_clock::now();
             ++validityCalls_;
-            const bool valid = si_->satisfiesBounds(state) && !self().inCollision(self().pose(state));
+            const bool valid = si_->satisfiesBounds(state) && !inCollision(threadPose(state));
             addTime(start);
             return valid;
         }
@@ -64,12 +60,11 @@ namespace meshgap
         {
             const auto start = std::chrono::steady_clock::now();
             ++clearanceCalls_;
-            const double d = self().distance(self().pose(state));
+            const double d = distance(threadPose(state));
             addTime(start);
             return d;
         }
 
-        /** \brief Counters in ClearanceChecker's form (evaluations and warm-start hits stay 0). */
         CheckerStats stats() const
         {
             CheckerStats s;
@@ -79,8 +74,26 @@ namespace meshgap
             return s;
         }
 
+        /** \brief Every link's world pose at \e state (the link's mesh frame). */
+        std::vector<Eigen::Isometry3d> pose(const ompl::base::State *state) const { return threadPose(state); }
+
+        /** \brief FclRobotScene::inCollision() (no counting). */
+        bool inCollision(const std::vector<Eigen::Isometry3d> &X) const { return fcl_.inCollision(X); }
+
+        /** \brief FclRobotScene::distance() (no counting). */
+        double distance(const std::vector<Eigen::Isometry3d> &X) const { return fcl_.distance(X); }
+
     private:
-        const Derived &self() const { return static_cast<const Derived &>(*this); }
+        /** \brief pose() into this thread's buffers (no allocation once they have their size), valid until the
+            thread's next call. */
+        const std::vector<Eigen::Isometry3d> &threadPose(const ompl::base::State *state) const
+        {
+            thread_local std::vector<double> q;
+            thread_local std::vector<Eigen::Isometry3d> frames, links;
+            robotStateToVector(*si_->getStateSpace(), state, q);
+            fcl_.scene().robot().linkPoses(q.data(), q.size(), frames, links);
+            return links;
+        }
 
         void addTime(std::chrono::steady_clock::time_point start) const
         {
@@ -88,54 +101,8 @@ namespace meshgap
                 std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
         }
 
+        FclRobotScene fcl_;
         mutable std::atomic<std::uint64_t> validityCalls_{0}, clearanceCalls_{0}, nanoseconds_{0};
-    };
-
-    /**
-       @anchor mgFclChecker
-       @par Short description
-       A state validity checker built the way OMPL.app builds its own: the robot and the whole world as FCL
-       BVHModel<OBBRSS>, isValid() by fcl::collide (first contact), clearance() by fcl::distance (nearest points
-       requested, as OMPL.app does). The robot mesh must be in OMPL.app's robot frame (loadRobotMesh()), the world
-       as loaded, so a state places the robot exactly where ClearanceChecker places it (poseFromState()). A state out
-       of the space's bounds is invalid, as for ClearanceChecker. Counts its queries and their time; thread-safe.
-    */
-    class FclChecker : public FclTimedChecker<FclChecker>
-    {
-    public:
-        using Model = fcl::BVHModel<fcl::OBBRSSd>;
-
-        FclChecker(const ompl::base::SpaceInformationPtr &si, const Mesh &robot, const Mesh &world)
-          : FclTimedChecker(si), robot_(fclModelOf(robot)), world_(fclModelOf(world))
-        {
-        }
-
-        /** \brief fcl::collide of the robot at \e X with the world (no counting). */
-        bool inCollision(const Eigen::Isometry3d &X) const
-        {
-            const fcl::CollisionRequestd request;  // one contact is enough
-            fcl::CollisionResultd result;
-            fcl::collide(robot_.get(), X, world_.get(), fcl::Transform3d::Identity(), request, result);
-            return result.isCollision();
-        }
-
-        /** \brief fcl::distance of the robot at \e X from the world, at least 0 (no counting). */
-        double distance(const Eigen::Isometry3d &X) const
-        {
-            const fcl::DistanceRequestd request(true);
-            fcl::DistanceResultd result;
-            fcl::distance(robot_.get(), X, world_.get(), fcl::Transform3d::Identity(), request, result);
-            return std::max(0.0, result.min_distance);
-        }
-
-        /** \brief The robot's pose at \e state. */
-        Eigen::Isometry3d pose(const ompl::base::State *state) const
-        {
-            return poseFromState(*si_->getStateSpace(), state);
-        }
-
-    private:
-        std::shared_ptr<Model> robot_, world_;
     };
 }  // namespace meshgap
 #endif

@@ -12,11 +12,27 @@
 #include <mutex>
 #include <vector>
 
-#include "FclChecker.h"
+#include "meshgap/mesh/Mesh.h"
 #include "meshgap/robot/RobotScene.h"
 
 namespace meshgap
 {
+    /** \brief An FCL BVHModel<OBBRSS> of a mesh, in the mesh's own frame (as OMPL.app and MoveIt give FCL a mesh). */
+    inline std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> fclModelOf(const Mesh &mesh)
+    {
+        auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+        const std::vector<fcl::Vector3d> points(mesh.vertices.begin(), mesh.vertices.end());
+        std::vector<fcl::Triangle> triangles;
+        triangles.reserve(mesh.triangles.size());
+        for (const Triangle &t : mesh.triangles)
+            triangles.emplace_back(t[0], t[1], t[2]);
+        model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
+        model->addSubModel(points, triangles);
+        model->endModel();
+        model->computeLocalAABB();
+        return model;
+    }
+
     /** \brief FCL's geometry for one primitive solid, as MoveIt gives it to FCL: fcl::Box, fcl::Sphere,
         fcl::Cylinder, fcl::Cone (in the solid's own frame). */
     inline std::shared_ptr<fcl::CollisionGeometryd> fclSolidOf(const Primitive &p)
@@ -43,8 +59,9 @@ namespace meshgap
        Whole-robot collision and minimum distance by FCL, the way MoveIt's collision_detection_fcl answers them: the
        obstacles in one broad-phase manager (fcl::DynamicAABBTreeCollisionManager) built once, the robot's links in
        another, updated to the link poses of each query; the robot's manager against the obstacles' for the links
-       against the world, the robot's manager against itself for the self pairs, each pair the manager's broad phase
-       passes put to FCL's narrow phase only when the scene checks it (RobotScene::linkObstacles() and selfPairs()
+       against the world, the robot's manager against itself for the self pairs (a robot of one FCL object, a single
+       rigid body, is put to the obstacles' manager directly: nothing to update, no self pair), each pair the
+       manager's broad phase passes put to FCL's narrow phase only when the scene checks it (RobotScene::linkObstacles() and selfPairs()
        play MoveIt's allowed collision matrix). inCollision() stops at the first contact; distance() keeps the
        least distance, each manager pruning the pairs whose boxes are farther apart than it.
 
@@ -109,9 +126,14 @@ namespace meshgap
         {
             Lease robot(*this, X);
             CollideData data{this, false};
-            world_.collide(&robot->manager, &data, &FclRobotScene::collideCallback);
-            if (!data.hit)
-                robot->manager.collide(&data, &FclRobotScene::collideCallback);
+            if (robot->objects.size() == 1)  // one object: straight into the obstacles' manager, no self pair
+                world_.collide(robot->objects[0].get(), &data, &FclRobotScene::collideCallback);
+            else
+            {
+                world_.collide(&robot->manager, &data, &FclRobotScene::collideCallback);
+                if (!data.hit)
+                    robot->manager.collide(&data, &FclRobotScene::collideCallback);
+            }
             return data.hit;
         }
 
@@ -121,9 +143,14 @@ namespace meshgap
         {
             Lease robot(*this, X);
             DistanceData data{this, std::numeric_limits<double>::infinity()};
-            world_.distance(&robot->manager, &data, &FclRobotScene::distanceCallback);
-            if (data.least > 0.0)
-                robot->manager.distance(&data, &FclRobotScene::distanceCallback);
+            if (robot->objects.size() == 1)
+                world_.distance(robot->objects[0].get(), &data, &FclRobotScene::distanceCallback);
+            else
+            {
+                world_.distance(&robot->manager, &data, &FclRobotScene::distanceCallback);
+                if (data.least > 0.0)
+                    robot->manager.distance(&data, &FclRobotScene::distanceCallback);
+            }
             return data.least;
         }
 
@@ -156,7 +183,8 @@ namespace meshgap
                                         owner.linkParts_[k]);
                     object.computeAABB();
                 }
-                robot_->manager.update();
+                if (robot_->objects.size() > 1)  // one object is put to the obstacles' manager directly
+                    robot_->manager.update();
             }
             ~Lease() { owner_.release(std::move(robot_)); }
             Lease(const Lease &) = delete;

@@ -1,6 +1,5 @@
-// meshgap_benchmark: OMPL's Benchmark on an OMPL.app problem, with the clearance checker as a dimension of the
-// experiment grid (planners x checkers x runs), written in OMPL's .log format for ompl_benchmark_statistics and
-// Planner Arena.
+// meshgap_benchmark: OMPL's Benchmark on a planning problem, with the checker as a dimension of the experiment grid
+// (planners x checkers x runs), written in OMPL's .log format for ompl_benchmark_statistics and Planner Arena.
 //
 //   meshgap_benchmark --cfg problem.cfg [--planner rrtconnect,rrtstar] [--checker certified,fcl]
 //                     [--param PLANNER.NAME=VALUE] [--runs N] [--time S] [--memory MB] [--seed N] [--objective NAME]
@@ -14,13 +13,16 @@
 // results.db). --sampler makes the valid-state sampler a dimension too: each checker runs once per sampler, as
 // "<planner>[<checker>,<sampler>]".
 //
-// On a robot problem (robot.urdf = ..., robot.1 = ...: RobotProblem.h; or --urdf R.urdf --srdf R.srdf --scene S.yaml
-// --request Q.yaml, a problem in MoveIt's files: MoveItScene.h) the grid runs in joint space with the checkers
-// of benchmark/RobotCheckers.h: meshgap's whole-robot checker searching with a sampled motion check, every motion of
-// the answer certified and refused ones replanned ("certified"), or with its certified motion validator on every
-// motion the search tries ("certified-search"), or with OMPL's discrete one ("discrete"), and FCL on the same pairs at
-// the same link poses with OMPL's discrete one ("fcl"). After each slice a line gives its valid paths per minute: runs
-// solved whose path FCL finds free, densely interpolated, per minute of planning.
+// Any problem runs the same way (RobotProblem: an OMPL.app single-body .cfg is a robot of one link,
+// rigidBodyProblem(); a URDF robot, several bodies: robot.urdf = ..., robot.1 = ...; or --urdf R.urdf --srdf R.srdf
+// --scene S.yaml --request Q.yaml, a problem in MoveIt's files: MoveItScene.h), with the checkers the robot offers
+// (benchmark/Checkers.h): for one rigid body its link's clearance checker certified, fast, or certified with the
+// clearance motion validator on every motion; for any other robot meshgap's whole-robot checker searching with a
+// sampled motion check, every motion of the answer certified and refused ones replanned ("certified"), with its
+// certified motion validator on every motion the search tries ("certified-search"), or with OMPL's discrete one
+// ("discrete"); and for every robot FCL as MoveIt uses it, on the same pairs at the same link poses, with OMPL's
+// discrete validator ("fcl"). After each slice a line gives its valid paths per minute: runs solved whose path FCL
+// finds free, densely interpolated, per minute of planning.
 //
 // On a control problem (a "control" key: OMPL.app's kinematic_car, dynamic_car, blimp, quadrotor) the grid is the
 // control planners (kpiece, rrt, est, pdst, sst; the cfg's [planner] section less those meshgap does not offer) with
@@ -46,7 +48,6 @@
 #include "benchmark/ControlBenchmark.h"
 #include "benchmark/Checkers.h"
 #include "benchmark/MeasuredPlanner.h"
-#include "benchmark/RobotCheckers.h"
 #include "support/MoveItOptions.h"
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
@@ -82,8 +83,7 @@ namespace
             "PLANNER.NAME=VALUE: a parameter of every planner of that kind, after the cfg's, e.g. "
             "rrtstar.use_k_nearest=0; repeatable")(
             "checker", po::value(&o.checkerList),
-            ("checkers, comma-separated (default: all of " + joinNames(checkerNames()) + "; on a robot problem: " +
-             joinNames(robotCheckerNames()) + ")").c_str())(
+            ("checkers, comma-separated (default: all the problem's: " + checkerMenuText() + ")").c_str())(
             "sampler", po::value(&o.samplerList),
             ("valid-state samplers, comma-separated, a dimension of the experiment like the checkers (default: the "
              "cfg's sampler, else OMPL's; only planners that use one, e.g. PRM, EST, notice): " +
@@ -142,11 +142,11 @@ namespace
         return setups;
     }
 
-    /** \brief The cfg's [benchmark] section, then the options over it. */
-    Settings settingsOf(const ProblemConfig &config, const po::variables_map &vm)
+    /** \brief The cfg's [benchmark] section (\e file's), then the options over it. */
+    Settings settingsOf(const std::string &file, const ConfigSection &benchmark, const po::variables_map &vm)
     {
         Settings settings;
-        applyConfig(config, settings);
+        applyConfig(file, benchmark, settings);
         if (vm.count("runs"))
             settings.runs = vm["runs"].as<unsigned>();
         if (vm.count("time"))
@@ -158,21 +158,21 @@ namespace
         settings.simplify = !vm.count("no-simplify");
         if (settings.runs == 0 || !(settings.memory > 0.0))
             throw Exception("command line", "runs, time and memory must be positive");
-        cli::checkSeconds(settings.time, vm.count("time") ? "--time" : config.file + ": [benchmark] time_limit");
+        cli::checkSeconds(settings.time, vm.count("time") ? "--time" : file + ": [benchmark] time_limit");
         return settings;
     }
 
     /** \brief The planners: --planner, else the cfg's [planner] section; then each --param given to its kind. */
-    std::vector<PlannerSpec> plannerSpecs(const Options &o, const ProblemConfig &config)
+    std::vector<PlannerSpec> plannerSpecs(const Options &o, const RobotProblem &problem)
     {
         std::vector<PlannerSpec> planners;
         if (!o.plannerList.empty())
             for (const std::string &p : splitList(o.plannerList))
                 planners.push_back({boost::algorithm::to_lower_copy(p), "", {}});
         else
-            planners = plannersFromConfig(config);
+            planners = plannersFromConfig(problem.file, problem.planners);
         if (planners.empty())
-            throw Exception(o.cfg, "no planners: the cfg has no [planner] section; give --planner");
+            throw Exception(problem.file, "no planners: the cfg has no [planner] section; give --planner");
         const std::vector<std::string> known = plannerNames();
         for (const PlannerSpec &p : planners)
             if (std::find(known.begin(), known.end(), p.type) == known.end())
@@ -208,21 +208,21 @@ namespace
 
     /** \brief Allocate each planner once, so a bad parameter or a duplicate name fails before any run. */
     void checkPlanners(const std::vector<PlannerSpec> &planners, const ob::SpaceInformationPtr &si,
-                       const ProblemConfig &config)
+                       const std::string &file)
     {
         std::set<std::string> names;
         for (const PlannerSpec &spec : planners)
         {
             const std::string name = allocate(spec, si)->getName();
             if (!names.insert(name).second)
-                throw Exception(config.file, "two planners named " + quote(name) + ": name each ([planner] " +
+                throw Exception(file, "two planners named " + quote(name) + ": name each ([planner] " +
                                                  spec.type + ".name = ...)");
         }
     }
 
     /** \brief The run properties meshgap adds to OMPL's: the checker's counters over the run (\e before and
         \e after it), and FCL's verdict on the path. */
-    void addCheckerProperties(CheckerSet &problem, const CheckerStats &before, const CheckerStats &after,
+    void addCheckerProperties(Checkers &problem, const CheckerStats &before, const CheckerStats &after,
                               ompl::tools::Benchmark::RunProperties &run)
     {
         const double validity = static_cast<double>(after.validityCalls - before.validityCalls);
@@ -241,7 +241,7 @@ namespace
                     real(static_cast<double>(after.warmStartHits - before.warmStartHits) / clearance);
         }
         if (problem.setup().haveSolutionPath())
-            problem.fclPathProperties(problem.setup().getSolutionPath(), run);
+            problem.pathProperties(problem.setup().getSolutionPath(), run);
     }
 
     /** \brief Add the one run \e e recorded to \e slice (the first run starts it, with the slice's labels). */
@@ -302,7 +302,7 @@ namespace
 
     /** \brief One slice of the grid: \e runs of \e spec with one (checker, sampler) setup, each appended to the
         slice's .log as soon as it is done. */
-    void runSlice(CheckerSet &problem, const ProblemConfig &config, const Settings &settings, const PlannerSpec &spec,
+    void runSlice(Checkers &problem, const std::string &experiment, const Settings &settings, const PlannerSpec &spec,
                   const std::pair<std::string, std::string> &setup, const std::vector<std::size_t> &runs,
                   LogWriter &writer, Progress &progress)
     {
@@ -322,7 +322,7 @@ namespace
             solvedSeen = true;
         });
         problem.setup().setPlanner(measured);
-        ompl::tools::Benchmark benchmark(problem.setup(), config.name);
+        ompl::tools::Benchmark benchmark(problem.setup(), experiment);
         benchmark.addPlanner(measured);
         benchmark.setPreRunEvent([&](const ob::PlannerPtr &) {
             before = problem.stats();
@@ -341,7 +341,7 @@ namespace
         ompl::tools::Benchmark::CompleteExperiment slice;
         SliceTally tally;
         const fs::path log =
-            logPath(settings.outDir, config.name, inner->getName(), label, sampler, progress.shard, progress.shards);
+            logPath(settings.outDir, experiment, inner->getName(), label, sampler, progress.shard, progress.shards);
         for (std::size_t r : runs)
         {
             benchmark.benchmark(request);
@@ -382,7 +382,7 @@ namespace
         if (o.shardText != "1/1")
             throw Exception("--shard", "a control benchmark runs whole (" + o.cfg + " is a control problem)");
         const ControlGrid grid = controlGrid(config, o.plannerList, o.checkerList);
-        const Settings settings = settingsOf(config, o.vm);
+        const Settings settings = settingsOf(config.file, config.benchmark, o.vm);
         if (o.seed != 0)
             ompl::RNG::setSeed(o.seed);
         fs::create_directories(settings.outDir);
@@ -396,26 +396,19 @@ namespace
         if (!parseOptions(argc, argv, o))
             return 0;
         const auto [shard, shards] = parseShard(o.shardText);
-        const Problem read = readToolProblem(o.cfg, o.moveit);
-        const std::optional<RobotProblem> &robotProblem = read.robot;
-        const bool robot = robotProblem.has_value();
-        if (!robot && !read.rigidBody->control.empty())
+        Problem read = readToolProblem(o.cfg, o.moveit);
+        if (read.rigidBody && !read.rigidBody->control.empty())
             return runControl(o, *read.rigidBody);
-        const std::vector<std::pair<std::string, std::string>> setups =
-            checkerSetups(o, robot ? robotCheckerNames(robotProblem->robot.get()) : checkerNames());
-        const ProblemConfig config = robot ? benchmarkConfigOf(*robotProblem) : *read.rigidBody;
-        const Settings settings = settingsOf(config, o.vm);
-        const std::vector<PlannerSpec> planners = plannerSpecs(o, config);
+        // One language from here on: a single body is a robot of one link.
+        const RobotProblem problem = read.robot ? std::move(*read.robot) : rigidBodyProblem(*read.rigidBody);
+        const std::vector<std::pair<std::string, std::string>> setups = checkerSetups(o, checkerNames(*problem.robot));
+        const Settings settings = settingsOf(problem.file, problem.benchmark, o.vm);
+        const std::vector<PlannerSpec> planners = plannerSpecs(o, problem);
         if (o.seed != 0)
             ompl::RNG::setSeed(o.seed + shard - 1);
 
-        std::unique_ptr<CheckerSet> checkers;
-        if (robot)
-            checkers = std::make_unique<RobotCheckers>(*robotProblem, o.objective);
-        else
-            checkers = std::make_unique<Checkers>(config, o.objective);
-        CheckerSet &problem = *checkers;
-        checkPlanners(planners, problem.setup().getSpaceInformation(), config);
+        Checkers checkers(problem, o.objective);
+        checkPlanners(planners, checkers.setup().getSpaceInformation(), problem.file);
         fs::create_directories(settings.outDir);
 
         // The grid: cell k = (planner p, checker c, run r), k = (p * C + c) * R + r; this shard runs k % n == i - 1.
@@ -431,9 +424,9 @@ namespace
             return 0;
         }
         std::fprintf(stderr, "%s: %zu planners x %zu checkers x %zu runs, %g s and %g MB each; shard %u/%u runs %zu\n",
-                     config.name.c_str(), planners.size(), C, R, settings.time, settings.memory, shard, shards,
+                     problem.name.c_str(), planners.size(), C, R, settings.time, settings.memory, shard, shards,
                      progress.mine);
-        LogWriter writer(problem.setup());
+        LogWriter writer(checkers.setup());
         for (std::size_t p = 0; p < planners.size(); ++p)
             for (std::size_t c = 0; c < C; ++c)
             {
@@ -442,7 +435,7 @@ namespace
                     if (((p * C + c) * R + r) % shards == shard - 1)
                         runs.push_back(r);
                 if (!runs.empty())
-                    runSlice(problem, config, settings, planners[p], setups[c], runs, writer, progress);
+                    runSlice(checkers, problem.name, settings, planners[p], setups[c], runs, writer, progress);
             }
         return 0;
     }

@@ -11,10 +11,10 @@ namespace meshgap
 {
     namespace cli
     {
-        std::vector<PlannerSpec> plannersFromConfig(const ProblemConfig &config)
+        std::vector<PlannerSpec> plannersFromConfig(const std::string &file, const ConfigSection &planners)
         {
             std::vector<PlannerSpec> specs;
-            for (const auto &[key, value] : config.planners)
+            for (const auto &[key, value] : planners)
             {
                 const std::size_t dot = key.find('.');
                 if (dot == std::string::npos)
@@ -24,15 +24,15 @@ namespace meshgap
                 }
                 const std::string prefix = key.substr(0, dot), rest = key.substr(dot + 1);
                 if (prefix == "problem")
-                    throw Exception(config.file,
+                    throw Exception(file,
                                     "[planner] " + quote(key) + ": per-planner problem settings are not supported");
                 if (specs.empty() || specs.back().type != prefix)
-                    throw Exception(config.file,
+                    throw Exception(file,
                                     "[planner] " + quote(key) + " does not follow a " + quote(prefix + "=") + " line");
                 if (rest == "name")
                     specs.back().name = value;
                 else
-                    specs.back().params.push_back({rest, value, config.file + ": [planner] " + key});
+                    specs.back().params.push_back({rest, value, file + ": [planner] " + key});
             }
             return specs;
         }
@@ -50,11 +50,11 @@ namespace meshgap
             throw Exception("--shard", quote(text) + " is not i/n with 1 <= i <= n");
         }
 
-        void applyConfig(const ProblemConfig &config, Settings &settings)
+        void applyConfig(const std::string &file, const ConfigSection &benchmark, Settings &settings)
         {
-            for (const auto &[key, value] : config.benchmark)
+            for (const auto &[key, value] : benchmark)
             {
-                const std::string where = config.file + ": [benchmark] " + key;
+                const std::string where = file + ": [benchmark] " + key;
                 unsigned long runs = 0;
                 if (key == "time_limit")
                     settings.time = parseFiniteNumber(value, where);
@@ -69,7 +69,7 @@ namespace meshgap
                 else if (key == "output")
                     settings.outDir = value;
                 else
-                    OMPL_WARN("%s: [benchmark] %s is not supported; ignored", config.file.c_str(), key.c_str());
+                    OMPL_WARN("%s: [benchmark] %s is not supported; ignored", file.c_str(), key.c_str());
             }
         }
     }  // namespace cli

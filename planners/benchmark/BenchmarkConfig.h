@@ -9,12 +9,13 @@
 #include <utility>
 #include <vector>
 
-#include "meshgap/scene/ProblemConfig.h"
-
 namespace meshgap
 {
     namespace cli
     {
+        /** \brief A section of a problem file ([planner], [benchmark]): its entries in order. */
+        using ConfigSection = std::vector<std::pair<std::string, std::string>>;
+
         /** \brief One [planner] entry: a factory name, an optional display name, and parameters (ParamSet keys). */
         struct PlannerSpec
         {
@@ -27,8 +28,8 @@ namespace meshgap
         };
 
         /** \brief The cfg's [planner] section as OMPL.app reads it: "rrt=" starts an entry, "rrt.name=X" names it,
-            "rrt.range=50" sets a parameter of the entry just started. */
-        std::vector<PlannerSpec> plannersFromConfig(const ProblemConfig &config);
+            "rrt.range=50" sets a parameter of the entry just started; errors name \e file. */
+        std::vector<PlannerSpec> plannersFromConfig(const std::string &file, const ConfigSection &planners);
 
         /** \brief "i/n" with 1 <= i <= n. */
         std::pair<unsigned, unsigned> parseShard(const std::string &text);
@@ -41,8 +42,8 @@ namespace meshgap
             std::filesystem::path outDir{"."};
         };
 
-        /** \brief The [benchmark] section; unknown keys are reported and ignored, as OMPL.app does. */
-        void applyConfig(const ProblemConfig &config, Settings &settings);
+        /** \brief The [benchmark] section of \e file; unknown keys are reported and ignored, as OMPL.app does. */
+        void applyConfig(const std::string &file, const ConfigSection &benchmark, Settings &settings);
     }  // namespace cli
 }  // namespace meshgap
 

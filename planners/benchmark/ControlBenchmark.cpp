@@ -122,7 +122,7 @@ namespace meshgap
             else
             {
                 std::vector<std::string> left;
-                for (const PlannerSpec &spec : plannersFromConfig(config))
+                for (const PlannerSpec &spec : plannersFromConfig(config.file, config.planners))
                     if (std::find(offered.begin(), offered.end(), spec.type) != offered.end())
                         grid.planners.push_back(spec.type);
                     else

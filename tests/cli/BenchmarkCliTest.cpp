@@ -237,6 +237,10 @@ TEST_F(BenchmarkCli, RunsCarryCheckerCountersAndFclVerdicts)
             EXPECT_EQ(run.at("fcl path collision free BOOLEAN"), "1") << path;
             EXPECT_GT(std::stoul(run.at("fcl path states INTEGER")), std::stoul(run.at("solution segments INTEGER")));
             EXPECT_GT(std::stod(run.at("fcl path min clearance REAL")), 0.0) << path;
+            // meshgap's exact least clearance over the same dense states: FCL's least distance, the oracle.
+            EXPECT_NEAR(std::stod(run.at("path min clearance REAL")), std::stod(run.at("fcl path min clearance REAL")),
+                        1e-6)
+                << path;
             EXPECT_EQ(run.at("correct solution BOOLEAN"), "1") << path;
         }
     }
