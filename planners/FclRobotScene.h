@@ -61,8 +61,8 @@ namespace meshgap
        another, updated to the link poses of each query; the robot's manager against the obstacles' for the links
        against the world, the robot's manager against itself for the self pairs (a robot of one FCL object, a single
        rigid body, is put to the obstacles' manager directly: nothing to update, no self pair), each pair the
-       manager's broad phase passes put to FCL's narrow phase only when the scene checks it (RobotScene::linkObstacles() and selfPairs()
-       play MoveIt's allowed collision matrix). inCollision() stops at the first contact; distance() keeps the
+       manager's broad phase passes put to FCL's narrow phase only when the scene checks it
+       (RobotScene::linkObstacles() and selfPairs() play MoveIt's allowed collision matrix). inCollision() stops at the first contact; distance() keeps the
        least distance, each manager pruning the pairs whose boxes are farther apart than it.
 
        Shapes as MoveIt gives them to FCL: a body built from primitive solids (Body::primitives(): a URDF link of

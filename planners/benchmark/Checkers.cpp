@@ -148,8 +148,8 @@ namespace meshgap
                 return bounds;
             }
 
-            /** \brief robotStateSpace(), or the space of its one subspace when it has one (one SE(2) or SE(3) body
-                plans in that space, as OMPL.app's problems do). */
+            /** \brief robotStateSpace(), or for one rigid body the SE(2) or SE(3) space of its one block: it plans
+                in that space, as OMPL.app's problems do. */
             ob::StateSpacePtr planningSpace(const RobotProblem &problem)
             {
                 if (problem.robot->dimension() == 0)
@@ -157,7 +157,7 @@ namespace meshgap
                                                   "to plan; meshgap_distance --cfg gives its clearance");
                 const ob::StateSpacePtr space = robotStateSpace(*problem.robot, boundsOf(problem));
                 const auto *compound = space->as<ob::CompoundStateSpace>();
-                return compound->getSubspaceCount() == 1 ? compound->getSubspace(0) : space;
+                return isOneRigidBody(*problem.robot) ? compound->getSubspace(0) : space;
             }
 
             /** \brief The pair that attains \e r and its signed distance, for an error message. */
@@ -317,12 +317,19 @@ namespace meshgap
             si->setMotionValidator(validator ? validator : allocMotionValidator("discrete", si, scene_, "--checker"));
         }
 
-        ob::PlannerPtr
-        Checkers::allocPlanner(const std::function<ob::PlannerPtr(const ob::SpaceInformationPtr &)> &allocate)
+        ob::PlannerPtr Checkers::allocPlanner(const PlannerAllocator &allocate)
         {
+            const ob::SpaceInformationPtr &si = setup_->getSpaceInformation();
             if (certifyAnswer_)
-                return std::make_shared<CertifiedAnswerPlanner>(setup_->getSpaceInformation(), allocate);
-            return allocate(setup_->getSpaceInformation());
+            {
+                // The space set up before the twins a CertifiedAnswerPlanner sets up on it (else the projection the
+                // Benchmark prints with the settings is one a twin replaced). Nothing else is set up ahead of the
+                // runs: the runs' random streams are the seed's own.
+                if (!si->isSetup())
+                    si->setup();
+                return std::make_shared<CertifiedAnswerPlanner>(si, allocate);
+            }
+            return allocate(si);
         }
 
         CheckerStats Checkers::stats() const

@@ -60,8 +60,8 @@ namespace meshgap
         };
 
         /** \brief One problem of any kind: its RobotScene and SimpleSetup built once, the checkers of checkerNames()
-            installed into it by name in turn. The state space is robotStateSpace()'s, or the space of the robot's one
-            state block when it has one (a single body plans in SE(2) or SE(3), as OMPL.app's problems do); the
+            installed into it by name in turn. The state space is robotStateSpace()'s, or for one rigid body the SE(2) or
+            SE(3) space of its one state block (a single body plans in it, as OMPL.app's problems do); the
             problem's start and goal (checked in bounds and free), objective (\e objective when given), its threshold
             and sampler are set. */
         class Checkers
@@ -81,8 +81,8 @@ namespace meshgap
             /** \brief The planner a run of the installed checker uses, made by \e allocate on the SpaceInformation it
                 is given: a CertifiedAnswerPlanner around it for a robot's "certified", else \e allocate on the
                 problem's own. */
-            ompl::base::PlannerPtr
-            allocPlanner(const std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr &)> &allocate);
+            using PlannerAllocator = std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr &)>;
+            ompl::base::PlannerPtr allocPlanner(const PlannerAllocator &allocate);
             /** \brief Counters of the installed checker (cumulative). */
             CheckerStats stats() const;
             bool isMeshgap() const { return active_ != "fcl"; }

@@ -245,12 +245,14 @@ namespace meshgap
             Tally tally;
             for (std::size_t n = 0; n < 300; ++n)
             {
-                Eigen::Vector3d t = config.start.translation() + spread * Eigen::Vector3d(near(rng), near(rng), near(rng));
+                Eigen::Vector3d t = config.start.translation();
+                t += spread * Eigen::Vector3d(near(rng), near(rng), near(rng));
                 if (n % 4 == 0)
                     for (int k = 0; k < 3; ++k)
                         t[k] = std::uniform_real_distribution<double>(config.volume->min()[k],
                                                                       config.volume->max()[k])(rng);
-                const Eigen::Quaterniond q = Eigen::Quaterniond(near(rng), near(rng), near(rng), near(rng)).normalized();
+                const Eigen::Quaterniond q =
+                    Eigen::Quaterniond(near(rng), near(rng), near(rng), near(rng)).normalized();
                 const std::vector<double> state = {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()};
                 const std::vector<Eigen::Isometry3d> X = problem.robot->linkPoses(state);
                 const bool hit = test::fclCollide(world, robot, X[0]);
