@@ -300,7 +300,7 @@ namespace meshgap
     #endif
             if (recipe->motion != Motion::DISCRETE && certified_)
             {
-                // Its own certified checker, so the validator's queries are counted apart from the planner's.
+                // A certified checker of its own: its warm starts and counters apart from the other slices'.
                 if (!cmvChecker_)
                 {
                     cmvChecker_ = std::make_shared<ClearanceChecker>(si, linkScene_,
