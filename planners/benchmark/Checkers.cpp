@@ -169,8 +169,11 @@ namespace meshgap
                      << (r.selfPair ? "link " + quote(scene.links()[r.other].name) :
                                       "obstacle " + std::to_string(r.other) + " of " +
                                           std::to_string(scene.obstacles().size()))
-                     << " near (" << r.onOther.x() << ", " << r.onOther.y() << ", " << r.onOther.z()
-                     << "): signed distance " << r.distance;
+                     << " near (" << r.onOther.x() << ", " << r.onOther.y() << ", " << r.onOther.z() << ")";
+                if (r.distance < -1e-12)
+                    text << ": signed distance " << r.distance << " (penetration depth " << -r.distance << ")";
+                else
+                    text << ": the surfaces touch or cross (no penetration depth found)";
                 return text.str();
             }
         }  // namespace

@@ -275,6 +275,44 @@ TEST_F(BenchmarkCli, StatisticsScriptLoadsEveryRunIntoOneDatabase)
         << query.out;
 }
 
+TEST(BenchmarkCliErrors, ARobotsStartAndGoalAreCheckedAsASingleBodys)
+{
+    // Every problem takes one path: a start in collision or a goal outside the volume is one error naming the file,
+    // for several bodies (maps/swap_se2 with both bodies at one place, or one outside the box) as for one body.
+    const fs::path dir = fs::temp_directory_path() / ("meshgap_benchmark_ends_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const std::string swap = MAPS + "/swap_se2/";
+    // Body 2 starts at \e start2 and ends at \e goal2 ("x y"); body 1 goes from (-3.3, -1.2) to (3.3, 1.2).
+    auto write = [&](const std::string &name, const std::string &start2, const std::string &goal2) {
+        std::istringstream s(start2), g(goal2);
+        std::string sx, sy, gx, gy;
+        s >> sx >> sy;
+        g >> gx >> gy;
+        std::ofstream cfg(dir / name);
+        cfg << "[problem]\nrobot.1 = " << swap << "swap_se2_robot.obj\nrobot.2 = " << swap
+            << "swap_se2_robot.obj\nworld = " << swap << "swap_se2_world.obj\n"
+            << "start.1.x = -3.3\nstart.1.y = -1.2\nstart.2.x = " << sx << "\nstart.2.y = " << sy << "\n"
+            << "goal.1.x = 3.3\ngoal.1.y = 1.2\ngoal.2.x = " << gx << "\ngoal.2.y = " << gy << "\n"
+            << "volume.min.x = -4\nvolume.min.y = -2\nvolume.max.x = 4\nvolume.max.y = 2\n";
+        return (dir / name).string();
+    };
+    const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+        {write("together.cfg", "-3.3 -1.2", "-3.3 -1.2"),
+         {"together.cfg", "start is in collision", "'robot.1' against link 'robot.2'"}},
+        {write("outside.cfg", "3.3 1.2", "-9 -1.2"), {"outside.cfg", "goal lies outside the volume"}},
+    };
+    for (const auto &[cfg, mentions] : cases)
+    {
+        const CliRun r =
+            benchmark("--cfg " + cfg + " --planner rrtconnect --runs 1 --time 1 --out " + (dir / "logs").string());
+        EXPECT_EQ(r.status, 1) << cfg << "\n" << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << cfg << "\n" << r.err;
+        for (const std::string &m : mentions)
+            EXPECT_NE(r.err.find(m), std::string::npos) << cfg << ": no '" << m << "'\n" << r.err;
+    }
+    fs::remove_all(dir);
+}
+
 TEST(BenchmarkCliInterrupted, AKilledBenchmarkKeepsEveryFinishedRun)
 {
     // A long benchmark (many short runs), killed with SIGKILL once its first log is on disk: every .log left is
