@@ -7,6 +7,7 @@
 #include "meshgap/Exception.h"
 #include "meshgap/distance/HillClimb.h"
 #include "meshgap/distance/PenetrationDepth.h"
+#include "meshgap/geometry/SolidAngle.h"
 #include "meshgap/geometry/TriangleDistance.h"
 #include "SolidPairs.h"
 
@@ -69,14 +70,6 @@ namespace meshgap
             return best;
         }
 
-        /** \brief Solid angle of triangle (a, b, c) seen from the origin (Van Oosterom and Strackee, 1983). */
-        double solidAngle(const Eigen::Vector3d &a, const Eigen::Vector3d &b, const Eigen::Vector3d &c)
-        {
-            const double la = a.norm(), lb = b.norm(), lc = c.norm();
-            const double numerator = a.dot(b.cross(c));
-            const double denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
-            return 2.0 * std::atan2(numerator, denominator);
-        }
     }  // namespace
 
     namespace

@@ -14,7 +14,7 @@ namespace meshgap
 {
     namespace
     {
-        const Registry<std::function<DistanceSolverPtr()>> &registry()
+        const Registry<std::function<DistanceSolverPtr()>> &solverRegistry()
         {
             static const Registry<std::function<DistanceSolverPtr()>> solvers(
                 "algorithm",
@@ -34,11 +34,11 @@ namespace meshgap
 
     std::vector<std::string> solverNames()
     {
-        return registry().names();
+        return solverRegistry().names();
     }
 
     DistanceSolverPtr allocSolver(const std::string &name)
     {
-        return registry().at(name, "algorithm")();
+        return solverRegistry().at(name, "algorithm")();
     }
 }  // namespace meshgap

@@ -15,7 +15,7 @@ namespace meshgap
     namespace
     {
         /** \brief A node still to open and the lower bound of its distance to the solid. */
-        struct Open
+        struct OpenNode
         {
             std::uint32_t node;
             double bound;
@@ -72,12 +72,12 @@ namespace meshgap
 
             void run()
             {
-                std::vector<Open> &stack = bvh::threadStack<Open, 7>();
+                std::vector<OpenNode> &stack = bvh::threadStack<OpenNode, 7>();
                 const TriangleBvh::Node *nodes = mesh_.nodes().data();
                 stack.push_back({0u, nodeBound(nodes[0], centre_, radius_)});
                 while (!stack.empty())
                 {
-                    const Open o = stack.back();
+                    const OpenNode o = stack.back();
                     stack.pop_back();
                     if (done())
                         return;
@@ -91,8 +91,8 @@ namespace meshgap
                         continue;
                     }
                     result_.boxTests += 2;
-                    Open l{n.first, nodeBound(nodes[n.first], centre_, radius_)};
-                    Open r{n.first + 1, nodeBound(nodes[n.first + 1], centre_, radius_)};
+                    OpenNode l{n.first, nodeBound(nodes[n.first], centre_, radius_)};
+                    OpenNode r{n.first + 1, nodeBound(nodes[n.first + 1], centre_, radius_)};
                     if (l.bound < r.bound)
                         std::swap(l, r);  // the nearer one on top
                     stack.push_back(l);

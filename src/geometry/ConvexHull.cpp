@@ -15,6 +15,7 @@ extern "C"
 }
 
 #include "SolidCore.h"
+#include "meshgap/geometry/SolidAngle.h"
 #include "meshgap/geometry/TriangleDistance.h"
 
 namespace meshgap
@@ -148,14 +149,6 @@ namespace meshgap
             return std::adjacent_find(edges.begin(), edges.end()) == edges.end() && edges == reversed;
         }
 
-        /** \brief Solid angle of triangle (a, b, c) seen from the origin (Van Oosterom and Strackee, 1983). */
-        double solidAngle(const Eigen::Vector3d &a, const Eigen::Vector3d &b, const Eigen::Vector3d &c)
-        {
-            const double la = a.norm(), lb = b.norm(), lc = c.norm();
-            const double numerator = a.dot(b.cross(c));
-            const double denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
-            return 2.0 * std::atan2(numerator, denominator);
-        }
 
         /** \brief The triangles' normals and the level each triangle's vertices are all above, less the dot
             products' error bound: fl(n . p) < below[t] proves n . p < n . v for every vertex v of t. */

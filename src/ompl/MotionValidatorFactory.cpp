@@ -25,7 +25,7 @@ namespace meshgap
 
         using Make = std::function<ompl::base::MotionValidatorPtr(const Target &)>;
 
-        ompl::base::MotionValidatorPtr certified(const Target &t)
+        ompl::base::MotionValidatorPtr clearanceValidator(const Target &t)
         {
             if (t.checker)
             {
@@ -39,14 +39,14 @@ namespace meshgap
             return std::make_shared<RobotMotionValidator>(t.si, t.scene, t.scene->robot());
         }
 
-        const Registry<Make> &registry()
+        const Registry<Make> &validatorRegistry()
         {
             static const Registry<Make> validators(
                 "motion validator",
                 {
                     {"discrete",
                      [](const Target &t) { return std::make_shared<ompl::base::DiscreteMotionValidator>(t.si); }},
-                    {"clearance", certified},
+                    {"clearance", clearanceValidator},
                 });
             return validators;
         }
@@ -54,26 +54,26 @@ namespace meshgap
 
     std::vector<std::string> motionValidatorNames()
     {
-        return registry().names();
+        return validatorRegistry().names();
     }
 
     void checkMotionValidatorName(const std::string &name, const std::string &where)
     {
-        registry().at(name, where);
+        validatorRegistry().at(name, where);
     }
 
     ompl::base::MotionValidatorPtr allocMotionValidator(const std::string &name,
                                                         const ompl::base::SpaceInformationPtr &si,
                                                         const ClearanceCheckerPtr &checker, const std::string &where)
     {
-        return registry().at(name, where)(Target{si, checker, nullptr, where});
+        return validatorRegistry().at(name, where)(Target{si, checker, nullptr, where});
     }
 
     ompl::base::MotionValidatorPtr allocMotionValidator(const std::string &name,
                                                         const ompl::base::SpaceInformationPtr &si,
                                                         const RobotSceneConstPtr &scene, const std::string &where)
     {
-        return registry().at(name, where)(Target{si, nullptr, scene, where});
+        return validatorRegistry().at(name, where)(Target{si, nullptr, scene, where});
     }
 
     ompl::base::MotionValidatorPtr allocCertifiedMotionValidator(const ompl::base::SpaceInformationPtr &si,

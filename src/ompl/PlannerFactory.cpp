@@ -34,42 +34,42 @@ namespace meshgap
         using Allocator = std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr &)>;
 
         template <typename P>
-        Allocator make()
+        Allocator allocatorOf()
         {
             return [](const ompl::base::SpaceInformationPtr &si) { return std::make_shared<P>(si); };
         }
 
-        const Registry<Allocator> &registry()
+        const Registry<Allocator> &plannerRegistry()
         {
             namespace og = ompl::geometric;
             static const Registry<Allocator> planners(
                 "planner",
                 {
-                    {"biest", make<og::BiEST>()},
-                    {"bitstar", make<og::BITstar>()},
-                    {"bkpiece", make<og::BKPIECE1>()},
-                    {"est", make<og::EST>()},
-                    {"fmt", make<og::FMT>()},
-                    {"informedrrtstar", make<og::InformedRRTstar>()},
-                    {"kpiece", make<og::KPIECE1>()},
-                    {"lazyprmstar", make<og::LazyPRMstar>()},
-                    {"lbkpiece", make<og::LBKPIECE1>()},
-                    {"lbtrrt", make<og::LBTRRT>()},
-                    {"pdst", make<og::PDST>()},
-                    {"prm", make<og::PRM>()},
-                    {"prmstar", make<og::PRMstar>()},
-                    {"rrt", make<og::RRT>()},
-                    {"rrtconnect", make<og::RRTConnect>()},
+                    {"biest", allocatorOf<og::BiEST>()},
+                    {"bitstar", allocatorOf<og::BITstar>()},
+                    {"bkpiece", allocatorOf<og::BKPIECE1>()},
+                    {"est", allocatorOf<og::EST>()},
+                    {"fmt", allocatorOf<og::FMT>()},
+                    {"informedrrtstar", allocatorOf<og::InformedRRTstar>()},
+                    {"kpiece", allocatorOf<og::KPIECE1>()},
+                    {"lazyprmstar", allocatorOf<og::LazyPRMstar>()},
+                    {"lbkpiece", allocatorOf<og::LBKPIECE1>()},
+                    {"lbtrrt", allocatorOf<og::LBTRRT>()},
+                    {"pdst", allocatorOf<og::PDST>()},
+                    {"prm", allocatorOf<og::PRM>()},
+                    {"prmstar", allocatorOf<og::PRMstar>()},
+                    {"rrt", allocatorOf<og::RRT>()},
+                    {"rrtconnect", allocatorOf<og::RRTConnect>()},
                     // RRTConnect, then the clearance path optimiser for the time left (ClearanceOptimizingPlanner).
                     {"rrtconnect+opt",
                      [](const ompl::base::SpaceInformationPtr &si) -> ompl::base::PlannerPtr {
                          return std::make_shared<ClearanceOptimizingPlanner>(std::make_shared<og::RRTConnect>(si),
                                                                              "RRTConnect+opt");
                      }},
-                    {"rrtstar", make<og::RRTstar>()},
-                    {"sbl", make<og::SBL>()},
-                    {"stride", make<og::STRIDE>()},
-                    {"trrt", make<og::TRRT>()},
+                    {"rrtstar", allocatorOf<og::RRTstar>()},
+                    {"sbl", allocatorOf<og::SBL>()},
+                    {"stride", allocatorOf<og::STRIDE>()},
+                    {"trrt", allocatorOf<og::TRRT>()},
                 });
             return planners;
         }
@@ -77,12 +77,12 @@ namespace meshgap
 
     std::vector<std::string> plannerNames()
     {
-        return registry().names();
+        return plannerRegistry().names();
     }
 
     ompl::base::PlannerPtr allocPlanner(const std::string &name, const ompl::base::SpaceInformationPtr &si)
     {
-        return registry().at(name, "planner")(si);
+        return plannerRegistry().at(name, "planner")(si);
     }
 
     void setPlannerParam(ompl::base::Planner &planner, const std::string &key, const std::string &value,

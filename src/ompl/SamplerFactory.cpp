@@ -16,24 +16,24 @@ namespace meshgap
     namespace
     {
         template <typename S>
-        ompl::base::ValidStateSamplerAllocator make()
+        ompl::base::ValidStateSamplerAllocator samplerOf()
         {
             return [](const ompl::base::SpaceInformation *si) { return std::make_shared<S>(si); };
         }
 
-        const Registry<ompl::base::ValidStateSamplerAllocator> &registry()
+        const Registry<ompl::base::ValidStateSamplerAllocator> &samplerRegistry()
         {
             namespace ob = ompl::base;
             static const Registry<ob::ValidStateSamplerAllocator> samplers(
                 "sampler", {
-                               {"uniform", make<ob::UniformValidStateSampler>()},
-                               {"gaussian", make<ob::GaussianValidStateSampler>()},
-                               {"obstacle_based", make<ob::ObstacleBasedValidStateSampler>()},
-                               {"bridge_test", make<ob::BridgeTestValidStateSampler>()},
-                               {"max_clearance", make<ob::MaximizeClearanceValidStateSampler>()},
-                               {"narrow_passage", make<NarrowPassageSampler>()},
-                               {"retraction", make<RetractionSampler>()},
-                               {"workspace_medial", make<WorkspaceMedialSampler>()},
+                               {"uniform", samplerOf<ob::UniformValidStateSampler>()},
+                               {"gaussian", samplerOf<ob::GaussianValidStateSampler>()},
+                               {"obstacle_based", samplerOf<ob::ObstacleBasedValidStateSampler>()},
+                               {"bridge_test", samplerOf<ob::BridgeTestValidStateSampler>()},
+                               {"max_clearance", samplerOf<ob::MaximizeClearanceValidStateSampler>()},
+                               {"narrow_passage", samplerOf<NarrowPassageSampler>()},
+                               {"retraction", samplerOf<RetractionSampler>()},
+                               {"workspace_medial", samplerOf<WorkspaceMedialSampler>()},
                            });
             return samplers;
         }
@@ -41,12 +41,12 @@ namespace meshgap
 
     std::vector<std::string> validStateSamplerNames()
     {
-        return registry().names();
+        return samplerRegistry().names();
     }
 
     ompl::base::ValidStateSamplerAllocator validStateSamplerAllocator(const std::string &name, const std::string &where)
     {
-        return registry().at(name, where);
+        return samplerRegistry().at(name, where);
     }
 
     void setValidStateSampler(ompl::base::SpaceInformation &si, const std::string &name, const std::string &where)
