@@ -13,6 +13,8 @@
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/SamplerFactory.h"
+#include "meshgap/robot/RigidBodyRobot.h"
+#include "meshgap/scene/RobotMesh.h"
 #include "support/MeshWriter.h"
 #include "support/PlanOutputs.h"
 #include "support/PlanReport.h"
@@ -132,9 +134,19 @@ namespace meshgap
                 }
                 if (!o.report.empty())
                 {
+                    // The report of every kind (support/PlanReport.h): the body as a robot of one link, the
+                    // obstacles the planner's.
+                    const RigidSpace space = p.config.planar ? RigidSpace::SE2 : RigidSpace::SE3;
+                    const RobotScene scene(std::make_shared<RigidBodyRobot>(
+                                               Body::build(loadRobotMesh(p.config.robot, p.config.planar)), space),
+                                           p.problem.scene->obstacles());
+                    std::vector<std::vector<double>> ends = {rigidState(space, p.config.start)};
+                    if (p.config.goal)
+                        ends.push_back(rigidState(space, *p.config.goal));
                     const auto rows = summaryRows(p.summary);
-                    writePlanReport(*p.problem.scene,
-                                    p.dense ? reportFromDense(*p.dense, rows) : reportWithoutPath(p.config, rows),
+                    writePlanReport(scene,
+                                    p.dense ? reportFromPath(scene, p.problem.setup->getSolutionPath(), o.dense, rows) :
+                                              reportAtStates(scene, ends, rows),
                                     o.report);
                     log << "report written  " << o.report << "\n";
                 }

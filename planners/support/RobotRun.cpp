@@ -20,7 +20,7 @@
 #include "support/PathFile.h"
 #include "support/PlanOutputs.h"
 #include "support/PlanRun.h"
-#include "support/RobotReport.h"
+#include "support/PlanReport.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -286,33 +286,30 @@ namespace meshgap
         {
             if (!o.summaryFile.empty())
                 writeTextFile(run.summary, o.summaryFile);
-            if (!run.havePath)
-                return;
             const og::PathGeometric &path = run.setup->getSolutionPath();
-            std::vector<std::vector<double>> states(path.getStateCount());
-            for (std::size_t i = 0; i < states.size(); ++i)
-                robotStateToVector(*run.setup->getStateSpace(), path.getState(i), states[i]);
-            if (!o.out.empty())
-            {
-                std::ostringstream text;
-                text << std::setprecision(17);
-                for (const std::vector<double> &q : states)
-                {
-                    for (std::size_t k = 0; k < q.size(); ++k)
-                        text << (k ? " " : "") << q[k];
-                    text << "\n";
-                }
-                writeTextFile(text.str(), o.out);
-                log << "path written    " << o.out << "\n";
-            }
             if (!o.report.empty())
             {
-                const PlanReportData data =
-                    robotReportFromPath(*run.scene, states, o.dense,
-                                        {{"problem", run.problem.name}, {"states", std::to_string(states.size())}});
-                writeRobotReport(*run.scene, data, o.report);
+                const auto rows = summaryRows(run.summary);
+                writePlanReport(*run.scene,
+                                run.havePath ? reportFromPath(*run.scene, path, o.dense, rows) :
+                                               reportAtStates(*run.scene, {run.problem.start, *run.problem.goal}, rows),
+                                o.report);
                 log << "report written  " << o.report << "\n";
             }
+            if (!run.havePath || o.out.empty())
+                return;
+            std::ostringstream text;
+            text << std::setprecision(17);
+            std::vector<double> q;
+            for (std::size_t i = 0; i < path.getStateCount(); ++i)
+            {
+                robotStateToVector(*run.setup->getStateSpace(), path.getState(i), q);
+                for (std::size_t k = 0; k < q.size(); ++k)
+                    text << (k ? " " : "") << q[k];
+                text << "\n";
+            }
+            writeTextFile(text.str(), o.out);
+            log << "path written    " << o.out << "\n";
         }
 
         namespace
