@@ -56,7 +56,7 @@ namespace
         length.precision(6);
         length << path.length();
         PlanReportData data =
-            reportFromPath(scene, path, dense,
+            reportFromDense(scene, denseClearance(path, scene, dense),
                            {{"problem", problem.name + " (" + problem.robot->description() + ", " +
                                             std::to_string(scene.links().size()) + " link" +
                                             (scene.links().size() == 1 ? "" : "s") + ", " +

@@ -203,41 +203,18 @@ namespace meshgap
         return path;
     }
 
-    PlanReportData reportFromPath(const RobotScene &scene, const ompl::geometric::PathGeometric &solution,
-                                  unsigned dense, std::vector<std::pair<std::string, std::string>> summary)
+    PlanReportData reportFromDense(const RobotScene &scene, const DenseClearance &dense,
+                                   std::vector<std::pair<std::string, std::string>> summary)
     {
-        const ompl::base::SpaceInformationPtr &si = solution.getSpaceInformation();
-        unsigned count = 1;
-        for (std::size_t i = 1; i < solution.getStateCount(); ++i)
-            count += dense * std::max(1u, si->getStateSpace()->validSegmentCount(solution.getState(i - 1),
-                                                                                 solution.getState(i)));
-        ompl::geometric::PathGeometric path(solution);
-        path.interpolate(count);
-        RobotRequest request;
-        request.everyPair = true;
-        RobotWarmStart warm;
-        RobotResult result;
-        std::vector<double> q;
-        std::vector<Eigen::Isometry3d> frames, poses;
         PlanReportData r;
-        std::size_t argmin = 0, collisions = 0;
-        for (std::size_t k = 0; k < path.getStateCount(); ++k)
-        {
-            robotStateToVector(*si->getStateSpace(), path.getState(k), q);
-            scene.distance(q.data(), q.size(), request, warm, result);
-            scene.robot().linkPoses(q.data(), q.size(), frames, poses);
-            r.poses.insert(r.poses.end(), poses.begin(), poses.end());
-            r.linkClearance.insert(r.linkClearance.end(), result.linkClearance.begin(), result.linkClearance.end());
-            r.arcLength.push_back(k == 0 ? 0.0 : r.arcLength.back() + si->distance(path.getState(k - 1),
-                                                                                    path.getState(k)));
-            r.clearance.push_back(result.distance);
-            r.inCollision.push_back(result.inCollision ? 1 : 0);
-            r.onRobot.push_back(result.onLink);
-            r.onObstacle.push_back(result.onOther);
-            collisions += result.inCollision ? 1 : 0;
-            argmin = result.distance < r.clearance[argmin] ? k : argmin;
-        }
-        addClearanceRows(r, argmin, collisions, summary);
+        r.poses = dense.linkPoses;
+        r.linkClearance = dense.linkClearance;
+        r.arcLength = dense.arcLength;
+        r.clearance = dense.clearance;
+        r.inCollision = dense.inCollision;
+        r.onRobot = dense.onRobot;
+        r.onObstacle = dense.onObstacle;
+        addClearanceRows(r, dense.argmin, dense.collisions, summary);
         finish(scene, std::move(summary), r);
         return r;
     }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "meshgap/robot/RobotScene.h"
+#include "support/DenseClearance.h"
 
 namespace meshgap
 {
@@ -44,15 +45,11 @@ namespace meshgap
     ompl::geometric::PathGeometric robotPath(const ompl::base::SpaceInformationPtr &si,
                                              const std::vector<std::vector<double>> &states);
 
-    /** \brief The report of \e solution: interpolated with \e dense states per OMPL validity-check segment, as
-        meshgap_plan's dense path (PathGeometric::interpolate() to 1 + dense * max(1, validSegmentCount()) per motion
-        states), and at every dense state every link's pose and the exact answer of every pair
-        (RobotRequest::everyPair): the whole robot's clearance, the attaining pair's witness points, each link's
-        clearance; arc length the state space's distance summed along the dense path. \e summary gets "min clearance"
-        and "dense path free" rows when it has none. \e solution's space is one robotStateToVector() reads (one made
-        by robotStateSpace(), or a single body's SE(2) or SE(3) space). */
-    PlanReportData reportFromPath(const RobotScene &scene, const ompl::geometric::PathGeometric &solution,
-                                  unsigned dense, std::vector<std::pair<std::string, std::string>> summary);
+    /** \brief The report of a dense path (denseClearance(), with every link's clearance): every link's pose, the
+        whole robot's clearance, the attaining pair's witness points, each link's clearance, the arc length; \e summary
+        gets "min clearance" and "dense path free" rows when it has none. */
+    PlanReportData reportFromDense(const RobotScene &scene, const DenseClearance &dense,
+                                   std::vector<std::pair<std::string, std::string>> summary);
 
     /** \brief The report of a problem without a path: the robot at \e states (its start and goal), no plot. */
     PlanReportData reportAtStates(const RobotScene &scene, const std::vector<std::vector<double>> &states,

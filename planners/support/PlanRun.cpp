@@ -14,7 +14,6 @@
 #include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/SamplerFactory.h"
 #include "meshgap/robot/RigidBodyRobot.h"
-#include "meshgap/scene/RobotMesh.h"
 #include "support/MeshWriter.h"
 #include "support/PlanOutputs.h"
 #include "support/PlanReport.h"
@@ -134,19 +133,15 @@ namespace meshgap
                 }
                 if (!o.report.empty())
                 {
-                    // The report of every kind (support/PlanReport.h): the body as a robot of one link, the
-                    // obstacles the planner's.
+                    // The report of every kind (support/PlanReport.h).
                     const RigidSpace space = p.config.planar ? RigidSpace::SE2 : RigidSpace::SE3;
-                    const RobotScene scene(std::make_shared<RigidBodyRobot>(
-                                               Body::build(loadRobotMesh(p.config.robot, p.config.planar)), space),
-                                           p.problem.scene->obstacles());
                     std::vector<std::vector<double>> ends = {rigidState(space, p.config.start)};
                     if (p.config.goal)
                         ends.push_back(rigidState(space, *p.config.goal));
                     const auto rows = summaryRows(p.summary);
-                    writePlanReport(scene,
-                                    p.dense ? reportFromPath(scene, p.problem.setup->getSolutionPath(), o.dense, rows) :
-                                              reportAtStates(scene, ends, rows),
+                    writePlanReport(*p.robotScene,
+                                    p.dense ? reportFromDense(*p.robotScene, *p.dense, rows) :
+                                              reportAtStates(*p.robotScene, ends, rows),
                                     o.report);
                     log << "report written  " << o.report << "\n";
                 }
@@ -174,6 +169,11 @@ namespace meshgap
                                       o.checker == "certified" ? ClearanceChecker::Mode::CERTIFIED :
                                                                  ClearanceChecker::Mode::FAST,
                                       o.objective, BodyOptions(), objectiveOptions);
+            // The body as a robot of one link (its body the scene's, shared with the scene that owns it).
+            p->robotScene = std::make_shared<RobotScene>(
+                std::make_shared<RigidBodyRobot>(BodyConstPtr(p->problem.scene, &p->problem.scene->robot()),
+                                                 p->config.planar ? RigidSpace::SE2 : RigidSpace::SE3),
+                p->problem.scene->obstacles());
             const ob::SpaceInformationPtr si = p->problem.setup->getSpaceInformation();
             if (!o.sampler.empty())
                 setValidStateSampler(*si, o.sampler, o.label("sampler"));
@@ -211,7 +211,7 @@ namespace meshgap
             if (p.havePath)
             {
                 p.dense = std::make_unique<DenseClearance>(
-                    denseClearance(p.problem.setup->getSolutionPath(), *p.problem.scene, o.dense));
+                    denseClearance(p.problem.setup->getSolutionPath(), *p.robotScene, o.dense));
                 summarizePath(p, *p.dense, summary);
             }
             summarizeSearch(p, summary);

@@ -110,43 +110,15 @@ namespace meshgap
                 return text.str();
             }
 
-            /** \brief What the exact check of the path densely interpolated found. */
-            struct DenseCheck
+            /** \brief The solution path densely interpolated (o.dense states per validity-check segment), each state
+                checked exactly (the whole robot; every link's clearance too when \e everyLink, for the report). */
+            DenseClearance denseCheck(const RobotPlanRun &run, const PlanOptions &o, bool everyLink = false)
             {
-                std::size_t states{0};
-                RobotResult worst;  ///< the least clear state's answer
-                std::size_t collisions{0};
-            };
-
-            /** \brief The solution path interpolated with o.dense states per validity-check segment, each state
-                checked exactly (the whole robot). */
-            DenseCheck denseCheck(const RobotPlanRun &run, const PlanOptions &o)
-            {
-                const og::PathGeometric &path = run.setup->getSolutionPath();
-                const ob::StateSpacePtr &space = run.setup->getStateSpace();
-                unsigned count = 1;
-                for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i)
-                    count += std::max(1u, space->validSegmentCount(path.getState(i), path.getState(i + 1))) * o.dense;
-                og::PathGeometric dense(path);
-                dense.interpolate(count);
-                RobotWarmStart warm;
-                RobotResult r;
-                std::vector<double> q;
-                DenseCheck d;
-                d.states = dense.getStateCount();
-                for (std::size_t i = 0; i < dense.getStateCount(); ++i)
-                {
-                    robotStateToVector(*space, dense.getState(i), q);
-                    run.scene->distance(q.data(), q.size(), RobotRequest(), warm, r);
-                    d.collisions += r.inCollision;
-                    if (i == 0 || r.distance < d.worst.distance)
-                        d.worst = r;
-                }
-                return d;
+                return denseClearance(run.setup->getSolutionPath(), *run.scene, o.dense, everyLink);
             }
 
             /** \brief "0.0123 (exact, over the dense path; link 'a' and obstacle 3)". */
-            std::string clearanceText(const RobotScene &scene, const DenseCheck &d)
+            std::string clearanceText(const RobotScene &scene, const DenseClearance &d)
             {
                 std::ostringstream mc;
                 mc.precision(6);
@@ -155,14 +127,14 @@ namespace meshgap
             }
 
             /** \brief The summary's path lines: states, length, cost, the dense path's exact clearance and pair. */
-            void summarizePath(RobotPlanRun &run, const DenseCheck &d, std::ostringstream &summary)
+            void summarizePath(RobotPlanRun &run, const DenseClearance &d, std::ostringstream &summary)
             {
                 run.minClearance = d.worst.distance;
                 run.limitingPair = pairText(*run.scene, d.worst);
                 run.denseFree = d.collisions == 0;
                 const og::PathGeometric &path = run.setup->getSolutionPath();
-                line(summary, "states", std::to_string(path.getStateCount()) + " (dense: " + std::to_string(d.states) +
-                                            ")");
+                line(summary, "states", std::to_string(path.getStateCount()) + " (dense: " +
+                                            std::to_string(d.path.getStateCount()) + ")");
                 line(summary, "length", path.length());
                 line(summary, "cost", std::to_string(path.cost(run.setup->getOptimizationObjective()).value()) + " (" +
                                           run.objective + ")");
@@ -176,11 +148,11 @@ namespace meshgap
                 the dense path's clearance before and after. */
             void optimizeRobotPath(RobotPlanRun &run, const PlanOptions &o, std::ostringstream &summary)
             {
-                const DenseCheck before = denseCheck(run, o);
+                const DenseClearance before = denseCheck(run, o);
                 run.minClearanceBefore = before.worst.distance;
                 run.limitingPairBefore = pairText(*run.scene, before.worst);
                 summary << optimizeSolution(*run.setup, run.checker, o.optimizeTime, o.seed, run.optimizeFailed);
-                const DenseCheck after = denseCheck(run, o);
+                const DenseClearance after = denseCheck(run, o);
                 line(summary, "opt before", clearanceText(*run.scene, before));
                 line(summary, "opt after", clearanceText(*run.scene, after));
             }
@@ -259,7 +231,10 @@ namespace meshgap
             if (run.havePath && !o.optimize.empty())
                 optimizeRobotPath(run, o, summary);
             if (run.havePath)
-                summarizePath(run, denseCheck(run, o), summary);
+            {
+                run.dense = std::make_unique<DenseClearance>(denseCheck(run, o, !o.report.empty()));
+                summarizePath(run, *run.dense, summary);
+            }
             // The search's checks (sampled when the answer is certified afterwards).
             const ob::MotionValidatorPtr &mv = (run.answer ? run.answer->searchSpaceInformation() :
                                                              run.setup->getSpaceInformation())->getMotionValidator();
@@ -291,7 +266,7 @@ namespace meshgap
             {
                 const auto rows = summaryRows(run.summary);
                 writePlanReport(*run.scene,
-                                run.havePath ? reportFromPath(*run.scene, path, o.dense, rows) :
+                                run.dense ? reportFromDense(*run.scene, *run.dense, rows) :
                                                reportAtStates(*run.scene, {run.problem.start, *run.problem.goal}, rows),
                                 o.report);
                 log << "report written  " << o.report << "\n";
