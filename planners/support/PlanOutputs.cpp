@@ -7,6 +7,7 @@
 
 #include "meshgap/AtomicFile.h"
 #include "meshgap/ompl/ClearanceChecker.h"
+#include "meshgap/ompl/RobotStateSpace.h"
 
 namespace ob = ompl::base;
 
@@ -14,40 +15,39 @@ namespace meshgap
 {
     namespace cli
     {
-        namespace
+        std::vector<std::string> stateColumns(const RobotModel &robot)
         {
-            /** \brief The coordinates of \e s as the CSV spells them. */
-            void writeState(const ob::State *s, bool planar, std::ostream &out)
-            {
-                if (planar)
-                {
-                    const auto *se2 = s->as<ob::SE2StateSpace::StateType>();
-                    out << "," << se2->getX() << "," << se2->getY() << "," << se2->getYaw();
-                    return;
-                }
-                const auto *se3 = s->as<ob::SE3StateSpace::StateType>();
-                const auto &q = se3->rotation();
-                out << "," << se3->getX() << "," << se3->getY() << "," << se3->getZ() << "," << q.x << "," << q.y << ","
-                    << q.z << "," << q.w;
-            }
-        }  // namespace
+            std::vector<std::string> columns;
+            for (const StateBlock &block : robot.stateBlocks())
+                columns.insert(columns.end(), block.names.begin(), block.names.end());
+            if (robot.links().size() == 1 && columns.size() == 7)
+                return {"x", "y", "z", "qx", "qy", "qz", "qw"};  // a single body in SE(3), as OMPL.app names it
+            if (robot.links().size() == 1 && columns.size() == 3 && robot.stateBlocks().front().space == JointSpace::SE2)
+                return {"x", "y", "theta"};
+            return columns;
+        }
 
-        void writeClearanceCsv(const DenseClearance &d, const std::string &file)
+        void writeClearanceCsv(const DenseClearance &d, const std::vector<std::string> &columns,
+                               const std::string &file)
         {
             writeStreamAtomically(
                 file,
-                [&d](std::ostream &out)
+                [&](std::ostream &out)
                 {
                     const ob::StateSpace &space = *d.path.getSpaceInformation()->getStateSpace();
-                    const bool planar = space.getType() == ob::STATE_SPACE_SE2;
-                    out << "index,arc_length,fraction," << (planar ? "x,y,theta" : "x,y,z,qx,qy,qz,qw")
-                        << ",clearance,in_collision\n";
+                    out << "index,arc_length,fraction";
+                    for (const std::string &column : columns)
+                        out << "," << column;
+                    out << ",clearance,in_collision\n";
                     out.precision(17);
                     const double total = d.arcLength.empty() ? 0.0 : d.arcLength.back();
+                    std::vector<double> q;
                     for (std::size_t i = 0; i < d.path.getStateCount(); ++i)
                     {
                         out << i << "," << d.arcLength[i] << "," << (total > 0.0 ? d.arcLength[i] / total : 0.0);
-                        writeState(d.path.getState(i), planar, out);
+                        robotStateToVector(space, d.path.getState(i), q);
+                        for (double v : q)
+                            out << "," << v;
                         out << "," << d.clearance[i] << "," << int(d.inCollision[i]) << "\n";
                     }
                 });

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "meshgap/robot/RobotModel.h"
 #include "meshgap/scene/Scene.h"
 #include "support/DenseClearance.h"
 
@@ -15,9 +16,15 @@ namespace meshgap
 {
     namespace cli
     {
-        /** \brief index,arc_length,fraction,x,y,z,qx,qy,qz,qw (x,y,theta in SE(2)),clearance,in_collision for every
-            state of the dense path. */
-        void writeClearanceCsv(const DenseClearance &d, const std::string &file);
+        /** \brief index,arc_length,fraction, the state's numbers, clearance,in_collision for every state of the dense
+            path (any kind of problem: the whole robot's clearance). The state's columns are \e columns:
+            stateColumns(). */
+        void writeClearanceCsv(const DenseClearance &d, const std::vector<std::string> &columns,
+                               const std::string &file);
+
+        /** \brief The names of a state's numbers in the clearance CSV: x,y,z,qx,qy,qz,qw (x,y,theta in SE(2)) for a
+            single body, else the robot's state numbers by name (JOINT, or JOINT.x ... for a free base or body). */
+        std::vector<std::string> stateColumns(const RobotModel &robot);
 
         /** \brief The path in OMPL's .path format, at full precision (the states round-trip exactly). */
         void writePathFile(const ompl::geometric::PathGeometric &path, const std::string &file);

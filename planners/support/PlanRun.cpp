@@ -232,7 +232,7 @@ namespace meshgap
             }
             if (!o.csv.empty())
             {
-                writeClearanceCsv(*p.dense, o.csv);
+                writeClearanceCsv(*p.dense, stateColumns(p.robotScene->robot()), o.csv);
                 log << "clearance CSV   " << o.csv << "\n";
             }
         }

@@ -58,7 +58,7 @@ namespace meshgap
             /** \brief The options meshgap_plan has that a robot problem does not take (yet). */
             void checkRobotOptions(const PlanOptions &o)
             {
-                for (const char *name : {"sampler", "export-glb", "export-states", "clearance-csv"})
+                for (const char *name : {"sampler", "export-glb", "export-states"})
                     if (o.isGiven(name))
                         throw Exception(o.label(name), "does not apply to a robot problem (" + o.cfg + ")");
                 if (o.checker != "certified")
@@ -271,20 +271,28 @@ namespace meshgap
                                 o.report);
                 log << "report written  " << o.report << "\n";
             }
-            if (!run.havePath || o.out.empty())
+            if (!run.havePath)
                 return;
-            std::ostringstream text;
-            text << std::setprecision(17);
-            std::vector<double> q;
-            for (std::size_t i = 0; i < path.getStateCount(); ++i)
+            if (!o.out.empty())
             {
-                robotStateToVector(*run.setup->getStateSpace(), path.getState(i), q);
-                for (std::size_t k = 0; k < q.size(); ++k)
-                    text << (k ? " " : "") << q[k];
-                text << "\n";
+                std::ostringstream text;
+                text << std::setprecision(17);
+                std::vector<double> q;
+                for (std::size_t i = 0; i < path.getStateCount(); ++i)
+                {
+                    robotStateToVector(*run.setup->getStateSpace(), path.getState(i), q);
+                    for (std::size_t k = 0; k < q.size(); ++k)
+                        text << (k ? " " : "") << q[k];
+                    text << "\n";
+                }
+                writeTextFile(text.str(), o.out);
+                log << "path written    " << o.out << "\n";
             }
-            writeTextFile(text.str(), o.out);
-            log << "path written    " << o.out << "\n";
+            if (!o.csv.empty())
+            {
+                writeClearanceCsv(*run.dense, stateColumns(*run.problem.robot), o.csv);
+                log << "clearance CSV   " << o.csv << "\n";
+            }
         }
 
         namespace
