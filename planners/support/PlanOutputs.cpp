@@ -8,6 +8,9 @@
 #include "meshgap/AtomicFile.h"
 #include "meshgap/ompl/ClearanceChecker.h"
 #include "meshgap/ompl/RobotStateSpace.h"
+#include "support/MeshWriter.h"
+#include "support/PlanReport.h"
+#include "support/SceneExport.h"
 
 namespace ob = ompl::base;
 
@@ -68,17 +71,36 @@ namespace meshgap
             writeStreamAtomically(file, [&text](std::ostream &out) { out << text; });
         }
 
-        std::vector<Eigen::Isometry3d> posesAlong(const DenseClearance &d, unsigned count)
+        std::vector<std::vector<double>> statesAlong(const DenseClearance &d, unsigned count)
         {
-            std::vector<Eigen::Isometry3d> poses;
+            std::vector<std::vector<double>> states;
             const ob::StateSpace &space = *d.path.getSpaceInformation()->getStateSpace();
             const std::size_t n = d.path.getStateCount(), k = std::min<std::size_t>(count, n);
             for (std::size_t i = 0; i < k; ++i)
             {
                 const std::size_t at = k == 1 ? 0 : (i * (n - 1) + (k - 1) / 2) / (k - 1);
-                poses.push_back(poseFromState(space, d.path.getState(at)));
+                robotStateToVector(space, d.path.getState(at), states.emplace_back());
             }
-            return poses;
+            return states;
+        }
+
+        void writeSceneFiles(const RobotScene &scene, const DenseClearance *dense,
+                             const std::vector<std::vector<double>> &ends, const std::string &summary,
+                             const PlanOptions &o, std::ostream &log)
+        {
+            if (!o.glb.empty())
+            {
+                const std::vector<std::vector<double>> states = dense ? statesAlong(*dense, o.exportStates) : ends;
+                writeGlb(robotExportParts(scene, states), o.glb);
+                log << "scene written   " << o.glb << " (" << states.size() << " robot states)\n";
+            }
+            if (!o.report.empty())
+            {
+                const auto rows = summaryRows(summary);
+                writePlanReport(scene, dense ? reportFromDense(scene, *dense, rows) : reportAtStates(scene, ends, rows),
+                                o.report);
+                log << "report written  " << o.report << "\n";
+            }
         }
     }  // namespace cli
 }  // namespace meshgap

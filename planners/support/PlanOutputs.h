@@ -11,6 +11,7 @@
 #include "meshgap/robot/RobotModel.h"
 #include "meshgap/scene/Scene.h"
 #include "support/DenseClearance.h"
+#include "support/PlanOptions.h"
 
 namespace meshgap
 {
@@ -32,8 +33,17 @@ namespace meshgap
         /** \brief \e text as it is. */
         void writeTextFile(const std::string &text, const std::string &file);
 
-        /** \brief \e count poses evenly spaced (by index) along the dense path, the first and the last included. */
-        std::vector<Eigen::Isometry3d> posesAlong(const DenseClearance &d, unsigned count);
+        /** \brief \e count states evenly spaced (by index) along the dense path, the first and the last included, as
+            the robot's state numbers (robotStateToVector()). */
+        std::vector<std::vector<double>> statesAlong(const DenseClearance &d, unsigned count);
+
+        /** \brief The files of the scene \e o asks for, any kind of problem (a single body is a robot of one link):
+            --export-glb (robotExportParts() at o.exportStates states along the dense path, or at \e ends, the start
+            and the goal, without one) and --report (writePlanReport(): the dense path, or \e ends; \e summary as its
+            table), saying each on \e log. */
+        void writeSceneFiles(const RobotScene &scene, const DenseClearance *dense,
+                             const std::vector<std::vector<double>> &ends, const std::string &summary,
+                             const PlanOptions &o, std::ostream &log);
     }  // namespace cli
 }  // namespace meshgap
 

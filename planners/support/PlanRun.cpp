@@ -14,11 +14,8 @@
 #include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/SamplerFactory.h"
 #include "meshgap/robot/RigidBodyRobot.h"
-#include "support/MeshWriter.h"
 #include "support/PlanOutputs.h"
-#include "support/PlanReport.h"
 #include "support/Progress.h"
-#include "support/SceneExport.h"
 #include "support/SurfaceText.h"
 
 namespace ob = ompl::base;
@@ -112,40 +109,6 @@ namespace meshgap
                                      std::to_string(p.cmv->queries()) + " clearance queries");
                 summary.line("query time", std::to_string(stats.seconds * 1e3) + " ms");
             }
-
-            /** \brief The scene (.glb) and the HTML report: the robot along the dense path, or at the start and the
-                goal without one. */
-            void writeScenes(const PlanRun &p, const PlanOptions &o, std::ostream &log)
-            {
-                if (!o.glb.empty())
-                {
-                    std::vector<Eigen::Isometry3d> poses;
-                    if (p.dense)
-                        poses = posesAlong(*p.dense, o.exportStates);
-                    else
-                    {
-                        poses.push_back(p.config.start);
-                        if (p.config.goal)
-                            poses.push_back(*p.config.goal);
-                    }
-                    writeGlb(sceneExportParts(*p.problem.scene, poses), o.glb);
-                    log << "scene written   " << o.glb << " (" << poses.size() << " robot states)\n";
-                }
-                if (!o.report.empty())
-                {
-                    // The report of every kind (support/PlanReport.h).
-                    const RigidSpace space = p.config.planar ? RigidSpace::SE2 : RigidSpace::SE3;
-                    std::vector<std::vector<double>> ends = {rigidState(space, p.config.start)};
-                    if (p.config.goal)
-                        ends.push_back(rigidState(space, *p.config.goal));
-                    const auto rows = summaryRows(p.summary);
-                    writePlanReport(*p.robotScene,
-                                    p.dense ? reportFromDense(*p.robotScene, *p.dense, rows) :
-                                              reportAtStates(*p.robotScene, ends, rows),
-                                    o.report);
-                    log << "report written  " << o.report << "\n";
-                }
-            }
         }  // namespace
 
         ompl::base::PlannerPtr allocPlanPlanner(const PlanOptions &o, const ompl::base::SpaceInformationPtr &si)
@@ -222,7 +185,11 @@ namespace meshgap
         {
             if (!o.summaryFile.empty())
                 writeTextFile(p.summary, o.summaryFile);
-            writeScenes(p, o, log);
+            const RigidSpace space = p.config.planar ? RigidSpace::SE2 : RigidSpace::SE3;
+            std::vector<std::vector<double>> ends = {rigidState(space, p.config.start)};
+            if (p.config.goal)
+                ends.push_back(rigidState(space, *p.config.goal));
+            writeSceneFiles(*p.robotScene, p.dense.get(), ends, p.summary, o, log);
             if (!p.havePath)
                 return;
             if (!o.out.empty())

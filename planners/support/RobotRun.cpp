@@ -58,7 +58,7 @@ namespace meshgap
             /** \brief The options meshgap_plan has that a robot problem does not take (yet). */
             void checkRobotOptions(const PlanOptions &o)
             {
-                for (const char *name : {"sampler", "export-glb", "export-states"})
+                for (const char *name : {"sampler"})
                     if (o.isGiven(name))
                         throw Exception(o.label(name), "does not apply to a robot problem (" + o.cfg + ")");
                 if (o.checker != "certified")
@@ -262,15 +262,7 @@ namespace meshgap
             if (!o.summaryFile.empty())
                 writeTextFile(run.summary, o.summaryFile);
             const og::PathGeometric &path = run.setup->getSolutionPath();
-            if (!o.report.empty())
-            {
-                const auto rows = summaryRows(run.summary);
-                writePlanReport(*run.scene,
-                                run.dense ? reportFromDense(*run.scene, *run.dense, rows) :
-                                               reportAtStates(*run.scene, {run.problem.start, *run.problem.goal}, rows),
-                                o.report);
-                log << "report written  " << o.report << "\n";
-            }
+            writeSceneFiles(*run.scene, run.dense.get(), {run.problem.start, *run.problem.goal}, run.summary, o, log);
             if (!run.havePath)
                 return;
             if (!o.out.empty())
