@@ -25,7 +25,8 @@
 // motion validator, for every kind of robot (a sampled search, its path certified: CertifiedAnswerPlanner; OMPL's
 // discrete validator with --motion discrete); the summary, the .path (one state a line, the numbers of start.joints),
 // the clearance CSV (a column per state number) and the report, the same dense path and page as a single body's
-// (support/DenseClearance.h, support/PlanReport.h); --export-glb, --sampler and --checker fast are a single body's.
+// (support/DenseClearance.h, support/PlanReport.h), --export-glb and --sampler as for a single body; --checker fast
+// is a single body's.
 //
 // Its options are support/PlanOptions.h's table (the Python module's plan() takes the same ones as keywords), and a
 // run is support/PlanRun.h's (plan() makes the same one): the progress line, --optimize (OptimizeOption.h), the

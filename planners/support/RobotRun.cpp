@@ -16,6 +16,7 @@
 #include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/RobotStateSpace.h"
+#include "meshgap/ompl/SamplerFactory.h"
 #include "OptimizeOption.h"
 #include "support/PathFile.h"
 #include "support/PlanOutputs.h"
@@ -55,12 +56,9 @@ namespace meshgap
                                   : "link " + link + " and obstacle " + std::to_string(r.other);
             }
 
-            /** \brief The options meshgap_plan has that a robot problem does not take (yet). */
+            /** \brief The option meshgap_plan has that a robot problem does not take (yet): --checker fast. */
             void checkRobotOptions(const PlanOptions &o)
             {
-                for (const char *name : {"sampler"})
-                    if (o.isGiven(name))
-                        throw Exception(o.label(name), "does not apply to a robot problem (" + o.cfg + ")");
                 if (o.checker != "certified")
                     throw Exception(o.label("checker"), "a robot problem is checked exactly (certified) only");
             }
@@ -197,13 +195,19 @@ namespace meshgap
                 objective->setCostThreshold(ob::Cost(*p.objectiveThreshold));
             run->setup->setOptimizationObjective(objective);
             // Certified: the planner searches with a sampled motion check; every motion of its answer is certified.
-            if (run->motion)
+            // The valid-state sampler (--sampler, else the problem's) of the space the planner searches.
+            const std::string sampler = !o.sampler.empty() ? o.sampler : p.sampler;
+            const std::string where = !o.sampler.empty() ? o.label("sampler") : p.file + ": [problem] sampler";
+            auto search = [&o, sampler, where](const ob::SpaceInformationPtr &s)
             {
-                auto search = [&o](const ob::SpaceInformationPtr &s) { return allocPlanPlanner(o, s); };
+                if (!sampler.empty())
+                    setValidStateSampler(*s, sampler, where);
+                return allocPlanPlanner(o, s);
+            };
+            if (run->motion)
                 run->setup->setPlanner(run->answer = std::make_shared<CertifiedAnswerPlanner>(si, search));
-            }
             else
-                run->setup->setPlanner(allocPlanPlanner(o, si));
+                run->setup->setPlanner(search(si));
             run->setup->setup();
             return run;
         }
