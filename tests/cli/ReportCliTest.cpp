@@ -190,9 +190,11 @@ TEST(ReportCli, BadInputWritesNothing)
     const fs::path dir = fs::temp_directory_path() / ("meshgap_report_bad_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     std::ofstream(dir / "short.path") << "1 2 3 0 0 0 1\n4 5 6\n";
+    std::ofstream(dir / "norm.path") << "1 2 3 0 0 0 1\n4 5 6 0 0 0 1.5\n";  // a quaternion not of unit length
     const std::string out = (dir / "r.html").string();
     for (const std::string &args :
          {"--cfg " + cfg + " --path " + (dir / "short.path").string() + " --out " + out,
+          "--cfg " + cfg + " --path " + (dir / "norm.path").string() + " --out " + out,
           "--cfg " + cfg + " --path " + (dir / "none.path").string() + " --out " + out,
           "--cfg " + cfg + " --path " + (dir / "short.path").string() + " --out " + out + " --dense 0",
           "--cfg " + cfg + " --out " + out})
@@ -201,6 +203,6 @@ TEST(ReportCli, BadInputWritesNothing)
         EXPECT_EQ(run.status, 1) << args << run.err;
         EXPECT_EQ(test::countLines(run.err, "error: "), 1) << run.err;
     }
-    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);  // short.path only
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);  // the two paths only
     fs::remove_all(dir);
 }
