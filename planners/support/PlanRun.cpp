@@ -174,7 +174,7 @@ namespace meshgap
             if (p.havePath)
             {
                 p.dense = std::make_unique<DenseClearance>(
-                    denseClearance(p.problem.setup->getSolutionPath(), *p.robotScene, o.dense));
+                    denseClearance(p.problem.setup->getSolutionPath(), *p.robotScene, o.dense, !o.report.empty()));
                 summarizePath(p, *p.dense, summary);
             }
             summarizeSearch(p, summary);
