@@ -23,8 +23,10 @@
 // On a robot problem (robot.urdf, or robot.1, robot.2, ...: meshgap/robot/RobotProblem.h) it plans in the robot's
 // joint space (support/RobotRun.h): exact whole-robot checks, every motion of the answer proven by the certified
 // motion validator, for every kind of robot (a sampled search, its path certified: CertifiedAnswerPlanner; OMPL's
-// discrete validator with --motion discrete); the summary and the .path (one state a line, the
-// numbers of start.joints); the options that write scenes, reports or optimise are for single bodies.
+// discrete validator with --motion discrete); the summary, the .path (one state a line, the numbers of start.joints),
+// the clearance CSV (a column per state number) and the report, the same dense path and page as a single body's
+// (support/DenseClearance.h, support/PlanReport.h), --export-glb and --sampler as for a single body; --checker fast
+// is a single body's.
 //
 // Its options are support/PlanOptions.h's table (the Python module's plan() takes the same ones as keywords), and a
 // run is support/PlanRun.h's (plan() makes the same one): the progress line, --optimize (OptimizeOption.h), the

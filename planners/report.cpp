@@ -1,10 +1,12 @@
-// meshgap_report: turn an OMPL.app problem and a path for it into one self-contained HTML report, as
-// meshgap_plan --report writes after planning. On a robot problem (robot.urdf, or robot.1 and more bodies) the path
-// has one state a line as start.joints, and the report draws every link along it, with each link's clearance.
+// meshgap_report: turn a problem (any kind: one rigid body, a URDF robot, several bodies) and a path for it into one
+// self-contained HTML report, as meshgap_plan --report writes after planning. A single body is a robot of one link
+// (rigidBodyProblem()), so every kind takes one route: the path has one state a line (x y z qx qy qz qw, or x y theta
+// for a 2D problem, for a single body; the numbers of start.joints, or the bodies' poses one after the other, for a
+// robot), and the report draws every link along it, with each link's clearance when there are several.
 //
 //   meshgap_report --cfg problem.cfg --path solution.path --out report.html [--dense 4] [-q]
 //
-// The path (OMPL's .path format: x y z qx qy qz qw, or x y theta for a 2D problem) is interpolated with --dense
+// The path (OMPL's .path format) is interpolated with --dense
 // states per OMPL validity-check segment and the exact clearance computed at each state, as meshgap_plan does; the
 // report shows the scene with the robot along it (a slider), the closest-point segment, clearance against arc length
 // and a summary table (see planners/support/PlanReport.h). Exit status 0; 2 when the path collides with the world
@@ -19,13 +21,10 @@
 
 #include "CliMain.h"
 #include "meshgap/Exception.h"
-#include "meshgap/ompl/ProblemSetup.h"
-#include "support/DenseClearance.h"
+#include "meshgap/robot/RobotProblem.h"
 #include "support/MoveItOptions.h"
 #include "support/PathFile.h"
-#include "meshgap/robot/RobotProblem.h"
 #include "support/PlanReport.h"
-#include "support/RobotReport.h"
 
 namespace po = boost::program_options;
 using namespace meshgap;
@@ -45,23 +44,31 @@ namespace
         return 2;
     }
 
-    /** \brief The report of a robot problem (robot.urdf or robot.1 ...): every link along the path. */
-    int robotReport(const RobotProblem &problem, const std::string &pathFile, const std::string &out, unsigned dense)
+    /** \brief The report of \e pathFile on \e problem (any kind: a single body is a robot of one link): every link
+        along the path, the whole robot's clearance and each link's. */
+    int report(const RobotProblem &problem, const std::string &pathFile, const std::string &out, unsigned dense)
     {
         const RobotScene scene(problem.robot, problem.obstacles, problem.allowedObstacles);
         const std::vector<std::vector<double>> states = readRobotPathFile(pathFile, *problem.robot);
-        const PlanReportData data =
-            robotReportFromPath(scene, states, dense,
-                                {{"problem", problem.name + " (" + std::to_string(scene.links().size()) + " links, " +
-                                                 std::to_string(problem.robot->dimension()) + " state numbers)"},
-                                 {"path", pathFile},
-                                 {"states", std::to_string(states.size())}});
-        writeRobotReport(scene, data, out);
-        double least = data.clearance.front();
-        for (double c : data.clearance)
-            least = std::min(least, c);
-        std::printf("report written  %s (%zu dense states, %zu links, min clearance %g)\n", out.c_str(),
-                    data.clearance.size(), scene.links().size(), least);
+        const ompl::geometric::PathGeometric path =
+            robotPath(reportSpaceInformation(*problem.robot, problem.volume, states), states);
+        std::ostringstream length;
+        length.precision(6);
+        length << path.length();
+        PlanReportData data =
+            reportFromDense(scene, denseClearance(path, scene, dense),
+                           {{"problem", problem.name + " (" + problem.robot->description() + ", " +
+                                            std::to_string(scene.links().size()) + " link" +
+                                            (scene.links().size() == 1 ? "" : "s") + ", " +
+                                            std::to_string(problem.robot->dimension()) + " state numbers)"},
+                            {"path", pathFile},
+                            {"states", std::to_string(states.size())},
+                            {"length", length.str()}});
+        data.summary[2].second += " (dense: " + std::to_string(data.clearance.size()) + ")";
+        writePlanReport(scene, data, out);
+        const double least = *std::min_element(data.clearance.begin(), data.clearance.end());
+        std::printf("report written  %s (%zu dense states, %zu link%s, min clearance %g)\n", out.c_str(),
+                    data.clearance.size(), scene.links().size(), scene.links().size() == 1 ? "" : "s", least);
         std::size_t collisions = 0;
         for (char c : data.inCollision)
             collisions += c != 0;
@@ -89,27 +96,7 @@ namespace
         if (dense < 1)
             throw Exception("--dense", "must be at least 1");
 
-        const Problem read = cli::readToolProblem(cfg, moveit);
-        if (read.robot)
-            return robotReport(*read.robot, pathFile, out, dense);
-        const ProblemConfig &config = *read.rigidBody;
-        const OmplProblem problem = setupProblem(config, ClearanceChecker::Mode::CERTIFIED);
-        problem.setup->getSpaceInformation()->setup();  // the longest valid segment, which the dense path uses
-        const ompl::geometric::PathGeometric path = readPathFile(pathFile, problem.setup->getSpaceInformation());
-        const DenseClearance d = denseClearance(path, *problem.scene, dense);
-        std::ostringstream length;
-        length.precision(6);
-        length << path.length();
-        const std::vector<std::pair<std::string, std::string>> rows = {
-            {"problem", config.name + (config.planar ? " (SE(2))" : " (SE(3))")},
-            {"path", pathFile},
-            {"states", std::to_string(path.getStateCount()) + " (dense: " + std::to_string(d.path.getStateCount()) +
-                           ")"},
-            {"length", length.str()}};
-        writePlanReport(*problem.scene, reportFromDense(d, rows), out);
-        std::printf("report written  %s (%zu dense states, min clearance %g)\n", out.c_str(), d.path.getStateCount(),
-                    d.minClearance);
-        return pathVerdict(d.collisions, d.path.getStateCount(), d.minClearance, pathFile);
+        return report(cli::readToolRobotProblem(cfg, moveit), pathFile, out, dense);
     }
 }  // namespace
 

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 
-#include "meshgap/ompl/ClearanceChecker.h"
+#include "meshgap/ompl/RobotStateSpace.h"
 
 namespace meshgap
 {
-    DenseClearance denseClearance(const ompl::geometric::PathGeometric &solution, const Scene &scene,
-                                  unsigned perSegment)
+    DenseClearance denseClearance(const ompl::geometric::PathGeometric &solution, const RobotScene &scene,
+                                  unsigned perSegment, bool everyLink)
     {
         namespace ob = ompl::base;
         DenseClearance d(solution);
@@ -17,25 +17,34 @@ namespace meshgap
             count += perSegment * std::max(1u, si->getStateSpace()->validSegmentCount(solution.getState(i - 1),
                                                                                       solution.getState(i)));
         d.path.interpolate(count);
-        SceneRequest request;  // exact
-        SceneWarmStart warm;
+        RobotRequest request;  // exact
+        request.everyPair = everyLink;
+        RobotWarmStart warm;
+        RobotResult r;
+        std::vector<double> q;
+        std::vector<Eigen::Isometry3d> frames, poses;
         double s = 0.0;
         for (std::size_t i = 0; i < d.path.getStateCount(); ++i)
         {
             if (i > 0)
                 s += si->distance(d.path.getState(i - 1), d.path.getState(i));
-            SceneResult r;
-            scene.distance(poseFromState(*si->getStateSpace(), d.path.getState(i)), request, warm, r);
+            robotStateToVector(*si->getStateSpace(), d.path.getState(i), q);
+            scene.distance(q.data(), q.size(), request, warm, r);
+            scene.robot().linkPoses(q.data(), q.size(), frames, poses);
+            d.linkPoses.insert(d.linkPoses.end(), poses.begin(), poses.end());
+            if (everyLink)
+                d.linkClearance.insert(d.linkClearance.end(), r.linkClearance.begin(), r.linkClearance.end());
             d.arcLength.push_back(s);
             d.clearance.push_back(r.distance);
             d.inCollision.push_back(r.inCollision);
-            d.onRobot.push_back(r.onRobot);
-            d.onObstacle.push_back(r.onObstacle);
+            d.onRobot.push_back(r.onLink);
+            d.onObstacle.push_back(r.onOther);
             d.collisions += r.inCollision;
-            if (r.distance < d.minClearance)
+            if (i == 0 || r.distance < d.minClearance)
             {
                 d.minClearance = r.distance;
                 d.argmin = i;
+                d.worst = r;
             }
         }
         return d;

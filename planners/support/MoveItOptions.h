@@ -56,6 +56,14 @@ namespace meshgap
             problem.robot = readMoveItProblem(files);
             return problem;
         }
+
+        /** \brief The tool's problem as a robot problem, whatever its kind (readToolProblem(); a single body through
+            rigidBodyProblem(), a robot of one link). Throws as readToolProblem() and the mesh loader do. */
+        inline RobotProblem readToolRobotProblem(const std::string &cfg, const MoveItFiles &files)
+        {
+            Problem problem = readToolProblem(cfg, files);
+            return problem.robot ? std::move(*problem.robot) : rigidBodyProblem(*problem.rigidBody);
+        }
     }  // namespace cli
 }  // namespace meshgap
 

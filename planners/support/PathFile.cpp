@@ -85,6 +85,19 @@ namespace meshgap
         {
             throw Exception(where, e.what());
         }
+        // A pose's quaternion within 1e-3 of unit length, as a single body's pose has always been read (parsePose()).
+        for (const StateBlock &block : robot.stateBlocks())
+            if (block.space == JointSpace::SE3)
+            {
+                const double norm = Eigen::Vector4d(q[block.first + 3], q[block.first + 4], q[block.first + 5],
+                                                    q[block.first + 6]).norm();
+                std::string name = block.names.front();  // "JOINT.x": the pose of JOINT
+                name = name.size() > 2 && name.compare(name.size() - 2, 2, ".x") == 0 ? name.substr(0, name.size() - 2)
+                                                                                      : name;
+                if (std::abs(norm - 1.0) > 1e-3)
+                    throw Exception(where, "quaternion (qx qy qz qw) of " + quote(name) +
+                                               " is not of unit length (norm " + std::to_string(norm) + ")");
+            }
         return q;
     }
 

@@ -17,8 +17,9 @@ namespace meshgap
 
     /** \brief One state of \e robot from \e text: robot.dimension() finite numbers (as start.joints: a floating
         base's pose first, then the joints; per body its pose for several bodies). Throws meshgap::Exception naming
-        \e where for a non-number, a number not finite, another count, or a state RobotModel::checkState() refuses
-        (a joint outside its limits, a number beyond MAX_MAGNITUDE). */
+        \e where for a non-number, a number not finite, another count, a state RobotModel::checkState() refuses
+        (a joint outside its limits, a number beyond MAX_MAGNITUDE), or a pose (a single body's, a free base's, a
+        body's in SE(3)) whose quaternion is not of unit length within 1e-3. */
     std::vector<double> parseRobotState(const std::string &text, const RobotModel &robot, const std::string &where);
 
     /** \brief The states of a robot problem's .path file: one state a line (parseRobotState(), naming "file:line");

@@ -7,6 +7,10 @@
 
 #include "meshgap/AtomicFile.h"
 #include "meshgap/ompl/ClearanceChecker.h"
+#include "meshgap/ompl/RobotStateSpace.h"
+#include "support/MeshWriter.h"
+#include "support/PlanReport.h"
+#include "support/SceneExport.h"
 
 namespace ob = ompl::base;
 
@@ -14,40 +18,39 @@ namespace meshgap
 {
     namespace cli
     {
-        namespace
+        std::vector<std::string> stateColumns(const RobotModel &robot)
         {
-            /** \brief The coordinates of \e s as the CSV spells them. */
-            void writeState(const ob::State *s, bool planar, std::ostream &out)
-            {
-                if (planar)
-                {
-                    const auto *se2 = s->as<ob::SE2StateSpace::StateType>();
-                    out << "," << se2->getX() << "," << se2->getY() << "," << se2->getYaw();
-                    return;
-                }
-                const auto *se3 = s->as<ob::SE3StateSpace::StateType>();
-                const auto &q = se3->rotation();
-                out << "," << se3->getX() << "," << se3->getY() << "," << se3->getZ() << "," << q.x << "," << q.y << ","
-                    << q.z << "," << q.w;
-            }
-        }  // namespace
+            std::vector<std::string> columns;
+            for (const StateBlock &block : robot.stateBlocks())
+                columns.insert(columns.end(), block.names.begin(), block.names.end());
+            if (robot.links().size() == 1 && columns.size() == 7)
+                return {"x", "y", "z", "qx", "qy", "qz", "qw"};  // a single body in SE(3), as OMPL.app names it
+            if (robot.links().size() == 1 && columns.size() == 3 && robot.stateBlocks().front().space == JointSpace::SE2)
+                return {"x", "y", "theta"};
+            return columns;
+        }
 
-        void writeClearanceCsv(const DenseClearance &d, const std::string &file)
+        void writeClearanceCsv(const DenseClearance &d, const std::vector<std::string> &columns,
+                               const std::string &file)
         {
             writeStreamAtomically(
                 file,
-                [&d](std::ostream &out)
+                [&](std::ostream &out)
                 {
                     const ob::StateSpace &space = *d.path.getSpaceInformation()->getStateSpace();
-                    const bool planar = space.getType() == ob::STATE_SPACE_SE2;
-                    out << "index,arc_length,fraction," << (planar ? "x,y,theta" : "x,y,z,qx,qy,qz,qw")
-                        << ",clearance,in_collision\n";
+                    out << "index,arc_length,fraction";
+                    for (const std::string &column : columns)
+                        out << "," << column;
+                    out << ",clearance,in_collision\n";
                     out.precision(17);
                     const double total = d.arcLength.empty() ? 0.0 : d.arcLength.back();
+                    std::vector<double> q;
                     for (std::size_t i = 0; i < d.path.getStateCount(); ++i)
                     {
                         out << i << "," << d.arcLength[i] << "," << (total > 0.0 ? d.arcLength[i] / total : 0.0);
-                        writeState(d.path.getState(i), planar, out);
+                        robotStateToVector(space, d.path.getState(i), q);
+                        for (double v : q)
+                            out << "," << v;
                         out << "," << d.clearance[i] << "," << int(d.inCollision[i]) << "\n";
                     }
                 });
@@ -68,17 +71,36 @@ namespace meshgap
             writeStreamAtomically(file, [&text](std::ostream &out) { out << text; });
         }
 
-        std::vector<Eigen::Isometry3d> posesAlong(const DenseClearance &d, unsigned count)
+        std::vector<std::vector<double>> statesAlong(const DenseClearance &d, unsigned count)
         {
-            std::vector<Eigen::Isometry3d> poses;
+            std::vector<std::vector<double>> states;
             const ob::StateSpace &space = *d.path.getSpaceInformation()->getStateSpace();
             const std::size_t n = d.path.getStateCount(), k = std::min<std::size_t>(count, n);
             for (std::size_t i = 0; i < k; ++i)
             {
                 const std::size_t at = k == 1 ? 0 : (i * (n - 1) + (k - 1) / 2) / (k - 1);
-                poses.push_back(poseFromState(space, d.path.getState(at)));
+                robotStateToVector(space, d.path.getState(at), states.emplace_back());
             }
-            return poses;
+            return states;
+        }
+
+        void writeSceneFiles(const RobotScene &scene, const DenseClearance *dense,
+                             const std::vector<std::vector<double>> &ends, const std::string &summary,
+                             const PlanOptions &o, std::ostream &log)
+        {
+            if (!o.glb.empty())
+            {
+                const std::vector<std::vector<double>> states = dense ? statesAlong(*dense, o.exportStates) : ends;
+                writeGlb(robotExportParts(scene, states), o.glb);
+                log << "scene written   " << o.glb << " (" << states.size() << " robot states)\n";
+            }
+            if (!o.report.empty())
+            {
+                const auto rows = summaryRows(summary);
+                writePlanReport(scene, dense ? reportFromDense(scene, *dense, rows) : reportAtStates(scene, ends, rows),
+                                o.report);
+                log << "report written  " << o.report << "\n";
+            }
         }
     }  // namespace cli
 }  // namespace meshgap

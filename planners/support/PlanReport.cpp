@@ -1,16 +1,18 @@
 #include "support/PlanReport.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <ompl/base/StateValidityChecker.h>
 #include <sstream>
 
 #include "meshgap/AtomicFile.h"
 #include "meshgap/Exception.h"
-#include "meshgap/ompl/ClearanceChecker.h"
+#include "meshgap/ompl/RobotStateSpace.h"
 #include "support/MeshWriter.h"
 #include "support/SceneExport.h"
 
@@ -118,49 +120,116 @@ namespace meshgap
         }
     }  // namespace
 
-    PlanReportData reportFromDense(const DenseClearance &dense,
+    namespace
+    {
+        /** \brief Bounds around \e states' first three numbers (a unit box at least). */
+        ompl::base::RealVectorBounds boundsAround(const std::vector<std::vector<double>> &states)
+        {
+            ompl::base::RealVectorBounds bounds(3);
+            bounds.setLow(-1.0);
+            bounds.setHigh(1.0);
+            for (const std::vector<double> &q : states)
+                for (std::size_t k = 0; k < 3 && k < q.size(); ++k)
+                {
+                    bounds.low[k] = std::min(bounds.low[k], q[k] - 1.0);
+                    bounds.high[k] = std::max(bounds.high[k], q[k] + 1.0);
+                }
+            return bounds;
+        }
+
+        /** \brief "min clearance" and "dense path free" rows, unless \e summary has them. */
+        void addClearanceRows(const PlanReportData &r, std::size_t argmin, std::size_t collisions,
+                              std::vector<std::pair<std::string, std::string>> &summary)
+        {
+            auto has = [&summary](const std::string &key)
+            {
+                for (const auto &row : summary)
+                    if (row.first == key)
+                        return true;
+                return false;
+            };
+            if (!has("min clearance"))
+            {
+                std::ostringstream mc;
+                mc.precision(6);
+                mc << r.clearance[argmin] << " (exact, at arc length " << r.arcLength[argmin] << " of "
+                   << r.arcLength.back() << ")";
+                summary.emplace_back("min clearance", mc.str());
+            }
+            if (!has("dense path free"))
+                summary.emplace_back("dense path free", collisions == 0 ? std::string("yes") :
+                                                            "NO: " + std::to_string(collisions) + " states collide");
+        }
+
+        /** \brief The links' names and the summary, titled by its first row. */
+        void finish(const RobotScene &scene, std::vector<std::pair<std::string, std::string>> summary,
+                    PlanReportData &r)
+        {
+            for (const RobotLink &link : scene.links())
+                r.linkNames.push_back(link.name);
+            r.summary = std::move(summary);
+            r.title = r.summary.empty() ? std::string("meshgap plan") : r.summary.front().second;
+        }
+    }  // namespace
+
+    ompl::base::SpaceInformationPtr reportSpaceInformation(const RobotModel &robot,
+                                                           const std::optional<Eigen::AlignedBox3d> &volume,
+                                                           const std::vector<std::vector<double>> &states)
+    {
+        ompl::base::RealVectorBounds bounds = boundsAround(states);
+        if (volume)
+            for (int k = 0; k < 3; ++k)
+            {
+                bounds.low[k] = volume->min()[k];
+                bounds.high[k] = volume->max()[k];
+            }
+        auto si = std::make_shared<ompl::base::SpaceInformation>(robotStateSpace(robot, bounds));
+        si->setStateValidityChecker(std::make_shared<ompl::base::AllValidStateValidityChecker>(si));
+        si->setup();
+        return si;
+    }
+
+    ompl::geometric::PathGeometric robotPath(const ompl::base::SpaceInformationPtr &si,
+                                             const std::vector<std::vector<double>> &states)
+    {
+        ompl::geometric::PathGeometric path(si);
+        ompl::base::State *state = si->allocState();
+        for (const std::vector<double> &q : states)
+        {
+            robotStateFromVector(*si->getStateSpace(), q, state);
+            path.append(state);
+        }
+        si->freeState(state);
+        return path;
+    }
+
+    PlanReportData reportFromDense(const RobotScene &scene, const DenseClearance &dense,
                                    std::vector<std::pair<std::string, std::string>> summary)
     {
         PlanReportData r;
-        const ompl::base::StateSpace &space = *dense.path.getSpaceInformation()->getStateSpace();
-        for (std::size_t i = 0; i < dense.path.getStateCount(); ++i)
-            r.poses.push_back(poseFromState(space, dense.path.getState(i)));
+        r.poses = dense.linkPoses;
+        r.linkClearance = dense.linkClearance;
         r.arcLength = dense.arcLength;
         r.clearance = dense.clearance;
         r.inCollision = dense.inCollision;
         r.onRobot = dense.onRobot;
         r.onObstacle = dense.onObstacle;
-        auto has = [&summary](const std::string &key) {
-            for (const auto &row : summary)
-                if (row.first == key)
-                    return true;
-            return false;
-        };
-        if (!has("min clearance"))
-        {
-            std::ostringstream mc;
-            mc.precision(6);
-            mc << dense.minClearance << " (exact, at arc length " << dense.arcLength[dense.argmin] << " of "
-               << dense.arcLength.back() << ")";
-            summary.emplace_back("min clearance", mc.str());
-        }
-        if (!has("dense path free"))
-            summary.emplace_back("dense path free", dense.collisions == 0 ? std::string("yes") :
-                                                    "NO: " + std::to_string(dense.collisions) + " states collide");
-        r.summary = std::move(summary);
-        r.title = r.summary.empty() ? std::string("meshgap plan") : r.summary.front().second;
+        addClearanceRows(r, dense.argmin, dense.collisions, summary);
+        finish(scene, std::move(summary), r);
         return r;
     }
 
-    PlanReportData reportWithoutPath(const ProblemConfig &config,
-                                     std::vector<std::pair<std::string, std::string>> summary)
+    PlanReportData reportAtStates(const RobotScene &scene, const std::vector<std::vector<double>> &states,
+                                  std::vector<std::pair<std::string, std::string>> summary)
     {
         PlanReportData r;
-        r.poses.push_back(config.start);
-        if (config.goal)
-            r.poses.push_back(*config.goal);
-        r.summary = std::move(summary);
-        r.title = config.name;
+        std::vector<Eigen::Isometry3d> frames, poses;
+        for (const std::vector<double> &q : states)
+        {
+            scene.robot().linkPoses(q.data(), q.size(), frames, poses);
+            r.poses.insert(r.poses.end(), poses.begin(), poses.end());
+        }
+        finish(scene, std::move(summary), r);
         return r;
     }
 
@@ -196,35 +265,27 @@ namespace meshgap
                              const std::string &file);
     }  // namespace
 
-    void writePlanReport(const Scene &scene, const PlanReportData &data, const std::string &file)
-    {
-        const SceneExportOptions colors;
-        std::vector<ColoredMesh> parts;
-        for (std::size_t i = 0; i < scene.obstacles().size(); ++i)
-            parts.push_back({"obstacle " + std::to_string(i), scene.obstacles()[i]->surface(), colors.worldColor});
-        parts.push_back({"robot", scene.robot().surface(), colors.robotColor});
-        writeReportPage(parts, data, file);
-    }
-
-    void writeRobotReport(const RobotScene &scene, const PlanReportData &data, const std::string &file)
+    void writePlanReport(const RobotScene &scene, const PlanReportData &data, const std::string &file)
     {
         const std::size_t links = scene.links().size();
         if (data.linkNames.size() != links || data.poses.size() % std::max<std::size_t>(links, 1) != 0 ||
             (!data.linkClearance.empty() && data.linkClearance.size() != data.poses.size()))
-            throw Exception(file, "a robot report needs one pose (and one clearance) per link and state");
+            throw Exception(file, "a plan report needs one pose (and one clearance) per link and state");
         const SceneExportOptions colors;
         std::vector<ColoredMesh> parts;
         for (std::size_t i = 0; i < scene.obstacles().size(); ++i)
             parts.push_back({"obstacle " + std::to_string(i), scene.obstacles()[i]->surface(), colors.worldColor});
         for (std::size_t i = 0; i < links; ++i)  // names the page finds them by (no spaces: GLTFLoader keeps these)
-            parts.push_back({"link_" + std::to_string(i), scene.links()[i].body->surface(),
+            parts.push_back({links == 1 ? std::string("robot") : "link_" + std::to_string(i),
+                             scene.links()[i].body->surface(),
                              scene.links()[i].payload ? Eigen::Vector4d(0.85, 0.55, 0.15, 1.0) : colors.robotColor});
         writeReportPage(parts, data, file);
     }
 
     namespace
     {
-        /** \brief The page of writePlanReport() and writeRobotReport(): \e parts and \e data. */
+        /** \brief The page of writePlanReport(): \e parts and \e data (one link: no per-link arrays, the page then
+            draws the part named "robot"). */
         void writeReportPage(const std::vector<ColoredMesh> &parts, const PlanReportData &data, const std::string &file)
         {
             if (!planReportAvailable())
@@ -233,6 +294,7 @@ namespace meshgap
             if (data.poses.empty())
                 throw Exception(file, "a plan report needs at least one robot pose");
             const std::size_t links = std::max<std::size_t>(1, data.linkNames.size()), n = data.poses.size() / links;
+            const bool perLink = data.linkNames.size() > 1;
             const bool hasPath = data.clearance.size() == n && n > 0;
             std::vector<double> poses, onRobot, onObstacle;
             for (const Eigen::Isometry3d &X : data.poses)
@@ -247,7 +309,7 @@ namespace meshgap
                 json << (i ? ", " : "") << "[" << jsonString(data.summary[i].first) << ", "
                      << jsonString(data.summary[i].second) << "]";
             json << "], \"states\": " << n << ", \"poses\": \"" << floats(poses) << "\"";
-            if (!data.linkNames.empty())
+            if (perLink)
             {
                 json << ", \"links\": [";
                 for (std::size_t i = 0; i < data.linkNames.size(); ++i)

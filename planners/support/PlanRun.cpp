@@ -13,11 +13,9 @@
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/PlannerFactory.h"
 #include "meshgap/ompl/SamplerFactory.h"
-#include "support/MeshWriter.h"
+#include "meshgap/robot/RigidBodyRobot.h"
 #include "support/PlanOutputs.h"
-#include "support/PlanReport.h"
 #include "support/Progress.h"
-#include "support/SceneExport.h"
 #include "support/SurfaceText.h"
 
 namespace ob = ompl::base;
@@ -111,34 +109,6 @@ namespace meshgap
                                      std::to_string(p.cmv->queries()) + " clearance queries");
                 summary.line("query time", std::to_string(stats.seconds * 1e3) + " ms");
             }
-
-            /** \brief The scene (.glb) and the HTML report: the robot along the dense path, or at the start and the
-                goal without one. */
-            void writeScenes(const PlanRun &p, const PlanOptions &o, std::ostream &log)
-            {
-                if (!o.glb.empty())
-                {
-                    std::vector<Eigen::Isometry3d> poses;
-                    if (p.dense)
-                        poses = posesAlong(*p.dense, o.exportStates);
-                    else
-                    {
-                        poses.push_back(p.config.start);
-                        if (p.config.goal)
-                            poses.push_back(*p.config.goal);
-                    }
-                    writeGlb(sceneExportParts(*p.problem.scene, poses), o.glb);
-                    log << "scene written   " << o.glb << " (" << poses.size() << " robot states)\n";
-                }
-                if (!o.report.empty())
-                {
-                    const auto rows = summaryRows(p.summary);
-                    writePlanReport(*p.problem.scene,
-                                    p.dense ? reportFromDense(*p.dense, rows) : reportWithoutPath(p.config, rows),
-                                    o.report);
-                    log << "report written  " << o.report << "\n";
-                }
-            }
         }  // namespace
 
         ompl::base::PlannerPtr allocPlanPlanner(const PlanOptions &o, const ompl::base::SpaceInformationPtr &si)
@@ -162,6 +132,11 @@ namespace meshgap
                                       o.checker == "certified" ? ClearanceChecker::Mode::CERTIFIED :
                                                                  ClearanceChecker::Mode::FAST,
                                       o.objective, BodyOptions(), objectiveOptions);
+            // The body as a robot of one link (its body the scene's, shared with the scene that owns it).
+            p->robotScene = std::make_shared<RobotScene>(
+                std::make_shared<RigidBodyRobot>(BodyConstPtr(p->problem.scene, &p->problem.scene->robot()),
+                                                 p->config.planar ? RigidSpace::SE2 : RigidSpace::SE3),
+                p->problem.scene->obstacles());
             const ob::SpaceInformationPtr si = p->problem.setup->getSpaceInformation();
             if (!o.sampler.empty())
                 setValidStateSampler(*si, o.sampler, o.label("sampler"));
@@ -199,7 +174,7 @@ namespace meshgap
             if (p.havePath)
             {
                 p.dense = std::make_unique<DenseClearance>(
-                    denseClearance(p.problem.setup->getSolutionPath(), *p.problem.scene, o.dense));
+                    denseClearance(p.problem.setup->getSolutionPath(), *p.robotScene, o.dense, !o.report.empty()));
                 summarizePath(p, *p.dense, summary);
             }
             summarizeSearch(p, summary);
@@ -210,7 +185,11 @@ namespace meshgap
         {
             if (!o.summaryFile.empty())
                 writeTextFile(p.summary, o.summaryFile);
-            writeScenes(p, o, log);
+            const RigidSpace space = p.config.planar ? RigidSpace::SE2 : RigidSpace::SE3;
+            std::vector<std::vector<double>> ends = {rigidState(space, p.config.start)};
+            if (p.config.goal)
+                ends.push_back(rigidState(space, *p.config.goal));
+            writeSceneFiles(*p.robotScene, p.dense.get(), ends, p.summary, o, log);
             if (!p.havePath)
                 return;
             if (!o.out.empty())
@@ -220,7 +199,7 @@ namespace meshgap
             }
             if (!o.csv.empty())
             {
-                writeClearanceCsv(*p.dense, o.csv);
+                writeClearanceCsv(*p.dense, stateColumns(p.robotScene->robot()), o.csv);
                 log << "clearance CSV   " << o.csv << "\n";
             }
         }

@@ -12,6 +12,7 @@
 
 #include "meshgap/ompl/ClearanceMotionValidator.h"
 #include "meshgap/ompl/ProblemSetup.h"
+#include "meshgap/robot/RobotScene.h"
 #include "meshgap/scene/ProblemConfig.h"
 #include "support/DenseClearance.h"
 #include "support/PlanOptions.h"
@@ -26,6 +27,9 @@ namespace meshgap
         {
             ProblemConfig config;
             OmplProblem problem;
+            /** \brief The body as a robot of one link against the problem's obstacles (its body and obstacles the
+                scene's): the dense path's clearance and the report, as for every kind of problem. */
+            RobotSceneConstPtr robotScene;
             std::shared_ptr<ClearanceMotionValidator> cmv;
             ompl::base::PlannerStatus status;
             bool exact = false, havePath = false;

@@ -16,11 +16,12 @@
 #include "meshgap/ompl/MotionValidatorFactory.h"
 #include "meshgap/ompl/Objectives.h"
 #include "meshgap/ompl/RobotStateSpace.h"
+#include "meshgap/ompl/SamplerFactory.h"
 #include "OptimizeOption.h"
 #include "support/PathFile.h"
 #include "support/PlanOutputs.h"
 #include "support/PlanRun.h"
-#include "support/RobotReport.h"
+#include "support/PlanReport.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
@@ -55,12 +56,9 @@ namespace meshgap
                                   : "link " + link + " and obstacle " + std::to_string(r.other);
             }
 
-            /** \brief The options meshgap_plan has that a robot problem does not take (yet). */
+            /** \brief The option meshgap_plan has that a robot problem does not take (yet): --checker fast. */
             void checkRobotOptions(const PlanOptions &o)
             {
-                for (const char *name : {"sampler", "export-glb", "export-states", "clearance-csv"})
-                    if (o.isGiven(name))
-                        throw Exception(o.label(name), "does not apply to a robot problem (" + o.cfg + ")");
                 if (o.checker != "certified")
                     throw Exception(o.label("checker"), "a robot problem is checked exactly (certified) only");
             }
@@ -110,43 +108,15 @@ namespace meshgap
                 return text.str();
             }
 
-            /** \brief What the exact check of the path densely interpolated found. */
-            struct DenseCheck
+            /** \brief The solution path densely interpolated (o.dense states per validity-check segment), each state
+                checked exactly (the whole robot; every link's clearance too when \e everyLink, for the report). */
+            DenseClearance denseCheck(const RobotPlanRun &run, const PlanOptions &o, bool everyLink = false)
             {
-                std::size_t states{0};
-                RobotResult worst;  ///< the least clear state's answer
-                std::size_t collisions{0};
-            };
-
-            /** \brief The solution path interpolated with o.dense states per validity-check segment, each state
-                checked exactly (the whole robot). */
-            DenseCheck denseCheck(const RobotPlanRun &run, const PlanOptions &o)
-            {
-                const og::PathGeometric &path = run.setup->getSolutionPath();
-                const ob::StateSpacePtr &space = run.setup->getStateSpace();
-                unsigned count = 1;
-                for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i)
-                    count += std::max(1u, space->validSegmentCount(path.getState(i), path.getState(i + 1))) * o.dense;
-                og::PathGeometric dense(path);
-                dense.interpolate(count);
-                RobotWarmStart warm;
-                RobotResult r;
-                std::vector<double> q;
-                DenseCheck d;
-                d.states = dense.getStateCount();
-                for (std::size_t i = 0; i < dense.getStateCount(); ++i)
-                {
-                    robotStateToVector(*space, dense.getState(i), q);
-                    run.scene->distance(q.data(), q.size(), RobotRequest(), warm, r);
-                    d.collisions += r.inCollision;
-                    if (i == 0 || r.distance < d.worst.distance)
-                        d.worst = r;
-                }
-                return d;
+                return denseClearance(run.setup->getSolutionPath(), *run.scene, o.dense, everyLink);
             }
 
             /** \brief "0.0123 (exact, over the dense path; link 'a' and obstacle 3)". */
-            std::string clearanceText(const RobotScene &scene, const DenseCheck &d)
+            std::string clearanceText(const RobotScene &scene, const DenseClearance &d)
             {
                 std::ostringstream mc;
                 mc.precision(6);
@@ -155,14 +125,14 @@ namespace meshgap
             }
 
             /** \brief The summary's path lines: states, length, cost, the dense path's exact clearance and pair. */
-            void summarizePath(RobotPlanRun &run, const DenseCheck &d, std::ostringstream &summary)
+            void summarizePath(RobotPlanRun &run, const DenseClearance &d, std::ostringstream &summary)
             {
                 run.minClearance = d.worst.distance;
                 run.limitingPair = pairText(*run.scene, d.worst);
                 run.denseFree = d.collisions == 0;
                 const og::PathGeometric &path = run.setup->getSolutionPath();
-                line(summary, "states", std::to_string(path.getStateCount()) + " (dense: " + std::to_string(d.states) +
-                                            ")");
+                line(summary, "states", std::to_string(path.getStateCount()) + " (dense: " +
+                                            std::to_string(d.path.getStateCount()) + ")");
                 line(summary, "length", path.length());
                 line(summary, "cost", std::to_string(path.cost(run.setup->getOptimizationObjective()).value()) + " (" +
                                           run.objective + ")");
@@ -176,11 +146,11 @@ namespace meshgap
                 the dense path's clearance before and after. */
             void optimizeRobotPath(RobotPlanRun &run, const PlanOptions &o, std::ostringstream &summary)
             {
-                const DenseCheck before = denseCheck(run, o);
+                const DenseClearance before = denseCheck(run, o);
                 run.minClearanceBefore = before.worst.distance;
                 run.limitingPairBefore = pairText(*run.scene, before.worst);
                 summary << optimizeSolution(*run.setup, run.checker, o.optimizeTime, o.seed, run.optimizeFailed);
-                const DenseCheck after = denseCheck(run, o);
+                const DenseClearance after = denseCheck(run, o);
                 line(summary, "opt before", clearanceText(*run.scene, before));
                 line(summary, "opt after", clearanceText(*run.scene, after));
             }
@@ -225,13 +195,19 @@ namespace meshgap
                 objective->setCostThreshold(ob::Cost(*p.objectiveThreshold));
             run->setup->setOptimizationObjective(objective);
             // Certified: the planner searches with a sampled motion check; every motion of its answer is certified.
-            if (run->motion)
+            // The valid-state sampler (--sampler, else the problem's) of the space the planner searches.
+            const std::string sampler = !o.sampler.empty() ? o.sampler : p.sampler;
+            const std::string where = !o.sampler.empty() ? o.label("sampler") : p.file + ": [problem] sampler";
+            auto search = [&o, sampler, where](const ob::SpaceInformationPtr &s)
             {
-                auto search = [&o](const ob::SpaceInformationPtr &s) { return allocPlanPlanner(o, s); };
+                if (!sampler.empty())
+                    setValidStateSampler(*s, sampler, where);
+                return allocPlanPlanner(o, s);
+            };
+            if (run->motion)
                 run->setup->setPlanner(run->answer = std::make_shared<CertifiedAnswerPlanner>(si, search));
-            }
             else
-                run->setup->setPlanner(allocPlanPlanner(o, si));
+                run->setup->setPlanner(search(si));
             run->setup->setup();
             return run;
         }
@@ -259,7 +235,10 @@ namespace meshgap
             if (run.havePath && !o.optimize.empty())
                 optimizeRobotPath(run, o, summary);
             if (run.havePath)
-                summarizePath(run, denseCheck(run, o), summary);
+            {
+                run.dense = std::make_unique<DenseClearance>(denseCheck(run, o, !o.report.empty()));
+                summarizePath(run, *run.dense, summary);
+            }
             // The search's checks (sampled when the answer is certified afterwards).
             const ob::MotionValidatorPtr &mv = (run.answer ? run.answer->searchSpaceInformation() :
                                                              run.setup->getSpaceInformation())->getMotionValidator();
@@ -286,18 +265,18 @@ namespace meshgap
         {
             if (!o.summaryFile.empty())
                 writeTextFile(run.summary, o.summaryFile);
+            const og::PathGeometric &path = run.setup->getSolutionPath();
+            writeSceneFiles(*run.scene, run.dense.get(), {run.problem.start, *run.problem.goal}, run.summary, o, log);
             if (!run.havePath)
                 return;
-            const og::PathGeometric &path = run.setup->getSolutionPath();
-            std::vector<std::vector<double>> states(path.getStateCount());
-            for (std::size_t i = 0; i < states.size(); ++i)
-                robotStateToVector(*run.setup->getStateSpace(), path.getState(i), states[i]);
             if (!o.out.empty())
             {
                 std::ostringstream text;
                 text << std::setprecision(17);
-                for (const std::vector<double> &q : states)
+                std::vector<double> q;
+                for (std::size_t i = 0; i < path.getStateCount(); ++i)
                 {
+                    robotStateToVector(*run.setup->getStateSpace(), path.getState(i), q);
                     for (std::size_t k = 0; k < q.size(); ++k)
                         text << (k ? " " : "") << q[k];
                     text << "\n";
@@ -305,13 +284,10 @@ namespace meshgap
                 writeTextFile(text.str(), o.out);
                 log << "path written    " << o.out << "\n";
             }
-            if (!o.report.empty())
+            if (!o.csv.empty())
             {
-                const PlanReportData data =
-                    robotReportFromPath(*run.scene, states, o.dense,
-                                        {{"problem", run.problem.name}, {"states", std::to_string(states.size())}});
-                writeRobotReport(*run.scene, data, o.report);
-                log << "report written  " << o.report << "\n";
+                writeClearanceCsv(*run.dense, stateColumns(*run.problem.robot), o.csv);
+                log << "clearance CSV   " << o.csv << "\n";
             }
         }
 

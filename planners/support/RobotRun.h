@@ -16,6 +16,7 @@
 #include "meshgap/ompl/RobotChecker.h"
 #include "meshgap/ompl/RobotMotionValidator.h"
 #include "meshgap/robot/RobotProblem.h"
+#include "support/DenseClearance.h"
 #include "support/PlanOptions.h"
 
 namespace meshgap
@@ -45,6 +46,8 @@ namespace meshgap
             double minClearance = 0.0, minClearanceBefore = 0.0;
             std::string limitingPair, limitingPairBefore;
             bool denseFree = false;
+            /** \brief The dense path and its clearance (every link's too with --report); null without a path. */
+            std::unique_ptr<DenseClearance> dense;
             std::string summary;
         };
 

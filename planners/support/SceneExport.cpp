@@ -61,4 +61,37 @@ namespace meshgap
         }
         return parts;
     }
+
+    std::vector<ColoredMesh> robotExportParts(const RobotScene &scene, const std::vector<std::vector<double>> &states,
+                                              const SceneExportOptions &options)
+    {
+        std::vector<ColoredMesh> parts;
+        for (std::size_t i = 0; i < scene.obstacles().size(); ++i)
+            parts.push_back({"obstacle " + std::to_string(i), scene.obstacles()[i]->surface(), options.worldColor});
+        const std::size_t links = scene.links().size();
+        double size = 0.0;
+        for (const RobotLink &link : scene.links())
+            size = std::max(size, link.body->surface().size());
+        const double width = options.segmentWidth > 0.0 ? options.segmentWidth : size / 200.0;
+        RobotWarmStart warm;
+        RobotResult r;
+        std::vector<Eigen::Isometry3d> frames, poses;
+        for (std::size_t k = 0; k < states.size(); ++k)
+        {
+            scene.distance(states[k].data(), states[k].size(), RobotRequest(), warm, r);
+            scene.robot().linkPoses(states[k].data(), states[k].size(), frames, poses);
+            const Eigen::Vector4d &color = r.inCollision ? options.collisionColor : options.robotColor;
+            for (std::size_t i = 0; i < links; ++i)
+            {
+                ColoredMesh placed{"robot " + std::to_string(k) + (links == 1 ? "" : " " + scene.links()[i].name),
+                                   scene.links()[i].body->surface(), color};
+                for (Eigen::Vector3d &p : placed.mesh.vertices)
+                    p = poses[i] * p;
+                parts.push_back(std::move(placed));
+            }
+            parts.push_back({"clearance " + std::to_string(k), segmentBox(r.onLink, r.onOther, width),
+                             r.inCollision ? options.collisionColor : options.segmentColor});
+        }
+        return parts;
+    }
 }  // namespace meshgap

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "meshgap/robot/RobotScene.h"
 #include "meshgap/scene/Scene.h"
 #include "support/MeshWriter.h"
 
@@ -35,6 +36,15 @@ namespace meshgap
     std::vector<ColoredMesh> sceneExportParts(const Scene &scene, const std::vector<Eigen::Isometry3d> &robotPoses,
                                               const SceneExportOptions &options = SceneExportOptions(),
                                               std::vector<SceneResult> *results = nullptr);
+
+    /** \brief The same scene for any kind of problem (a single body is a robot of one link): each obstacle's surface
+        ("obstacle i"), then at each robot state k of \e states every link's surface there ("robot k" for a robot of
+        one link, "robot k LINK" for several) and the closest-point segment of the pair that attains the whole
+        robot's clearance ("clearance k", the exact RobotScene::distance(), one warm start carried along), a
+        colliding state's links and segment in options.collisionColor. The segment's width (when not given) is 1/200
+        of the largest link's size. */
+    std::vector<ColoredMesh> robotExportParts(const RobotScene &scene, const std::vector<std::vector<double>> &states,
+                                              const SceneExportOptions &options = SceneExportOptions());
 }  // namespace meshgap
 
 #endif

@@ -26,8 +26,6 @@ namespace meshgap
         namespace fs = std::filesystem;
 
         const char *const POSE_FIELDS[] = {"x", "y", "z", "theta", "axis.x", "axis.y", "axis.z"};
-        const char *const VOLUME_KEYS[] = {"volume.min.x", "volume.min.y", "volume.min.z",
-                                           "volume.max.x", "volume.max.y", "volume.max.z"};
 
         /** \brief The N of "robot.N", or 0 when \e key is no such key. */
         std::size_t bodyNumber(const std::string &key, const std::string &prefix, std::string *rest = nullptr)
@@ -360,34 +358,6 @@ namespace meshgap
             if (anyGoal)
                 problem.goal = goal;
         }
-
-        /** \brief The volume, if given: all six keys (four, x and y, when planar) or none. */
-        void readVolume(const ConfigKeys &keys, RobotProblem &problem)
-        {
-            int given = 0;
-            for (const char *key : VOLUME_KEYS)
-                given += keys.has(key);
-            if (problem.planar)
-                for (const char *key : {"volume.min.z", "volume.max.z"})
-                    if (keys.has(key))
-                        throw Exception(keys.where(key), std::string(key) + " in a planar problem (x and y only)");
-            const int needed = problem.planar ? 4 : 6;
-            if (given == 0)
-                return;
-            if (given != needed)
-                throw Exception(keys.path(), "volume needs " + std::to_string(needed) + " keys (volume.min.x .. " +
-                                                 (problem.planar ? "volume.max.y" : "volume.max.z") + "), found " +
-                                                 std::to_string(given));
-            Eigen::Vector3d lo, hi;
-            for (int k = 0; k < 3; ++k)
-            {
-                lo[k] = keys.num(VOLUME_KEYS[k], 0.0);
-                hi[k] = keys.num(VOLUME_KEYS[3 + k], 0.0);
-                if (k < needed / 2 && !(hi[k] > lo[k]))
-                    throw Exception(keys.where(VOLUME_KEYS[3 + k]), "volume.max must exceed volume.min on every axis");
-            }
-            problem.volume = Eigen::AlignedBox3d(lo, hi);
-        }
     }  // namespace
 
     Problem readProblem(const std::string &path, const BodyOptions &options)
@@ -403,24 +373,15 @@ namespace meshgap
     RobotProblem rigidBodyProblem(const ProblemConfig &config, const BodyOptions &options)
     {
         RobotProblem problem;
-        problem.file = config.file;
-        problem.name = config.name;
-        problem.planar = config.planar;
+        static_cast<ProblemSettings &>(problem) = config;  // file, name, planar, world, volume, objective, ...
         const RigidSpace space = config.planar ? RigidSpace::SE2 : RigidSpace::SE3;
         problem.robot = std::make_shared<RigidBodyRobot>(
             Body::build(loadRobotMesh(config.robot, config.planar), options), space);
-        problem.world = config.world;
         for (Mesh &part : splitComponents(loadMesh(config.world)))
             problem.obstacles.push_back(Body::build(std::move(part), options));  // as Scene::fromMeshes() splits it
         problem.start = rigidState(space, config.start);
         if (config.goal)
             problem.goal = rigidState(space, *config.goal);
-        problem.volume = config.volume;
-        problem.objective = config.objective;
-        problem.objectiveThreshold = config.objectiveThreshold;
-        problem.sampler = config.sampler;
-        problem.benchmark = config.benchmark;
-        problem.planners = config.planners;
         return problem;
     }
 
@@ -449,10 +410,6 @@ namespace meshgap
             throw Exception(keys.where("robot.1"), "robot.1 and robot.urdf in one problem: either a URDF robot "
                                                    "or several bodies");
         RobotProblem problem;
-        problem.file = path;
-        problem.name = keys.has("name") ? keys.value("name") : fs::path(path).stem().string();
-        problem.benchmark = file.benchmark;
-        problem.planners = file.planners;
         const fs::path folder = fs::path(path).parent_path();
         if (urdf)
         {
@@ -467,14 +424,8 @@ namespace meshgap
                     throw Exception(keys.where(key), std::string(key) + " applies to a URDF robot (robot.urdf)");
             readBodies(file, keys, folder, options, problem);
         }
-        readVolume(keys, problem);
+        readProblemSettings(file, keys, problem);  // after the bodies: planar is known
         readWorld(keys, folder, options, problem);
-        if (keys.has("objective"))
-            problem.objective = keys.value("objective");
-        if (keys.has("objective.threshold"))
-            problem.objectiveThreshold = keys.num("objective.threshold", 0.0);
-        if (keys.has("sampler"))
-            problem.sampler = keys.value("sampler");
         return problem;
     }
 }  // namespace meshgap

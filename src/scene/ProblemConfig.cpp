@@ -64,30 +64,42 @@ namespace meshgap
             return poseFromAxisAngle(position, theta, axis);
         }
 
-        /** \brief The volume, if given: all of its keys (four when planar) or none. */
-        void readVolume(const ProblemKeys &problem, const std::string &path, ProblemConfig &config)
-        {
-            static const char *bounds[] = {"volume.min.x", "volume.min.y", "volume.min.z",
+        const char *const VOLUME_KEYS[] = {"volume.min.x", "volume.min.y", "volume.min.z",
                                            "volume.max.x", "volume.max.y", "volume.max.z"};
+
+        /** \brief The volume, if given: all of its keys (four, x and y, when planar) or none. */
+        void readVolume(const ProblemKeys &problem, ProblemSettings &settings)
+        {
+            if (settings.planar)
+                for (const char *key : {"volume.min.z", "volume.max.z"})
+                    if (problem.has(key))
+                        throw Exception(problem.where(key), quote(key) +
+                                                                " in a planar problem (no start.z: SE(2), x and y "
+                                                                "only); give start.z for a 3D problem");
             int given = 0;
-            for (const char *key : bounds)
+            for (const char *key : VOLUME_KEYS)
                 given += problem.has(key);
-            const int needed = config.planar ? 4 : 6;  // planar: no volume.*.z (rejected before)
-            if (given == needed)
+            const int needed = settings.planar ? 4 : 6;
+            if (given == 0)
+                return;
+            if (given != needed)
+                throw Exception(excerpt(problem.path()), settings.planar
+                                                             ? "a planar volume needs the four keys volume.min.x/y, "
+                                                               "volume.max.x/y (found " +
+                                                                   std::to_string(given) + ")"
+                                                             : "volume needs all six keys volume.min.x .. "
+                                                               "volume.max.z (found " +
+                                                                   std::to_string(given) + ")");
+            Eigen::Vector3d lo, hi;
+            for (int k = 0; k < 3; ++k)
             {
-                const Eigen::Vector3d lo(problem.num(bounds[0], 0), problem.num(bounds[1], 0), problem.num(bounds[2], 0));
-                const Eigen::Vector3d hi(problem.num(bounds[3], 0), problem.num(bounds[4], 0), problem.num(bounds[5], 0));
-                if ((hi.array() <= lo.array()).head(needed / 2).any())
-                    throw Exception(problem.where("volume.max.x"), "volume.max must exceed volume.min on every axis");
-                config.volume = Eigen::AlignedBox3d(lo, hi);
+                lo[k] = problem.num(VOLUME_KEYS[k], 0.0);
+                hi[k] = problem.num(VOLUME_KEYS[3 + k], 0.0);
+                if (k < needed / 2 && !(hi[k] > lo[k]))
+                    throw Exception(problem.where(VOLUME_KEYS[3 + k]),
+                                    "volume.max must exceed volume.min on every axis");
             }
-            else if (given > 0)
-                throw Exception(excerpt(path), config.planar
-                                                   ? "a planar volume needs the four keys volume.min.x/y, "
-                                                     "volume.max.x/y (found " +
-                                                         std::to_string(given) + ")"
-                                                   : "volume needs all six keys volume.min.x .. volume.max.z (found " +
-                                                         std::to_string(given) + ")");
+            settings.volume = Eigen::AlignedBox3d(lo, hi);
         }
 
         /** \brief A start or goal outside the volume is no problem any planner can solve: say so here, for every
@@ -138,9 +150,6 @@ namespace meshgap
                                             "bodies), not a single-body one: read it as a robot problem "
                                             "(readRobotProblem())");
         ProblemConfig config;
-        config.file = path;
-        config.benchmark = file.benchmark;
-        config.planners = file.planners;
         const ProblemKeys problem(file, singleBodyKey);
         for (const char *key : {"robot", "world", "start.x", "start.y"})
             problem.require(key);
@@ -156,11 +165,10 @@ namespace meshgap
         const fs::path folder = fs::path(path).parent_path();
         config.robot = meshPath(problem, "robot", folder);
         config.world = meshPath(problem, "world", folder);
-        config.name = problem.has("name") ? problem.value("name") : fs::path(path).stem().string();
         config.start = poseOf(problem, "start", config.planar);
         if (problem.has("goal.x") || problem.has("goal.y") || problem.has("goal.z"))
             config.goal = poseOf(problem, "goal", config.planar);
-        readVolume(problem, path, config);
+        readProblemSettings(file, problem, config);
         checkInsideVolume(problem, config);
         if (problem.has("control"))
         {
@@ -170,12 +178,21 @@ namespace meshgap
                 throw Exception(problem.where("control"),
                                 "unknown control model " + quote(config.control) + " (" + joinNames(models) + ")");
         }
-        if (problem.has("objective"))
-            config.objective = problem.value("objective");
-        if (problem.has("objective.threshold"))
-            config.objectiveThreshold = problem.num("objective.threshold", 0.0);
-        if (problem.has("sampler"))
-            config.sampler = problem.value("sampler");
         return config;
+    }
+
+    void readProblemSettings(const ConfigFile &file, const ConfigKeys &keys, ProblemSettings &settings)
+    {
+        settings.file = file.path;
+        settings.name = keys.has("name") ? keys.value("name") : std::filesystem::path(file.path).stem().string();
+        settings.benchmark = file.benchmark;
+        settings.planners = file.planners;
+        readVolume(keys, settings);
+        if (keys.has("objective"))
+            settings.objective = keys.value("objective");
+        if (keys.has("objective.threshold"))
+            settings.objectiveThreshold = keys.num("objective.threshold", 0.0);
+        if (keys.has("sampler"))
+            settings.sampler = keys.value("sampler");
     }
 }  // namespace meshgap

@@ -99,6 +99,44 @@ TEST(PlanCli, StartOrGoalInCollisionIsNamed)
 }
 
 #ifdef MESHGAP_HAVE_FCL
+namespace
+{
+    /** \brief The clearance CSV \e csv of a single body's path of \e states states: the dense path (more states),
+        from start to goal (fraction 0 to 1), every state FCL's free state at its clearance (about 60 checked). */
+    template <typename Model>
+    void expectCsvIsFcls(const std::string &csv, const Model &fw, const Model &fr, std::size_t states)
+    {
+        std::ifstream in(csv);
+        std::string line;
+        std::getline(in, line);
+        EXPECT_EQ(line, "index,arc_length,fraction,x,y,z,qx,qy,qz,qw,clearance,in_collision");
+        std::vector<std::vector<double>> rows;
+        while (std::getline(in, line))
+        {
+            std::vector<double> row;
+            std::stringstream fields(line);
+            for (std::string field; std::getline(fields, field, ',');)
+                row.push_back(std::stod(field));
+            ASSERT_EQ(row.size(), 12u) << line;
+            rows.push_back(row);
+        }
+        fs::remove(csv);
+        ASSERT_GT(rows.size(), states);
+        EXPECT_EQ(rows.front()[2], 0.0);
+        EXPECT_DOUBLE_EQ(rows.back()[2], 1.0);
+        for (std::size_t i = 0; i < rows.size(); i += 1 + rows.size() / 60)
+        {
+            const auto &row = rows[i];
+            Eigen::Isometry3d P = Eigen::Isometry3d::Identity();
+            P.linear() = Eigen::Quaterniond(row[9], row[6], row[7], row[8]).normalized().toRotationMatrix();
+            P.translation() = Eigen::Vector3d(row[3], row[4], row[5]);
+            EXPECT_EQ(row[11], 0.0) << "dense state " << i;
+            const double exact = test::fclDistance(fw, fr, P);
+            EXPECT_NEAR(row[10], exact, 1e-6 * (1 + exact)) << "dense state " << i;
+        }
+    }
+}  // namespace
+
 TEST(PlanCli, PlansAPathWhoseEveryStateFclCallsFree)
 {
     const std::string cfg = MAPS + "/hand_bowl/hand_bowl.cfg";
@@ -125,33 +163,43 @@ TEST(PlanCli, PlansAPathWhoseEveryStateFclCallsFree)
     fs::remove(out);
 
     // The clearance CSV: the dense path, from start to goal, every state free by FCL and its clearance FCL's.
-    std::ifstream in(csv);
-    std::string line;
-    std::getline(in, line);
-    EXPECT_EQ(line, "index,arc_length,fraction,x,y,z,qx,qy,qz,qw,clearance,in_collision");
-    std::vector<std::vector<double>> rows;
-    while (std::getline(in, line))
+    expectCsvIsFcls(csv, fw, fr, path.size());
+}
+
+// The same problem given as a robot of one body (robot.1 = the same mesh, start.1.*, goal.1.*) takes the robot
+// runner: its clearance CSV has the single body's columns, and FCL's clearance at every state it checks.
+TEST(PlanCli, AOneBodyRobotWritesTheSingleBodyClearanceCsv)
+{
+    const std::string cfg = MAPS + "/hand_bowl/hand_bowl.cfg";
+    const ProblemConfig p = readProblemConfig(cfg);
+    const fs::path dir = fs::temp_directory_path() / ("meshgap_plan_one_body_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
     {
-        std::vector<double> row;
-        std::stringstream fields(line);
-        for (std::string field; std::getline(fields, field, ',');)
-            row.push_back(std::stod(field));
-        ASSERT_EQ(row.size(), 12u) << line;
-        rows.push_back(row);
+        std::ifstream in(cfg);
+        std::ofstream out(dir / "one_body.cfg");
+        for (std::string line; std::getline(in, line);)
+        {
+            if (line.rfind("robot =", 0) == 0)
+                line = "robot.1 = " + p.robot;
+            else if (line.rfind("world =", 0) == 0)
+                line = "world = " + p.world;
+            else if (line.rfind("start.", 0) == 0 || line.rfind("goal.", 0) == 0)
+                line.insert(line.find('.') + 1, "1.");
+            out << line << "\n";
+        }
     }
-    fs::remove(csv);
-    ASSERT_GT(rows.size(), path.size());
-    EXPECT_EQ(rows.front()[2], 0.0);
-    EXPECT_DOUBLE_EQ(rows.back()[2], 1.0);
-    for (std::size_t i = 0; i < rows.size(); i += 1 + rows.size() / 60)  // about 60 states checked by FCL
-    {
-        const auto &row = rows[i];
-        Eigen::Isometry3d P = Eigen::Isometry3d::Identity();
-        P.linear() = Eigen::Quaterniond(row[9], row[6], row[7], row[8]).normalized().toRotationMatrix();
-        P.translation() = Eigen::Vector3d(row[3], row[4], row[5]);
-        EXPECT_EQ(row[11], 0.0) << "dense state " << i;
-        const double exact = test::fclDistance(fw, fr, P);
-        EXPECT_NEAR(row[10], exact, 1e-6 * (1 + exact)) << "dense state " << i;
-    }
+    const std::string out = (dir / "p.path").string(), csv = (dir / "p.csv").string();
+    const PlanRun r = plan("--cfg " + (dir / "one_body.cfg").string() + " --time 120 --seed 3 --out " + out +
+                           " --clearance-csv " + csv);
+    ASSERT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("(robot problem)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("clearance CSV   " + csv), std::string::npos) << r.out;
+    const auto fw = test::fclModel(loadMesh(p.world)), fr = test::fclModel(loadRobotMesh(p.robot));
+    const std::vector<Eigen::Isometry3d> path = readPoses(out);
+    ASSERT_GE(path.size(), 2u);
+    EXPECT_TRUE(path.front().isApprox(p.start, 1e-9));
+    EXPECT_TRUE(path.back().isApprox(*p.goal, 1e-9));
+    expectCsvIsFcls(csv, fw, fr, path.size());
+    fs::remove_all(dir);
 }
 #endif

@@ -54,3 +54,46 @@ TEST(PlanExport, GlbOfThePlannedPathImports)
     EXPECT_NE(bad.err.find("--export-states"), std::string::npos) << bad.err;
     EXPECT_FALSE(fs::exists(file));
 }
+
+// A robot problem (two bodies in the plane) writes the same scene: at each exported state every link, placed at its
+// pose, then the segment of the pair that attains the clearance; the first state's links where the problem starts.
+TEST(PlanExport, GlbOfARobotsPathHoldsEveryLinkAtEachState)
+{
+    const std::string cfg = std::string(MESHGAP_SOURCE_DIR) + "/maps/swap_se2/swap_se2.cfg";
+    const std::string file =
+        (fs::temp_directory_path() / ("meshgap_plan_export_robot_" + std::to_string(::getpid()) + ".glb")).string();
+    const test::CliRun run = test::runExecutable(
+        "meshgap_plan", "--cfg " + cfg + " --time 120 --seed 1 --quiet --export-glb " + file + " --export-states 3",
+        120);
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    EXPECT_NE(run.out.find("scene written   " + file + " (3 robot states)"), std::string::npos) << run.out;
+
+    const fs::path folder = fs::path(cfg).parent_path();
+    const std::size_t obstacles = splitComponents(loadMesh((folder / "swap_se2_world.obj").string())).size();
+    const Mesh body = loadRobotMesh((folder / "swap_se2_robot.obj").string(), true);
+    Assimp::Importer importer;
+    const aiScene *scene = importer.ReadFile(file, 0);
+    ASSERT_NE(scene, nullptr) << importer.GetErrorString();
+    ASSERT_EQ(scene->mNumMeshes, obstacles + 3 * 3);
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+        for (std::size_t i = 0; i < 2; ++i)
+        {
+            const aiMesh &link = *scene->mMeshes[obstacles + 3 * k + i];
+            EXPECT_EQ(std::string(link.mName.C_Str()), "robot " + std::to_string(k) + " robot." + std::to_string(i + 1));
+            EXPECT_EQ(link.mNumFaces, body.triangles.size());
+        }
+        const aiMesh &segment = *scene->mMeshes[obstacles + 3 * k + 2];
+        EXPECT_EQ(std::string(segment.mName.C_Str()), "clearance " + std::to_string(k));
+        EXPECT_EQ(segment.mNumFaces, 12u);
+    }
+    // At the first state, body 1 sits at start.1 (-3.3, -1.2, no turn): its vertices' box is the body's, moved there.
+    const aiMesh &first = *scene->mMeshes[obstacles];
+    Eigen::AlignedBox3d placed;
+    for (unsigned v = 0; v < first.mNumVertices; ++v)
+        placed.extend(Eigen::Vector3d(first.mVertices[v].x, first.mVertices[v].y, first.mVertices[v].z));
+    const Eigen::Vector3d shift(-3.3, -1.2, 0.0);
+    EXPECT_LT((placed.min() - (body.bounds().min() + shift)).norm(), 1e-4);
+    EXPECT_LT((placed.max() - (body.bounds().max() + shift)).norm(), 1e-4);
+    fs::remove(file);
+}

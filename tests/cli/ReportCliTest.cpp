@@ -138,15 +138,63 @@ TEST(ReportCli, PageDataIsTheSceneAndTheExactClearanceAlongThePath)
     fs::remove_all(dir);
 }
 
+// A single body is reported as a robot of one link: its .cfg and the same body given as a one-body robot problem
+// (robot.1 = the same mesh, start.1.*, goal.1.*) give the same page data for the same path (poses, dense states,
+// clearance, witnesses, the scene), so the single-body report takes the robot route.
+TEST(ReportCli, ASingleBodyIsReportedAsARobotOfOneLink)
+{
+    const std::string cfg = std::string(MESHGAP_SOURCE_DIR) + "/maps/slotted_wall/slotted_wall.cfg";
+    const ProblemConfig config = readProblemConfig(cfg);
+    const fs::path dir = fs::temp_directory_path() / ("meshgap_report_one_link_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "line.path") << formatPose(config.start) << "\n" << formatPose(*config.goal) << "\n";
+    {
+        std::ifstream in(cfg);
+        std::ofstream out(dir / "one_body.cfg");
+        for (std::string line; std::getline(in, line);)
+        {
+            if (line.rfind("robot =", 0) == 0)
+                line = "robot.1 = " + config.robot;
+            else if (line.rfind("world =", 0) == 0)
+                line = "world = " + config.world;
+            else if (line.rfind("start.", 0) == 0 || line.rfind("goal.", 0) == 0)
+                line.insert(line.find('.') + 1, "1.");
+            out << line << "\n";
+        }
+    }
+    std::string pages[2];
+    for (int k = 0; k < 2; ++k)
+    {
+        const std::string html = (dir / (std::to_string(k) + ".html")).string();
+        const test::CliRun run =
+            test::runExecutable("meshgap_report", "--cfg " + (k == 0 ? cfg : (dir / "one_body.cfg").string()) +
+                                                      " --path " + (dir / "line.path").string() + " --out " + html +
+                                                      " -q");
+        ASSERT_EQ(run.status, 2) << run.out << run.err;  // the straight line goes through the wall
+        std::stringstream text;
+        text << std::ifstream(html).rdbuf();
+        pages[k] = text.str();
+    }
+    for (const char *key : {"poses", "arcLength", "clearance", "inCollision", "onRobot", "onObstacle", "glb"})
+    {
+        EXPECT_FALSE(field(pages[0], key).empty()) << key;
+        EXPECT_EQ(field(pages[0], key), field(pages[1], key)) << key;
+    }
+    EXPECT_EQ(pages[0].find("\"links\""), std::string::npos);  // one link: no per-link arrays
+    fs::remove_all(dir);
+}
+
 TEST(ReportCli, BadInputWritesNothing)
 {
     const std::string cfg = std::string(MESHGAP_SOURCE_DIR) + "/maps/hand_bowl/hand_bowl.cfg";
     const fs::path dir = fs::temp_directory_path() / ("meshgap_report_bad_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     std::ofstream(dir / "short.path") << "1 2 3 0 0 0 1\n4 5 6\n";
+    std::ofstream(dir / "norm.path") << "1 2 3 0 0 0 1\n4 5 6 0 0 0 1.5\n";  // a quaternion not of unit length
     const std::string out = (dir / "r.html").string();
     for (const std::string &args :
          {"--cfg " + cfg + " --path " + (dir / "short.path").string() + " --out " + out,
+          "--cfg " + cfg + " --path " + (dir / "norm.path").string() + " --out " + out,
           "--cfg " + cfg + " --path " + (dir / "none.path").string() + " --out " + out,
           "--cfg " + cfg + " --path " + (dir / "short.path").string() + " --out " + out + " --dense 0",
           "--cfg " + cfg + " --out " + out})
@@ -155,6 +203,6 @@ TEST(ReportCli, BadInputWritesNothing)
         EXPECT_EQ(run.status, 1) << args << run.err;
         EXPECT_EQ(test::countLines(run.err, "error: "), 1) << run.err;
     }
-    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);  // short.path only
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);  // the two paths only
     fs::remove_all(dir);
 }

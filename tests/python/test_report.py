@@ -125,7 +125,7 @@ def test_report_bad_input_writes_nothing(tmp_path):
         "none.path: no such file")
     (tmp_path / "bad.path").write_text("1 2 3 0 0 0 1\n1 2 3\n")
     assert cli_error([cli, "--cfg", cfg, "--path", str(tmp_path / "bad.path"), "--out", str(out)]).startswith(
-        str(tmp_path / "bad.path") + ":2: expected 7 numbers")
+        str(tmp_path / "bad.path") + ":2: a state of this problem has 7 numbers")  # as every kind's, x y z q
     garbage = str(RESOURCES / "bad" / "garbage.obj")
     assert cli_error([cli, "--cfg", garbage, "--path", str(tmp_path / "bad.path"), "--out", str(out)]).startswith(
         garbage + ":1:")

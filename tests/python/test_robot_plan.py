@@ -64,8 +64,14 @@ def test_clearance_objectives_plan_a_robot(objective):
         assert "cost queries" in summary["text"]
 
 
-def test_robot_plan_refuses_what_a_robot_problem_does_not_take():
+def test_robot_plan_refuses_what_a_robot_problem_does_not_take(tmp_path):
     with pytest.raises(ValueError, match="weight"):
         meshgap.plan(ARM, seed=1, objective="length", weight=0.5)
-    with pytest.raises(ValueError, match="export_glb|export-glb"):
-        meshgap.plan(ARM, seed=1, export_glb="x.glb")
+    with pytest.raises(ValueError, match="checker"):
+        meshgap.plan(ARM, seed=1, checker="fast")
+    with pytest.raises(ValueError, match="sampler"):
+        meshgap.plan(ARM, seed=1, sampler="no_such_sampler")
+    # The scene export and the valid-state sampler, as for a single body: every link at each exported state.
+    path, summary = meshgap.plan(ARM, seed=1, planner="prm", time=1.0, sampler="gaussian",
+                                 export_glb=tmp_path / "arm.glb", export_states=2)
+    assert summary["planner"] == "prm" and (tmp_path / "arm.glb").stat().st_size > 0

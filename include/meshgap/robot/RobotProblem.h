@@ -36,17 +36,14 @@ namespace meshgap
         theta, in the plane z = 0) when no body has start.N.z, as a planar single-body file; SE(3) otherwise
         (x y z qx qy qz qw; theta about the axis, as OMPL.app's start.theta and start.axis).
         Both: name, volume.min.x .. volume.max.z (x and y only when planar), objective, objective.threshold,
-        sampler, and the [benchmark] and [planner] sections, as ProblemConfig keeps them. Relative paths are relative
+        sampler, and the [benchmark] and [planner] sections: ProblemSettings, as every kind reads them. Relative paths are relative
         to the .cfg's folder. */
-    struct RobotProblem
+    struct RobotProblem : ProblemSettings
     {
-        std::string file;  ///< the .cfg path
-        std::string name;  ///< problem name (the file's stem when absent)
-        /** \brief The robot: a UrdfRobot (SRDF read, payload attached) or a MultiBodyRobot. */
+        /** \brief The robot: a UrdfRobot (SRDF read, payload attached), a MultiBodyRobot, or (rigidBodyProblem()) a
+            RigidBodyRobot. */
         RobotModelPtr robot;
-        bool urdf{false};     ///< robot is a UrdfRobot
-        bool planar{false};   ///< a multi-body problem in SE(2)
-        std::string world;    ///< world mesh path, resolved
+        bool urdf{false};  ///< robot is a UrdfRobot
         std::vector<BodyConstPtr> obstacles;  ///< the world's connected parts (a MoveIt scene's shapes)
         /** \brief Per obstacle, the collision object it belongs to (a MoveIt scene's); empty for a world mesh. */
         std::vector<std::string> obstacleNames;
@@ -54,14 +51,8 @@ namespace meshgap
             RobotScene. */
         std::vector<LinkPair> allowedObstacles;
         std::string scene, request;  ///< the MoveIt scene and request (scene = FILE, request = FILE), resolved
-        std::vector<double> start;            ///< robot->dimension() numbers
+        std::vector<double> start;   ///< robot->dimension() numbers
         std::optional<std::vector<double>> goal;
-        std::optional<Eigen::AlignedBox3d> volume;
-        std::string objective;
-        std::optional<double> objectiveThreshold;
-        std::string sampler;
-        std::vector<std::pair<std::string, std::string>> benchmark;  ///< [benchmark] entries
-        std::vector<std::pair<std::string, std::string>> planners;   ///< [planner] entries
     };
 
     /** \brief A problem file of any kind, read once by readProblem(), the one place that tells the kinds apart:
@@ -82,8 +73,8 @@ namespace meshgap
 
     /** \brief A single-body problem as a robot problem: a one-link RigidBodyRobot named "robot" (the robot mesh
         centred as OMPL.app centres it, in SE(2) when the problem is planar, else SE(3)), the world's connected parts
-        as obstacles, the start and goal as states (rigidState()), and the volume, objective, sampler and sections
-        as they are. A control problem's body too: its state is then the body's pose, the geometric part of the
+        as obstacles, the start and goal as states (rigidState()), and the settings (ProblemSettings: volume, objective,
+        sampler, sections) as they are. A control problem's body too: its state is then the body's pose, the geometric part of the
         control state. Throws as the mesh loader does. */
     RobotProblem rigidBodyProblem(const ProblemConfig &config, const BodyOptions &options = BodyOptions());
 
