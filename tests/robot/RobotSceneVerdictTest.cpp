@@ -160,7 +160,7 @@ namespace meshgap
         const WorldBox a{Eigen::Vector3d(0.0, 0.0, 0.0), Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.1, 0.2, 0.3)};
         const WorldBox b{Eigen::Vector3d(0.35, 0.05, 0.0), Eigen::Matrix3d::Identity(),
                          Eigen::Vector3d(0.05, 0.05, 0.05)};
-        EXPECT_NEAR(boxGap(a, b), 0.2, 1e-9);
+        EXPECT_NEAR(boxGap(a, b), 0.2, 1e-8);
     }
 
     TEST(RobotSceneVerdict, SolidBoxesAnsweredAsTheSolidsTheyAre)
@@ -171,9 +171,9 @@ namespace meshgap
         // on states bisected to within 1e-7 rad of a contact.
         const UrdfRobotPtr robot = test::treeWithPayload();
         std::vector<BodyConstPtr> obstacles = {
-            solidBox(Eigen::Vector3d(1.2, 1.2, 0.1), at(0.0, 0.0, -0.02)),
+            solidBox(Eigen::Vector3d(0.5, 1.2, 0.1), at(0.6, 0.0, 0.05)),
             solidBox(Eigen::Vector3d(0.01, 0.01, 0.01), at(0.3, 0.0, 0.3)),
-            solidBox(Eigen::Vector3d(0.3, 0.05, 0.4), at(-0.3, 0.2, 0.2, Eigen::AngleAxisd(0.6, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix())),
+            solidBox(Eigen::Vector3d(0.3, 0.05, 0.4), at(-0.35, 0.3, 0.3, Eigen::AngleAxisd(0.6, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix())),
             solidBox(Eigen::Vector3d(0.02, 0.3, 0.02), at(0.1, -0.35, 0.45))};
         const RobotScene scene(robot, obstacles);
         std::mt19937 rng(31);
