@@ -88,8 +88,8 @@ namespace meshgap
             touches or lies inside the solid box \e solid (\e box, its box in the world): a traversal of the BVH
             that prunes a node whose box is apart from the solid's along one of either box's axes, and stops at the
             first node whose box lies inside it (its triangles are) or the first touching triangle. */
-        bool meshTouchesBox(const Body &body, const Eigen::Isometry3d &X_MW, const WorldBox &box, const Primitive &solid,
-                            std::vector<std::uint32_t> &stack)
+        bool meshTouchesBox(const Body &body, const Eigen::Isometry3d &X_MW, const WorldBox &box,
+                            const Primitive &solid, std::vector<std::uint32_t> &stack)
         {
             const TriangleBvh &bvh = body.bvh();
             const TriangleBvh::Node *nodes = bvh.nodes().data();

@@ -5,20 +5,20 @@
 // MotionBenchMaker's UR5 problems (../shared/data/mbm, skipped when absent), whose states no FCL finds colliding
 // where meshgap finds them free. Random states of fixed seeds, and states bisected to within 1e-7 of a contact.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <random>
-#include <unistd.h>
 
 #include "TestNote.h"
 #include "TestScale.h"
-#include "robot/TestTree.h"
 #include "meshgap/geometry/PrimitiveDistance.h"
 #include "meshgap/robot/MoveItScene.h"
 #include "meshgap/robot/Primitives.h"
 #include "meshgap/robot/RobotScene.h"
+#include "robot/TestTree.h"
 
 #ifdef MESHGAP_HAVE_FCL
 #include "FclRobotScene.h"
@@ -173,7 +173,9 @@ namespace meshgap
         std::vector<BodyConstPtr> obstacles = {
             solidBox(Eigen::Vector3d(0.5, 1.2, 0.1), at(0.6, 0.0, 0.05)),
             solidBox(Eigen::Vector3d(0.01, 0.01, 0.01), at(0.3, 0.0, 0.3)),
-            solidBox(Eigen::Vector3d(0.3, 0.05, 0.4), at(-0.35, 0.3, 0.3, Eigen::AngleAxisd(0.6, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix())),
+            solidBox(
+                Eigen::Vector3d(0.3, 0.05, 0.4),
+                at(-0.35, 0.3, 0.3, Eigen::AngleAxisd(0.6, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix())),
             solidBox(Eigen::Vector3d(0.02, 0.3, 0.02), at(0.1, -0.35, 0.45))};
         const RobotScene scene(robot, obstacles);
         std::mt19937 rng(31);
@@ -219,8 +221,7 @@ namespace meshgap
             files.request = (dir / "problems" / s / "request0001.yaml").string();
             files.packagePath = {folder.string()};
             const RobotProblem problem = readMoveItProblem(files);
-            const auto scene =
-                std::make_shared<RobotScene>(problem.robot, problem.obstacles, problem.allowedObstacles);
+            const auto scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles, problem.allowedObstacles);
 #ifdef MESHGAP_HAVE_FCL
             const FclRobotScene fcl(scene, true);
 #endif
