@@ -64,6 +64,7 @@ namespace meshgap
                 }
             scenes_.push_back(std::make_shared<Scene>(links_[i].body, std::move(checked)));
         }
+        buildVerdictBounds();
     }
 
     void RobotScene::prepare(const double *state, std::size_t size, RobotWarmStart &warm) const
@@ -73,6 +74,7 @@ namespace meshgap
             // First query with this warm start, or one made with another robot scene: nothing carries over.
             warm.links.assign(links_.size(), SceneWarmStart());
             warm.self.assign(selfPairs_.size(), ExactWarmStart());
+            warm.obstaclePairs.assign(pairOffset_.back(), ExactWarmStart());
             warm.valid = false;
             warm.scene = id_;
         }
@@ -80,13 +82,14 @@ namespace meshgap
         warm.poses.resize(links_.size());
         for (std::size_t i = 0; i < links_.size(); ++i)
             warm.poses[i] = warm.frames[links_[i].frame] * links_[i].X_FL;
+        placeBounds(warm);
     }
 
     bool RobotScene::spheresApart(std::size_t p, const RobotWarmStart &warm, double bound, double &gap) const
     {
         const auto [a, b] = selfPairs_[p];
         const TriangleBvh::Node &ra = links_[a].body->bvh().nodes()[0], &rb = links_[b].body->bvh().nodes()[0];
-        const double centres = (warm.poses[a] * ra.center - warm.poses[b] * rb.center).norm();
+        const double centres = (warm.centers[a] - warm.centers[b]).norm();
         // Padded against roundoff in the transforms (1e-9 of the sizes involved is far above it).
         gap = centres - ra.radius - rb.radius - 1e-9 * (centres + ra.radius + rb.radius) - 1e-300;
         return gap >= bound;
@@ -109,10 +112,7 @@ namespace meshgap
         const std::size_t count = selfCollision ? numPairs() : links_.size();
         const std::size_t first = warm.valid && warm.pair < count ? warm.pair : count;
         auto collides = [&](std::size_t k)
-        {
-            return k < links_.size() ? scenes_[k]->inCollision(warm.poses[k], warm.links[k])
-                                     : selfCollides(k - links_.size(), warm);
-        };
+        { return k < links_.size() ? linkCollides(k, warm) : selfVerdict(k - links_.size(), warm); };
         // The pair of the last answer first: along a run of states in collision it is the likeliest to hit.
         if (first < count && collides(first))
             return true;
@@ -287,6 +287,8 @@ namespace meshgap
         const double bound = margin * (1.0 + 1e-12) + 1e-300;
         if (k < links_.size())
         {
+            if (boundsApart(k, bound, warm))
+                return true;  // the broad phase's boxes suffice: no traversal, no hull
             SceneRequest request;
             request.upperBound = bound;
             request.stopBelow = bound;
@@ -302,9 +304,10 @@ namespace meshgap
         }
         const std::size_t p = k - links_.size();
         double gap;
-        if (spheresApart(p, warm, bound, gap))
-            return true;
         const auto [a, b] = selfPairs_[p];
+        if (rigidClearance_[p] > bound || spheresApart(p, warm, bound, gap) ||
+            boxGap(warm.boxes[a], warm.boxes[b]) > bound)
+            return true;
         DistanceRequest request;
         request.upperBound = bound;
         request.stopBelow = bound;
@@ -322,8 +325,7 @@ namespace meshgap
 
     bool RobotScene::pairCollides(std::size_t k, RobotWarmStart &warm) const
     {
-        return k < links_.size() ? scenes_[k]->inCollision(warm.poses[k], warm.links[k])
-                                 : selfCollides(k - links_.size(), warm);
+        return k < links_.size() ? linkCollides(k, warm) : selfVerdict(k - links_.size(), warm);
     }
 
     void RobotScene::finish(RobotResult &result) const

@@ -77,6 +77,19 @@ namespace meshgap
         std::vector<double> linkClearance;
     };
 
+    /** \brief A box in the world frame: its centre, its axes (the columns of a rotation), its half extents. */
+    struct WorldBox
+    {
+        Eigen::Vector3d center{Eigen::Vector3d::Zero()};
+        Eigen::Matrix3d axes{Eigen::Matrix3d::Identity()};
+        Eigen::Vector3d half{Eigen::Vector3d::Zero()};
+    };
+
+    /** \brief A lower bound of the distance between two boxes (the largest gap along the 15 axes of the
+        separating-axis test, less a pad against roundoff of 1e-9 of the sizes and coordinates involved); 0 or less
+        when they may overlap. Never larger than their true distance. */
+    double boxGap(const WorldBox &a, const WorldBox &b);
+
     /** \brief What one caller (one thread) carries from one query to the next, nearby state: per link its scene's
         warm start, per self pair an exact warm start, the pair of the last minimum (visited first), and the
         pose buffers. Changes the cost of a query, never its answer (ties between pairs aside). Never shared
@@ -86,6 +99,15 @@ namespace meshgap
         std::vector<SceneWarmStart> links;
         std::vector<ExactWarmStart> self;
         std::vector<Eigen::Isometry3d> frames, poses;
+        /** \brief At the state placed: per link, its BVH root box in the world, the axis-aligned box around it
+            (padded against roundoff) and its bounding sphere's centre in the world. */
+        std::vector<WorldBox> boxes;
+        std::vector<Eigen::AlignedBox3d> aabbs;
+        std::vector<Eigen::Vector3d> centers;
+        /** \brief The collision verdict's warm start per link and obstacle of its scene (linkObstacles()), for the
+            obstacles answered by the exact layer; and its traversal stack. */
+        std::vector<ExactWarmStart> obstaclePairs;
+        std::vector<std::uint32_t> stack;
         bool valid{false};
         std::size_t pair{0};  ///< the last minimum's pair (RobotResult::pairs order)
         std::uint64_t scene{0};
@@ -96,13 +118,14 @@ namespace meshgap
             valid = false;
             for (SceneWarmStart &w : links)
                 w.reset();
-            for (ExactWarmStart &p : self)
-            {
-                p.valid = false;
-                p.front.clear();
-                p.collision.clear();
-                p.penetration.valid = false;
-            }
+            for (auto *pairs : {&self, &obstaclePairs})
+                for (ExactWarmStart &p : *pairs)
+                {
+                    p.valid = false;
+                    p.front.clear();
+                    p.collision.clear();
+                    p.penetration.valid = false;
+                }
         }
     };
 
@@ -110,7 +133,17 @@ namespace meshgap
         distance. Each link is answered against the obstacles by a Scene of its own (its broad phase, an R-tree of
         the obstacles' boxes, and its warm start); each self pair by the exact layer (refineExact(), inCollision())
         after a bounding-sphere test, one exact warm start per pair. Immutable once built, shared between threads;
-        per-caller state lives in RobotWarmStart; no allocation once a caller has warmed up. */
+        per-caller state lives in RobotWarmStart; no allocation once a caller has warmed up.
+
+        The collision verdict (inCollision(), pairCollides()) has a broad phase of its own, shared by every link:
+        each link's BVH root box placed in the world once a state, against each obstacle's axis-aligned box, then
+        against the boxes of its primitive solids (or its BVH root's) by the separating-axis test; only a pair
+        that survives is put to the exact layer. An obstacle of boxes alone is answered as the solid boxes it is
+        (a triangle of the link touching or inside a box, or the box inside the closed link), by a traversal of
+        the link's BVH that prunes a node apart from the box and stops at the first node inside it; a self pair
+        is first tested by bounding spheres, then by the links' root boxes; a pair of links fixed to one another
+        (no joint between them moves with the state) is proven apart once, when the scene is built, and never
+        asked again (pairApart() too, for a margin below that clearance). */
     class RobotScene
     {
     public:
@@ -183,6 +216,30 @@ namespace meshgap
         bool answerSelf(std::size_t p, const RobotRequest &request, double bound, RobotWarmStart &warm,
                         RobotPairAnswer &answer, RobotResult &best, bool &complete) const;
         void finish(RobotResult &result) const;
+        /** \brief The verdict's obstacle bounds and pair offsets (from the constructor). */
+        void buildVerdictBounds();
+        /** \brief Each link's boxes and sphere centre in the world at the state placed in \e warm. */
+        void placeBounds(RobotWarmStart &warm) const;
+        /** \brief The collision verdict of link \e i against the obstacles of its scene, at the state placed. */
+        bool linkCollides(std::size_t i, RobotWarmStart &warm) const;
+        /** \brief True when link \e i's boxes prove it more than \e bound from every obstacle of its scene, at the
+            state placed (false: no claim). */
+        bool boundsApart(std::size_t i, double bound, const RobotWarmStart &warm) const;
+        /** \brief For links \e a and \e b fixed to one another (no joint between them: every frame from each up to a
+            common one fixed to its parent), their certified clearance (up to RIGID_CLEARANCE_CAP, less a pad
+            against roundoff); 0 for any other pair, or one within the pad. */
+        double rigidPairClearance(std::size_t a, std::size_t b) const;
+        /** \brief The collision verdict of self pair \e p at the state placed: spheres, root boxes, then exact. */
+        bool selfVerdict(std::size_t p, RobotWarmStart &warm) const;
+
+        /** \brief What the verdict's broad phase knows of an obstacle: its axis-aligned box (padded), the boxes of
+            its parts (its primitive solids, or its BVH root), and whether it is boxes alone (answered as solids). */
+        struct ObstacleBounds
+        {
+            Eigen::AlignedBox3d aabb;
+            std::vector<WorldBox> parts;
+            bool boxes{false};
+        };
 
         RobotModelConstPtr robot_;
         std::vector<RobotLink> links_;
@@ -190,6 +247,14 @@ namespace meshgap
         std::vector<BodyConstPtr> obstacles_;
         std::vector<ScenePtr> scenes_;
         std::vector<std::vector<std::size_t>> linkObstacles_;
+        std::vector<ObstacleBounds> obstacleBounds_;
+        /** \brief Per self pair, rigidPairClearance(): a pair fixed together and this far apart at every state. */
+        std::vector<double> rigidClearance_;
+        /** \brief How far a rigid pair's clearance is computed (beyond it, it is this). */
+        static constexpr double RIGID_CLEARANCE_CAP = 0.01;
+        /** \brief Per link, where its pairs with the obstacles start in RobotWarmStart::obstaclePairs; their
+            number last. */
+        std::vector<std::size_t> pairOffset_;
         std::uint64_t id_;
     };
 }  // namespace meshgap
