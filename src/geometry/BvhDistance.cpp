@@ -17,6 +17,7 @@ namespace meshgap
     using bvh::PairEntry;
     using bvh::RelativePose;
     using bvh::Separation;
+    using bvh::splitA;
     using bvh::StepMotion;
     using bvh::threadStack;
     using bvh::triangleSeparation;
@@ -307,19 +308,23 @@ namespace meshgap
             }
 
             /** \brief Split the pair and push its children, the nearest on top; children that cannot beat the
-                best so far are pruned (kept in the front) at once. When both nodes are inner, both are split at
-                once (the four pairs of their children): the pairs of one split child with the other whole node are
-                never bounded, and on the measured meshes a third fewer box pairs were (bench/queries.md, "Both nodes
-                split at once"); else the one that is not a leaf. */
+                best so far are pruned (kept in the front) at once. While the search is best first (no bound to prune
+                with yet), a pair of inner nodes of like size (spheres within a factor of BOTH_RATIO) has both split
+                at once, into the four pairs of their children: the first pair of leaves, and with it the first
+                bound, comes sooner. Otherwise the node of larger sphere alone, so that once a bound prunes, the pairs
+                of its children with the other whole node are pruned before they are split further. Measured:
+                bench/queries.md, "Both nodes split while searching best first". */
             void descend(const PairEntry &e, const TriangleBvh::Node &na, const TriangleBvh::Node &nb)
             {
                 std::array<PairEntry, 4> children;
                 std::size_t count = 0;
-                if (!na.isLeaf() && !nb.isLeaf())
+                constexpr double BOTH_RATIO = 4.0;
+                if (bestFirst_ && !na.isLeaf() && !nb.isLeaf() &&
+                    std::max(na.radius, nb.radius) < BOTH_RATIO * std::min(na.radius, nb.radius))
                     for (std::uint32_t i : {na.first, na.first + 1})
                         for (std::uint32_t j : {nb.first, nb.first + 1})
                             children[count++] = {i, j};
-                else if (!na.isLeaf())
+                else if (splitA(na, nb))
                 {
                     children[count++] = {na.first, e.b};
                     children[count++] = {na.first + 1, e.b};

@@ -1,7 +1,8 @@
-// The distance traversal's descent (BvhDistance.cpp): both nodes of a pair split at once when both are inner. The
-// answer must stay the brute-force minimum with the canonical pair (the smallest triangle pair among those tied
-// within the rounding slack), cold and warm alike, on flat slanted plates and on a round body; and the descent must
-// bound fewer box pairs than splitting one node at a time did on the same fixed poses (a count, not a time).
+// The distance traversal's descent (BvhDistance.cpp): both nodes of a pair of inner nodes of like size split at once
+// while the search is best first (no bound yet), the node of larger sphere alone otherwise. The answer must stay the
+// brute-force minimum with the canonical pair (the smallest triangle pair among those tied within the rounding
+// slack), cold and warm alike, on flat slanted plates and on a round body; and the descent must bound fewer box pairs
+// than splitting one node at a time did on the same fixed poses (a count, not a time).
 
 #include <gtest/gtest.h>
 
@@ -111,7 +112,7 @@ TEST(BvhDescent, BruteForcePairColdAndWarmOnPlatesAndASphere)
 TEST(BvhDescent, FewerBoxPairsThanOneNodeAtATime)
 {
     // Fixed meshes and poses: the count is a function of them. Splitting the node of larger sphere one at a time
-    // bounded 19,772 box pairs here; both nodes at once, 17,122.
+    // bounded 19,772 box pairs here; both nodes at once while best first, 18,534.
     const Mesh ma = test::merged(plates(11), test::icosphere(0.3, 2));
     const Mesh mb = test::merged(plates(12), test::transformed(test::box(0.2, 0.5, 0.1, 4), test::randomPose(5, 0.5)));
     const TriangleBvh a(ma), b(mb);
@@ -122,5 +123,5 @@ TEST(BvhDescent, FewerBoxPairsThanOneNodeAtATime)
         bvhDistance(a, b, test::randomPose(7000 + pose, 2.0), std::numeric_limits<double>::infinity(), 0.0, r);
         boxTests += r.boxTests;
     }
-    EXPECT_LT(boxTests, 18500u) << "box pairs bounded over 40 poses (one node at a time: 19,772)";
+    EXPECT_LT(boxTests, 19200u) << "box pairs bounded over 40 poses (one node at a time: 19,772)";
 }
