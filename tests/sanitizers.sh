@@ -23,10 +23,10 @@ echo "== AddressSanitizer + UBSan =="
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" -DMESHGAP_SANITIZE=address \
       -DMESHGAP_BUILD_BENCH=OFF -DMESHGAP_PYTHON=OFF -DMESHGAP_BUILD_EXAMPLES=OFF
 cmake --build build-asan -j"$jobs"
-# The heavy randomized tests at a fifth of their random states, motions, seeds and poses (tests/TestScale.h): a
+# The heavy randomized tests at a tenth of their random states, motions, seeds and poses (tests/TestScale.h): a
 # memory or undefined-behaviour error shows on any state, and each costs 10 to 100 times more instrumented; the
 # Release run above checks them all against their oracles.
-MESHGAP_TEST_SCALE=0.2 ctest --test-dir build-asan --output-on-failure -j"$jobs" -E '^(cmake_export|example_)'
+MESHGAP_TEST_SCALE=0.1 ctest --test-dir build-asan --output-on-failure -j"$jobs" -E '^(cmake_export|example_)'
 
 echo "== ThreadSanitizer =="
 # meshgap_tests here is built of the test files that hold a threaded test only (tests/CMakeLists.txt): the same
