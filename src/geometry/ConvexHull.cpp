@@ -357,9 +357,10 @@ namespace meshgap
         // vertices_) returns that very vertex.
         const Clusters &c = clustered_;
         const std::size_t clusters = c.radius.size();
-        const double length = d.norm() * (1.0 + 1e-15);  // at least |d|
-        if (clusters == 0 || !std::isfinite(length))
+        const double scale = d.cwiseAbs().maxCoeff();
+        if (clusters == 0 || !(scale > 0.0) || !std::isfinite(scale))
             return scan(d);
+        const double length = scale * (d / scale).norm() * (1.0 + 1e-15);  // at least |d|, never underflowing
         const double tolerance = 1e-14 * length * reach_ + 1e-300;
         const double dx = d.x(), dy = d.y(), dz = d.z();
         double bound[MAX_CLUSTERS];
