@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <numeric>
 #include <utility>
 
 extern "C"
@@ -259,10 +260,127 @@ namespace meshgap
             hull->triangles_.push_back({index[t[0]], index[t[1]], index[t[2]]});
         hull->center_ = center;
         hull->margin_ = epsilon * (1.0 + 1e-9) + 1e-12 * reach;
+        hull->cluster();
         return hull;
     }
 
+    namespace
+    {
+        /** \brief The most vertices of a cluster (a hull of fewer than twice as many is not clustered): support()
+            costs a dot product a cluster, then one a vertex of the clusters it opens. */
+        constexpr std::size_t CLUSTER_SIZE = 16;
+        /** \brief The most clusters (support() keeps their bounds on the stack): a hull of more is not clustered. */
+        constexpr std::size_t MAX_CLUSTERS = 512;
+    }  // namespace
+
+    void ConvexHull::cluster()
+    {
+        const std::size_t n = vertices_.size();
+        if (n < 2 * CLUSTER_SIZE)
+            return;
+        // Halve at the median of the widest extent until a part has at most CLUSTER_SIZE vertices (at least half
+        // that): the parts, in order, are the clusters.
+        std::vector<std::uint32_t> order(n);
+        std::iota(order.begin(), order.end(), 0u);
+        std::vector<std::pair<std::size_t, std::size_t>> todo{{0, n}}, parts;
+        while (!todo.empty())
+        {
+            const std::pair<std::size_t, std::size_t> part = todo.back();
+            todo.pop_back();
+            if (part.second - part.first <= CLUSTER_SIZE)
+            {
+                parts.push_back(part);
+                continue;
+            }
+            Eigen::AlignedBox3d box;
+            for (std::size_t i = part.first; i < part.second; ++i)
+                box.extend(vertices_[order[i]]);
+            int axis = 0;
+            box.sizes().maxCoeff(&axis);
+            const std::size_t middle = part.first + (part.second - part.first) / 2;
+            std::nth_element(order.begin() + part.first, order.begin() + middle, order.begin() + part.second,
+                             [&](std::uint32_t a, std::uint32_t b) { return vertices_[a][axis] < vertices_[b][axis]; });
+            todo.emplace_back(middle, part.second);
+            todo.emplace_back(part.first, middle);
+        }
+        if (parts.size() > MAX_CLUSTERS)
+            return;
+        Clusters &c = clustered_;
+        for (const std::pair<std::size_t, std::size_t> &part : parts)
+        {
+            Eigen::AlignedBox3d box;
+            for (std::size_t i = part.first; i < part.second; ++i)
+                box.extend(vertices_[order[i]]);
+            const Eigen::Vector3d centre = box.center();
+            double radius = 0.0;
+            for (std::size_t i = part.first; i < part.second; ++i)
+                radius = std::max(radius, (vertices_[order[i]] - centre).norm());
+            c.first.push_back(static_cast<std::uint32_t>(part.first));
+            c.cx.push_back(centre.x());
+            c.cy.push_back(centre.y());
+            c.cz.push_back(centre.z());
+            c.radius.push_back(radius * (1.0 + 1e-12));  // over the roundoff of the norms
+        }
+        c.first.push_back(static_cast<std::uint32_t>(n));
+        for (std::uint32_t i : order)
+        {
+            c.xs.push_back(vertices_[i].x());
+            c.ys.push_back(vertices_[i].y());
+            c.zs.push_back(vertices_[i].z());
+            c.index.push_back(i);
+        }
+    }
+
+    void ConvexHull::scanCluster(std::size_t k, const Eigen::Vector3d &d, double &best, std::uint32_t &where) const
+    {
+        const Clusters &c = clustered_;
+        const double dx = d.x(), dy = d.y(), dz = d.z();
+        for (std::size_t i = c.first[k]; i < c.first[k + 1]; ++i)
+        {
+            // The very expression scan() evaluates, hence the same rounded value for the same vertex.
+            const double s = dx * c.xs[i] + dy * c.ys[i] + dz * c.zs[i];
+            if (s > best || (s == best && c.index[i] < where))
+            {
+                best = s;
+                where = c.index[i];
+            }
+        }
+    }
+
     Eigen::Vector3d ConvexHull::support(const Eigen::Vector3d &d) const
+    {
+        // Cluster k's vertices x have d.x <= d.c_k + |d| r_k (its bounding sphere), so when the rounded bound plus
+        // a tolerance is below the best computed dot product found so far, no vertex of the cluster can have the
+        // largest computed one: |fl(d.x) - d.x| <= gamma_3 |d| |x| <= 3.4e-16 |d| reach, and the bound's own
+        // roundoff is below 1.3e-15 |d| reach (|c_k| <= sqrt(3) reach, r_k <= 2 reach); the tolerance is 1e-14
+        // |d| reach. The cluster of scan()'s vertex is hence opened, and the same ties rule (the smaller index in
+        // vertices_) returns that very vertex.
+        const Clusters &c = clustered_;
+        const std::size_t clusters = c.radius.size();
+        const double scale = d.cwiseAbs().maxCoeff();
+        if (clusters == 0 || !(scale > 0.0) || !std::isfinite(scale))
+            return scan(d);
+        const double length = scale * (d / scale).norm() * (1.0 + 1e-15);  // at least |d|, never underflowing
+        const double tolerance = 1e-14 * length * reach_ + 1e-300;
+        const double dx = d.x(), dy = d.y(), dz = d.z();
+        double bound[MAX_CLUSTERS];
+        for (std::size_t k = 0; k < clusters; ++k)
+            bound[k] = dx * c.cx[k] + dy * c.cy[k] + dz * c.cz[k] + length * c.radius[k];
+        std::size_t top = 0;
+        for (std::size_t k = 1; k < clusters; ++k)
+            top = bound[k] > bound[top] ? k : top;
+        double best = -std::numeric_limits<double>::infinity();
+        std::uint32_t where = std::numeric_limits<std::uint32_t>::max();
+        scanCluster(top, d, best, where);
+        for (std::size_t k = 0; k < clusters; ++k)
+            if (k != top && !(bound[k] + tolerance < best))
+                scanCluster(k, d, best, where);
+        if (!(best > -std::numeric_limits<double>::infinity()))
+            return scan(d);  // every product -inf or not a number (an overflowing d): as scan() decides
+        return vertices_[where];
+    }
+
+    Eigen::Vector3d ConvexHull::scan(const Eigen::Vector3d &d) const
     {
         // Four interleaved lanes, each keeping its largest value and where (branch-free: the compiler vectorises it),
         // then the largest of the four, ties to the smaller index.

@@ -195,6 +195,76 @@ TEST(ConvexHull, TheOracleCatchesAShrunkHull)
     }
 }
 
+namespace
+{
+    /** \brief The largest dot product of a vertex with \e d, brute force (Eigen's own dot). */
+    double mostAlong(const std::vector<Vector3d> &vertices, const Vector3d &d)
+    {
+        double most = -std::numeric_limits<double>::infinity();
+        for (const Vector3d &x : vertices)
+            most = std::max(most, d.dot(x));
+        return most;
+    }
+
+    /** \brief support() must return the very vertex scan() (every vertex tested) returns, whose dot product is the
+        brute-force largest to roundoff, along random directions, the axes (exact ties on flat faces and rings), each
+        vertex's own direction, scaled ones and degenerate ones. */
+    void expectSupportIsTheScans(const std::vector<Vector3d> &points, const char *what)
+    {
+        SCOPED_TRACE(what);
+        const std::shared_ptr<const ConvexHull> hull = ConvexHull::build(points);
+        ASSERT_TRUE(hull) << what << ": no hull";
+        std::vector<Vector3d> dirs = directions(3000, 19);
+        for (int k = 0; k < 3; ++k)
+        {
+            dirs.push_back(Vector3d::Unit(k));
+            dirs.push_back(-Vector3d::Unit(k));
+            dirs.push_back(Vector3d::Unit(k) + Vector3d::Unit((k + 1) % 3));
+        }
+        for (const Vector3d &v : hull->vertices())
+            dirs.push_back(v - hull->center());
+        const std::size_t unit = dirs.size();
+        for (std::size_t i = 0; i < unit; i += 7)
+        {
+            dirs.push_back(1e-200 * dirs[i]);
+            dirs.push_back(1e200 * dirs[i]);
+        }
+        dirs.push_back(Vector3d::Zero());
+        dirs.push_back(Vector3d(std::nan(""), 1.0, 0.0));
+        dirs.push_back(Vector3d(std::numeric_limits<double>::infinity(), 1.0, 0.0));
+        dirs.push_back(Vector3d(1e308, -1e308, 1e308));
+        for (const Vector3d &d : dirs)
+        {
+            const Vector3d s = hull->support(d), t = hull->scan(d);
+            ASSERT_TRUE(s == t || (s.array().isNaN().any() && t.array().isNaN().any()))
+                << "d " << d.transpose() << ": " << s.transpose() << " against " << t.transpose();
+            if (d.allFinite() && d.norm() < 1e100)
+                EXPECT_LE(std::abs(d.dot(s) - mostAlong(hull->vertices(), d)), 1e-14 * d.norm() * hull->reach())
+                    << d.transpose();
+        }
+    }
+}  // namespace
+
+TEST(ConvexHull, SupportIsTheScansVertex)
+{
+    expectSupportIsTheScans(bumpySphere(0.4, 3, 1).vertices, "bumpy sphere");
+    expectSupportIsTheScans(test::icosphere(0.05, 5).vertices, "coarsened fine sphere");
+    expectSupportIsTheScans(test::transformed(test::icosphere(2e-3, 3), test::translation(40.0, -30.0, 10.0)).vertices,
+                            "small, far");
+    expectSupportIsTheScans(lShape().vertices, "L of boxes (8 vertices: not clustered)");
+    expectSupportIsTheScans(cylinderMesh(0.1, 0.4, 64).vertices, "cylinder: rings of 64 tied along its axis");
+    expectSupportIsTheScans(cylinderMesh(0.3, 1e-6, 200).vertices, "a thin disc, nearly flat");
+    expectSupportIsTheScans(coneMesh(0.2, 0.3, 100).vertices, "cone");
+    // Many exact ties: a grid of points on the sphere's octahedral symmetry planes (coordinates a few binary values).
+    std::vector<Vector3d> lattice;
+    for (int i = -4; i <= 4; ++i)
+        for (int j = -4; j <= 4; ++j)
+            for (int k = -4; k <= 4; ++k)
+                if (i * i + j * j + k * k <= 16 && i * i + j * j + k * k >= 9)
+                    lattice.emplace_back(0.25 * i, 0.25 * j, 0.25 * k);
+    expectSupportIsTheScans(lattice, "lattice ball");
+}
+
 TEST(ConvexHull, DegenerateSetsHaveNoHull)
 {
     const Vector3d o = Vector3d::Zero(), x = Vector3d::UnitX(), y = Vector3d::UnitY();

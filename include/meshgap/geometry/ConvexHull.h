@@ -51,13 +51,31 @@ namespace meshgap
         /** \brief Triangles of the hull's surface, as indices into vertices(), oriented alike. */
         const std::vector<std::array<std::uint32_t, 3>> &triangles() const { return triangles_; }
 
-        /** \brief A vertex farthest along \e d (every vertex tested). */
+        /** \brief A vertex farthest along \e d: the very one scan() returns, found by testing the vertices of
+            only the clusters whose bounding sphere reaches the best value found so far (see below). */
         Eigen::Vector3d support(const Eigen::Vector3d &d) const;
+
+        /** \brief A vertex farthest along \e d, every vertex tested: of those whose computed dot product with \e d
+            is largest, the first in vertices(). */
+        Eigen::Vector3d scan(const Eigen::Vector3d &d) const;
 
     private:
         ConvexHull() = default;
+        /** \brief Split the vertices into clusters of nearby ones (clustered_), with their bounding spheres. */
+        void cluster();
+        /** \brief Test the vertices of cluster \e k against the best so far (value, then the smaller index). */
+        void scanCluster(std::size_t k, const Eigen::Vector3d &d, double &best, std::uint32_t &where) const;
+
         std::vector<Eigen::Vector3d> vertices_;
-        std::vector<double> xs_, ys_, zs_;  ///< vertices_ as separate arrays, for support()
+        std::vector<double> xs_, ys_, zs_;  ///< vertices_ as separate arrays, for scan()
+        /** \brief The vertices again, cluster by cluster (cluster k from first_[k] to first_[k + 1]), with their
+            indices in vertices_; each cluster's bounding sphere (centre, radius); none for a small hull. */
+        struct Clusters
+        {
+            std::vector<double> xs, ys, zs;
+            std::vector<std::uint32_t> index, first;
+            std::vector<double> cx, cy, cz, radius;
+        } clustered_;
         std::vector<std::array<std::uint32_t, 3>> triangles_;
         double margin_{0.0};
         Eigen::Vector3d center_{Eigen::Vector3d::Zero()};
