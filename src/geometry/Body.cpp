@@ -88,6 +88,12 @@ namespace meshgap
         return hull_.get();
     }
 
+    const ConvexHull *Body::coarseHull() const
+    {
+        std::call_once(coarseHullOnce_, [this] { coarseHull_ = ConvexHull::build(surface_.vertices, 192, 384); });
+        return coarseHull_.get();
+    }
+
     const MeshDistances &Body::distances() const
     {
         std::call_once(distancesOnce_, [this] {

@@ -94,22 +94,17 @@ namespace meshgap
             return ids;
         }
 
-        /** \brief A hull of more vertices than this is coarsened (coarsen()): support() costs one dot product a
-            vertex. */
-        constexpr std::size_t MAX_VERTICES = 1024;
-        /** \brief The directions coarsen() keeps a vertex for. */
-        constexpr int COARSE_DIRECTIONS = 4096;
-
         /** \brief Replace the hull of \e ids (indices of \e points) by the hull of the vertices extreme along
-            COARSE_DIRECTIONS directions spread over the sphere (a Fibonacci lattice), fewer vertices; the points
-            it leaves out are then covered by the margin, which build() computes over every point. */
-        bool coarsen(const std::vector<Eigen::Vector3d> &points, std::vector<std::uint32_t> &ids, Hulled &hulled)
+            \e directions directions spread over the sphere (a Fibonacci lattice), fewer vertices; the points it
+            leaves out are then covered by the margin, which build() computes over every point. */
+        bool coarsen(const std::vector<Eigen::Vector3d> &points, std::vector<std::uint32_t> &ids, Hulled &hulled,
+                     int directions)
         {
             std::vector<std::uint32_t> kept;
             const double golden = M_PI * (3.0 - std::sqrt(5.0));
-            for (int k = 0; k < COARSE_DIRECTIONS; ++k)
+            for (int k = 0; k < directions; ++k)
             {
-                const double z = 1.0 - (2.0 * k + 1.0) / COARSE_DIRECTIONS, r = std::sqrt(1.0 - z * z);
+                const double z = 1.0 - (2.0 * k + 1.0) / directions, r = std::sqrt(1.0 - z * z);
                 const Eigen::Vector3d d(r * std::cos(golden * k), r * std::sin(golden * k), z);
                 std::uint32_t best = ids[0];
                 for (std::uint32_t i : ids)
@@ -202,7 +197,8 @@ namespace meshgap
         }
     }  // namespace
 
-    std::shared_ptr<const ConvexHull> ConvexHull::build(const std::vector<Eigen::Vector3d> &points)
+    std::shared_ptr<const ConvexHull> ConvexHull::build(const std::vector<Eigen::Vector3d> &points,
+                                                        std::size_t maxVertices, int directions)
     {
         double reach = 0.0;
         for (const Eigen::Vector3d &p : points)
@@ -215,7 +211,7 @@ namespace meshgap
         if (!runQhull(points, hulled))
             return nullptr;
         std::vector<std::uint32_t> ids = vertexIds(hulled);
-        if (ids.size() > MAX_VERTICES && !coarsen(points, ids, hulled))
+        if (ids.size() > maxVertices && !coarsen(points, ids, hulled, directions))
             return nullptr;
         if (!closedAndOriented(hulled.triangles))
             return nullptr;
@@ -437,6 +433,35 @@ namespace meshgap
             return core;
         }
     }  // namespace
+
+    namespace
+    {
+        /** \brief \e hull swept from \e X0 to \e X1 (the hull of both placements), grown by its margin and
+            \e grow. */
+        solid::Core sweptCore(const ConvexHull &hull, const Eigen::Isometry3d &X0, const Eigen::Isometry3d &X1,
+                              double grow)
+        {
+            solid::Core core = hullCore(hull, X0);
+            core.type = solid::Core::SWEPT;
+            core.R1 = X1.linear();
+            core.c1 = X1.translation();
+            core.radius += grow;
+            return core;
+        }
+    }  // namespace
+
+    double sweptHullGap(const ConvexHull &a, const Eigen::Isometry3d &A0, const Eigen::Isometry3d &A1, double growA,
+                        const ConvexHull &b, const Eigen::Isometry3d &B0, const Eigen::Isometry3d &B1, double growB,
+                        double enough)
+    {
+        return coresGap(sweptCore(a, A0, A1, growA), sweptCore(b, B0, B1, growB), enough);
+    }
+
+    double sweptHullPrimitiveGap(const ConvexHull &a, const Eigen::Isometry3d &A0, const Eigen::Isometry3d &A1,
+                                 double grow, const Primitive &p, double enough)
+    {
+        return coresGap(sweptCore(a, A0, A1, grow), solid::coreOf(p, Eigen::Isometry3d::Identity()), enough);
+    }
 
     double hullGap(const ConvexHull &a, const ConvexHull &b, const Eigen::Isometry3d &X_AB, double enough)
     {

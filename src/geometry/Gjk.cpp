@@ -35,6 +35,12 @@ namespace meshgap
                 }
                 case HULL:
                     return c + R * hull->support(R.transpose() * d);
+                case SWEPT:
+                {
+                    const Eigen::Vector3d s0 = c + R * hull->support(R.transpose() * d);
+                    const Eigen::Vector3d s1 = c1 + R1 * hull->support(R1.transpose() * d);
+                    return d.dot(s0) >= d.dot(s1) ? s0 : s1;
+                }
                 default:
                     break;
             }
@@ -62,6 +68,8 @@ namespace meshgap
                     return (p[0] + p[1] + p[2]) / 3.0;
                 case HULL:
                     return c + R * hull->center();
+                case SWEPT:
+                    return 0.5 * ((c + R * hull->center()) + (c1 + R1 * hull->center()));
                 default:
                     return c;
             }
@@ -79,6 +87,8 @@ namespace meshgap
                     return std::max({p[0].norm(), p[1].norm(), p[2].norm()}) + radius;
                 case HULL:
                     return c.norm() + hull->reach() + radius;
+                case SWEPT:
+                    return std::max(c.norm(), c1.norm()) + hull->reach() + radius;
                 default:
                     return c.norm() + half.norm() + radius;
             }

@@ -26,7 +26,8 @@ namespace meshgap
                 BOX,
                 CYLINDER,
                 CONE,
-                HULL  ///< conv(hull->vertices()) placed by R and c
+                HULL,  ///< conv(hull->vertices()) placed by R and c
+                SWEPT  ///< the hull of HULL placed by R and c and placed by R1 and c1 (both placements' points)
             };
             Type type{POINT};
             Eigen::Vector3d p[3]{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
@@ -34,9 +35,12 @@ namespace meshgap
             Eigen::Vector3d c{Eigen::Vector3d::Zero()};      ///< BOX, CYLINDER, CONE: its centre
             Eigen::Vector3d half{Eigen::Vector3d::Zero()};   ///< BOX: half edges; CYLINDER, CONE: (r, r, half length)
             double radius{0.0};
-            const ConvexHull *hull{nullptr};  ///< HULL: the vertex set, in its own frame
+            const ConvexHull *hull{nullptr};  ///< HULL, SWEPT: the vertex set, in its own frame
+            Eigen::Matrix3d R1{Eigen::Matrix3d::Identity()};  ///< SWEPT: the second placement
+            Eigen::Vector3d c1{Eigen::Vector3d::Zero()};
 
-            /** \brief A point of the core farthest along \e d (the support point). */
+            /** \brief A point of the core farthest along \e d (the support point; for SWEPT, the farther of both
+                placements' support points). */
             Eigen::Vector3d support(const Eigen::Vector3d &d) const;
             /** \brief A point inside the core. */
             Eigen::Vector3d center() const;

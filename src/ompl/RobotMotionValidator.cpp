@@ -61,6 +61,10 @@ namespace meshgap
             RobotWarmStart warm;
             MotionBound::Motion motion;
             std::vector<double> q0, q1, q, moves, lambda, sums;
+            /** \brief Per pair, its links' bends over the motion (MotionBound::bend(); the second 0 for a link
+                against the obstacles). */
+            std::vector<double> bends;
+            RobotScene::Placement at0, at1;  ///< the piece's ends
             std::vector<Piece> pieces;     ///< breadth first: a queue read from its head
             std::vector<Pending> pending;  ///< a range per piece
         };
@@ -72,9 +76,9 @@ namespace meshgap
         const ompl::base::StateSpace &space = *si_->getStateSpace();
         robotStateToVector(space, s1, w.q0);
         robotStateToVector(space, s2, w.q1);
-        if (scene_->inCollision(w.q1.data(), w.q1.size(), w.warm) ||
-            scene_->inCollision(w.q0.data(), w.q0.size(), w.warm))
-            return false;
+        // No separate test of the end states: every piece's proof covers its ends, so a proven motion has free ends,
+        // and an end in collision leaves the pieces next to it unproven (a middle state near it collides, or the
+        // depth runs out). The states a planner connects have passed its validity checker already.
         // Each pair's displacement bound over the whole motion; over a piece it is (t1 - t0) times that (the
         // bound is linear in the joint steps, and the joints move linearly in t).
         const std::size_t links = scene_->links().size(), pairs = scene_->numPairs();
@@ -83,6 +87,15 @@ namespace meshgap
         w.lambda.assign(w.moves.begin(), w.moves.begin() + links);
         for (const auto &[a, b] : scene_->selfPairs())
             w.lambda.push_back(bound_.pairDisplacement(a, b, w.q0, w.q1));
+        w.bends.clear();
+        for (std::size_t i = 0; i < links; ++i)
+            w.bends.insert(w.bends.end(), {bound_.bend(i, bound_.numTerms(i), w.motion), 0.0});
+        for (std::size_t p = 0; p < scene_->selfPairs().size(); ++p)
+        {
+            const auto [a, b] = scene_->selfPairs()[p];
+            w.bends.insert(w.bends.end(), {bound_.bend(a, pairTerms_[p].first, w.motion),
+                                           bound_.bend(b, pairTerms_[p].second, w.motion)});
+        }
         w.pending.clear();
         for (std::size_t k = 0; k < pairs; ++k)
             w.pending.push_back({k, 0});
@@ -94,6 +107,14 @@ namespace meshgap
         {
             const Piece p = w.pieces[head];
             const double t = 0.5 * (p.t0 + p.t1), half = 0.5 * (p.t1 - p.t0);
+            // The piece's ends, for the swept hulls: a point strays at most h^2 / 8 times its bend from its chord.
+            for (auto [at, end] : {std::pair(&w.at0, p.t0), std::pair(&w.at1, p.t1)})
+            {
+                space.interpolate(s1, s2, end, middle);
+                robotStateToVector(space, middle, w.q);
+                scene_->placeEnds(w.q.data(), w.q.size(), *at);
+            }
+            const double stray = 0.5 * half * half * (1.0 + 1e-9);
             space.interpolate(s1, s2, t, middle);  // OMPL's own interpolation (SO(2) by the shorter arc)
             robotStateToVector(space, middle, w.q);
             scene_->place(w.q.data(), w.q.size(), w.warm);
@@ -104,8 +125,11 @@ namespace meshgap
                 const auto [k, tries] = w.pending[i];
                 const std::size_t budget = tries >= UNLIMITED_AFTER ? 0 : FIRST_BUDGET << (2 * tries);
                 bool gaveUp = false;
-                if (scene_->pairApart(k, std::min(half * w.lambda[k], pieceBound(k, w.sums)), w.warm, budget,
-                                      &gaveUp))
+                const double margin = std::min(half * w.lambda[k], pieceBound(k, w.sums));
+                // Cheapest first: boxes and spheres at the middle state, the swept hulls, then the meshes.
+                if (scene_->pairBoundsApart(k, margin, w.warm) ||
+                    scene_->sweptApart(k, w.at0, w.at1, stray * w.bends[2 * k], stray * w.bends[2 * k + 1]) ||
+                    scene_->pairApart(k, margin, w.warm, budget, &gaveUp))
                     continue;
                 // A pair given up on is within reach of its margin, not within it: no collision to look for.
                 free = gaveUp || !scene_->pairCollides(k, w.warm);

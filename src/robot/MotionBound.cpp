@@ -169,6 +169,23 @@ namespace meshgap
         }
     }
 
+    double MotionBound::bend(std::size_t link, std::size_t terms, const Motion &motion) const
+    {
+        double bend = 0.0, above = 0.0;
+        for (std::size_t t = offsets_[link] + terms; t-- > offsets_[link];)
+        {
+            const double m = motion.move[t];
+            if (terms_[t].lever == Lever::NONE)
+                bend += 2.0 * m * above;
+            else
+            {
+                bend += m * terms_[t].reach * (3.0 * above + m);
+                above += m;
+            }
+        }
+        return bend;
+    }
+
     void MotionBound::pieceBounds(const Motion &motion, const std::vector<Eigen::Isometry3d> &frames,
                                   const std::vector<Eigen::Isometry3d> &links, double half,
                                   std::vector<double> &out) const

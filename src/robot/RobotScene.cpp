@@ -65,6 +65,19 @@ namespace meshgap
             scenes_.push_back(std::make_shared<Scene>(links_[i].body, std::move(checked)));
         }
         buildVerdictBounds();
+        for (const auto &[a, b] : selfPairs_)
+        {
+            std::size_t common = RobotModel::NONE;
+            for (std::size_t f = links_[a].frame; f != RobotModel::NONE && common == RobotModel::NONE;
+                 f = robot_->frames()[f].parent)
+                for (std::size_t g = links_[b].frame; g != RobotModel::NONE; g = robot_->frames()[g].parent)
+                    if (f == g)
+                    {
+                        common = f;
+                        break;
+                    }
+            selfAncestor_.push_back(common);
+        }
     }
 
     void RobotScene::prepare(const double *state, std::size_t size, RobotWarmStart &warm) const
@@ -276,6 +289,18 @@ namespace meshgap
     void RobotScene::place(const double *state, std::size_t size, RobotWarmStart &warm) const
     {
         prepare(state, size, warm);
+    }
+
+    bool RobotScene::pairBoundsApart(std::size_t k, double margin, const RobotWarmStart &warm) const
+    {
+        const double bound = margin * (1.0 + 1e-12) + 1e-300;  // as pairApart() asks it
+        if (k < links_.size())
+            return boundsApart(k, bound, warm);
+        const std::size_t p = k - links_.size();
+        double gap;
+        const auto [a, b] = selfPairs_[p];
+        return rigidClearance_[p] > bound || spheresApart(p, warm, bound, gap) ||
+               boxGap(warm.boxes[a], warm.boxes[b]) > bound;
     }
 
     bool RobotScene::pairApart(std::size_t k, double margin, RobotWarmStart &warm, std::size_t budget,

@@ -373,3 +373,86 @@ TEST(ConvexHull, BoundedQuestionsAnswerAsTheTraversal)
     }
     EXPECT_GT(proofs, 100u);
 }
+
+namespace
+{
+    /** \brief The distance of point \e p from the solid box \e b (0 inside). */
+    double pointBoxDistance(const Vector3d &p, const Primitive &b)
+    {
+        const Vector3d local = b.pose.inverse() * p;
+        return (local.cwiseAbs() - 0.5 * b.size).cwiseMax(0.0).norm();
+    }
+
+    /** \brief The points of \e m placed by \e X0 and by \e X1 and joined by straight lines, at 11 fractions each. */
+    std::vector<Vector3d> chordPoints(const Mesh &m, const Isometry3d &X0, const Isometry3d &X1)
+    {
+        std::vector<Vector3d> points;
+        for (const Vector3d &v : m.vertices)
+            for (int s = 0; s <= 10; ++s)
+                points.push_back((1.0 - s / 10.0) * (X0 * v) + (s / 10.0) * (X1 * v));
+        return points;
+    }
+}  // namespace
+
+TEST(ConvexHull, SweptGapNeverExceedsTheChordsDistance)
+{
+    // Every vertex's straight line from its place at X0 to its place at X1 lies in the swept hull: its distance from
+    // a box (analytic) bounds the swept gap from above, and a grown sweep's gap drops by the growth.
+    const Mesh meshes[] = {bumpySphere(0.3, 2, 4), lShape()};
+    std::size_t apart = 0, tight = 0;
+    for (std::size_t i = 0; i < 2; ++i)
+    {
+        const BodyPtr body = test::unrefinedBody(meshes[i]);
+        ASSERT_NE(body->convexHull(), nullptr);
+        for (std::uint32_t seed = 0; seed < 150; ++seed)
+        {
+            const Primitive box = solid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(500 + seed, 0.1));
+            const Isometry3d X0 = test::randomPose(seed, 1.2);
+            const Isometry3d X1 = test::randomPose(seed + 9000, 1.2);
+            const double gap = sweptHullPrimitiveGap(*body->convexHull(), X0, X1, 0.0, box);
+            double least = std::numeric_limits<double>::infinity();
+            for (const Vector3d &p : chordPoints(meshes[i], X0, X1))
+                least = std::min(least, pointBoxDistance(p, box));
+            ASSERT_LE(gap, least * (1.0 + 1e-9) + 1e-12) << "mesh " << i << " seed " << seed;
+            // Each end alone (the box's frame, the world, placed in the body's).
+            ASSERT_LE(gap, hullPrimitiveGap(*body->convexHull(), box, X0.inverse()) + 1e-12);
+            ASSERT_LE(gap, hullPrimitiveGap(*body->convexHull(), box, X1.inverse()) + 1e-12);
+            const double grown = sweptHullPrimitiveGap(*body->convexHull(), X0, X1, 0.05, box);
+            ASSERT_LE(grown, std::max(0.0, gap - 0.05) + 1e-9) << "mesh " << i << " seed " << seed;
+            apart += gap > 0.0 ? 1 : 0;
+            tight += gap > 0.5 * least ? 1 : 0;
+        }
+    }
+    EXPECT_GT(apart, 60u) << "the sweeps should be apart from the box often";
+    EXPECT_GT(tight, 30u) << "a bound that is close often";
+}
+
+TEST(ConvexHull, SweptHullsGapIsTheConvexSweepsDistance)
+{
+    // Two convex bodies each moved by a translation alone: the swept hull is the body swept along the segment, so
+    // the gap is the least distance over the pairs of places (brute force over 13 x 13 fractions, exact distance
+    // of the meshes), within what the fractions' spacing can miss.
+    const Mesh ball = test::icosphere(0.25, 2);
+    const BodyPtr a = test::unrefinedBody(ball);
+    std::size_t apart = 0;
+    for (std::uint32_t seed = 0; seed < 40; ++seed)
+    {
+        const Isometry3d A0 = test::randomPose(seed, 1.0), B0 = test::randomPose(seed + 100, 1.0);
+        const Vector3d da = test::randomPose(seed + 200, 0.6).translation();
+        const Vector3d db = test::randomPose(seed + 300, 0.6).translation();
+        const Isometry3d A1 = Eigen::Translation3d(da) * A0, B1 = Eigen::Translation3d(db) * B0;
+        const double gap = sweptHullGap(*a->convexHull(), A0, A1, 0.0, *a->convexHull(), B0, B1, 0.0);
+        double least = std::numeric_limits<double>::infinity();
+        for (int s = 0; s <= 12; ++s)
+            for (int r = 0; r <= 12; ++r)
+            {
+                const Isometry3d As = Eigen::Translation3d(s / 12.0 * da) * A0;
+                const Isometry3d Br = Eigen::Translation3d(r / 12.0 * db) * B0;
+                least = std::min(least, exactDistance(*a, *a, As.inverse() * Br));
+            }
+        ASSERT_LE(gap, std::max(0.0, least) * (1.0 + 1e-9) + 1e-12) << seed;
+        EXPECT_GE(gap, least - (da.norm() + db.norm()) / 12.0 - 1e-9) << seed;
+        apart += gap > 0.0 ? 1 : 0;
+    }
+    EXPECT_GT(apart, 8u);
+}

@@ -5,6 +5,7 @@
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include <algorithm>
 #include <random>
 
 #include "meshgap/ompl/RobotMotionValidator.h"
@@ -107,6 +108,83 @@ namespace meshgap
         }
         test::Note() << "largest relative displacement / pair bound " << tightest << ", largest saving over the two "
                      << "links' own bounds " << saving;
+    }
+
+    TEST(RobotMotionValidator, BendBoundsTheStrayFromTheChord)
+    {
+        // Every vertex's path along a straight motion in joint space, against the straight line between its two
+        // ends: at t it strays at most t (1 - t) / 2 times the bend (the bend bounds the path's second derivative),
+        // in the world for every link and in the nearest common frame for every self pair.
+        const UrdfRobotPtr robot = test::treeWithPayload();
+        const MotionBound bound(*robot);
+        auto ancestor = [&](std::size_t f1, std::size_t f2)
+        {
+            for (std::size_t f = f1; f != RobotModel::NONE; f = robot->frames()[f].parent)
+                for (std::size_t g = f2; g != RobotModel::NONE; g = robot->frames()[g].parent)
+                    if (f == g)
+                        return f;
+            return RobotModel::NONE;
+        };
+        std::mt19937 rng(21);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        MotionBound::Motion motion;
+        double tightest = 0.0;
+        std::vector<Eigen::Isometry3d> frames0, frames1, framesQ, links0, links1, linksQ;
+        // The largest stray of \e link's vertices at fraction t, each placed by X0, X1 and XQ.
+        auto stray = [&](std::size_t link, const Eigen::Isometry3d &X0, const Eigen::Isometry3d &X1,
+                         const Eigen::Isometry3d &XQ, double t)
+        {
+            double most = 0.0;
+            for (const Eigen::Vector3d &v : robot->links()[link].body->surface().vertices)
+                most = std::max(most, (XQ * v - ((1.0 - t) * (X0 * v) + t * (X1 * v))).norm());
+            return most;
+        };
+        for (int trial = 0; trial < test::scaled(60); ++trial)
+        {
+            // Short motions too, where the chord is a close fit and the bend's terms in S matter most.
+            const double reach = trial % 2 ? 1.0 : 0.2;
+            std::vector<double> a = {1.5 * u(rng), 2.5 * u(rng), 0.1 + 0.2 * u(rng), 1.5 * u(rng), u(rng)};
+            for (std::size_t k = 0; k < a.size(); ++k)
+                a[k] = std::clamp(a[k], robot->stateLower(k), robot->stateUpper(k));
+            std::vector<double> b = a;
+            for (std::size_t k = 0; k < b.size(); ++k)
+                b[k] = std::clamp(b[k] + reach * (k == 2 ? 0.1 : 1.0) * u(rng), robot->stateLower(k),
+                                  robot->stateUpper(k));
+            bound.motion(a, b, motion);
+            robot->linkPoses(a.data(), a.size(), frames0, links0);
+            robot->linkPoses(b.data(), b.size(), frames1, links1);
+            for (int step = 1; step < 24; ++step)
+            {
+                const double t = step / 24.0, allowed = 0.5 * t * (1.0 - t);
+                std::vector<double> q(a.size());
+                for (std::size_t k = 0; k < q.size(); ++k)
+                    q[k] = a[k] + (b[k] - a[k]) * t;
+                robot->linkPoses(q.data(), q.size(), framesQ, linksQ);
+                for (std::size_t i = 0; i < robot->links().size(); ++i)
+                {
+                    const double most = stray(i, links0[i], links1[i], linksQ[i], t);
+                    const double limit = allowed * bound.bend(i, bound.numTerms(i), motion);
+                    ASSERT_LE(most, limit + 1e-12) << robot->links()[i].name << " at t " << t;
+                    if (limit > 1e-9)
+                        tightest = std::max(tightest, most / limit);
+                }
+                for (const auto &[first, second] : robot->selfPairs())
+                {
+                    const std::size_t c = ancestor(robot->links()[first].frame, robot->links()[second].frame);
+                    const auto [n1, n2] = bound.pairTerms(first, second);
+                    for (const auto &[link, n] : {std::pair(first, n1), std::pair(second, n2)})
+                    {
+                        const double most = stray(link, frames0[c].inverse() * links0[link],
+                                                  frames1[c].inverse() * links1[link],
+                                                  framesQ[c].inverse() * linksQ[link], t);
+                        ASSERT_LE(most, allowed * bound.bend(link, n, motion) + 1e-12)
+                            << robot->links()[link].name << " in frame " << robot->frames()[c].name << " at t " << t;
+                    }
+                }
+            }
+        }
+        test::Note() << "largest stray / bound " << tightest;
+        EXPECT_GT(tightest, 0.05);  // a bound, not a wild one
     }
 
     TEST(RobotMotionValidator, CertifiedMotionsAreFreeWhenCheckedDensely)

@@ -141,6 +141,11 @@ namespace meshgap
             that holds every vertex), built on the first call (once, thread-safely); null when the surface has none
             (flat, fewer than four vertices, a qhull failure): ask the mesh then. */
         const ConvexHull *convexHull() const;
+        /** \brief A looser outer bound of few vertices (at most 96: those extreme along 96 directions, when the hull
+            has more than 64), its margin covering the rest; cheaper to query where a few millimetres do not matter
+            (a link swept along a piece of motion, RobotScene::sweptApart()). Built on the first call; null as
+            convexHull(). */
+        const ConvexHull *coarseHull() const;
 
         /** \brief Mesh distances D and P, built on the first call. */
         const MeshDistances &distances() const;
@@ -199,6 +204,8 @@ namespace meshgap
         mutable std::unique_ptr<const SurfaceGrid> grid_;
         mutable std::once_flag hullOnce_;
         mutable std::shared_ptr<const ConvexHull> hull_;
+        mutable std::once_flag coarseHullOnce_;
+        mutable std::shared_ptr<const ConvexHull> coarseHull_;
         mutable std::once_flag distancesOnce_;
         mutable MeshDistancesConstPtr distances_;
     };

@@ -17,9 +17,10 @@ namespace meshgap
         of the points (qhull's hull vertices, V') grown by a ball of radius margin() (epsilon), so that every input
         point, hence every triangle of a mesh on them, lies in conv(V') + Ball(epsilon).
 
-        Built by qhull (its triangulated hull, "Qt"); a hull of more than 1,024 vertices (a finely tessellated round
-        part) is replaced by the hull of its vertices extreme along 4,096 directions spread over the sphere, whose
-        margin then covers the vertices left out (the UR5's force sensor: 4,094 vertices, 551 kept, margin 0.07 mm).
+        Built by qhull (its triangulated hull, "Qt"); a hull of more than maxVertices vertices (1,024: a finely
+        tessellated round part) is replaced by the hull of its vertices extreme along \e directions directions
+        (4,096) spread over the sphere, whose margin then covers the vertices left out (the UR5's force sensor: 4,094
+        vertices, 551 kept, margin 0.07 mm). Fewer (Body::coarseHull()) make a looser bound, cheaper to query.
         Then certified without trusting qhull's arithmetic:
         - the hull's triangles (each spanned by three points of V') form a closed, consistently oriented surface
           (every directed edge once, its reverse once) whose winding number about c, the mean of V', is not 0, and c
@@ -38,7 +39,8 @@ namespace meshgap
     public:
         /** \brief The hull of \e points, or null when there is none (see above). Never throws for a degenerate
             input. */
-        static std::shared_ptr<const ConvexHull> build(const std::vector<Eigen::Vector3d> &points);
+        static std::shared_ptr<const ConvexHull> build(const std::vector<Eigen::Vector3d> &points,
+                                                       std::size_t maxVertices = 1024, int directions = 4096);
 
         /** \brief V': the hull's vertices (a subset of the points given). */
         const std::vector<Eigen::Vector3d> &vertices() const { return vertices_; }
@@ -92,6 +94,22 @@ namespace meshgap
         \e X_AP places in A. */
     double hullPrimitiveGap(const ConvexHull &a, const Primitive &p, const Eigen::Isometry3d &X_AP,
                             double enough = std::numeric_limits<double>::infinity());
+
+    /** \brief A lower bound of the distance between two swept hulls: \e a placed in one frame by \e A0 and by \e A1
+        (the convex hull of both placements), grown by its margin and \e growA, and \e b the same by \e B0, \e B1 and
+        \e growB; 0 when they overlap. A body moving from A0 to A1 along a path that strays at most g from the
+        straight line between each point's two places stays inside a's set grown by g (every point of the mesh lies
+        within the margin of a point of the hull, whose two places span a segment of that set). Computed only
+        until it exceeds \e enough. */
+    double sweptHullGap(const ConvexHull &a, const Eigen::Isometry3d &A0, const Eigen::Isometry3d &A1, double growA,
+                        const ConvexHull &b, const Eigen::Isometry3d &B0, const Eigen::Isometry3d &B1, double growB,
+                        double enough = std::numeric_limits<double>::infinity());
+
+    /** \brief The same between \e a swept from \e A0 to \e A1 (grown by its margin and \e grow) and the solid \e p,
+        whose pose is in the frame A0 and A1 place \e a in. */
+    double sweptHullPrimitiveGap(const ConvexHull &a, const Eigen::Isometry3d &A0, const Eigen::Isometry3d &A1,
+                                 double grow, const Primitive &p,
+                                 double enough = std::numeric_limits<double>::infinity());
 }  // namespace meshgap
 
 #endif

@@ -27,14 +27,19 @@ namespace meshgap
        that is more than that apart at the middle (RobotScene::pairApart(), a bounded question: nothing beyond the
        margin is looked at) is free on the whole piece. The margin is the least of that and the piece's own bound
        at its middle state (MotionBound::pieceBounds(): each joint's step times the distance of the link's box from
-       that joint's axis there, not its farthest reach over every state; two to three times tighter on an arm). A
+       that joint's axis there, not its farthest reach over every state; two to three times tighter on an arm).
+       Before the middle state's meshes are asked, a pair that the boxes at the middle do not prove apart is asked
+       about the piece as a whole (RobotScene::sweptApart()): each link's convex hull swept between its places at
+       the piece's two ends, grown by how far its points may stray from those straight lines (MotionBound::bend():
+       at most (t1 - t0)^2 / 8 times the bend, a bound that shrinks with the square of the piece's length where the
+       middle state's margin shrinks with its length). A
        question that costs more than a budget of box and triangle tests gives up, and the pair is asked again on
        both halves with half the margin (cheaper: a pair just beyond its margin is the costly kind to prove) and
        four times the budget, without a budget from the sixth time. Pieces are taken breadth first (halves of halves, as OMPL's
        discrete validator orders its states), each asking only the pairs its parent could not prove; a pair that
        collides at a middle state (RobotScene::pairCollides()) makes the motion invalid at once, and so does a
-       piece 2^-30 of the motion long, or a 65,537th piece, still unproven (conservative). Both end states are
-       tested for collision first.
+       piece 2^-30 of the motion long, or a 65,537th piece, still unproven (conservative). The end states are not
+       tested apart: the pieces' proofs cover them (an end in collision leaves the pieces beside it unproven).
        @par External documentation
        F. Schwarzer, M. Saha, J.-C. Latombe, Adaptive dynamic collision checking for single and multiple
        articulated robots in complex environments, IEEE Transactions on Robotics 21(3), 2005.

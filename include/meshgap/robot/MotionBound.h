@@ -68,6 +68,19 @@ namespace meshgap
         {
             return sums[offsets_[link + 1] + link];
         }
+        /** \brief How far a point of link \e link may stray from the straight line between its places at the two
+            ends of a piece of \e motion h long (a fraction of it): at most h^2 / 8 times the bend returned, a bound
+            of the second derivative of the point's path in t (the motion's fraction). Over the link's first \e terms
+            terms (nearest first): all of them for its path in the world, pairTerms()' for its path in the frame
+            of a pair's nearest common ancestor. With each frame's step m_j (an angle, or a length for a
+            translation), its lever r_j and S_j the sum of the rotation steps of the frames above it (between it
+            and the frame the path is seen in): a rotation adds m_j r_j (3 S_j + m_j) (its axis is turned by those
+            above, the point turns about it, and about every axis below), a translation 2 m_j S_j (its direction
+            turned by those above). Every frame moves at a constant rate along OMPL's interpolation, which is what
+            the bound needs; a free body's turn is one about an axis fixed in its parent (slerp). */
+        double bend(std::size_t link, std::size_t terms, const Motion &motion) const;
+        /** \brief The number of link \e link's terms (for bend(): its whole path in the world). */
+        std::size_t numTerms(std::size_t link) const { return offsets_[link + 1] - offsets_[link]; }
         /** \brief For links \e first and \e second: how many of each one's terms lie below their nearest common
             ancestor (all of them for two bodies with no common frame). */
         std::pair<std::size_t, std::size_t> pairTerms(std::size_t first, std::size_t second) const;

@@ -196,6 +196,30 @@ namespace meshgap
         /** \brief At the state last placed in \e warm: the exact collision verdict of pair \e k (containment
             included). */
         bool pairCollides(std::size_t k, RobotWarmStart &warm) const;
+        /** \brief pairApart()'s first, cheap stage alone: true when boxes and spheres prove pair \e k more than
+            \e margin apart at the state last placed in \e warm (false: no claim). */
+        bool pairBoundsApart(std::size_t k, double margin, const RobotWarmStart &warm) const;
+
+        /** \brief The robot's poses at one end of a piece of motion: every frame's and every link's, in the world
+            (RobotModel::framePoses(), and each link's frame pose times its RobotLink::X_FL). */
+        struct Placement
+        {
+            std::vector<Eigen::Isometry3d> frames, links;
+        };
+        /** \brief Fill \e at with the poses at \e state (throws meshgap::Exception for a state of the wrong
+            dimension). */
+        void placeEnds(const double *state, std::size_t size, Placement &at) const;
+        /** \brief True when pair \e k is proven free along a piece of motion whose ends place the robot as \e at0
+            and \e at1, each link straying at most \e grow (its own, or the pair's first and second link's, from
+            MotionBound::bend(): in the world for a link against the obstacles, in the frame of the two links' nearest
+            common ancestor for a self pair) from the straight line between each of its points' two places: the
+            links' convex hulls swept between their two places (sweptHullGap()), grown so, are apart from every
+            obstacle of the link's scene (its primitive solids, or its hull) or from each other. False (no claim)
+            when a link or a mesh obstacle has no hull (Body::coarseHull(), the one used). A question of a few GJK runs, far
+            cheaper than a traversal, and tight where a link moves along an obstacle: the margin it needs shrinks
+            with the square of the piece's length, pairApart()'s with its length. */
+        bool sweptApart(std::size_t k, const Placement &at0, const Placement &at1, double grow,
+                        double growOther) const;
 
     private:
         /** \brief Size \e warm for this scene (afresh if it was made with another) and fill its poses. */
@@ -248,6 +272,8 @@ namespace meshgap
         std::vector<ScenePtr> scenes_;
         std::vector<std::vector<std::size_t>> linkObstacles_;
         std::vector<ObstacleBounds> obstacleBounds_;
+        /** \brief Per self pair, the two links' nearest common frame (RobotModel::NONE: none, two roots). */
+        std::vector<std::size_t> selfAncestor_;
         /** \brief Per self pair, rigidPairClearance(): a pair fixed together and this far apart at every state. */
         std::vector<double> rigidClearance_;
         /** \brief How far a rigid pair's clearance is computed (beyond it, it is this). */
