@@ -44,7 +44,6 @@
 #include "support/MoveItOptions.h"
 #include "support/PlanOptions.h"
 #include "support/PlanRun.h"
-#include "support/RobotRun.h"
 
 namespace po = boost::program_options;
 using namespace meshgap;
@@ -93,23 +92,6 @@ namespace
         return true;
     }
 
-    /** \brief A robot problem (a URDF robot, or several bodies): support/RobotRun.h. */
-    int runRobot(const PlanOptions &o, RobotProblem problem)
-    {
-        const std::unique_ptr<RobotPlanRun> p = setUpRobotPlan(o, std::move(problem));
-        OMPL_INFORM("%s: robot problem, %zu state numbers, %zu obstacles, planner %s", p->problem.name.c_str(),
-                    p->problem.robot->dimension(), p->problem.obstacles.size(), o.planner.c_str());
-        solveRobotPlan(*p, o);
-        std::cout << p->summary;
-        writeRobotPlanFiles(*p, o, std::cout);
-        if (!p->havePath)
-        {
-            std::fprintf(stderr, "no path found within %g s\n", o.time);
-            return 2;
-        }
-        return p->exact ? 0 : 2;
-    }
-
     /** \brief A control problem (a "control" key): support/ControlRun.h. */
     int runControl(const PlanOptions &o, ProblemConfig config)
     {
@@ -134,14 +116,13 @@ namespace
             return 0;
         ompl::RNG::setSeed(o.seed);
         Problem problem = readToolProblem(o.cfg, o.moveit);
-        if (problem.robot)
-            return runRobot(o, std::move(*problem.robot));
-        if (!problem.rigidBody->control.empty())
+        if (isControlProblem(problem))
             return runControl(o, std::move(*problem.rigidBody));
-        const std::unique_ptr<PlanRun> p = setUpPlan(o, std::move(*problem.rigidBody));
-        OMPL_INFORM("%s: %s, %zu obstacles, planner %s, objective %s, clearance %s, motion %s", p->config.name.c_str(),
-                    p->config.planar ? "SE(2)" : "SE(3)", p->problem.scene->obstacles().size(), o.planner.c_str(),
-                    p->problem.objective.c_str(), o.checker.c_str(), o.motion.c_str());
+        const std::unique_ptr<PlanRun> p = setUpPlan(o, std::move(problem));
+        OMPL_INFORM("%s: %s, %zu state numbers, %zu obstacles, planner %s, objective %s, clearance %s, motion %s",
+                    p->checks->settings().name.c_str(), p->scene->robot().description().c_str(),
+                    p->scene->robot().dimension(), p->scene->obstacles().size(), o.planner.c_str(),
+                    p->objective.c_str(), o.checker.c_str(), p->motion.c_str());
         solvePlan(*p, o);
         std::cout << p->summary;
         writePlanFiles(*p, o, std::cout);
