@@ -12,10 +12,10 @@
 // the problem: x y theta or x y z qx qy qz qw for a single body) the whole robot's exact signed clearance, the pair
 // that attains it (a link and an obstacle, or two links) with its witness points, and every link's clearance; one
 // warm start carried from state to state (--cold: none). A text block for one state, CSV with a header for --poses
-// (support/RobotRun.h, ROBOT_CSV_COLUMNS), JSON with --json; with --poses the time per query (median and mean) goes
-// to stderr. --cfg with --algorithm (a single body only) puts the named solver to the problem's world (A) and robot
-// (B, centred as OMPL.app centres it), the pose then "x y z qx qy qz qw". In collision (always decided exactly) the
-// distance is signed: negative, minus a penetration depth estimate (--no-depth: the verdict alone).
+// (support/RobotDistance.h, ROBOT_CSV_COLUMNS), JSON with --json; with --poses the time per query (median and mean)
+// goes to stderr. --cfg with --algorithm (a single body only) puts the named solver to the problem's world (A) and
+// robot (B, centred as OMPL.app centres it), the pose then "x y z qx qy qz qw". In collision (always decided exactly)
+// the distance is signed: negative, minus a penetration depth estimate (--no-depth: the verdict alone).
 
 #include <ompl/util/Console.h>
 
@@ -41,7 +41,7 @@
 #include "meshgap/scene/RobotMesh.h"
 #include "meshgap/scene/Scene.h"
 #include "support/MoveItOptions.h"
-#include "support/RobotRun.h"
+#include "support/RobotDistance.h"
 #include "support/SurfaceText.h"
 
 namespace po = boost::program_options;

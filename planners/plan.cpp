@@ -6,12 +6,13 @@
 //                [--clearance-csv clearance.csv] [--summary summary.txt] [--export-glb scene.glb [--export-states N]]
 //                [--report plan.html] [--optimize clearance [--optimize-time S]] [--sampler NAME]
 //
-// While it plans, one progress line a second goes to stderr (elapsed time, validity checks, the planner's best cost
-// when it reports one). Then it prints a summary (solved, exact or approximate, planning time, path length, cost,
-// the exact minimum clearance along the densely interpolated path, checker counters), writes the path in OMPL's
-// .path format (one state per line: x y z qx qy qz qw, or x y theta), which meshgap_distance --poses and OMPL.app
-// read, the exact clearance along the dense path as CSV, and the scene (world, the robot at N states along the path,
-// the closest-point segment at each) as a glTF 2.0 binary file for any 3D viewer. Exit status: 0 exact solution,
+// While it plans a single body, one progress line a second goes to stderr (elapsed time, validity checks, the
+// planner's best cost when it reports one; a robot's checker counts no checks, and prints none). Then it prints a
+// summary (solved, exact or approximate, planning time, path length, cost, the exact minimum clearance along the
+// densely interpolated path, checker counters), writes the path in OMPL's .path format (one state per line: x y z qx
+// qy qz qw, or x y theta), which meshgap_distance --poses and OMPL.app read, the exact clearance along the dense path
+// as CSV, and the scene (world, the robot at N states along the path, the closest-point segment at each) as a glTF
+// 2.0 binary file for any 3D viewer. Exit status: 0 exact solution,
 // 2 approximate or none (or --optimize could not certify the path), 1 bad input (including a start or goal in
 // collision: the message says which, the obstacle and the distance). --optimize clearance runs the
 // ClearancePathOptimizer on the planner's path (its uncertified motions repaired first) before any of this.
@@ -20,17 +21,18 @@
 // planners (kpiece, the default, rrt, est, pdst, sst) over the model's propagated motions (support/ControlRun.h); the
 // .path holds the states one propagation step apart, as OMPL.app writes a control path.
 //
-// On a robot problem (robot.urdf, or robot.1, robot.2, ...: meshgap/robot/RobotProblem.h) it plans in the robot's
-// joint space (support/RobotRun.h): exact whole-robot checks, every motion of the answer proven by the certified
-// motion validator, for every kind of robot (a sampled search, its path certified: CertifiedAnswerPlanner; OMPL's
-// discrete validator with --motion discrete); the summary, the .path (one state a line, the numbers of start.joints),
-// the clearance CSV (a column per state number) and the report, the same dense path and page as a single body's
-// (support/DenseClearance.h, support/PlanReport.h), --export-glb and --sampler as for a single body; --checker fast
-// is a single body's.
+// A robot problem (robot.urdf, or robot.1, robot.2, ...: meshgap/robot/RobotProblem.h) is planned by the same run in
+// the robot's joint space: exact whole-robot checks, every motion of the answer proven by the certified motion
+// validator, for every kind of robot (a sampled search, its path certified: CertifiedAnswerPlanner; OMPL's discrete
+// validator with --motion discrete); the .path holds one state a line, the numbers of start.joints, and the clearance
+// CSV a column per state number; --checker fast is a single body's.
 //
 // Its options are support/PlanOptions.h's table (the Python module's plan() takes the same ones as keywords), and a
-// run is support/PlanRun.h's (plan() makes the same one): the progress line, --optimize (OptimizeOption.h), the
-// summary and the files it writes (support/PlanOutputs.h).
+// run is support/PlanRun.h's, one for every kind of geometric problem (plan() makes the same one): the progress line,
+// --optimize (OptimizeOption.h), the dense path's exact clearance (support/DenseClearance.h), the summary and the
+// files it writes (support/PlanOutputs.h, support/PlanReport.h). What depends on the problem's kind (the checker, the
+// motion validator, the planner around the search, the summary lines that speak of them) is chosen from the problem in
+// one place, support/PlanChecks.h.
 
 #include <boost/program_options.hpp>
 #include <cstdio>
@@ -44,7 +46,6 @@
 #include "support/MoveItOptions.h"
 #include "support/PlanOptions.h"
 #include "support/PlanRun.h"
-#include "support/RobotRun.h"
 
 namespace po = boost::program_options;
 using namespace meshgap;
@@ -93,23 +94,6 @@ namespace
         return true;
     }
 
-    /** \brief A robot problem (a URDF robot, or several bodies): support/RobotRun.h. */
-    int runRobot(const PlanOptions &o, RobotProblem problem)
-    {
-        const std::unique_ptr<RobotPlanRun> p = setUpRobotPlan(o, std::move(problem));
-        OMPL_INFORM("%s: robot problem, %zu state numbers, %zu obstacles, planner %s", p->problem.name.c_str(),
-                    p->problem.robot->dimension(), p->problem.obstacles.size(), o.planner.c_str());
-        solveRobotPlan(*p, o);
-        std::cout << p->summary;
-        writeRobotPlanFiles(*p, o, std::cout);
-        if (!p->havePath)
-        {
-            std::fprintf(stderr, "no path found within %g s\n", o.time);
-            return 2;
-        }
-        return p->exact ? 0 : 2;
-    }
-
     /** \brief A control problem (a "control" key): support/ControlRun.h. */
     int runControl(const PlanOptions &o, ProblemConfig config)
     {
@@ -134,14 +118,13 @@ namespace
             return 0;
         ompl::RNG::setSeed(o.seed);
         Problem problem = readToolProblem(o.cfg, o.moveit);
-        if (problem.robot)
-            return runRobot(o, std::move(*problem.robot));
-        if (!problem.rigidBody->control.empty())
+        if (isControlProblem(problem))
             return runControl(o, std::move(*problem.rigidBody));
-        const std::unique_ptr<PlanRun> p = setUpPlan(o, std::move(*problem.rigidBody));
-        OMPL_INFORM("%s: %s, %zu obstacles, planner %s, objective %s, clearance %s, motion %s", p->config.name.c_str(),
-                    p->config.planar ? "SE(2)" : "SE(3)", p->problem.scene->obstacles().size(), o.planner.c_str(),
-                    p->problem.objective.c_str(), o.checker.c_str(), o.motion.c_str());
+        const std::unique_ptr<PlanRun> p = setUpPlan(o, std::move(problem));
+        OMPL_INFORM("%s: %s, %zu state numbers, %zu obstacles, planner %s, objective %s, clearance %s, motion %s",
+                    p->checks->settings().name.c_str(), p->scene->robot().description().c_str(),
+                    p->scene->robot().dimension(), p->scene->obstacles().size(), o.planner.c_str(),
+                    p->objective.c_str(), o.checker.c_str(), p->motion.c_str());
         solvePlan(*p, o);
         std::cout << p->summary;
         writePlanFiles(*p, o, std::cout);

@@ -45,7 +45,6 @@
 #include "support/PlanRun.h"
 #include "support/MoveItOptions.h"
 #include "support/ControlRun.h"
-#include "support/RobotRun.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 
 namespace py = pybind11;
@@ -409,11 +408,27 @@ namespace
         return d;
     }
 
-    /** \brief The dense path of plan()'s summary: poses, arc_length, clearance, in_collision. */
-    py::dict denseDict(const DenseClearance &d, const std::vector<Eigen::Isometry3d> &denseStates, bool planar)
+    /** \brief The states of \e path as an (M, n) array of the robot's \e n state numbers (robotStateToVector(); a
+        single body's pose x y z qx qy qz qw, or x y theta in SE(2)). */
+    py::array_t<double> stateRows(const ompl::geometric::PathGeometric &path, std::size_t n)
+    {
+        py::array_t<double> rows({static_cast<py::ssize_t>(path.getStateCount()), static_cast<py::ssize_t>(n)});
+        auto view = rows.mutable_unchecked<2>();
+        std::vector<double> q;
+        for (std::size_t i = 0; i < path.getStateCount(); ++i)
+        {
+            robotStateToVector(*path.getSpaceInformation()->getStateSpace(), path.getState(i), q);
+            for (std::size_t k = 0; k < n; ++k)
+                view(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(k)) = q[k];
+        }
+        return rows;
+    }
+
+    /** \brief The dense path of plan()'s summary: its states (as poses), arc_length, clearance, in_collision. */
+    py::dict denseDict(const DenseClearance &d, std::size_t n)
     {
         py::dict dd;
-        dd["poses"] = poseArray(denseStates, planar);
+        dd["poses"] = stateRows(d.path, n);
         dd["arc_length"] = py::array_t<double>(py::ssize_t(d.arcLength.size()), d.arcLength.data());
         dd["clearance"] = py::array_t<double>(py::ssize_t(d.clearance.size()), d.clearance.data());
         py::array_t<bool> collide(py::ssize_t(d.inCollision.size()));
@@ -579,91 +594,44 @@ namespace
     /** \brief plan()'s summary dict: meshgap_plan's fields, its summary text, and the dense path. */
     py::dict summaryDict(const PlanRun &p, const PlanOptions &o)
     {
-        const CheckerStats stats = p.problem.checker->stats();
         py::dict summary;
-        summary["problem"] = p.config.name;
-        summary["planar"] = p.config.planar;
+        summary["problem"] = p.checks->settings().name;
+        summary["robot"] = p.scene->robot().description();
+        summary["planar"] = p.checks->settings().planar;
         summary["planner"] = o.planner;
-        summary["objective"] = p.problem.objective;
+        summary["objective"] = p.objective;
         summary["checker"] = o.checker;
-        summary["motion"] = o.motion;
+        summary["motion"] = p.motion;
         summary["status"] = p.status.asString();
         summary["solved"] = p.havePath;
         summary["exact"] = p.exact;
-        summary["planning_time"] = p.problem.setup->getLastPlanComputationTime();
-        summary["validity_calls"] = stats.validityCalls;
-        summary["clearance_calls"] = stats.clearanceCalls;
-        summary["query_time"] = stats.seconds;
+        summary["planning_time"] = p.setup->getLastPlanComputationTime();
+        if (const std::optional<CheckerStats> stats = p.checks->stats())
+        {
+            summary["validity_calls"] = stats->validityCalls;
+            summary["clearance_calls"] = stats->clearanceCalls;
+            summary["query_time"] = stats->seconds;
+        }
         summary["text"] = p.summary;
         if (p.dense)
         {
-            const ompl::base::StateSpace &space = *p.problem.setup->getStateSpace();
-            ompl::geometric::PathGeometric &path = p.problem.setup->getSolutionPath();
-            std::vector<Eigen::Isometry3d> denseStates;
-            for (const ompl::base::State *s : p.dense->path.getStates())
-                denseStates.push_back(poseFromState(space, s));
+            ompl::geometric::PathGeometric &path = p.setup->getSolutionPath();
             summary["states"] = path.getStateCount();
             summary["length"] = path.length();
-            summary["cost"] = path.cost(p.problem.setup->getOptimizationObjective()).value();
+            summary["cost"] = path.cost(p.setup->getOptimizationObjective()).value();
             summary["min_clearance"] = p.dense->minClearance;
             summary["min_clearance_arc_length"] = p.dense->arcLength[p.dense->argmin];
+            summary["limiting_pair"] = pairText(*p.scene, p.dense->worst);
             summary["dense_path_free"] = p.dense->collisions == 0;
-            summary["dense"] = denseDict(*p.dense, denseStates, p.config.planar);
+            summary["dense"] = denseDict(*p.dense, p.scene->robot().dimension());
+        }
+        if (p.before)
+        {
+            summary["min_clearance_before"] = p.before->minClearance;
+            summary["limiting_pair_before"] = pairText(*p.scene, p.before->worst);
+            summary["optimize_failed"] = p.optimizeFailed;
         }
         return summary;
-    }
-
-    /** \brief plan() on a robot problem (support/RobotRun.h, meshgap_plan's run): the path's states as an (M, dof)
-        array of the problem's state numbers, and the summary dict (meshgap_plan's fields, its summary text). */
-    py::tuple planRobot(const PlanOptions &o, RobotProblem problem)
-    {
-        std::unique_ptr<meshgap::cli::RobotPlanRun> run;
-        std::vector<std::vector<double>> states;
-        {
-            py::gil_scoped_release release;
-            const LogLevelScope logLevel(o.quiet);
-            setSeedQuietly(o.seed);
-            run = meshgap::cli::setUpRobotPlan(o, std::move(problem));
-            meshgap::cli::solveRobotPlan(*run, o);
-            std::ostringstream log;
-            meshgap::cli::writeRobotPlanFiles(*run, o, log);
-            if (run->havePath)
-                for (const ompl::base::State *s : run->setup->getSolutionPath().getStates())
-                    robotStateToVector(*run->setup->getStateSpace(), s, states.emplace_back());
-        }
-        const auto dof = static_cast<py::ssize_t>(run->problem.robot->dimension());
-        py::array_t<double> path({static_cast<py::ssize_t>(states.size()), dof});
-        auto view = path.mutable_unchecked<2>();
-        for (std::size_t i = 0; i < states.size(); ++i)
-            for (py::ssize_t k = 0; k < dof; ++k)
-                view(static_cast<py::ssize_t>(i), k) = states[i][static_cast<std::size_t>(k)];
-        py::dict summary;
-        summary["problem"] = run->problem.name;
-        summary["robot"] = true;
-        summary["planner"] = o.planner;
-        summary["objective"] = run->objective;
-        summary["status"] = run->status.asString();
-        summary["solved"] = run->havePath;
-        summary["exact"] = run->exact;
-        summary["planning_time"] = run->setup->getLastPlanComputationTime();
-        summary["text"] = run->summary;
-        if (run->havePath)
-        {
-            ompl::geometric::PathGeometric &solution = run->setup->getSolutionPath();
-            summary["states"] = solution.getStateCount();
-            summary["length"] = solution.length();
-            summary["cost"] = solution.cost(run->setup->getOptimizationObjective()).value();
-            summary["min_clearance"] = run->minClearance;
-            summary["limiting_pair"] = run->limitingPair;
-            summary["dense_path_free"] = run->denseFree;
-            if (!o.optimize.empty())
-            {
-                summary["min_clearance_before"] = run->minClearanceBefore;
-                summary["limiting_pair_before"] = run->limitingPairBefore;
-                summary["optimize_failed"] = run->optimizeFailed;
-            }
-        }
-        return py::make_tuple(path, summary);
     }
 
     /** \brief plan() on a control problem (support/ControlRun.h, meshgap_plan's run): the path's states one
@@ -726,12 +694,7 @@ namespace
             const LogLevelScope logLevel(o.quiet);  // a robot's meshes load here: their warnings follow quiet
             problem = meshgap::cli::readToolProblem(o.cfg, o.moveit);
         }
-        if (problem.robot)
-        {
-            checkPlanOptions(o);
-            return planRobot(o, std::move(*problem.robot));
-        }
-        if (!problem.rigidBody->control.empty())
+        if (meshgap::cli::isControlProblem(problem))
         {
             checkPlanOptions(o);
             return planControl(o, std::move(*problem.rigidBody));
@@ -742,38 +705,37 @@ namespace
             const LogLevelScope logLevel(o.quiet);
             checkPlanOptions(o);
             setSeedQuietly(o.seed);
-            p = setUpPlan(o, std::move(*problem.rigidBody));
+            p = setUpPlan(o, std::move(problem));
             solvePlan(*p, o);
             std::ostringstream log;  // meshgap_plan's "path written ..." lines: the caller knows what it asked for
             writePlanFiles(*p, o, log);
         }
-        std::vector<Eigen::Isometry3d> states;
-        if (p->havePath)
-            for (const ompl::base::State *s : p->problem.setup->getSolutionPath().getStates())
-                states.push_back(poseFromState(*p->problem.setup->getStateSpace(), s));
-        return py::make_tuple(poseArray(states, p->config.planar), summaryDict(*p, o));
+        const ompl::geometric::PathGeometric none(p->setup->getSpaceInformation());
+        const ompl::geometric::PathGeometric &path = p->havePath ? p->setup->getSolutionPath() : none;
+        return py::make_tuple(stateRows(path, p->scene->robot().dimension()), summaryDict(*p, o));
     }
 
     /** \brief plan()'s docstring: what it returns, then every keyword with its flag's help. */
     std::string planDoc()
     {
         std::string doc =
-            "plan(cfg, **keywords): plan for an OMPL.app .cfg problem as meshgap_plan does, the same run. Returns "
-            "(path, summary): the solution's states as an (M, 7) or (M, 3) array (empty when none was found) and a "
-            "dict (problem, planner, objective, status, solved, exact, planning_time, length, cost, min_clearance "
-            "over the dense path, dense_path_free, 'text': meshgap_plan's summary, and 'dense': the dense path's "
-            "poses, arc_length, clearance, in_collision). A robot problem (a robot .cfg: a URDF arm, its payload, "
-            "several bodies) is planned as meshgap_plan plans it, the same run: the path is an (M, dof) array of the "
-            "problem's "
-            "state numbers and the dict has problem, robot (True), planner, objective, status, solved, exact, "
-            "planning_time, states, length, cost, min_clearance and limiting_pair (the pair that attains it) over the "
-            "dense path, dense_path_free, text; with optimize, min_clearance_before and limiting_pair_before (the "
-            "planner's path) and optimize_failed. A control problem (a 'control' key: kinematic_car, dynamic_car, "
-            "blimp, quadrotor) is planned with OMPL's control planners as meshgap_plan plans it: the path is an (M, n) "
-            "array of the model's state numbers one propagation step apart (the rows meshgap_plan --out writes) and "
-            "the dict has problem, control, planner, checker, status, solved, exact, planning_time, validity_calls, "
-            "query_time, text and, with a path, states, duration, goal_distance and min_clearance (certified, over "
-            "those states).\n\nKeywords: meshgap_plan's flags, '-' written '_' "
+            "plan(cfg, **keywords): plan for a problem file (an OMPL.app .cfg: one body, a URDF arm with its payload, "
+            "several bodies) as meshgap_plan does, the same run for every kind. Returns (path, summary): the "
+            "solution's states as an (M, n) array of the problem's state numbers (a single body's pose: n = 7, x y z "
+            "qx qy qz qw, or 3, x y theta; a robot's, as RobotScene.state_names; empty when none was found), the "
+            "numbers --out writes, and a dict: problem, robot (what plans: 'one body in SE(3)', \"URDF 'arm', 4 "
+            "joints\", ...), planar, planner, objective, checker, motion, status, solved, exact, planning_time, the "
+            "checker's validity_calls, clearance_calls and query_time (a single body's, which counts them), 'text': "
+            "meshgap_plan's summary; with a path, states, length, cost, min_clearance over the dense path, "
+            "min_clearance_arc_length and limiting_pair (where and which pair attains it), dense_path_free and "
+            "'dense': the dense path's poses (its states, as the path's rows), arc_length, clearance, in_collision; "
+            "with optimize, min_clearance_before and limiting_pair_before (the planner's path) and optimize_failed. A "
+            "control problem (a 'control' key: kinematic_car, dynamic_car, blimp, quadrotor) is planned with OMPL's "
+            "control planners as meshgap_plan plans it: the path is an (M, n) array of the model's state numbers one "
+            "propagation step apart (the rows meshgap_plan --out writes) and the dict has problem, control, planner, "
+            "checker, status, solved, exact, planning_time, validity_calls, query_time, text and, with a path, "
+            "states, duration, goal_distance and min_clearance (certified, over those states).\n\nKeywords: "
+            "meshgap_plan's flags, '-' written '_' "
             "(None keeps the default; files as str or os.PathLike; param a list of str):\n";
         for (const PlanOption &row : planOptionTable())
             if (row.name != "cfg")

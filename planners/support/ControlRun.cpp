@@ -143,7 +143,9 @@ namespace meshgap
         void solveControlPlan(ControlPlanRun &p, const PlanOptions &o)
         {
             {
-                Progress progress(p.problem.setup->getPlanner(), *p.problem.checker, !o.quiet);
+                const ClearanceCheckerPtr checker = p.problem.checker;
+                Progress progress(p.problem.setup->getPlanner(),
+                                  [checker] { return checker->stats().validityCalls; }, !o.quiet);
                 p.status = p.problem.setup->solve(o.time);
             }
             p.exact = p.status == ob::PlannerStatus::EXACT_SOLUTION;

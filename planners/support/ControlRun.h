@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "meshgap/ompl/ProblemSetup.h"
+#include "meshgap/robot/RobotProblem.h"
 #include "meshgap/scene/ProblemConfig.h"
 #include "support/PlanOptions.h"
 
@@ -35,6 +36,13 @@ namespace meshgap
             std::vector<std::vector<double>> states;
             double duration = 0.0, goalDistance = 0.0, minClearance = 0.0;
         };
+
+        /** \brief Whether \e problem is a control problem (a single body's .cfg with a "control" key), planned by this
+            run rather than the geometric one (support/PlanRun.h). */
+        inline bool isControlProblem(const Problem &problem)
+        {
+            return problem.rigidBody && !problem.rigidBody->control.empty();
+        }
 
         /** \brief The control planners meshgap_plan runs: kpiece, rrt, est, pdst, sst. */
         const std::vector<std::string> &controlPlannerNames();

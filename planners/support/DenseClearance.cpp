@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "meshgap/Text.h"
 #include "meshgap/ompl/RobotStateSpace.h"
 
 namespace meshgap
@@ -48,5 +49,14 @@ namespace meshgap
             }
         }
         return d;
+    }
+
+    std::string pairText(const RobotScene &scene, const RobotResult &r)
+    {
+        if (r.link >= scene.links().size() || (scene.obstacles().empty() && scene.selfPairs().empty()))
+            return "no pair (the robot has neither obstacles nor self pairs to check)";
+        const std::string link = quote(scene.links()[r.link].name);
+        return r.selfPair ? "links " + link + " and " + quote(scene.links()[r.other].name)
+                          : "link " + link + " and obstacle " + std::to_string(r.other);
     }
 }  // namespace meshgap

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <limits>
 #include <ompl/geometric/PathGeometric.h>
+#include <string>
 #include <vector>
 
 #include "meshgap/robot/RobotScene.h"
@@ -39,6 +40,10 @@ namespace meshgap
         by robotStateSpace(), or a single body's SE(2) or SE(3) space). */
     DenseClearance denseClearance(const ompl::geometric::PathGeometric &solution, const RobotScene &scene,
                                   unsigned perSegment, bool everyLink = true);
+
+    /** \brief The pair \e r names in \e scene, as meshgap_plan and meshgap_distance print it: "link 'a' and obstacle
+        3" or "links 'a' and 'b'" (or that the robot has no pair to check). */
+    std::string pairText(const RobotScene &scene, const RobotResult &r);
 }  // namespace meshgap
 
 #endif

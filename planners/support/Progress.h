@@ -3,13 +3,13 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <mutex>
 #include <ompl/base/Planner.h>
 #include <string>
 #include <thread>
-
-#include "meshgap/ompl/ClearanceChecker.h"
 
 namespace meshgap
 {
@@ -17,15 +17,16 @@ namespace meshgap
     {
         /** \brief One stderr line a second while the planner runs: elapsed time, validity checks, and the planner's
             iterations and best cost when it reports them (OMPL's planner progress properties, read from this thread
-            as ompl::tools::Benchmark does). */
+            as ompl::tools::Benchmark does). \e validityCount gives the checks made so far (the checker's counter,
+            read from this thread). */
         class Progress
         {
         public:
-            Progress(const ompl::base::PlannerPtr &planner, const ClearanceChecker &checker, bool enabled)
+            Progress(const ompl::base::PlannerPtr &planner, std::function<std::uint64_t()> validityCount, bool enabled)
             {
                 if (!enabled)
                     return;
-                thread_ = std::thread([this, planner, &checker] {
+                thread_ = std::thread([this, planner, validityCount] {
                     const auto start = std::chrono::steady_clock::now();
                     const auto properties = planner->getPlannerProgressProperties();
                     std::unique_lock<std::mutex> lock(mutex_);
@@ -34,7 +35,7 @@ namespace meshgap
                         const double elapsed =
                             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
                         std::string line = "planning: " + std::to_string(static_cast<int>(elapsed + 0.5)) + " s, " +
-                                           std::to_string(checker.stats().validityCalls) + " validity checks";
+                                           std::to_string(validityCount()) + " validity checks";
                         for (const char *name : {"iterations INTEGER", "best cost REAL"})
                         {
                             const auto it = properties.find(name);

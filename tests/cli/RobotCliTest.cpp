@@ -17,7 +17,7 @@
 #include "meshgap/robot/RobotProblem.h"
 #include "meshgap/robot/UrdfRobot.h"
 #include "meshgap/robot/RobotScene.h"
-#include "support/RobotRun.h"
+#include "support/RobotDistance.h"
 
 namespace fs = std::filesystem;
 

@@ -197,3 +197,25 @@ def test_optimize_clearance_raises_the_minimum_clearance():
     assert summary["min_clearance"] == pytest.approx(exact.min(), rel=1e-9)
     assert exact.min() > 1.5 * scene.distance(plain["dense"]["poses"])["distance"].min()
     assert re.search(r"^opt clearance +[0-9.e+-]+ -> [0-9.e+-]+", summary["text"], re.M)
+
+
+def test_every_kind_is_one_run_with_one_summary_and_the_path_files_rows(tmp_path):
+    """A single body and a robot go through the same run: the summary dict has the same keys (the single body's
+    checker adds its counters), the dense path and the limiting pair for both, and the path's rows are the .path file's
+    numbers, exactly (a single body's quaternions as the planner's states hold them)."""
+    arm = MAPS / "arm_fixture" / "arm_fixture.cfg"
+    body_path, body = meshgap.plan(HAND_BOWL, seed=1, time=PLAN_TIME, out=tmp_path / "body.path")
+    arm_path, robot = meshgap.plan(arm, seed=1, time=PLAN_TIME, out=tmp_path / "arm.path", optimize="clearance",
+                                   optimize_time=1.0)
+    counters = {"validity_calls", "clearance_calls", "query_time"}
+    assert counters <= set(body) and not counters & set(robot)
+    assert set(body) - counters == set(robot) - {"min_clearance_before", "limiting_pair_before", "optimize_failed"}
+    assert body["robot"] == "one body in SE(3)" and robot["robot"].startswith("URDF 'arm4'")
+    assert body["limiting_pair"] == "link 'robot' and obstacle 0" and robot["limiting_pair"] in robot["text"]
+    assert robot["min_clearance_before"] <= robot["min_clearance"] + 1e-9 and not robot["optimize_failed"]
+    for path, summary, file in ((body_path, body, "body.path"), (arm_path, robot, "arm.path")):
+        assert np.array_equal(np.loadtxt(tmp_path / file, ndmin=2), path)
+        dense = summary["dense"]
+        assert dense["poses"].shape == (len(dense["clearance"]), path.shape[1])
+        assert summary["min_clearance"] == dense["clearance"].min()
+        assert summary["min_clearance_arc_length"] == dense["arc_length"][dense["clearance"].argmin()]
