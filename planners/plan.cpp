@@ -6,14 +6,13 @@
 //                [--clearance-csv clearance.csv] [--summary summary.txt] [--export-glb scene.glb [--export-states N]]
 //                [--report plan.html] [--optimize clearance [--optimize-time S]] [--sampler NAME]
 //
-// While it plans a single body, one progress line a second goes to stderr (elapsed time, validity checks, the
-// planner's best cost when it reports one; a robot's checker counts no checks, and prints none). Then it prints a
-// summary (solved, exact or approximate, planning time, path length, cost, the exact minimum clearance along the
-// densely interpolated path, checker counters), writes the path in OMPL's .path format (one state per line: x y z qx
-// qy qz qw, or x y theta), which meshgap_distance --poses and OMPL.app read, the exact clearance along the dense path
-// as CSV, and the scene (world, the robot at N states along the path, the closest-point segment at each) as a glTF
-// 2.0 binary file for any 3D viewer. Exit status: 0 exact solution,
-// 2 approximate or none (or --optimize could not certify the path), 1 bad input (including a start or goal in
+// While it plans, one progress line a second goes to stderr (elapsed time, validity checks, the planner's best cost
+// when it reports one). Then it prints a summary (solved, exact or approximate, planning time, path length, cost, the
+// exact minimum clearance along the densely interpolated path, checker counters), writes the path in OMPL's .path
+// format (one state per line: x y z qx qy qz qw, or x y theta), which meshgap_distance --poses and OMPL.app read, the
+// exact clearance along the dense path as CSV, and the scene (world, the robot at N states along the path, the
+// closest-point segment at each) as a glTF 2.0 binary file for any 3D viewer. Exit status: 0 exact solution, 2
+// approximate or none (or --optimize could not certify the path), 1 bad input (including a start or goal in
 // collision: the message says which, the obstacle and the distance). --optimize clearance runs the
 // ClearancePathOptimizer on the planner's path (its uncertified motions repaired first) before any of this.
 //

@@ -157,7 +157,10 @@ namespace meshgap
 
                 void setUp(PlanRun &run, const PlanOptions &o) override;
 
-                std::function<std::uint64_t()> validityCount() const override { return {}; }
+                std::function<std::uint64_t()> validityCount() const override
+                {
+                    return [checker = checker_] { return checker->validityCalls(); };
+                }
 
                 std::optional<CheckerStats> stats() const override { return std::nullopt; }
 

@@ -46,6 +46,7 @@ namespace meshgap
 
     bool RobotChecker::isValid(const ompl::base::State *state) const
     {
+        counts_.add(0, 1);
         if (!si_->satisfiesBounds(state))
             return false;  // outside the joint limits or the volume: invalid, as OMPL expects, never an exception
         ThreadState &t = threadStateFor(id_);

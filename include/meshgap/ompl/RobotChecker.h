@@ -4,6 +4,7 @@
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/StateValidityChecker.h>
 
+#include "meshgap/ThreadCounters.h"
 #include "meshgap/ompl/ClearanceField.h"
 #include "meshgap/robot/MotionBound.h"
 #include "meshgap/robot/RobotScene.h"
@@ -57,9 +58,14 @@ namespace meshgap
         void ascentStep(const std::vector<double> &gradient, double alpha, std::vector<double> &step) const override;
         void applyStep(const ompl::base::State *state, const double *step, ompl::base::State *out) const override;
 
+        /** \brief The isValid() calls so far, over every thread (for a progress line). */
+        std::uint64_t validityCalls() const { return counts_.sum(0); }
+
     private:
         RobotSceneConstPtr scene_;
         std::uint64_t id_;
+        /** \brief isValid() calls, counted per thread (nothing shared on the query's path). */
+        mutable ThreadCounters<1> counts_;
         MotionBound bound_;
         /** \brief Per tangent coordinate, its lever (robotTangentLevers(); at least 1e-9 of the length scale). */
         std::vector<double> levers_;
