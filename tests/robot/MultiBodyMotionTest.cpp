@@ -71,16 +71,6 @@ namespace meshgap
             return q;
         }
 
-        /** \brief The nearest frame above both \e f1 and \e f2, or NONE (two roots). */
-        std::size_t commonFrame(const RobotModel &robot, std::size_t f1, std::size_t f2)
-        {
-            for (std::size_t f = f1; f != RobotModel::NONE; f = robot.frames()[f].parent)
-                for (std::size_t g = f2; g != RobotModel::NONE; g = robot.frames()[g].parent)
-                    if (f == g)
-                        return f;
-            return RobotModel::NONE;
-        }
-
         /** \brief How far any vertex of link \e link moved from the poses (\e framesA, \e linksA) to (\e framesB,
             \e linksB), in frame \e c (the world for NONE). */
         double largestMove(const RobotModel &robot, std::size_t link, std::size_t c,
@@ -135,7 +125,7 @@ namespace meshgap
                     for (const auto &[first, second] : robot.selfPairs())
                     {
                         const std::size_t c =
-                            commonFrame(robot, robot.links()[first].frame, robot.links()[second].frame);
+                            test::commonFrame(robot, robot.links()[first].frame, robot.links()[second].frame);
                         const double real = moved(first, c) + moved(second, c);
                         const double pair = bound.pairDisplacement(first, second, a, b);
                         EXPECT_LE(real, t * pair + 1e-9)
@@ -207,7 +197,7 @@ namespace meshgap
                     for (const auto &[first, second] : robot.selfPairs())
                     {
                         const std::size_t c =
-                            commonFrame(robot, robot.links()[first].frame, robot.links()[second].frame);
+                            test::commonFrame(robot, robot.links()[first].frame, robot.links()[second].frame);
                         const double piece = bound.pairBound(first, second, bound.pairTerms(first, second), sums);
                         EXPECT_LE(moved(first, c) + moved(second, c), piece + 1e-9)
                             << robot.links()[first].name << " " << robot.links()[second].name << " " << trial;

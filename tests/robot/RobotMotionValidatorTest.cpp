@@ -57,15 +57,6 @@ namespace meshgap
     {
         const UrdfRobotPtr robot = test::treeWithPayload();
         const MotionBound bound(*robot);
-        // Each pair's nearest common frame, found here by walking the parents.
-        auto ancestor = [&](std::size_t f1, std::size_t f2)
-        {
-            for (std::size_t f = f1; f != RobotModel::NONE; f = robot->frames()[f].parent)
-                for (std::size_t g = f2; g != RobotModel::NONE; g = robot->frames()[g].parent)
-                    if (f == g)
-                        return f;
-            return RobotModel::NONE;
-        };
         std::mt19937 rng(9);
         std::uniform_real_distribution<double> u(-1.0, 1.0);
         double tightest = 0.0, saving = 0.0;
@@ -85,7 +76,8 @@ namespace meshgap
                 robot->linkPoses(q.data(), q.size(), framesQ, linksQ);
                 for (const auto &[first, second] : robot->selfPairs())
                 {
-                    const std::size_t c = ancestor(robot->links()[first].frame, robot->links()[second].frame);
+                    const std::size_t c =
+                        test::commonFrame(*robot, robot->links()[first].frame, robot->links()[second].frame);
                     ASSERT_NE(c, RobotModel::NONE);
                     double moved = 0.0;  // each link's largest vertex move in the common frame, summed
                     for (std::size_t link : {first, second})
@@ -117,14 +109,6 @@ namespace meshgap
         // in the world for every link and in the nearest common frame for every self pair.
         const UrdfRobotPtr robot = test::treeWithPayload();
         const MotionBound bound(*robot);
-        auto ancestor = [&](std::size_t f1, std::size_t f2)
-        {
-            for (std::size_t f = f1; f != RobotModel::NONE; f = robot->frames()[f].parent)
-                for (std::size_t g = f2; g != RobotModel::NONE; g = robot->frames()[g].parent)
-                    if (f == g)
-                        return f;
-            return RobotModel::NONE;
-        };
         std::mt19937 rng(21);
         std::uniform_real_distribution<double> u(-1.0, 1.0);
         MotionBound::Motion motion;
@@ -170,7 +154,8 @@ namespace meshgap
                 }
                 for (const auto &[first, second] : robot->selfPairs())
                 {
-                    const std::size_t c = ancestor(robot->links()[first].frame, robot->links()[second].frame);
+                    const std::size_t c =
+                        test::commonFrame(*robot, robot->links()[first].frame, robot->links()[second].frame);
                     const auto [n1, n2] = bound.pairTerms(first, second);
                     for (const auto &[link, n] : {std::pair(first, n1), std::pair(second, n2)})
                     {

@@ -42,6 +42,17 @@ namespace meshgap::test
         }
         return bodies;
     }
+
+    /** \brief The nearest frame above both \e f1 and \e f2 (themselves included), or NONE (two roots): found by
+        walking the parents, apart from the library's own search. */
+    inline std::size_t commonFrame(const RobotModel &robot, std::size_t f1, std::size_t f2)
+    {
+        for (std::size_t f = f1; f != RobotModel::NONE; f = robot.frames()[f].parent)
+            for (std::size_t g = f2; g != RobotModel::NONE; g = robot.frames()[g].parent)
+                if (f == g)
+                    return f;
+        return RobotModel::NONE;
+    }
 }  // namespace meshgap::test
 
 #endif
