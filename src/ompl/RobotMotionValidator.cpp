@@ -60,7 +60,7 @@ namespace meshgap
         {
             RobotWarmStart warm;
             MotionBound::Motion motion;
-            std::vector<double> q0, q1, q, moves, lambda, sums;
+            std::vector<double> q0, q1, q, qEnd, moves, lambda, sums;
             /** \brief Per pair, its links' bends over the motion (MotionBound::bend(); the second 0 for a link
                 against the obstacles). */
             std::vector<double> bends;
@@ -107,13 +107,19 @@ namespace meshgap
         {
             const Piece p = w.pieces[head];
             const double t = 0.5 * (p.t0 + p.t1), half = 0.5 * (p.t1 - p.t0);
-            // The piece's ends, for the swept hulls: a point strays at most h^2 / 8 times its bend from its chord.
-            for (auto [at, end] : {std::pair(&w.at0, p.t0), std::pair(&w.at1, p.t1)})
+            // The piece's ends, for the swept hulls, placed when a pair first needs them: a point strays at most
+            // h^2 / 8 times its bend from its chord.
+            bool ends = false;
+            auto placeEnds = [&]
             {
-                space.interpolate(s1, s2, end, middle);
-                robotStateToVector(space, middle, w.q);
-                scene_->placeEnds(w.q.data(), w.q.size(), *at);
-            }
+                for (auto [at, end] : {std::pair(&w.at0, p.t0), std::pair(&w.at1, p.t1)})
+                {
+                    space.interpolate(s1, s2, end, middle);  // the middle state is placed already
+                    robotStateToVector(space, middle, w.qEnd);
+                    scene_->placeEnds(w.qEnd.data(), w.qEnd.size(), *at);
+                }
+                return ends = true;
+            };
             const double stray = 0.5 * half * half * (1.0 + 1e-9);
             space.interpolate(s1, s2, t, middle);  // OMPL's own interpolation (SO(2) by the shorter arc)
             robotStateToVector(space, middle, w.q);
@@ -128,7 +134,8 @@ namespace meshgap
                 const double margin = std::min(half * w.lambda[k], pieceBound(k, w.sums));
                 // Cheapest first: boxes and spheres at the middle state, the swept hulls, then the meshes.
                 if (scene_->pairBoundsApart(k, margin, w.warm) ||
-                    scene_->sweptApart(k, w.at0, w.at1, stray * w.bends[2 * k], stray * w.bends[2 * k + 1]) ||
+                    ((ends || placeEnds()) &&
+                     scene_->sweptApart(k, w.at0, w.at1, stray * w.bends[2 * k], stray * w.bends[2 * k + 1])) ||
                     scene_->pairApart(k, margin, w.warm, budget, &gaveUp))
                     continue;
                 // A pair given up on is within reach of its margin, not within it: no collision to look for.

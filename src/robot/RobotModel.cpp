@@ -18,6 +18,15 @@ namespace meshgap
         return NONE;
     }
 
+    std::size_t RobotModel::commonFrame(std::size_t a, std::size_t b) const
+    {
+        for (std::size_t f = a; f != NONE; f = frames_[f].parent)
+            for (std::size_t g = b; g != NONE; g = frames_[g].parent)
+                if (f == g)
+                    return f;
+        return NONE;
+    }
+
     std::size_t RobotModel::findLink(const std::string &name) const
     {
         for (std::size_t i = 0; i < links_.size(); ++i)

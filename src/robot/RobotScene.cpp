@@ -66,18 +66,7 @@ namespace meshgap
         }
         buildVerdictBounds();
         for (const auto &[a, b] : selfPairs_)
-        {
-            std::size_t common = RobotModel::NONE;
-            for (std::size_t f = links_[a].frame; f != RobotModel::NONE && common == RobotModel::NONE;
-                 f = robot_->frames()[f].parent)
-                for (std::size_t g = links_[b].frame; g != RobotModel::NONE; g = robot_->frames()[g].parent)
-                    if (f == g)
-                    {
-                        common = f;
-                        break;
-                    }
-            selfAncestor_.push_back(common);
-        }
+            selfAncestor_.push_back(robot_->commonFrame(links_[a].frame, links_[b].frame));
     }
 
     void RobotScene::prepare(const double *state, std::size_t size, RobotWarmStart &warm) const
@@ -308,12 +297,12 @@ namespace meshgap
     {
         if (gaveUp)
             *gaveUp = false;
+        if (pairBoundsApart(k, margin, warm))
+            return true;  // boxes and spheres suffice: no traversal, no hull
         // Above margin, strictly: the question asked is "nothing at or below margin * (1 + 1e-12) + tiny".
         const double bound = margin * (1.0 + 1e-12) + 1e-300;
         if (k < links_.size())
         {
-            if (boundsApart(k, bound, warm))
-                return true;  // the broad phase's boxes suffice: no traversal, no hull
             SceneRequest request;
             request.upperBound = bound;
             request.stopBelow = bound;
@@ -328,11 +317,7 @@ namespace meshgap
             return apart && s.certified;
         }
         const std::size_t p = k - links_.size();
-        double gap;
         const auto [a, b] = selfPairs_[p];
-        if (rigidClearance_[p] > bound || spheresApart(p, warm, bound, gap) ||
-            boxGap(warm.boxes[a], warm.boxes[b]) > bound)
-            return true;
         DistanceRequest request;
         request.upperBound = bound;
         request.stopBelow = bound;

@@ -141,10 +141,10 @@ namespace meshgap
             that holds every vertex), built on the first call (once, thread-safely); null when the surface has none
             (flat, fewer than four vertices, a qhull failure): ask the mesh then. */
         const ConvexHull *convexHull() const;
-        /** \brief A looser outer bound of few vertices (at most 96: those extreme along 96 directions, when the hull
-            has more than 64), its margin covering the rest; cheaper to query where a few millimetres do not matter
-            (a link swept along a piece of motion, RobotScene::sweptApart()). Built on the first call; null as
-            convexHull(). */
+        /** \brief A looser outer bound of fewer vertices (at most 384: those extreme along 384 directions, when the
+            hull has more than 192), its margin covering the rest; cheaper to query where a fraction of a millimetre
+            does not matter (a link swept along a piece of motion, RobotScene::sweptApart()). Built on the first
+            call; null as convexHull(). */
         const ConvexHull *coarseHull() const;
 
         /** \brief Mesh distances D and P, built on the first call. */

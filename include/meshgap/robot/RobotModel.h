@@ -120,6 +120,9 @@ namespace meshgap
         std::size_t findFrame(const std::string &name) const;
         /** \brief Index of the link body named \e name, or NONE. */
         std::size_t findLink(const std::string &name) const;
+        /** \brief The nearest frame above both frames \e a and \e b (themselves included), or NONE when they hang
+            from two roots. */
+        std::size_t commonFrame(std::size_t a, std::size_t b) const;
 
         /** \brief Throws meshgap::Exception unless \e state (\e size numbers) is a state of this robot: dimension()
             numbers, each finite and within MAX_MAGNITUDE (meshgap/Limits.h), and what the kind of robot requires

@@ -215,9 +215,9 @@ namespace meshgap
             common ancestor for a self pair) from the straight line between each of its points' two places: the
             links' convex hulls swept between their two places (sweptHullGap()), grown so, are apart from every
             obstacle of the link's scene (its primitive solids, or its hull) or from each other. False (no claim)
-            when a link or a mesh obstacle has no hull (Body::coarseHull(), the one used). A question of a few GJK runs, far
-            cheaper than a traversal, and tight where a link moves along an obstacle: the margin it needs shrinks
-            with the square of the piece's length, pairApart()'s with its length. */
+            when a link or a mesh obstacle has no hull (Body::coarseHull(), the one used). A question of a few GJK
+            runs, far cheaper than a traversal, and tight where a link moves along an obstacle: the margin it needs
+            shrinks with the square of the piece's length, pairApart()'s with its length. */
         bool sweptApart(std::size_t k, const Placement &at0, const Placement &at1, double grow,
                         double growOther) const;
 
