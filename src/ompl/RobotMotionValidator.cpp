@@ -87,15 +87,7 @@ namespace meshgap
         w.lambda.assign(w.moves.begin(), w.moves.begin() + links);
         for (const auto &[a, b] : scene_->selfPairs())
             w.lambda.push_back(bound_.pairDisplacement(a, b, w.q0, w.q1));
-        w.bends.clear();
-        for (std::size_t i = 0; i < links; ++i)
-            w.bends.insert(w.bends.end(), {bound_.bend(i, bound_.numTerms(i), w.motion), 0.0});
-        for (std::size_t p = 0; p < scene_->selfPairs().size(); ++p)
-        {
-            const auto [a, b] = scene_->selfPairs()[p];
-            w.bends.insert(w.bends.end(), {bound_.bend(a, pairTerms_[p].first, w.motion),
-                                           bound_.bend(b, pairTerms_[p].second, w.motion)});
-        }
+        pairBends(w.motion, w.bends);
         w.pending.clear();
         for (std::size_t k = 0; k < pairs; ++k)
             w.pending.push_back({k, 0});
@@ -155,6 +147,19 @@ namespace meshgap
             w.pending = std::vector<Pending>();
         }
         return free;
+    }
+
+    void RobotMotionValidator::pairBends(const MotionBound::Motion &motion, std::vector<double> &bends) const
+    {
+        bends.clear();
+        for (std::size_t i = 0; i < scene_->links().size(); ++i)
+            bends.insert(bends.end(), {bound_.bend(i, bound_.numTerms(i), motion), 0.0});
+        for (std::size_t p = 0; p < scene_->selfPairs().size(); ++p)
+        {
+            const auto [a, b] = scene_->selfPairs()[p];
+            bends.insert(bends.end(), {bound_.bend(a, pairTerms_[p].first, motion),
+                                       bound_.bend(b, pairTerms_[p].second, motion)});
+        }
     }
 
     double RobotMotionValidator::pieceBound(std::size_t k, const std::vector<double> &sums) const

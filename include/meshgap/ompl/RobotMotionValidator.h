@@ -60,6 +60,10 @@ namespace meshgap
         /** \brief Whether the motion from \e s1 to \e s2 is proven free, as described above. */
         bool proveFree(const ompl::base::State *s1, const ompl::base::State *s2) const;
 
+        /** \brief Per pair (RobotScene's order), its two links' MotionBound::bend() over \e motion into \e bends
+            (the second 0 for a link against the obstacles). */
+        void pairBends(const MotionBound::Motion &motion, std::vector<double> &bends) const;
+
         /** \brief Pair \e k's displacement bound over a piece, from MotionBound::pieceBounds()' \e sums. */
         double pieceBound(std::size_t k, const std::vector<double> &sums) const;
 
