@@ -341,17 +341,21 @@ goal_constraints:
             "tar -xjf '" + (folder / "problems.tar.bz2").string() + "' -C '" + dir.string() + "'";
         ASSERT_EQ(std::system(command.c_str()), 0) << command;
         std::size_t read = 0;
-        // Two problems of each scenario; the first only under a reduced test::scale().
+        // Two problems of each scenario; the first only under a reduced test::scale(). Every problem shares one robot,
+        // its URDF and SRDF read once (MoveItFiles::robot, as the suite runner reads them).
         const std::vector<std::string> numbers =
             test::scale() < 1.0 ? std::vector<std::string>{"0001"} : std::vector<std::string>{"0001", "0100"};
+        const UrdfRobotConstPtr robot =
+            readMoveItRobot(moveItFiles({(folder / "ur5.urdf").string(), (folder / "ur5.srdf").string(), "", ""}));
         for (const char *scenario : {"bookshelf_small", "bookshelf_tall", "bookshelf_thin", "box", "cage",
                                      "table_pick", "table_under_pick"})
             for (const std::string &n : numbers)
             {
                 const fs::path problems = dir / "problems" / (std::string(scenario) + "_ur5");
-                const MoveItFiles files = moveItFiles({(folder / "ur5.urdf").string(), (folder / "ur5.srdf").string(),
-                                                       (problems / ("scene" + n + ".yaml")).string(),
-                                                       (problems / ("request" + n + ".yaml")).string()});
+                MoveItFiles files = moveItFiles({(folder / "ur5.urdf").string(), (folder / "ur5.srdf").string(),
+                                                 (problems / ("scene" + n + ".yaml")).string(),
+                                                 (problems / ("request" + n + ".yaml")).string()});
+                files.robot = robot;
                 const RobotProblem p = readMoveItProblem(files);
                 ASSERT_TRUE(p.goal) << files.request;
                 EXPECT_EQ(p.start.size(), 6u);

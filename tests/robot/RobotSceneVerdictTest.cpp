@@ -3,7 +3,8 @@
 // (RobotScene::distance(), another code path: each link's Scene, refineExact()) at every state and pair by pair, on
 // the test tree among solid boxes (a link inside a box, a box inside a link, a corner through a face) and on
 // MotionBenchMaker's UR5 problems (../shared/data/mbm, skipped when absent), whose states no FCL finds colliding
-// where meshgap finds them free. Random states of fixed seeds, and states bisected to within 1e-7 of a contact.
+// where meshgap finds them free. Random states of fixed seeds, and the two states on either side of the verdict's
+// boundary, bisected to within 1e-7 of each other.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -96,15 +97,15 @@ namespace meshgap
             }
         }
 
-        /** \brief A state within \e tolerance (in joint values) of the contact between a free state and a colliding
-            one, on the free side (bisection by the exact query). */
-        std::vector<double> nearContact(const RobotScene &scene, std::vector<double> free, std::vector<double> hit,
-                                        double tolerance)
+        /** \brief Two states within \e tolerance (in joint values) of each other on either side of the verdict's
+            boundary between a free state and a colliding one, {free, colliding} as inCollision() says (bisection by
+            the verdict under test: the exact query then checks both sides where the verdict changes its mind, which
+            catches an error on either side of a contact at two exact queries per contact). */
+        std::pair<std::vector<double>, std::vector<double>> nearContact(const RobotScene &scene,
+                                                                        std::vector<double> free,
+                                                                        std::vector<double> hit, double tolerance)
         {
-            RobotResult r;
-            RobotRequest verdict;
-            verdict.stopBelow = 0.0;
-            verdict.computeDepth = false;
+            RobotWarmStart warm;
             for (int step = 0; step < 60; ++step)
             {
                 double gap = 0.0;
@@ -116,10 +117,9 @@ namespace meshgap
                 }
                 if (gap < tolerance)
                     break;
-                scene.distance(middle, verdict, r);
-                (r.inCollision ? hit : free) = middle;
+                (scene.inCollision(middle.data(), middle.size(), warm) ? hit : free) = middle;
             }
-            return free;
+            return {free, hit};
         }
     }  // namespace
 
@@ -192,12 +192,17 @@ namespace meshgap
             (r.inCollision ? hit : free).push_back(q);
         }
         for (std::size_t n = 0; n < std::min(free.size(), hit.size()) && n < 60; ++n)
-            expectVerdictIsExact(scene, nearContact(scene, free[n], hit[n], 1e-7), warm, near, 1e-12);
+        {
+            const auto [justFree, justHit] = nearContact(scene, free[n], hit[n], 1e-7);
+            expectVerdictIsExact(scene, justFree, warm, near, 1e-12);
+            expectVerdictIsExact(scene, justHit, warm, near, 1e-12);
+        }
         test::Note() << tally.states << " states (" << tally.colliding << " colliding), " << tally.pairs << " pairs ("
                      << tally.pairsColliding << " colliding); " << near.states << " near a contact";
         EXPECT_GT(tally.colliding, 50u);
         EXPECT_GT(tally.free, 50u);
-        EXPECT_GT(near.states, 30u);
+        EXPECT_GT(near.colliding, 15u);  // both sides of the contacts checked
+        EXPECT_GT(near.free, 15u);
     }
 
     TEST(RobotSceneVerdict, Ur5ProblemsVerdictIsExactAndFclFindsNoCollisionWhereItSaysFree)
@@ -255,12 +260,18 @@ namespace meshgap
 #endif
             }
             for (std::size_t m = 0; m < std::min(free.size(), hit.size()) && m < 15; ++m)
-                expectVerdictIsExact(*scene, nearContact(*scene, free[m], hit[m], 1e-7), warm, near, 1e-12, false);
+            {
+                const auto [justFree, justHit] = nearContact(*scene, free[m], hit[m], 1e-7);
+                expectVerdictIsExact(*scene, justFree, warm, near, 1e-12, false);
+                expectVerdictIsExact(*scene, justHit, warm, near, 1e-12, false);
+            }
             test::Note() << s << ": " << tally.states << " states (" << tally.colliding << " colliding), "
                          << tally.pairs << " pairs (" << tally.pairsColliding << " colliding); " << near.states
                          << " near a contact";
             EXPECT_GT(tally.colliding, 5u) << s;
             EXPECT_GT(tally.free, 5u) << s;
+            EXPECT_GT(near.colliding, 3u) << s;
+            EXPECT_GT(near.free, 3u) << s;
         }
         fs::remove_all(dir);
     }
