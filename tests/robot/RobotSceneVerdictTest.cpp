@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <random>
+#include <sstream>
 
 #include "TestNote.h"
 #include "TestScale.h"
@@ -217,6 +218,7 @@ namespace meshgap
         for (const std::string &s : scenarios)
             command += " problems/" + s + "/scene0001.yaml problems/" + s + "/request0001.yaml";
         ASSERT_EQ(std::system(command.c_str()), 0) << command;
+        std::ostringstream seen;
         for (const std::string &s : scenarios)
         {
             MoveItFiles files;
@@ -235,7 +237,7 @@ namespace meshgap
             Tally tally, near;
             std::vector<std::vector<double>> free, hit;
             const std::size_t n = problem.robot->dimension();
-            for (int trial = 0; trial < test::scaled(150, 40); ++trial)
+            for (int trial = 0; trial < test::scaled(150, 30); ++trial)
             {
                 // Uniform within the limits, and between the start and goal (near the obstacles the problem is about).
                 std::vector<double> q(n);
@@ -265,14 +267,15 @@ namespace meshgap
                 expectVerdictIsExact(*scene, justFree, warm, near, 1e-12, false);
                 expectVerdictIsExact(*scene, justHit, warm, near, 1e-12, false);
             }
-            test::Note() << s << ": " << tally.states << " states (" << tally.colliding << " colliding), "
-                         << tally.pairs << " pairs (" << tally.pairsColliding << " colliding); " << near.states
-                         << " near a contact";
+            seen << s << ": " << tally.states << " states (" << tally.colliding << " colliding), " << tally.pairs
+                 << " pairs (" << tally.pairsColliding << " colliding); " << near.states << " near a contact ("
+                 << near.colliding << " colliding). ";
             EXPECT_GT(tally.colliding, 5u) << s;
             EXPECT_GT(tally.free, 5u) << s;
             EXPECT_GT(near.colliding, 3u) << s;
             EXPECT_GT(near.free, 3u) << s;
         }
+        test::Note() << seen.str();
         fs::remove_all(dir);
     }
 }  // namespace meshgap
