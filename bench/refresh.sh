@@ -54,6 +54,13 @@ else
         "$B/meshgap_bench_build --repeat 7 tests/resources/cube.obj tests/resources/two_parts.obj" \
         "$B/meshgap_bench_build --repeat 3 tests/resources/cube.obj tests/resources/two_parts.obj"
 fi
+if [ -f "$shared/mbm/ur5/problems.tar.bz2" ]; then
+    # The suite's own tables: every scenario's row per checker, then certified over FCL + discrete per scenario.
+    suite="python3 python/meshgap/suite.py $shared/mbm/ur5/problems.tar.bz2 --checkers certified,discrete,fcl"
+    suite="$suite --time 10 --runs 1 --seed 1 --executable $B/../planners/meshgap_benchmark --database ''"
+    suite="$suite --out \$(mktemp -d) 2>/dev/null"
+    add mbm_suite bench/motionbenchmaker.md meshgap_benchmark "$suite" "$suite --limit 2"
+fi
 add scaling bench/scaling.md meshgap_bench_scaling \
     "$B/meshgap_bench_scaling" \
     "$B/meshgap_bench_scaling --max 16384 --poses 50 --fast-on-demand 3"

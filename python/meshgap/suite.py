@@ -11,17 +11,20 @@ run by meshgap_benchmark for planners x checkers x runs, then one table per scen
         [--scenarios box_ur5,cage_ur5] [--limit 10] [--time 10] [--runs 1] [--seed 1] [--out suite]
 
 Writes OUT/<scenario>/<NNNN>/*.log (OMPL's .log files, one per planner[checker]), OUT/summary.md (the table, also
-printed) and OUT/results.db (every .log loaded by ompl_benchmark_statistics, for Planner Arena; skipped with a note
-when ompl-demos is missing). --urdf and --srdf default to the only
-*.urdf and *.srdf beside the archive or folder. meshgap_benchmark is found as meshgap.campaign finds it
-($MESHGAP_BENCHMARK, beside the package, or on PATH). Progress goes to stderr, one line a problem. Also runs as a
-file, without the compiled package: python3 python/meshgap/suite.py ... --executable build/planners/meshgap_benchmark.
+printed), OUT/comparison.md (when both ran: meshgap-certified over fcl per scenario, valid paths per minute and
+median planning time, and the median scenario's; also printed) and OUT/results.db (every .log loaded by
+ompl_benchmark_statistics, for Planner Arena; skipped with a note when ompl-demos is missing). --urdf and --srdf
+default to the only *.urdf and *.srdf beside the archive or folder. meshgap_benchmark is found as meshgap.campaign
+finds it ($MESHGAP_BENCHMARK, beside the package, or on PATH). Progress goes to stderr, one line a problem. Also
+runs as a file, without the compiled package: python3 python/meshgap/suite.py ... --executable
+build/planners/meshgap_benchmark.
 """
 import argparse
 import glob
 import math
 import os
 import re
+import statistics
 import subprocess
 import sys
 import tarfile
@@ -151,6 +154,29 @@ def table(rows):
     return "\n".join(out)
 
 
+def comparison(rows, subject="meshgap-certified", peer="fcl"):
+    """The Markdown table of subject / peer per scenario and planner, from the rows of table(): valid paths per minute
+    and median planning time, each as the subject's over the peer's (inf where the peer has none), then the median
+    scenario's of each. "" when no scenario has both checkers."""
+    pairs = []
+    for (scenario, planner), r in sorted(rows.items()):
+        name, _, checker = planner.partition("[")
+        other = rows.get((scenario, "%s[%s]" % (name, peer)))
+        if checker.rstrip("]") != subject or other is None:
+            continue
+        rate = r["valid_per_minute"] / other["valid_per_minute"] if other["valid_per_minute"] > 0 else math.inf
+        median = r["median"] / other["median"] if other["median"] > 0 else math.inf
+        pairs.append((scenario, name, rate, median))
+    if not pairs:
+        return ""
+    out = ["| scenario | planner | valid paths / min, %s / %s | median s, %s / %s |" % (subject, peer, subject, peer),
+           "|---|---|---|---|"]
+    out += ["| %s | %s | %.3g | %.3g |" % p for p in pairs]
+    out.append("| median scenario | | %.3g | %.3g |" % (statistics.median(p[2] for p in pairs),
+                                                     statistics.median(p[3] for p in pairs)))
+    return "\n".join(out)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m meshgap.suite", description=__doc__.split("\n\n")[0])
     parser.add_argument("problems", help="a MotionBenchMaker problems folder or its .tar.bz2")
@@ -205,6 +231,11 @@ def main(argv=None):
         with open(os.path.join(args.out, "summary.md"), "w", encoding="utf-8") as f:
             f.write(text + "\n")
         print(text)
+        versus = comparison(rows)
+        if versus:
+            with open(os.path.join(args.out, "comparison.md"), "w", encoding="utf-8") as f:
+                f.write(versus + "\n")
+            print("\n" + versus)
         if args.database:
             try:
                 # One experiment per .log: problems of different scenarios share their file names.

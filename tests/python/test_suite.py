@@ -104,3 +104,18 @@ def test_log_reader_and_percentiles():
     assert row["valid_per_minute"] == 60.0 * 1 / 6.0
     assert row["min_clearance"] == -0.01
     assert row["median"] == 1.5
+
+
+def test_comparison_is_each_scenarios_ratio_and_the_median_scenarios():
+    def row(rate, median):
+        return {"valid_per_minute": rate, "median": median}
+    rows = {("a", "RRTConnect[meshgap-certified]"): row(30.0, 0.2), ("a", "RRTConnect[fcl]"): row(10.0, 0.4),
+            ("b", "RRTConnect[meshgap-certified]"): row(5.0, 1.0), ("b", "RRTConnect[fcl]"): row(20.0, 0.5),
+            ("c", "RRTConnect[meshgap-certified]"): row(8.0, 0.3), ("c", "RRTConnect[fcl]"): row(0.0, 0.0),
+            ("d", "RRTConnect[meshgap-certified]"): row(1.0, 1.0),  # no peer: no row
+            ("a", "RRTConnect[meshgap-discrete]"): row(99.0, 0.01)}
+    lines = suite.comparison(rows).splitlines()
+    cells = [[c.strip() for c in l.split("|")[1:-1]] for l in lines[2:]]
+    assert cells == [["a", "RRTConnect", "3", "0.5"], ["b", "RRTConnect", "0.25", "2"],
+                     ["c", "RRTConnect", "inf", "inf"], ["median scenario", "", "3", "2"]]
+    assert suite.comparison({("a", "RRTConnect[fcl]"): row(1.0, 1.0)}) == ""
