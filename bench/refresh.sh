@@ -34,9 +34,11 @@ shared=${MESHGAP_SHARED_DATA_DIR:-$root/../shared/data}
 fanuc=$shared/robots/moveit_resources_fanuc_description/meshes/collision
 B=$build/bench
 
-# name | page | target | command (full) | command (quick). Each command is run from the repository's root.
+# name, page, target, command (full), command (quick), joined by the unit separator (a command may hold a pipe).
+# Each command is run from the repository's root.
+sep=$'\x1f'
 blocks=()
-add() { blocks+=("$1|$2|$3|$4|$5"); }
+add() { blocks+=("$1$sep$2$sep$3$sep$4$sep$5"); }
 data="" few=Easy,Twistycool,cubicles,hand_bowl,twisted
 [ -d "$shared/omplapp" ] || { data="--data ''"; few=hand_bowl,slotted_wall,twisted; }
 add queries bench/queries.md meshgap_bench_queries \
@@ -54,7 +56,23 @@ else
         "$B/meshgap_bench_build --repeat 7 tests/resources/cube.obj tests/resources/two_parts.obj" \
         "$B/meshgap_bench_build --repeat 3 tests/resources/cube.obj tests/resources/two_parts.obj"
 fi
+ur5=$shared/mbm/ur5/meshes
+if [ -d "$fanuc" ] && [ -d "$ur5" ]; then
+    # coal's and trueform's protocols on two pairs each: one table, a row per run (the header kept once).
+    pp="$B/meshgap_bench_pair_protocols"
+    runs="$pp --protocol coal --robot $fanuc/link_1.stl --world $fanuc/link_2.stl POSES_COAL"
+    runs="$runs; $pp --protocol coal --robot $ur5/ur5/collision/forearm.stl --world $ur5/ur5/collision/upperarm.stl"
+    runs="$runs POSES_COAL; $pp --protocol trueform --mesh $fanuc/link_2.stl POSES_TF"
+    runs="$runs; $pp --protocol trueform --mesh $ur5/robotiq/robotiq_85_base_link_fine.STL POSES_TF"
+    full=${runs//POSES_COAL/}; full=${full//POSES_TF/}
+    short=${runs//POSES_COAL/--poses 2000}; short=${short//POSES_TF/--poses 300}
+    add pair_protocols bench/queries.md meshgap_bench_pair_protocols \
+        "{ $full; } | grep '^|' | awk '!seen[\$0]++'" "{ $short; } | grep '^|' | awk '!seen[\$0]++'"
+fi
 if [ -f "$shared/mbm/ur5/problems.tar.bz2" ]; then
+    add moveit_problems bench/motionbenchmaker.md meshgap_bench_moveit_problems \
+        "$B/meshgap_bench_moveit_problems --data $shared/mbm/ur5 --quiet" \
+        "$B/meshgap_bench_moveit_problems --data $shared/mbm/ur5 --quiet --limit 10"
     # The suite's own tables: every scenario's row per checker, then certified over FCL + discrete per scenario.
     suite="python3 python/meshgap/suite.py $shared/mbm/ur5/problems.tar.bz2 --checkers certified,discrete,fcl"
     suite="$suite --time 10 --runs 1 --seed 1 --executable $B/../planners/meshgap_benchmark --database ''"
@@ -70,24 +88,24 @@ add stress bench/scaling.md meshgap_bench_stress \
 
 chosen=()
 for b in "${blocks[@]}"; do
-    name=${b%%|*}
+    name=${b%%"$sep"*}
     if [ -z "$only" ] || [[ ",$only," == *",$name,"* ]]; then
         chosen+=("$b")
     fi
 done
 if [ -n "$only" ]; then
     for n in ${only//,/ }; do
-        printf '%s\n' "${chosen[@]}" | grep -q "^$n|" || { echo "bench/refresh.sh: no block '$n' (see --list)" >&2; exit 2; }
+        printf '%s\n' "${chosen[@]}" | grep -q "^$n$sep" || { echo "bench/refresh.sh: no block '$n' (see --list)" >&2; exit 2; }
     done
 fi
 
 if [ $list = 1 ]; then
-    for b in "${chosen[@]}"; do IFS='|' read -r name page _ <<< "$b"; echo "$name $page"; done
+    for b in "${chosen[@]}"; do IFS=$sep read -r name page _ <<< "$b"; echo "$name $page"; done
     exit 0
 fi
 
-pages=$(for b in "${chosen[@]}"; do IFS='|' read -r _ page _ <<< "$b"; echo "$page"; done | sort -u)
-expect=$(for b in "${chosen[@]}"; do IFS='|' read -r name page _ <<< "$b"; echo "$page:$name"; done)
+pages=$(for b in "${chosen[@]}"; do IFS=$sep read -r _ page _ <<< "$b"; echo "$page"; done | sort -u)
+expect=$(for b in "${chosen[@]}"; do IFS=$sep read -r name page _ <<< "$b"; echo "$page:$name"; done)
 
 if [ $dry = 1 ]; then
     tmp=$(mktemp -d)
@@ -96,7 +114,7 @@ if [ $dry = 1 ]; then
     # shellcheck disable=SC2086
     python3 bench/refresh_tables.py check $(for p in $pages; do echo "$tmp/$(basename "$p")"; done) --expect $expect
     for b in "${chosen[@]}"; do
-        IFS='|' read -r name page target full short <<< "$b"
+        IFS=$sep read -r name page target full short <<< "$b"
         cmd=$([ $quick = 1 ] && echo "$short" || echo "$full")
         printf 'Rows of %s (made up):\n\n| a | b |\n|---|---|\n| 1 | 2 |\n' "$name" > "$tmp/$name.out"
         python3 bench/refresh_tables.py write "$tmp/$(basename "$page")" "$name" "$tmp/$name.out" \
@@ -110,7 +128,7 @@ if [ $dry = 1 ]; then
 fi
 
 if [ $nobuild = 0 ]; then
-    targets=$(for b in "${chosen[@]}"; do IFS='|' read -r _ _ target _ <<< "$b"; echo "$target"; done | sort -u)
+    targets=$(for b in "${chosen[@]}"; do IFS=$sep read -r _ _ target _ <<< "$b"; echo "$target"; done | sort -u)
     # shellcheck disable=SC2086
     cmake --build "$build" -j"${MESHGAP_JOBS:-2}" --target $targets
 fi
@@ -122,7 +140,7 @@ mode=$([ $quick = 1 ] && echo " --quick" || echo "")
 out=$(mktemp)
 trap 'rm -f "$out"' EXIT
 for b in "${chosen[@]}"; do
-    IFS='|' read -r name page target full short <<< "$b"
+    IFS=$sep read -r name page target full short <<< "$b"
     cmd=$([ $quick = 1 ] && echo "$short" || echo "$full")
     before=$(cut -d' ' -f1 /proc/loadavg)
     start=$(date +%s)
