@@ -56,6 +56,18 @@ else
         "$B/meshgap_bench_build --repeat 7 tests/resources/cube.obj tests/resources/two_parts.obj" \
         "$B/meshgap_bench_build --repeat 3 tests/resources/cube.obj tests/resources/two_parts.obj"
 fi
+add triangle_distance bench/primitives.md meshgap_bench_triangle_distance \
+    "$B/meshgap_bench_triangle_distance --repeats 21 | grep -v '^(checksum'" \
+    "$B/meshgap_bench_triangle_distance --repeats 5 | grep -v '^(checksum'"
+if [ -d "$shared/omplapp" ]; then
+    add enumeration bench/paper.md meshgap_bench_enumeration \
+        "$B/meshgap_bench_enumeration --data $shared/omplapp --repeats 31" \
+        "$B/meshgap_bench_enumeration --data $shared/omplapp --repeats 5"
+fi
+if [ -d "$fanuc" ]; then
+    add robot_queries bench/robots.md meshgap_bench_robot_queries \
+        "$B/meshgap_bench_robot_queries --paths 10 --repeat 2" "$B/meshgap_bench_robot_queries --paths 2 --repeat 1"
+fi
 ur5=$shared/mbm/ur5/meshes
 if [ -d "$fanuc" ] && [ -d "$ur5" ]; then
     # coal's and trueform's protocols on two pairs each: one table, a row per run (the header kept once).
