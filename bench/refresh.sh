@@ -68,6 +68,20 @@ if [ -d "$fanuc" ]; then
     add robot_queries bench/robots.md meshgap_bench_robot_queries \
         "$B/meshgap_bench_robot_queries --paths 10 --repeat 2" "$B/meshgap_bench_robot_queries --paths 2 --repeat 1"
 fi
+if [ -d "$fanuc" ]; then
+    # The field bench: fanuc links and two generated CAD-like meshes, four streams each.
+    cad=/tmp/meshgap_cad_meshes
+    q="$B/meshgap_bench_queries --clock thread-cpu --load-repeats 1 STATES"
+    field="python3 bench/cad_like_meshes.py $cad >/dev/null"
+    field="$field && $q --robot $fanuc/link_6.stl --world $fanuc/base_link.stl"
+    field="$field && $q --robot $fanuc/link_1.stl --world $fanuc/link_2.stl"
+    field="$field && $q --robot $fanuc/link_4.stl --world $fanuc/base_link.stl,$fanuc/link_1.stl,$fanuc/link_2.stl"
+    field="$field,$fanuc/link_3.stl,$fanuc/link_5.stl,$fanuc/link_6.stl"
+    field="$field && $q --robot $cad/cad_gripper.stl --world $cad/cad_assembly.stl"
+    field="$field && $q --robot $fanuc/link_4.stl --world $cad/cad_assembly.stl"
+    add field bench/queries.md meshgap_bench_queries \
+        "${field//STATES/--states 600 --random 600}" "${field//STATES/--states 100 --random 100}"
+fi
 ur5=$shared/mbm/ur5/meshes
 if [ -d "$fanuc" ] && [ -d "$ur5" ]; then
     # coal's and trueform's protocols on two pairs each: one table, a row per run (the header kept once).
@@ -158,6 +172,7 @@ for b in "${chosen[@]}"; do
     start=$(date +%s)
     echo "== $name: $cmd" >&2
     bash -c "$cmd" > "$out"
+    sed -i "s|$root/||g" "$out"  # file names as the commands spell them, from the repository's root
     after=$(cut -d' ' -f1 /proc/loadavg)
     stamp="Measured by \`bench/refresh.sh$mode\` at $commit, $(date -u '+%Y-%m-%d %H:%M') UTC, in $(( $(date +%s) - start )) s;"
     stamp="$stamp load $before at the start, $after at the end (1-minute average, $(nproc) cores)."
