@@ -1,6 +1,7 @@
 #include "meshgap/mesh/Mesh.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <numeric>
@@ -11,6 +12,22 @@
 
 namespace meshgap
 {
+    void checkVertex(const std::string &where, std::size_t index, const Eigen::Vector3d &p)
+    {
+        if (!p.allFinite())
+            throw Exception(where, "vertex " + std::to_string(index) + " has a NaN or infinite coordinate");
+        for (int k = 0; k < 3; ++k)
+            if (std::abs(p[k]) > MAX_MAGNITUDE)
+            {
+                char value[32];  // the shortest decimal that reads back as the coordinate
+                const std::to_chars_result written = std::to_chars(value, value + sizeof value, p[k]);
+                throw Exception(where, "vertex " + std::to_string(index) + " has " + "xyz"[k] + " = " +
+                                           std::string(value, written.ptr) +
+                                           ", beyond 1e12 in magnitude, the largest meshgap's geometry answers "
+                                           "reliably");
+            }
+    }
+
     Eigen::AlignedBox3d Mesh::bounds() const
     {
         Eigen::AlignedBox3d box;
@@ -31,13 +48,7 @@ namespace meshgap
         if (triangles.empty())
             throw Exception(where, "no triangles (an empty scene, a point cloud or only lines?)");
         for (std::size_t i = 0; i < vertices.size(); ++i)
-        {
-            if (!vertices[i].allFinite())
-                throw Exception(where, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
-            if (vertices[i].cwiseAbs().maxCoeff() > MAX_MAGNITUDE)
-                throw Exception(where, "vertex " + std::to_string(i) + " has a coordinate beyond 1e12 in magnitude, "
-                                       "the largest meshgap's geometry answers reliably");
-        }
+            checkVertex(where, i, vertices[i]);
         for (std::size_t t = 0; t < triangles.size(); ++t)
             for (std::uint32_t index : triangles[t])
                 if (index >= vertices.size())

@@ -33,6 +33,11 @@ namespace meshgap
         void validate() const;
     };
 
+    /** \brief Throws meshgap::Exception naming \e where unless every coordinate of \e p is finite and within
+        MAX_MAGNITUDE (meshgap/Limits.h); the message names the vertex (\e index) and, for one beyond the limit, its
+        value. Mesh::validate() checks each vertex with it, and loadMesh() each vertex as it reads it. */
+    void checkVertex(const std::string &where, std::size_t index, const Eigen::Vector3d &p);
+
     /** \brief What cleaning a mesh removed. */
     struct CleanReport
     {
