@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <deque>
 #include <functional>
 #include <limits>
 #include <random>
@@ -131,6 +132,41 @@ namespace
                 t = m.triangles[std::uniform_int_distribution<std::size_t>(0, m.triangles.size() - 1)(rng)];
             m.triangles.push_back(t);
         }
+    }
+
+    /** \brief The component of each vertex by breadth-first search over the triangle edges, numbered in order of
+        each component's first vertex. */
+    std::vector<std::uint32_t> componentsByBreadthFirstSearch(const Mesh &m, std::uint32_t &count)
+    {
+        std::vector<std::vector<std::uint32_t>> neighbours(m.vertices.size());
+        for (const Triangle &t : m.triangles)
+            for (int k = 0; k < 3; ++k)
+            {
+                neighbours[t[k]].push_back(t[(k + 1) % 3]);
+                neighbours[t[(k + 1) % 3]].push_back(t[k]);
+            }
+        std::vector<std::uint32_t> label(m.vertices.size(), UINT32_MAX);
+        count = 0;
+        for (std::uint32_t start = 0; start < m.vertices.size(); ++start)
+        {
+            if (label[start] != UINT32_MAX)
+                continue;
+            std::deque<std::uint32_t> queue{start};
+            label[start] = count;
+            while (!queue.empty())
+            {
+                const std::uint32_t v = queue.front();
+                queue.pop_front();
+                for (std::uint32_t w : neighbours[v])
+                    if (label[w] == UINT32_MAX)
+                    {
+                        label[w] = count;
+                        queue.push_back(w);
+                    }
+            }
+            ++count;
+        }
+        return label;
     }
 }  // namespace
 
@@ -321,5 +357,27 @@ TEST(Mesh, FlatIndexSetKeepsTheFirstOfEqualKeysWhateverTheHashCollisions)
                                        [&](std::uint32_t j) { return keys[j] == keys[i]; }),
                       first[i])
                 << "hash " << h << ", key " << i;
+    }
+}
+
+TEST(Mesh, ComponentLabelsEqualABreadthFirstSearch)
+{
+    for (unsigned seed = 1; seed <= 30; ++seed)
+    {
+        std::mt19937 rng(seed);
+        Mesh m;
+        m.source = "random";
+        const std::uint32_t n = 5 + seed * 7;
+        for (std::uint32_t i = 0; i < n; ++i)
+            m.vertices.emplace_back(i, 0, 0);
+        // Few triangles over many vertices: many components, some vertices in none.
+        std::uniform_int_distribution<std::uint32_t> vertex(0, n - 1);
+        for (std::uint32_t t = 0; t < n / 3 + seed % 4; ++t)
+            m.triangles.push_back({vertex(rng), vertex(rng), vertex(rng)});
+        std::uint32_t count = 0, want = 0;
+        const std::vector<std::uint32_t> label = labelComponents(m, count);
+        EXPECT_EQ(label, componentsByBreadthFirstSearch(m, want)) << "seed " << seed;
+        EXPECT_EQ(count, want) << "seed " << seed;
+        EXPECT_EQ(countComponents(m), want) << "seed " << seed;
     }
 }
