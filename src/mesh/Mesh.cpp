@@ -110,7 +110,7 @@ namespace meshgap
         const std::vector<Eigen::Vector3d> &vertices = mesh.vertices;
         std::vector<std::uint32_t> weldTo(vertices.size());
         {
-            FlatIndexSet firstAt(vertices.size());
+            FlatIndexSet firstAt(vertices.size() / 4);  // a flat-shaded file repeats a position about 6 times
             for (std::size_t i = 0; i < vertices.size(); ++i)
             {
                 const Eigen::Vector3d &p = vertices[i];

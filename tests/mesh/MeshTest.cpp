@@ -335,7 +335,7 @@ TEST(Mesh, CleanEqualsBruteForceOnAdversarialInputs)
 TEST(Mesh, FlatIndexSetKeepsTheFirstOfEqualKeysWhateverTheHashCollisions)
 {
     // Keys 0..n-1 with n / 3 distinct values; hashes from one for all (every probe reads every slot, equal tags) to
-    // few slots with distinct tags. The answer must be the first index of each value, as a linear search finds it.
+    // few slots with distinct tags, and tags in the last slot (probes wrap around). The answer must be the first index of each value, as a linear search finds it.
     const std::size_t n = 300;
     std::vector<int> keys(n);
     std::mt19937 rng(3);
@@ -348,10 +348,11 @@ TEST(Mesh, FlatIndexSetKeepsTheFirstOfEqualKeysWhateverTheHashCollisions)
         [](int) { return std::uint64_t(0); },
         [](int k) { return std::uint64_t(k % 5) << 32; },
         [](int k) { return std::uint64_t(k % 4) * 16; },
-        [](int k) { return ~std::uint64_t(0) - std::uint64_t(k); }};
+        [](int k) { return ~std::uint64_t(0) - std::uint64_t(k); },
+        [](int k) { return std::uint64_t(k % 7) << 61; }};
     for (std::size_t h = 0; h < hashes.size(); ++h)
     {
-        FlatIndexSet set(n);
+        FlatIndexSet set(h % 2 == 0 ? n : 0);  // sized for all, or doubling from 16 slots
         for (std::size_t i = 0; i < n; ++i)
             EXPECT_EQ(set.findOrInsert(hashes[h](keys[i]), static_cast<std::uint32_t>(i),
                                        [&](std::uint32_t j) { return keys[j] == keys[i]; }),
