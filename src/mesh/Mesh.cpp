@@ -12,20 +12,19 @@
 
 namespace meshgap
 {
-    void checkVertex(const std::string &where, std::size_t index, const Eigen::Vector3d &p)
+    void detail::throwBadVertex(const std::string &where, std::size_t index, const Eigen::Vector3d &p)
     {
-        if (!p.allFinite())
-            throw Exception(where, "vertex " + std::to_string(index) + " has a NaN or infinite coordinate");
-        for (int k = 0; k < 3; ++k)
+        std::string problem = "has a NaN or infinite coordinate";
+        for (int k = 0; k < 3 && p.allFinite(); ++k)
             if (std::abs(p[k]) > MAX_MAGNITUDE)
             {
                 char value[32];  // the shortest decimal that reads back as the coordinate
                 const std::to_chars_result written = std::to_chars(value, value + sizeof value, p[k]);
-                throw Exception(where, "vertex " + std::to_string(index) + " has " + "xyz"[k] + " = " +
-                                           std::string(value, written.ptr) +
-                                           ", beyond 1e12 in magnitude, the largest meshgap's geometry answers "
-                                           "reliably");
+                problem = std::string("has ") + "xyz"[k] + " = " + std::string(value, written.ptr) +
+                          ", beyond 1e12 in magnitude, the largest meshgap's geometry answers reliably";
+                break;
             }
+        throw Exception(where, "vertex " + std::to_string(index) + " " + problem);
     }
 
     Eigen::AlignedBox3d Mesh::bounds() const

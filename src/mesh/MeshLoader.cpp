@@ -156,6 +156,15 @@ namespace meshgap
         Mesh mesh;
         mesh.source = path;
         LoadReport report;
+        // Room for every mesh once (a mesh that several nodes place grows the arrays past it).
+        std::size_t vertices = 0, faces = 0;
+        for (unsigned int i = 0; i < scene->mNumMeshes; ++i)
+        {
+            vertices += scene->mMeshes[i]->mNumVertices;
+            faces += scene->mMeshes[i]->mNumFaces;
+        }
+        mesh.vertices.reserve(vertices);
+        mesh.triangles.reserve(faces);
         const std::string where = excerpt(path);
         Collector collector{scene, where, mesh, report};
         collector.visit(scene->mRootNode, aiMatrix4x4());
