@@ -20,7 +20,8 @@ namespace meshgap
             bool operator<(const AxisKey &o) const { return key < o.key || (key == o.key && triangle < o.triangle); }
         };
 
-        /** \brief Ranges of at least this many triangles are sorted by radixSort(), smaller ones by std::sort. */
+        /** \brief Ranges of at least this many triangles are sorted by radixSort(), smaller ones by std::sort (about
+            where the radix sort's six passes and 2048-bucket counts cost what std::sort's n log n compares do). */
         constexpr std::uint32_t RADIX_FROM = 1024;
 
         /** \brief A coordinate's bits as an unsigned integer in the same order as the coordinates (finite ones; -0
@@ -105,9 +106,18 @@ namespace meshgap
                 for (int axis = 0; axis < 3; ++axis)
                 {
                     // By centroid, ties by triangle index (AxisKey's order): a stable sort of the triangles in index
-                    // order.
+                    // order, or (few triangles) std::sort by AxisKey.
                     std::vector<std::uint32_t> &byAxis = axisOrder[axis];
                     byAxis.resize(n);
+                    if (n < RADIX_FROM)
+                    {
+                        for (std::size_t t = 0; t < n; ++t)
+                            sorted[t] = {centroid[t][axis], static_cast<std::uint32_t>(t), 0u};
+                        std::sort(sorted.begin(), sorted.end());
+                        for (std::size_t k = 0; k < n; ++k)
+                            byAxis[k] = sorted[k].triangle;
+                        continue;
+                    }
                     for (std::size_t t = 0; t < n; ++t)
                     {
                         radixKeys[t] = orderedBits(centroid[t][axis]);

@@ -142,10 +142,12 @@ TEST(TriangleBvhBuild, EverySplitIsTheLeastCostCutOfASortedOrder)
     // Lattice meshes: many centroids equal along an axis (ties broken by triangle index).
     expectEverySplitLeastCost(test::box(1, 2, 3, 4), "box");
     expectEverySplitLeastCost(test::grid(2, 1, 12, 9), "grid");
-    // Turned, elongated: rotated nodes, the largest of them above the size sorted by radix.
+    // More triangles than the build sorts with std::sort (1,024): its presorted lists by radix sort.
+    expectEverySplitLeastCost(randomSoup(8, 700, 2), "large soup");
+    // Turned, elongated: rotated nodes, the largest of them sorted by radix too.
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-    EXPECT_GE(expectEverySplitLeastCost(test::transformed(test::box(0.2, 0.3, 3, 8), X), "turned box"), 256u);
+    EXPECT_GE(expectEverySplitLeastCost(test::transformed(test::box(0.2, 0.3, 3, 10), X), "turned box"), 1024u);
     expectEverySplitLeastCost(test::transformed(randomSoup(9, 400, 2), X), "turned soup");
     expectEverySplitLeastCost(test::transformed(test::icosphere(1.0, 3), X), "turned icosphere");
 }
