@@ -20,10 +20,12 @@ namespace meshgap
             bool operator<(const AxisKey &o) const { return key < o.key || (key == o.key && triangle < o.triangle); }
         };
 
-        /** \brief Ranges of at least this many triangles are sorted by radixSort(), smaller ones by std::sort (below
-            it the radix sort's six passes and 2048-bucket counts cost more instructions: 100 M more than std::sort on
-            world100's 300 sorts of 1,152 triangles). */
-        constexpr std::uint32_t RADIX_FROM = 4096;
+        /** \brief A rotated node's ranges of at least this many triangles are sorted by radixSort(), smaller ones by
+            std::sort. (The presorted lists are sorted by radixSort() at every size: on world100's 100 parts of 1,152
+            triangles it takes 100 M more instructions than std::sort, yet the build measured faster with it, 155-157
+            ms against 170-174 before, and no faster than before with std::sort; std::sort's compares are branches
+            that mispredict.) */
+        constexpr std::uint32_t RADIX_FROM = 1024;
 
         /** \brief A coordinate's bits as an unsigned integer in the same order as the coordinates (finite ones; -0
             as +0, which compares equal to it): the sign bit set for positives, every bit flipped for negatives. */
@@ -107,18 +109,9 @@ namespace meshgap
                 for (int axis = 0; axis < 3; ++axis)
                 {
                     // By centroid, ties by triangle index (AxisKey's order): a stable sort of the triangles in index
-                    // order, or (few triangles) std::sort by AxisKey.
+                    // order.
                     std::vector<std::uint32_t> &byAxis = axisOrder[axis];
                     byAxis.resize(n);
-                    if (n < RADIX_FROM)
-                    {
-                        for (std::size_t t = 0; t < n; ++t)
-                            sorted[t] = {centroid[t][axis], static_cast<std::uint32_t>(t), 0u};
-                        std::sort(sorted.begin(), sorted.end());
-                        for (std::size_t k = 0; k < n; ++k)
-                            byAxis[k] = sorted[k].triangle;
-                        continue;
-                    }
                     for (std::size_t t = 0; t < n; ++t)
                     {
                         radixKeys[t] = orderedBits(centroid[t][axis]);
