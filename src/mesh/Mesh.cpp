@@ -1,17 +1,32 @@
 #include "meshgap/mesh/Mesh.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstring>
-#include <memory_resource>
 #include <numeric>
-#include <unordered_map>
 
 #include "meshgap/Exception.h"
+#include "meshgap/FlatIndexSet.h"
 #include "meshgap/Limits.h"
 
 namespace meshgap
 {
+    void detail::throwBadVertex(const std::string &where, std::size_t index, const Eigen::Vector3d &p)
+    {
+        std::string problem = "has a NaN or infinite coordinate";
+        for (int k = 0; k < 3 && p.allFinite(); ++k)
+            if (std::abs(p[k]) > MAX_MAGNITUDE)
+            {
+                char value[32];  // the shortest decimal that reads back as the coordinate
+                const std::to_chars_result written = std::to_chars(value, value + sizeof value, p[k]);
+                problem = std::string("has ") + "xyz"[k] + " = " + std::string(value, written.ptr) +
+                          ", beyond 1e12 in magnitude, the largest meshgap's geometry answers reliably";
+                break;
+            }
+        throw Exception(where, "vertex " + std::to_string(index) + " " + problem);
+    }
+
     Eigen::AlignedBox3d Mesh::bounds() const
     {
         Eigen::AlignedBox3d box;
@@ -32,13 +47,7 @@ namespace meshgap
         if (triangles.empty())
             throw Exception(where, "no triangles (an empty scene, a point cloud or only lines?)");
         for (std::size_t i = 0; i < vertices.size(); ++i)
-        {
-            if (!vertices[i].allFinite())
-                throw Exception(where, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
-            if (vertices[i].cwiseAbs().maxCoeff() > MAX_MAGNITUDE)
-                throw Exception(where, "vertex " + std::to_string(i) + " has a coordinate beyond 1e12 in magnitude, "
-                                       "the largest meshgap's geometry answers reliably");
-        }
+            checkVertex(where, i, vertices[i]);
         for (std::size_t t = 0; t < triangles.size(); ++t)
             for (std::uint32_t index : triangles[t])
                 if (index >= vertices.size())
@@ -49,33 +58,36 @@ namespace meshgap
 
     namespace
     {
-        struct PositionHash
+        /** \brief The bits of a coordinate as welding compares it: -0 as +0 (the two are equal under ==). */
+        std::uint64_t weldBits(double c)
         {
-            std::size_t operator()(const Eigen::Vector3d &p) const
-            {
-                std::size_t h = 1469598103934665603ull;
-                for (int k = 0; k < 3; ++k)
-                {
-                    double c = p[k] == 0.0 ? 0.0 : p[k];  // -0 and +0 weld together
-                    std::uint64_t bits;
-                    std::memcpy(&bits, &c, sizeof bits);
-                    h = (h ^ bits) * 1099511628211ull;
-                    h ^= h >> 29;
-                }
-                return h;
-            }
-        };
-        struct PositionEqual
+            c = c == 0.0 ? 0.0 : c;
+            std::uint64_t bits;
+            std::memcpy(&bits, &c, sizeof bits);
+            return bits;
+        }
+
+        /** \brief SplitMix64's finaliser: every input bit moves every output bit. */
+        std::uint64_t mixBits(std::uint64_t h)
         {
-            bool operator()(const Eigen::Vector3d &a, const Eigen::Vector3d &b) const { return a == b; }
-        };
-        struct TriangleKeyHash
+            h ^= h >> 30;
+            h *= 0xbf58476d1ce4e5b9ull;
+            h ^= h >> 27;
+            h *= 0x94d049bb133111ebull;
+            return h ^ (h >> 31);
+        }
+
+        /** \brief Equal positions (==, so -0 as +0) hash equal. */
+        std::uint64_t positionHash(const Eigen::Vector3d &p)
         {
-            std::size_t operator()(const Triangle &t) const
-            {
-                return (std::size_t(t[0]) * 73856093u) ^ (std::size_t(t[1]) * 19349663u) ^ (std::size_t(t[2]) * 83492791u);
-            }
-        };
+            return mixBits(mixBits(mixBits(weldBits(p.x())) ^ weldBits(p.y())) ^ weldBits(p.z()));
+        }
+
+        /** \brief Keyed by a triangle's sorted indices. */
+        std::uint64_t triangleHash(const Triangle &key)
+        {
+            return mixBits(((std::uint64_t(key[0]) << 32) | key[1]) ^ mixBits(key[2]));
+        }
 
         bool isDegenerate(const Mesh &mesh, const Triangle &t)
         {
@@ -92,38 +104,48 @@ namespace meshgap
     CleanReport cleanMesh(Mesh &mesh)
     {
         CleanReport report;
-        // The two maps' nodes come from one arena, released at once on return (no allocation per node).
-        std::pmr::monotonic_buffer_resource arena;
-        // 1. Weld identical positions.
-        std::pmr::unordered_map<Eigen::Vector3d, std::uint32_t, PositionHash, PositionEqual> firstAt(&arena);
-        firstAt.reserve(mesh.vertices.size());
-        std::vector<std::uint32_t> weldTo(mesh.vertices.size());
-        for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-            weldTo[i] = firstAt.emplace(mesh.vertices[i], static_cast<std::uint32_t>(i)).first->second;
+        // 1. Weld identical positions (compared with ==, as the hash keys -0 as +0): each vertex to the first
+        // vertex at its position.
+        const std::vector<Eigen::Vector3d> &vertices = mesh.vertices;
+        std::vector<std::uint32_t> weldTo(vertices.size());
+        {
+            FlatIndexSet firstAt(vertices.size() / 4);  // a flat-shaded file repeats a position about 6 times
+            for (std::size_t i = 0; i < vertices.size(); ++i)
+            {
+                const Eigen::Vector3d &p = vertices[i];
+                weldTo[i] = firstAt.findOrInsert(positionHash(p), static_cast<std::uint32_t>(i),
+                                                 [&](std::uint32_t j) { return vertices[j] == p; });
+            }
+        }
         for (Triangle &t : mesh.triangles)
             for (std::uint32_t &index : t)
                 index = weldTo[index];
 
         // 2. Drop degenerate and duplicated triangles (same vertex set, either winding).
-        std::pmr::unordered_map<Triangle, std::uint32_t, TriangleKeyHash> seen(&arena);
-        seen.reserve(mesh.triangles.size());
-        std::vector<Triangle> kept;
+        std::vector<Triangle> kept, keys;  // kept triangles, and each one's sorted indices
         kept.reserve(mesh.triangles.size());
-        for (const Triangle &t : mesh.triangles)
+        keys.reserve(mesh.triangles.size());
         {
-            if (isDegenerate(mesh, t))
+            FlatIndexSet seen(mesh.triangles.size());
+            for (const Triangle &t : mesh.triangles)
             {
-                ++report.degenerate;
-                continue;
+                if (isDegenerate(mesh, t))
+                {
+                    ++report.degenerate;
+                    continue;
+                }
+                Triangle key = t;
+                std::sort(key.begin(), key.end());
+                const auto next = static_cast<std::uint32_t>(keys.size());
+                if (seen.findOrInsert(triangleHash(key), next, [&](std::uint32_t j) { return keys[j] == key; }) !=
+                    next)
+                {
+                    ++report.duplicates;
+                    continue;
+                }
+                keys.push_back(key);
+                kept.push_back(t);
             }
-            Triangle key = t;
-            std::sort(key.begin(), key.end());
-            if (!seen.emplace(key, 0u).second)
-            {
-                ++report.duplicates;
-                continue;
-            }
-            kept.push_back(t);
         }
         mesh.triangles.swap(kept);
 

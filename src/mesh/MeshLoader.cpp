@@ -23,7 +23,7 @@ namespace meshgap
         struct Collector
         {
             const aiScene *scene;
-            const std::string &path;
+            const std::string &where;  ///< the file, for messages (excerpt())
             Mesh &mesh;
             LoadReport &report;
             aiVector3D centerSum{0.f, 0.f, 0.f};
@@ -41,7 +41,8 @@ namespace meshgap
                     {
                         const aiVector3D p = transform * m->mVertices[k];
                         centerSum += p;
-                        mesh.vertices.emplace_back(p.x, p.y, p.z);
+                        const Eigen::Vector3d &v = mesh.vertices.emplace_back(p.x, p.y, p.z);
+                        checkVertex(where, mesh.vertices.size() - 1, v);  // NaN, Inf, beyond MAX_MAGNITUDE
                     }
                     report.rawVertices += m->mNumVertices;
                     for (unsigned int f = 0; f < m->mNumFaces; ++f)
@@ -56,7 +57,7 @@ namespace meshgap
                         for (int c = 0; c < 3; ++c)
                         {
                             if (face.mIndices[c] >= m->mNumVertices)
-                                throw Exception(excerpt(path), "face " + std::to_string(f) + " of mesh " +
+                                throw Exception(where, "face " + std::to_string(f) + " of mesh " +
                                                                    quote(m->mName.C_Str()) + " uses vertex index " +
                                                                    std::to_string(face.mIndices[c]) +
                                                                    " but the mesh has " +
@@ -155,7 +156,17 @@ namespace meshgap
         Mesh mesh;
         mesh.source = path;
         LoadReport report;
-        Collector collector{scene, path, mesh, report};
+        // Room for every mesh once (a mesh that several nodes place grows the arrays past it).
+        std::size_t vertices = 0, faces = 0;
+        for (unsigned int i = 0; i < scene->mNumMeshes; ++i)
+        {
+            vertices += scene->mMeshes[i]->mNumVertices;
+            faces += scene->mMeshes[i]->mNumFaces;
+        }
+        mesh.vertices.reserve(vertices);
+        mesh.triangles.reserve(faces);
+        const std::string where = excerpt(path);
+        Collector collector{scene, where, mesh, report};
         collector.visit(scene->mRootNode, aiMatrix4x4());
         if (report.rawVertices > 0)
         {
@@ -164,7 +175,9 @@ namespace meshgap
             report.omplAppCenter = Eigen::Vector3d(c.x, c.y, c.z);
         }
 
-        mesh.validate();  // NaN/Inf, indices, and "no triangles" (e.g. a point cloud or lines only)
+        // The vertices were checked as they were read, the indices as the faces were.
+        if (mesh.triangles.empty())
+            throw Exception(where, "no triangles (an empty scene, a point cloud or only lines?)");
         report.clean = cleanMesh(mesh);
         if (mesh.triangles.empty())
             throw Exception(excerpt(path), "no triangles left: all " + std::to_string(report.rawTriangles) +

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <unistd.h>
 
 #include "meshgap/Exception.h"
 #include "meshgap/mesh/MeshLoader.h"
@@ -115,4 +116,38 @@ TEST(MeshLoader, BadFilesThrowOneErrorNamingTheFile)
     {
         EXPECT_STREQ(e.what(), "/nonexistent/thing.stl: no such file");
     }
+}
+
+TEST(MeshLoader, ACoordinateBeyondTheLimitIsNamedAndOneWithinLoads)
+{
+    // Powers of two, exact in the float assimp reads: 2^42 (4.4e12) beyond MAX_MAGNITUDE, 2^39 (5.5e11) within.
+    const std::string dir = (std::filesystem::temp_directory_path() /
+                             ("meshgap_limit_" + std::to_string(::getpid()))).string();
+    std::filesystem::create_directories(dir);
+    auto write = [&](const std::string &name, const std::string &text)
+    {
+        std::ofstream(dir + "/" + name) << text;
+        return dir + "/" + name;
+    };
+    const std::string beyond = write("beyond.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 -4398046511104\n"
+                                                   "f 1 2 3\nf 1 2 4\n");
+    const std::string within = write("within.obj", "v 0 0 0\nv 549755813888 0 0\nv 0 1000000 0\nf 1 2 3\n");
+    int errors = 0;
+    try
+    {
+        loadMesh(beyond);
+    }
+    catch (const Exception &e)
+    {
+        ++errors;
+        const std::string what = e.what();
+        EXPECT_EQ(what.rfind(beyond + ": ", 0), 0u) << what;
+        EXPECT_NE(what.find("z = -4398046511104"), std::string::npos) << what;
+        EXPECT_NE(what.find("beyond 1e12"), std::string::npos) << what;
+    }
+    EXPECT_EQ(errors, 1);
+    const Mesh m = loadMesh(within);
+    ASSERT_EQ(m.vertices.size(), 3u);
+    EXPECT_EQ(m.bounds().max().x(), 549755813888.0);
+    std::filesystem::remove_all(dir);
 }

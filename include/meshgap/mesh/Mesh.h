@@ -3,9 +3,12 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "meshgap/Limits.h"
 
 namespace meshgap
 {
@@ -32,6 +35,23 @@ namespace meshgap
             checked here (see removeDegenerate()). */
         void validate() const;
     };
+
+    namespace detail
+    {
+        /** \brief checkVertex()'s error: throws meshgap::Exception naming \e where, the vertex \e index and what is
+            wrong with \e p. */
+        [[noreturn]] void throwBadVertex(const std::string &where, std::size_t index, const Eigen::Vector3d &p);
+    }  // namespace detail
+
+    /** \brief Throws meshgap::Exception naming \e where unless every coordinate of \e p is finite and within
+        MAX_MAGNITUDE (meshgap/Limits.h); the message names the vertex (\e index) and, for one beyond the limit, its
+        value. Mesh::validate() checks each vertex with it, and loadMesh() each vertex as it reads it. */
+    inline void checkVertex(const std::string &where, std::size_t index, const Eigen::Vector3d &p)
+    {
+        // Negated, so that a NaN (every comparison with it false) fails too.
+        if (!(std::abs(p.x()) <= MAX_MAGNITUDE && std::abs(p.y()) <= MAX_MAGNITUDE && std::abs(p.z()) <= MAX_MAGNITUDE))
+            detail::throwBadVertex(where, index, p);
+    }
 
     /** \brief What cleaning a mesh removed. */
     struct CleanReport
