@@ -61,8 +61,10 @@ namespace meshgap
         bool proveFree(const ompl::base::State *s1, const ompl::base::State *s2) const;
 
         /** \brief Per pair (RobotScene's order), its two links' MotionBound::bend() over \e motion into \e bends
-            (the second 0 for a link against the obstacles). */
-        void pairBends(const MotionBound::Motion &motion, std::vector<double> &bends) const;
+            (the second 0 for a link against the obstacles), and whether each stays put (MotionBound::stays()) into
+            \e stays. */
+        void pairBends(const MotionBound::Motion &motion, std::vector<double> &bends,
+                       std::vector<unsigned char> &stays) const;
 
         /** \brief Pair \e k's displacement bound over a piece, from MotionBound::pieceBounds()' \e sums. */
         double pieceBound(std::size_t k, const std::vector<double> &sums) const;
