@@ -414,11 +414,15 @@ namespace meshgap
 
     namespace
     {
-        /** \brief The lower bound of two placed solids' distance (their balls' radii subtracted), by GJK. */
-        double coresGap(const solid::Core &a, const solid::Core &b, double enough)
+        /** \brief The lower bound of two placed solids' distance (their balls' radii subtracted), by GJK, from the
+            first direction \e axis holds (if given and not zero; there the last one GJK looked along, when apart). */
+        double coresGap(const solid::Core &a, const solid::Core &b, double enough, Eigen::Vector3d *axis = nullptr)
         {
             const double radii = a.radius + b.radius;
-            const solid::CoreGap g = solid::gjk(a, b, std::max(a.reach(), b.reach()), enough + radii);
+            const solid::CoreGap g = solid::gjk(a, b, std::max(a.reach(), b.reach()), enough + radii,
+                                                axis ? *axis : Eigen::Vector3d::Zero());
+            if (axis && !g.overlap)
+                *axis = g.axis;
             return g.overlap ? 0.0 : std::max(0.0, g.lower - radii);
         }
 
@@ -437,30 +441,33 @@ namespace meshgap
     namespace
     {
         /** \brief \e hull swept from \e X0 to \e X1 (the hull of both placements), grown by its margin and
-            \e grow. */
+            \e grow; a hull that stays (X1 the very pose X0) placed once: its support is then one hull's, the point
+            the sweep's would return (its two candidates tie, and it takes the first). */
         solid::Core sweptCore(const ConvexHull &hull, const Eigen::Isometry3d &X0, const Eigen::Isometry3d &X1,
                               double grow)
         {
             solid::Core core = hullCore(hull, X0);
+            core.radius += grow;
+            if (X0.matrix() == X1.matrix())
+                return core;
             core.type = solid::Core::SWEPT;
             core.R1 = X1.linear();
             core.c1 = X1.translation();
-            core.radius += grow;
             return core;
         }
     }  // namespace
 
     double sweptHullGap(const ConvexHull &a, const Eigen::Isometry3d &A0, const Eigen::Isometry3d &A1, double growA,
                         const ConvexHull &b, const Eigen::Isometry3d &B0, const Eigen::Isometry3d &B1, double growB,
-                        double enough)
+                        double enough, Eigen::Vector3d *axis)
     {
-        return coresGap(sweptCore(a, A0, A1, growA), sweptCore(b, B0, B1, growB), enough);
+        return coresGap(sweptCore(a, A0, A1, growA), sweptCore(b, B0, B1, growB), enough, axis);
     }
 
     double sweptHullPrimitiveGap(const ConvexHull &a, const Eigen::Isometry3d &A0, const Eigen::Isometry3d &A1,
-                                 double grow, const Primitive &p, double enough)
+                                 double grow, const Primitive &p, double enough, Eigen::Vector3d *axis)
     {
-        return coresGap(sweptCore(a, A0, A1, grow), solid::coreOf(p, Eigen::Isometry3d::Identity()), enough);
+        return coresGap(sweptCore(a, A0, A1, grow), solid::coreOf(p, Eigen::Isometry3d::Identity()), enough, axis);
     }
 
     double hullGap(const ConvexHull &a, const ConvexHull &b, const Eigen::Isometry3d &X_AB, double enough)

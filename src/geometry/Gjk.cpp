@@ -282,10 +282,12 @@ namespace meshgap
             }
         }  // namespace
 
-        CoreGap gjk(const Core &a, const Core &b, double scale, double enough)
+        CoreGap gjk(const Core &a, const Core &b, double scale, double enough, const Eigen::Vector3d &first)
         {
             const double pad = 4e-15 * scale, still = 1e-14 * scale;
-            Eigen::Vector3d d = b.center() - a.center();
+            Eigen::Vector3d d = first;
+            if (!(d.squaredNorm() > 0.0) || !d.allFinite())
+                d = b.center() - a.center();
             if (!(d.squaredNorm() > 0.0))
                 d = Eigen::Vector3d::UnitX();
             Simplex s;
@@ -295,7 +297,16 @@ namespace meshgap
             s.l[0] = 1.0;
             s.n = 1;
             CoreGap g;
+            g.axis = d;
+            // The first pair is the support pair along -d: a's farthest point towards b and b's nearest to a, so the
+            // sets lie apart by at least the gap between those two planes, -d.w / |d| (the bound the loop takes for
+            // v = -d). Far apart along a good first axis (the last query's), a pair is proven here.
             double lower = -std::numeric_limits<double>::infinity();
+            const double firstGap = -d.dot(s.w[0]) / d.norm();
+            if (firstGap > lower)
+                lower = firstGap;  // not a number (an overflow) is no bound
+            if (lower - pad > enough)
+                return (g.lower = lower - pad, g.upper = s.w[0].norm(), g.onA = s.a[0], g.onB = s.b[0], g);
             Eigen::Vector3d v = s.w[0];
             for (g.iterations = 1; g.iterations <= 256; ++g.iterations)
             {
@@ -325,6 +336,7 @@ namespace meshgap
                     break;  // no progress: roundoff; the bounds stand
                 v = next;
             }
+            g.axis = -v;
             g.lower = std::max(0.0, lower - pad);
             return g;
         }

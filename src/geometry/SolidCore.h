@@ -61,13 +61,20 @@ namespace meshgap
             Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};
             bool overlap{false};
             int iterations{0};
+            /** \brief Apart: the last direction from a towards b that GJK looked along (-v, v its point of A - B
+                nearest the origin), a good first axis for the next query about nearby placements. */
+            Eigen::Vector3d axis{Eigen::Vector3d::Zero()};
         };
 
         /** \brief GJK on the support functions of \e a and \e b: lower is the support-plane gap (less a roundoff pad
             of 4e-15 \e scale), upper the simplex's distance; stops once they agree to 1e-12 relative or 1e-14
             \e scale, the lower bound exceeds \e enough, the simplex makes no progress (roundoff), or after 256
-            iterations (the bounds then as they are). */
-        CoreGap gjk(const Core &a, const Core &b, double scale, double enough);
+            iterations (the bounds then as they are). Starts from the support pair along \e first (a direction from
+            a towards b; zero or not finite: the line between their centres), whose planes' gap is the first lower
+            bound: a pair already more than \e enough apart along it is answered by two support calls. Any first
+            direction gives a valid bound. */
+        CoreGap gjk(const Core &a, const Core &b, double scale, double enough,
+                    const Eigen::Vector3d &first = Eigen::Vector3d::Zero());
     }  // namespace solid
 }  // namespace meshgap
 

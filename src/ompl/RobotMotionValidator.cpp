@@ -64,6 +64,9 @@ namespace meshgap
             /** \brief Per pair, its links' bends over the motion (MotionBound::bend(); the second 0 for a link
                 against the obstacles). */
             std::vector<double> bends;
+            /** \brief Per pair, whether each of its links stays put over the motion (MotionBound::stays(): in the
+                world, or in the self pair's nearest common frame), as bends. */
+            std::vector<unsigned char> stays;
             RobotScene::Placement at0, at1;  ///< the piece's ends
             std::vector<Piece> pieces;     ///< breadth first: a queue read from its head
             std::vector<Pending> pending;  ///< a range per piece
@@ -87,7 +90,7 @@ namespace meshgap
         w.lambda.assign(w.moves.begin(), w.moves.begin() + links);
         for (const auto &[a, b] : scene_->selfPairs())
             w.lambda.push_back(bound_.pairDisplacement(a, b, w.q0, w.q1));
-        pairBends(w.motion, w.bends);
+        pairBends(w.motion, w.bends, w.stays);
         w.pending.clear();
         for (std::size_t k = 0; k < pairs; ++k)
             w.pending.push_back({k, 0});
@@ -127,7 +130,8 @@ namespace meshgap
                 // Cheapest first: boxes and spheres at the middle state, the swept hulls, then the meshes.
                 if (scene_->pairBoundsApart(k, margin, w.warm) ||
                     ((ends || placeEnds()) &&
-                     scene_->sweptApart(k, w.at0, w.at1, stray * w.bends[2 * k], stray * w.bends[2 * k + 1])) ||
+                     scene_->sweptApart(k, w.at0, w.at1, stray * w.bends[2 * k], stray * w.bends[2 * k + 1], w.warm,
+                                        w.stays[2 * k], w.stays[2 * k + 1])) ||
                     scene_->pairApart(k, margin, w.warm, budget, &gaveUp))
                     continue;
                 // A pair given up on is within reach of its margin, not within it: no collision to look for.
@@ -149,16 +153,23 @@ namespace meshgap
         return free;
     }
 
-    void RobotMotionValidator::pairBends(const MotionBound::Motion &motion, std::vector<double> &bends) const
+    void RobotMotionValidator::pairBends(const MotionBound::Motion &motion, std::vector<double> &bends,
+                                         std::vector<unsigned char> &stays) const
     {
         bends.clear();
+        stays.clear();
         for (std::size_t i = 0; i < scene_->links().size(); ++i)
+        {
             bends.insert(bends.end(), {bound_.bend(i, bound_.numTerms(i), motion), 0.0});
+            stays.insert(stays.end(), {bound_.stays(i, bound_.numTerms(i), motion), false});
+        }
         for (std::size_t p = 0; p < scene_->selfPairs().size(); ++p)
         {
             const auto [a, b] = scene_->selfPairs()[p];
             bends.insert(bends.end(), {bound_.bend(a, pairTerms_[p].first, motion),
                                        bound_.bend(b, pairTerms_[p].second, motion)});
+            stays.insert(stays.end(), {bound_.stays(a, pairTerms_[p].first, motion),
+                                       bound_.stays(b, pairTerms_[p].second, motion)});
         }
     }
 

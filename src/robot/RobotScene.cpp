@@ -67,6 +67,15 @@ namespace meshgap
         buildVerdictBounds();
         for (const auto &[a, b] : selfPairs_)
             selfAncestor_.push_back(robot_->commonFrame(links_[a].frame, links_[b].frame));
+        sweepOffset_.assign(1, 0);
+        for (const std::vector<std::size_t> &checked : linkObstacles_)
+        {
+            std::size_t questions = 0;
+            for (std::size_t o : checked)
+                questions += std::max<std::size_t>(1, obstacles_[o]->primitives().size());
+            sweepOffset_.push_back(sweepOffset_.back() + questions);
+        }
+        sweepOffset_.push_back(sweepOffset_.back() + selfPairs_.size());
     }
 
     void RobotScene::prepare(const double *state, std::size_t size, RobotWarmStart &warm) const
@@ -77,6 +86,7 @@ namespace meshgap
             warm.links.assign(links_.size(), SceneWarmStart());
             warm.self.assign(selfPairs_.size(), ExactWarmStart());
             warm.obstaclePairs.assign(pairOffset_.back(), ExactWarmStart());
+            warm.sweepAxes.assign(sweepOffset_.back(), Eigen::Vector3d::Zero());
             warm.valid = false;
             warm.scene = id_;
         }

@@ -456,3 +456,126 @@ TEST(ConvexHull, SweptHullsGapIsTheConvexSweepsDistance)
     }
     EXPECT_GT(apart, 8u);
 }
+
+TEST(ConvexHull, SweptGapFromAnyFirstAxisIsStillABound)
+{
+    // GJK may start along any direction (the last piece's, kept per question): the gap must stay a lower bound of
+    // the swept bodies' distance whatever the first axis (zero, not finite, tiny, huge, pointing the wrong way),
+    // converge to the same gap as from the centres' line, and prove a bounded question as that one does.
+    const Mesh ball = test::icosphere(0.25, 2);
+    const BodyPtr a = test::unrefinedBody(ball);
+    const ConvexHull &hull = *a->convexHull();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    std::size_t apart = 0, provenFirst = 0;
+    for (std::uint32_t seed = 0; seed < 30; ++seed)
+    {
+        // Two translated balls: the gap's truth by brute force over 13 x 13 pairs of places (as above).
+        const Isometry3d A0 = test::randomPose(seed, 1.0), B0 = test::randomPose(seed + 100, 1.0);
+        const Vector3d da = test::randomPose(seed + 200, 0.6).translation();
+        const Vector3d db = test::randomPose(seed + 300, 0.6).translation();
+        const Isometry3d A1 = Eigen::Translation3d(da) * A0, B1 = Eigen::Translation3d(db) * B0;
+        double least = std::numeric_limits<double>::infinity();
+        for (int s = 0; s <= 12; ++s)
+            for (int r = 0; r <= 12; ++r)
+            {
+                const Isometry3d As = Eigen::Translation3d(s / 12.0 * da) * A0;
+                const Isometry3d Br = Eigen::Translation3d(r / 12.0 * db) * B0;
+                least = std::min(least, exactDistance(*a, *a, As.inverse() * Br));
+            }
+        const double cold = sweptHullGap(hull, A0, A1, 0.0, hull, B0, B1, 0.0);
+        Vector3d found = Vector3d::Zero();
+        ASSERT_EQ(sweptHullGap(hull, A0, A1, 0.0, hull, B0, B1, 0.0, std::numeric_limits<double>::infinity(), &found),
+                  cold);
+        std::vector<Vector3d> firsts = directions(8, seed + 400);
+        const Vector3d between = B0.translation() - A0.translation();
+        firsts.insert(firsts.end(), {Vector3d::Zero(), Vector3d(nan, 0.0, 0.0), 1e-200 * between, 1e200 * between,
+                                     -between, between, found, -found});
+        for (std::size_t i = 0; i < firsts.size(); ++i)
+        {
+            Vector3d axis = firsts[i];
+            const double gap = sweptHullGap(hull, A0, A1, 0.0, hull, B0, B1, 0.0,
+                                            std::numeric_limits<double>::infinity(), &axis);
+            ASSERT_LE(gap, std::max(0.0, least) * (1.0 + 1e-9) + 1e-12) << "seed " << seed << " axis " << i;
+            ASSERT_NEAR(gap, cold, 1e-9) << "seed " << seed << " axis " << i;
+            if (cold > 0.0)
+            {
+                ASSERT_TRUE(axis.allFinite() && axis.squaredNorm() > 0.0) << "seed " << seed << " axis " << i;
+                // A bounded question: proven from any first axis when the gap is well above it, never above the
+                // truth when it stops early.
+                Vector3d again = firsts[i];
+                const double bounded = sweptHullGap(hull, A0, A1, 0.0, hull, B0, B1, 0.0, 0.5 * cold, &again);
+                ASSERT_GT(bounded, 0.5 * cold) << "seed " << seed << " axis " << i;
+                ASSERT_LE(bounded, std::max(0.0, least) * (1.0 + 1e-9) + 1e-12) << "seed " << seed << " axis " << i;
+            }
+        }
+        // The axis the full run ended on proves the half-gap question by its first support pair: the bound it gives
+        // is within roundoff of the gap itself.
+        if (cold > 0.0)
+        {
+            Vector3d warm = found;
+            provenFirst += sweptHullGap(hull, A0, A1, 0.0, hull, B0, B1, 0.0, 0.5 * cold, &warm) >= cold - 1e-9;
+        }
+        apart += cold > 0.0 ? 1 : 0;
+    }
+    EXPECT_GT(apart, 8u);
+    EXPECT_EQ(provenFirst, apart);
+
+    // Turning sweeps against a box: every vertex's chord bounds the gap from above (analytic), from any first axis.
+    const Mesh meshes[] = {bumpySphere(0.3, 2, 4), lShape()};
+    for (std::size_t m = 0; m < 2; ++m)
+    {
+        const BodyPtr body = test::unrefinedBody(meshes[m]);
+        ASSERT_NE(body->convexHull(), nullptr);
+        for (std::uint32_t seed = 0; seed < 40; ++seed)
+        {
+            const Primitive box = solid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(700 + seed, 0.1));
+            const Isometry3d X0 = test::randomPose(seed + 50, 1.2), X1 = test::randomPose(seed + 9050, 1.2);
+            double least = std::numeric_limits<double>::infinity();
+            for (const Vector3d &p : chordPoints(meshes[m], X0, X1))
+                least = std::min(least, pointBoxDistance(p, box));
+            const double cold = sweptHullPrimitiveGap(*body->convexHull(), X0, X1, 0.0, box);
+            for (const Vector3d &first : directions(6, seed + 800))
+            {
+                Vector3d axis = first;
+                const double gap = sweptHullPrimitiveGap(*body->convexHull(), X0, X1, 0.0, box,
+                                                         std::numeric_limits<double>::infinity(), &axis);
+                ASSERT_LE(gap, least * (1.0 + 1e-9) + 1e-12) << "mesh " << m << " seed " << seed;
+                ASSERT_NEAR(gap, cold, 1e-9) << "mesh " << m << " seed " << seed;
+            }
+        }
+    }
+}
+
+TEST(ConvexHull, SweptGapOfAHullThatStaysIsItsHullsGap)
+{
+    // A hull whose two poses are the very same is placed once (one support call, not two): its swept gap must be
+    // its static GJK gap (hullGap(), in the first body's frame), the same as a sweep between two poses a hair apart
+    // (the two-placement path), and never above the meshes' exact distance.
+    const Mesh meshes[] = {bumpySphere(0.3, 2, 4), lShape()};
+    const BodyPtr a = test::unrefinedBody(meshes[0]), b = test::unrefinedBody(meshes[1]);
+    const ConvexHull &ha = *a->convexHull(), &hb = *b->convexHull();
+    const Isometry3d hair(Eigen::Translation3d(1e-13, -1e-13, 1e-13));
+    std::size_t apart = 0;
+    for (std::uint32_t seed = 0; seed < 60; ++seed)
+    {
+        const Isometry3d X = test::randomPose(seed, 1.0), Y = test::randomPose(seed + 1000, 1.0);
+        const Isometry3d X_AB = X.inverse() * Y;
+        const double stays = sweptHullGap(ha, X, X, 0.0, hb, Y, Y, 0.0);
+        const double still = hullGap(ha, hb, X_AB);
+        ASSERT_NEAR(stays, still, 1e-9) << seed;
+        ASSERT_NEAR(stays, sweptHullGap(ha, X, hair * X, 0.0, hb, Y, hair * Y, 0.0), 1e-9) << seed;
+        ASSERT_LE(stays, std::max(0.0, exactDistance(*a, *b, X_AB)) * (1.0 + 1e-9) + 1e-12) << seed;
+        // One staying, the other moving: the same as its sweep with the first a hair apart.
+        const Isometry3d Y1 = test::randomPose(seed + 2000, 1.0);
+        ASSERT_NEAR(sweptHullGap(ha, X, X, 0.0, hb, Y, Y1, 0.0), sweptHullGap(ha, X, hair * X, 0.0, hb, Y, Y1, 0.0),
+                    1e-9)
+            << seed;
+        // Against a solid, with a growth: the static gap less the growth.
+        const Primitive box = solid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(seed + 3000, 0.5));
+        ASSERT_NEAR(sweptHullPrimitiveGap(ha, X, X, 0.02, box),
+                    std::max(0.0, hullPrimitiveGap(ha, box, X.inverse()) - 0.02), 1e-9)
+            << seed;
+        apart += stays > 0.0 ? 1 : 0;
+    }
+    EXPECT_GT(apart, 20u);
+}

@@ -100,16 +100,23 @@ namespace meshgap
         \e growB; 0 when they overlap. A body moving from A0 to A1 along a path that strays at most g from the
         straight line between each point's two places stays inside a's set grown by g (every point of the mesh lies
         within the margin of a point of the hull, whose two places span a segment of that set). Computed only
-        until it exceeds \e enough. */
+        until it exceeds \e enough. A hull that stays (its second pose the very first, bit for bit) is placed once:
+        the same gap as its sweep's, for half the support calls.
+
+        \e axis (optional): GJK's first direction, from a towards b in the placements' frame (zero: the line between
+        their centres), and on return, when apart, the last one it looked along: kept per question and passed to the
+        next one about nearby placements (the next piece of a motion), a bound that is often proven by the first
+        support pair (two support calls). Any first direction gives a valid bound; only its cost changes. */
     double sweptHullGap(const ConvexHull &a, const Eigen::Isometry3d &A0, const Eigen::Isometry3d &A1, double growA,
                         const ConvexHull &b, const Eigen::Isometry3d &B0, const Eigen::Isometry3d &B1, double growB,
-                        double enough = std::numeric_limits<double>::infinity());
+                        double enough = std::numeric_limits<double>::infinity(), Eigen::Vector3d *axis = nullptr);
 
     /** \brief The same between \e a swept from \e A0 to \e A1 (grown by its margin and \e grow) and the solid \e p,
         whose pose is in the frame A0 and A1 place \e a in. */
     double sweptHullPrimitiveGap(const ConvexHull &a, const Eigen::Isometry3d &A0, const Eigen::Isometry3d &A1,
                                  double grow, const Primitive &p,
-                                 double enough = std::numeric_limits<double>::infinity());
+                                 double enough = std::numeric_limits<double>::infinity(),
+                                 Eigen::Vector3d *axis = nullptr);
 }  // namespace meshgap
 
 #endif

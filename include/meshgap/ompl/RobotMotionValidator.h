@@ -32,7 +32,9 @@ namespace meshgap
        about the piece as a whole (RobotScene::sweptApart()): each link's convex hull swept between its places at
        the piece's two ends, grown by how far its points may stray from those straight lines (MotionBound::bend():
        at most (t1 - t0)^2 / 8 times the bend, a bound that shrinks with the square of the piece's length where the
-       middle state's margin shrinks with its length). A
+       middle state's margin shrinks with its length); a link that stays put in the sweep's frame over the motion
+       (MotionBound::stays()) is placed once, not swept, and each question's GJK starts along the direction it
+       ended on for the last piece (RobotWarmStart::sweepAxes). A
        question that costs more than a budget of box and triangle tests gives up, and the pair is asked again on
        both halves with half the margin (cheaper: a pair just beyond its margin is the costly kind to prove) and
        four times the budget, without a budget from the sixth time. Pieces are taken breadth first (halves of halves, as OMPL's
@@ -61,8 +63,10 @@ namespace meshgap
         bool proveFree(const ompl::base::State *s1, const ompl::base::State *s2) const;
 
         /** \brief Per pair (RobotScene's order), its two links' MotionBound::bend() over \e motion into \e bends
-            (the second 0 for a link against the obstacles). */
-        void pairBends(const MotionBound::Motion &motion, std::vector<double> &bends) const;
+            (the second 0 for a link against the obstacles), and whether each stays put (MotionBound::stays()) into
+            \e stays. */
+        void pairBends(const MotionBound::Motion &motion, std::vector<double> &bends,
+                       std::vector<unsigned char> &stays) const;
 
         /** \brief Pair \e k's displacement bound over a piece, from MotionBound::pieceBounds()' \e sums. */
         double pieceBound(std::size_t k, const std::vector<double> &sums) const;

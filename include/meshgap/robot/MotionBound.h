@@ -79,6 +79,16 @@ namespace meshgap
             turned by those above). Every frame moves at a constant rate along OMPL's interpolation, which is what
             the bound needs; a free body's turn is one about an axis fixed in its parent (slerp). */
         double bend(std::size_t link, std::size_t terms, const Motion &motion) const;
+        /** \brief True when none of link \e link's first \e terms terms moves along \e motion (each step exactly 0):
+            the link then stays where it is in the world (all its terms) or in a pair's nearest common frame
+            (pairTerms()'), at every state of the motion. */
+        bool stays(std::size_t link, std::size_t terms, const Motion &motion) const
+        {
+            for (std::size_t t = offsets_[link]; t < offsets_[link] + terms; ++t)
+                if (motion.move[t] != 0.0)
+                    return false;
+            return true;
+        }
         /** \brief The number of link \e link's terms (for bend(): its whole path in the world). */
         std::size_t numTerms(std::size_t link) const { return offsets_[link + 1] - offsets_[link]; }
         /** \brief For links \e first and \e second: how many of each one's terms lie below their nearest common

@@ -108,6 +108,9 @@ namespace meshgap
             obstacles answered by the exact layer; and its traversal stack. */
         std::vector<ExactWarmStart> obstaclePairs;
         std::vector<std::uint32_t> stack;
+        /** \brief Per question of RobotScene::sweptApart() (a link against one obstacle or one primitive solid of
+            it, a self pair), the last direction its GJK looked along (zero: none yet), the next piece's first. */
+        std::vector<Eigen::Vector3d> sweepAxes;
         bool valid{false};
         std::size_t pair{0};  ///< the last minimum's pair (RobotResult::pairs order)
         std::uint64_t scene{0};
@@ -126,6 +129,7 @@ namespace meshgap
                     p.collision.clear();
                     p.penetration.valid = false;
                 }
+            std::fill(sweepAxes.begin(), sweepAxes.end(), Eigen::Vector3d::Zero());
         }
     };
 
@@ -217,9 +221,15 @@ namespace meshgap
             obstacle of the link's scene (its primitive solids, or its hull) or from each other. False (no claim)
             when a link or a mesh obstacle has no hull (Body::coarseHull(), the one used). A question of a few GJK
             runs, far cheaper than a traversal, and tight where a link moves along an obstacle: the margin it needs
-            shrinks with the square of the piece's length, pairApart()'s with its length. */
-        bool sweptApart(std::size_t k, const Placement &at0, const Placement &at1, double grow,
-                        double growOther) const;
+            shrinks with the square of the piece's length, pairApart()'s with its length.
+
+            \e stays, \e staysOther: the pair's first (or only) and second link stays where it is in that frame over
+            the whole piece (no joint between moves: MotionBound::stays()), so it is placed once, at its pose at
+            \e at0, not swept (half the support calls). Each GJK starts along the direction its question last ended
+            on in \e warm (RobotWarmStart::sweepAxes; the scene's warm start, prepared by place()), and leaves its own
+            there. */
+        bool sweptApart(std::size_t k, const Placement &at0, const Placement &at1, double grow, double growOther,
+                        RobotWarmStart &warm, bool stays = false, bool staysOther = false) const;
 
     private:
         /** \brief Size \e warm for this scene (afresh if it was made with another) and fill its poses. */
@@ -281,6 +291,9 @@ namespace meshgap
         /** \brief Per link, where its pairs with the obstacles start in RobotWarmStart::obstaclePairs; their
             number last. */
         std::vector<std::size_t> pairOffset_;
+        /** \brief Per link, where its sweptApart() questions start in RobotWarmStart::sweepAxes (one per obstacle of
+            its scene, or per primitive solid of one); then the self pairs', one each; their number last. */
+        std::vector<std::size_t> sweepOffset_;
         std::uint64_t id_;
     };
 }  // namespace meshgap
