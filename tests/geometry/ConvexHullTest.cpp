@@ -239,8 +239,10 @@ namespace
             ASSERT_TRUE(s == t || (s.array().isNaN().any() && t.array().isNaN().any()))
                 << "d " << d.transpose() << ": " << s.transpose() << " against " << t.transpose();
             if (d.allFinite() && d.norm() < 1e100)
+            {
                 EXPECT_LE(std::abs(d.dot(s) - mostAlong(hull->vertices(), d)), 1e-14 * d.norm() * hull->reach())
                     << d.transpose();
+            }
         }
     }
 }  // namespace
