@@ -429,6 +429,26 @@ TEST(ConvexHull, SweptGapNeverExceedsTheChordsDistance)
     EXPECT_GT(tight, 30u) << "a bound that is close often";
 }
 
+namespace
+{
+    /** \brief The least exact distance between body \e a placed by A0 moved along \e da and \e a placed by B0
+        moved along \e db, over 13 x 13 pairs of places (fractions of both translations): the brute-force truth of
+        their sweeps' distance, within what the spacing can miss. */
+    double leastOverPlaces(const Body &a, const Isometry3d &A0, const Vector3d &da, const Isometry3d &B0,
+                           const Vector3d &db)
+    {
+        double least = std::numeric_limits<double>::infinity();
+        for (int s = 0; s <= 12; ++s)
+            for (int r = 0; r <= 12; ++r)
+            {
+                const Isometry3d As = Eigen::Translation3d(s / 12.0 * da) * A0;
+                const Isometry3d Br = Eigen::Translation3d(r / 12.0 * db) * B0;
+                least = std::min(least, exactDistance(a, a, As.inverse() * Br));
+            }
+        return least;
+    }
+}  // namespace
+
 TEST(ConvexHull, SweptHullsGapIsTheConvexSweepsDistance)
 {
     // Two convex bodies each moved by a translation alone: the swept hull is the body swept along the segment, so
@@ -444,14 +464,7 @@ TEST(ConvexHull, SweptHullsGapIsTheConvexSweepsDistance)
         const Vector3d db = test::randomPose(seed + 300, 0.6).translation();
         const Isometry3d A1 = Eigen::Translation3d(da) * A0, B1 = Eigen::Translation3d(db) * B0;
         const double gap = sweptHullGap(*a->convexHull(), A0, A1, 0.0, *a->convexHull(), B0, B1, 0.0);
-        double least = std::numeric_limits<double>::infinity();
-        for (int s = 0; s <= 12; ++s)
-            for (int r = 0; r <= 12; ++r)
-            {
-                const Isometry3d As = Eigen::Translation3d(s / 12.0 * da) * A0;
-                const Isometry3d Br = Eigen::Translation3d(r / 12.0 * db) * B0;
-                least = std::min(least, exactDistance(*a, *a, As.inverse() * Br));
-            }
+        const double least = leastOverPlaces(*a, A0, da, B0, db);
         ASSERT_LE(gap, std::max(0.0, least) * (1.0 + 1e-9) + 1e-12) << seed;
         EXPECT_GE(gap, least - (da.norm() + db.norm()) / 12.0 - 1e-9) << seed;
         apart += gap > 0.0 ? 1 : 0;
@@ -476,14 +489,7 @@ TEST(ConvexHull, SweptGapFromAnyFirstAxisIsStillABound)
         const Vector3d da = test::randomPose(seed + 200, 0.6).translation();
         const Vector3d db = test::randomPose(seed + 300, 0.6).translation();
         const Isometry3d A1 = Eigen::Translation3d(da) * A0, B1 = Eigen::Translation3d(db) * B0;
-        double least = std::numeric_limits<double>::infinity();
-        for (int s = 0; s <= 12; ++s)
-            for (int r = 0; r <= 12; ++r)
-            {
-                const Isometry3d As = Eigen::Translation3d(s / 12.0 * da) * A0;
-                const Isometry3d Br = Eigen::Translation3d(r / 12.0 * db) * B0;
-                least = std::min(least, exactDistance(*a, *a, As.inverse() * Br));
-            }
+        const double least = leastOverPlaces(*a, A0, da, B0, db);
         const double cold = sweptHullGap(hull, A0, A1, 0.0, hull, B0, B1, 0.0);
         Vector3d found = Vector3d::Zero();
         ASSERT_EQ(sweptHullGap(hull, A0, A1, 0.0, hull, B0, B1, 0.0, std::numeric_limits<double>::infinity(), &found),
