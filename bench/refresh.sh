@@ -67,8 +67,6 @@ fi
 if [ -d "$fanuc" ]; then
     add robot_queries bench/robots.md meshgap_bench_robot_queries \
         "$B/meshgap_bench_robot_queries --paths 10 --repeat 2" "$B/meshgap_bench_robot_queries --paths 2 --repeat 1"
-fi
-if [ -d "$fanuc" ]; then
     # The field bench: fanuc links and two generated CAD-like meshes, four streams each.
     cad=/tmp/meshgap_cad_meshes
     q="$B/meshgap_bench_queries --clock thread-cpu --load-repeats 1 STATES"
@@ -87,9 +85,9 @@ if [ -d "$fanuc" ] && [ -d "$ur5" ]; then
     # coal's and trueform's protocols on two pairs each: one table, a row per run (the header kept once).
     pp="$B/meshgap_bench_pair_protocols"
     runs="$pp --protocol coal --robot $fanuc/link_1.stl --world $fanuc/link_2.stl POSES_COAL"
-    runs="$runs; $pp --protocol coal --robot $ur5/ur5/collision/forearm.stl --world $ur5/ur5/collision/upperarm.stl"
-    runs="$runs POSES_COAL; $pp --protocol trueform --mesh $fanuc/link_2.stl POSES_TF"
-    runs="$runs; $pp --protocol trueform --mesh $ur5/robotiq/robotiq_85_base_link_fine.STL POSES_TF"
+    runs="$runs && $pp --protocol coal --robot $ur5/ur5/collision/forearm.stl --world $ur5/ur5/collision/upperarm.stl"
+    runs="$runs POSES_COAL && $pp --protocol trueform --mesh $fanuc/link_2.stl POSES_TF"
+    runs="$runs && $pp --protocol trueform --mesh $ur5/robotiq/robotiq_85_base_link_fine.STL POSES_TF"
     full=${runs//POSES_COAL/}; full=${full//POSES_TF/}
     short=${runs//POSES_COAL/--poses 2000}; short=${short//POSES_TF/--poses 300}
     add pair_protocols bench/queries.md meshgap_bench_pair_protocols \
@@ -172,7 +170,7 @@ for b in "${chosen[@]}"; do
     before=$(cut -d' ' -f1 /proc/loadavg)
     start=$(date +%s)
     echo "== $name: $cmd" >&2
-    bash -c "$cmd" > "$out"
+    bash -o pipefail -c "$cmd" > "$out"  # a benchmark that fails inside a pipe fails the block
     sed -i "s|$root/||g" "$out"  # file names as the commands spell them, from the repository's root
     after=$(cut -d' ' -f1 /proc/loadavg)
     stamp="Measured by \`bench/refresh.sh$mode\` at $commit, $(date -u '+%Y-%m-%d %H:%M') UTC, in $(( $(date +%s) - start )) s;"
