@@ -180,8 +180,8 @@ namespace meshgap
             throw Exception(where, "no triangles (an empty scene, a point cloud or only lines?)");
         report.clean = cleanMesh(mesh);
         if (mesh.triangles.empty())
-            throw Exception(excerpt(path), "no triangles left: all " + std::to_string(report.rawTriangles) +
-                                               " triangles are degenerate (zero area)");
+            throw Exception(where, "no triangles left: all " + std::to_string(report.rawTriangles) +
+                                   " triangles are degenerate (zero area)");
         if (report.clean.degenerate > 0)
             OMPL_WARN("%s: dropped %zu degenerate (zero-area) triangles", path.c_str(), report.clean.degenerate);
         if (report.clean.duplicates > 0)
