@@ -257,6 +257,7 @@ namespace meshgap
         hull->center_ = center;
         hull->margin_ = epsilon * (1.0 + 1e-9) + 1e-12 * reach;
         hull->cluster();
+        hull->directionCells();
         return hull;
     }
 
@@ -327,6 +328,85 @@ namespace meshgap
         }
     }
 
+    namespace
+    {
+        /** \brief The most vertices of a hull with a direction table (their indices held in 16 bits; its build
+            costs about 30 dot products a vertex and cell). */
+        constexpr std::size_t MAX_TABLE_VERTICES = 512;
+        /** \brief Cells along a face's side: 6 x 16 x 16 cells, about 11 candidates a cell for a hull of 192 vertices
+            about a robot's link. */
+        constexpr int TABLE_SIDE = 16;
+        /** \brief How far each cell is widened in (u, v): over the roundoff of u = d_b / |d_a| (1 ulp of 1). */
+        constexpr double CELL_PAD = 1e-9;
+        /** \brief The face and cell of \e d (not zero, finite): see ConvexHull::Cells. */
+        std::size_t cellOf(const Eigen::Vector3d &d, int side)
+        {
+            const double ax = std::abs(d.x()), ay = std::abs(d.y()), az = std::abs(d.z());
+            const int a = ax >= ay && ax >= az ? 0 : ay >= az ? 1 : 2;
+            const double m = std::max(ax, std::max(ay, az));
+            const double u = d[(a + 1) % 3] / m, v = d[(a + 2) % 3] / m;
+            const auto cell = [side](double w)
+            { return std::min(side - 1, std::max(0, static_cast<int>((w + 1.0) * 0.5 * side))); };
+            const int face = 2 * a + (d[a] < 0.0 ? 1 : 0);
+            return static_cast<std::size_t>((face * side + cell(u)) * side + cell(v));
+        }
+    }  // namespace
+
+    void ConvexHull::directionCells()
+    {
+        const std::size_t n = vertices_.size();
+        if (n > MAX_TABLE_VERTICES || n == 0)
+            return;
+        // A vertex x is left out of a cell when one vertex y beats it at the cell's four corners by more than tol:
+        // (y - x).e is linear in (u, v), so it then exceeds tol over the whole square, and for any d = m e of the
+        // cell (y - x).d > m tol, more than the roundoff of the two computed dot products (gamma_3 |d| 2 reach,
+        // with |e| <= sqrt(3)) and of the corner values (a few ulps of 3 reach): y's computed product is then the
+        // larger, and x is not scan()'s vertex.
+        const double tol = 1e-13 * reach_ + 1e-300;
+        const int side = TABLE_SIDE;
+        Cells &t = cells_;
+        t.side = side;
+        t.first.reserve(6 * side * side + 1);
+        std::vector<double> g(5 * n);
+        for (int face = 0; face < 6; ++face)
+        {
+            const int a = face / 2, b = (a + 1) % 3, c = (a + 2) % 3;
+            const double sign = face % 2 ? -1.0 : 1.0;
+            for (int i = 0; i < side; ++i)
+                for (int j = 0; j < side; ++j)
+                {
+                    const double u0 = -1.0 + 2.0 * i / side - CELL_PAD, u1 = -1.0 + 2.0 * (i + 1) / side + CELL_PAD;
+                    const double v0 = -1.0 + 2.0 * j / side - CELL_PAD, v1 = -1.0 + 2.0 * (j + 1) / side + CELL_PAD;
+                    const double us[5] = {u0, u1, u0, u1, 0.5 * (u0 + u1)};
+                    const double vs[5] = {v0, v0, v1, v1, 0.5 * (v0 + v1)};
+                    std::size_t top[5] = {0, 0, 0, 0, 0};
+                    for (std::size_t x = 0; x < n; ++x)
+                        for (int k = 0; k < 5; ++k)
+                        {
+                            const Eigen::Vector3d &p = vertices_[x];
+                            g[5 * x + k] = sign * p[a] + us[k] * p[b] + vs[k] * p[c];
+                            if (g[5 * x + k] > g[5 * top[k] + k])
+                                top[k] = x;
+                        }
+                    t.first.push_back(static_cast<std::uint32_t>(t.index.size()));
+                    for (std::size_t x = 0; x < n; ++x)
+                    {
+                        bool beaten = false;
+                        for (int y = 4; y >= 0 && !beaten; --y)  // the centre's first: it beats the most
+                        {
+                            const std::size_t w = top[y];
+                            beaten = true;
+                            for (int k = 0; k < 4 && beaten; ++k)
+                                beaten = g[5 * w + k] - g[5 * x + k] > tol;
+                        }
+                        if (!beaten)
+                            t.index.push_back(static_cast<std::uint16_t>(x));
+                    }
+                }
+        }
+        t.first.push_back(static_cast<std::uint32_t>(t.index.size()));
+    }
+
     void ConvexHull::scanCluster(std::size_t k, const Eigen::Vector3d &d, double &best, std::uint32_t &where) const
     {
         const Clusters &c = clustered_;
@@ -351,9 +431,29 @@ namespace meshgap
         // roundoff is below 1.3e-15 |d| reach (|c_k| <= sqrt(3) reach, r_k <= 2 reach); the tolerance is 1e-14
         // |d| reach. The cluster of scan()'s vertex is hence opened, and the same ties rule (the smaller index in
         // vertices_) returns that very vertex.
+        const double scale = d.cwiseAbs().maxCoeff();
+        if (cells_.side > 0 && d.allFinite() && scale > 1e-150 && scale < 1e150)
+        {
+            // Within the table's range of scales no product overflows, and none is small enough to lose bits.
+            const std::size_t cell = cellOf(d, cells_.side);
+            const double dx = d.x(), dy = d.y(), dz = d.z();
+            double best = -std::numeric_limits<double>::infinity();
+            std::uint32_t where = 0;
+            for (std::uint32_t k = cells_.first[cell]; k < cells_.first[cell + 1]; ++k)
+            {
+                const std::uint32_t i = cells_.index[k];
+                // The very expression scan() evaluates; ascending indices, so ties go to the smaller.
+                const double s = dx * xs_[i] + dy * ys_[i] + dz * zs_[i];
+                if (s > best)
+                {
+                    best = s;
+                    where = i;
+                }
+            }
+            return vertices_[where];
+        }
         const Clusters &c = clustered_;
         const std::size_t clusters = c.radius.size();
-        const double scale = d.cwiseAbs().maxCoeff();
         if (clusters == 0 || !(scale > 0.0) || !std::isfinite(scale))
             return scan(d);
         const double length = scale * (d / scale).norm() * (1.0 + 1e-15);  // at least |d|, never underflowing

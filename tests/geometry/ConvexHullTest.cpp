@@ -223,6 +223,20 @@ namespace
         }
         for (const Vector3d &v : hull->vertices())
             dirs.push_back(v - hull->center());
+        // Directions on the edges of the cube map's cells and faces (u, v at multiples of 1/8 and 1/16, a hair
+        // either side, and |d_a| = |d_b| ties between faces), where a lookup could pick a neighbouring cell.
+        for (int a = 0; a < 3; ++a)
+            for (double sign : {1.0, -1.0})
+                for (int i = -16; i <= 16; i += 3)
+                    for (int j = -16; j <= 16; j += 5)
+                        for (double hair : {0.0, 1e-16, -1e-16, 1e-10})
+                        {
+                            Vector3d d;
+                            d[a] = sign;
+                            d[(a + 1) % 3] = i / 16.0 + hair;
+                            d[(a + 2) % 3] = j / 16.0 - hair;
+                            dirs.push_back(d);
+                        }
         const std::size_t unit = dirs.size();
         for (std::size_t i = 0; i < unit; i += 7)
         {

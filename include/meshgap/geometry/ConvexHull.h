@@ -53,8 +53,9 @@ namespace meshgap
         /** \brief Triangles of the hull's surface, as indices into vertices(), oriented alike. */
         const std::vector<std::array<std::uint32_t, 3>> &triangles() const { return triangles_; }
 
-        /** \brief A vertex farthest along \e d: the very one scan() returns, found by testing the vertices of
-            only the clusters whose bounding sphere reaches the best value found so far (see below). */
+        /** \brief A vertex farthest along \e d: the very one scan() returns. A hull of at most 512 vertices tests
+            only the candidates of the direction cell \e d falls in (see directionCells()); a larger one, the
+            vertices of the clusters whose bounding sphere reaches the best value found so far. */
         Eigen::Vector3d support(const Eigen::Vector3d &d) const;
 
         /** \brief A vertex farthest along \e d, every vertex tested: of those whose computed dot product with \e d
@@ -67,6 +68,8 @@ namespace meshgap
         void cluster();
         /** \brief Test the vertices of cluster \e k against the best so far (value, then the smaller index). */
         void scanCluster(std::size_t k, const Eigen::Vector3d &d, double &best, std::uint32_t &where) const;
+        /** \brief Split the directions into cells and find each cell's candidates (cells_); none for a large hull. */
+        void directionCells();
 
         std::vector<Eigen::Vector3d> vertices_;
         std::vector<double> xs_, ys_, zs_;  ///< vertices_ as separate arrays, for scan()
@@ -78,6 +81,18 @@ namespace meshgap
             std::vector<std::uint32_t> index, first;
             std::vector<double> cx, cy, cz, radius;
         } clustered_;
+        /** \brief The directions as a cube map: a direction d is d_a times (+-e_a + u e_b + v e_c) on the face of
+            its largest coordinate a (b, c the next two axes, cyclic), with (u, v) in [-1, 1]^2, cut into side x side
+            squares. A cell's candidates, ascending, are the vertices not beaten over the whole cell, by more than
+            roundoff, by one same vertex (a vertex farthest along one of the cell's corners or its centre): every
+            direction of the cell has scan()'s vertex among them. Cell (face, i, j), face = 2 a + (d_a < 0), holds
+            index[first[(face side + i) side + j] ...). */
+        struct Cells
+        {
+            int side{0};  ///< 0: no table
+            std::vector<std::uint32_t> first;
+            std::vector<std::uint16_t> index;
+        } cells_;
         std::vector<std::array<std::uint32_t, 3>> triangles_;
         double margin_{0.0};
         Eigen::Vector3d center_{Eigen::Vector3d::Zero()};
