@@ -21,12 +21,46 @@ namespace meshgap
             double bound;
         };
 
-        /** \brief Lower bound of the distance between anything in node \e n's box and the ball (\e c, \e r). */
-        double nodeBound(const TriangleBvh::Node &n, const Eigen::Vector3d &c, double r)
+        /** \brief A box holding the solid, placed in the mesh's frame: centre, axes (columns), half extents, and a
+            pad over the roundoff of the gaps measured along its axes. */
+        struct SolidBox
+        {
+            Eigen::Vector3d center;
+            Eigen::Matrix3d axes;
+            Eigen::Vector3d half;
+            double pad;
+        };
+
+        /** \brief Lower bound of the distance between anything in node \e n's box and the solid held by the ball
+            (\e c, \e r) and the box \e B: the largest of the gap to the ball and the gaps between the projections
+            of the two boxes onto each box's three axes (a projection onto a unit axis never lengthens a distance).
+            The ball alone is loose about a flat solid (a table: its ball holds the space above it), the boxes
+            alone about a round one. */
+        double nodeBound(const TriangleBvh::Node &n, const Eigen::Vector3d &c, double r, const SolidBox &B)
         {
             const double sphere = (c - n.center).norm() - n.radius - r;
             const Eigen::Vector3d outside = (n.local(c).cwiseAbs() - n.half).cwiseMax(0.0);
-            return std::max(sphere, outside.norm() - r) * (1.0 - 1e-12);
+            const Eigen::Vector3d offset = B.center - n.center;
+            // The solid's box in the node's axes (C: its axes there), then the node's in the solid's.
+            const Eigen::Matrix3d C = n.aligned ? B.axes : Eigen::Matrix3d(n.axes.transpose() * B.axes);
+            const Eigen::Matrix3d absC = C.cwiseAbs();
+            const Eigen::Vector3d T = n.local(B.center);
+            const double alongNode = (T.cwiseAbs() - n.half - absC * B.half).maxCoeff();
+            const double alongSolid =
+                ((B.axes.transpose() * offset).cwiseAbs() - B.half - absC.transpose() * n.half).maxCoeff();
+            const double boxes = std::max(alongNode, alongSolid) - B.pad;
+            return std::max(std::max(sphere, outside.norm() - r) * (1.0 - 1e-12), boxes);
+        }
+
+        /** \brief Lower bound of the distance between triangle (\e a, \e b, \e c) and the solid box \e B: the
+            gap between their projections onto each of the box's axes. */
+        double triangleBoxBound(const Eigen::Vector3d &a, const Eigen::Vector3d &b, const Eigen::Vector3d &c,
+                                const SolidBox &B)
+        {
+            const Eigen::Vector3d pa = B.axes.transpose() * (a - B.center), pb = B.axes.transpose() * (b - B.center),
+                                  pc = B.axes.transpose() * (c - B.center);
+            const Eigen::Vector3d lo = pa.cwiseMin(pb).cwiseMin(pc), hi = pa.cwiseMax(pb).cwiseMax(pc);
+            return std::max((lo - B.half).maxCoeff(), (-hi - B.half).maxCoeff()) - B.pad;
         }
 
         /** \brief The traversal: depth first, nearer child first, pruning above the best distance so far. */
@@ -42,6 +76,13 @@ namespace meshgap
                 primitiveBoundingBall(s, centre, radius);
                 centre_ = X * centre;
                 radius_ = radius;
+                const Eigen::Isometry3d placed = X * s.pose;
+                box_.center = placed.translation();
+                box_.axes = placed.linear();
+                box_.half = primitiveBoxHalf(s);
+                // The projected gaps' roundoff: a few ulps of the coordinates and extents they are made of.
+                const TriangleBvh::Node &root = mesh.nodes().empty() ? TriangleBvh::Node() : mesh.nodes()[0];
+                box_.pad = 1e-12 * (box_.center.norm() + box_.half.sum() + root.center.norm() + root.radius) + 1e-300;
             }
 
             /** \brief Test triangle \e t; true when it became the best. */
@@ -54,7 +95,8 @@ namespace meshgap
                 // The ball holding the solid first: a triangle farther from its centre than the best plus the radius
                 // cannot win.
                 if (result_.found || std::isfinite(result_.distance))
-                    if (pointTriangleDistance(centre_, a, b, c, on) * (1.0 - 1e-12) - radius_ > result_.distance)
+                    if (triangleBoxBound(a, b, c, box_) > result_.distance ||
+                        pointTriangleDistance(centre_, a, b, c, on) * (1.0 - 1e-12) - radius_ > result_.distance)
                         return false;
                 ++result_.triangleTests;
                 const SolidGap g = primitiveTriangleGap(s_, X_, a, b, c, result_.distance);
@@ -74,7 +116,7 @@ namespace meshgap
             {
                 std::vector<OpenNode> &stack = bvh::threadStack<OpenNode, 7>();
                 const TriangleBvh::Node *nodes = mesh_.nodes().data();
-                stack.push_back({0u, nodeBound(nodes[0], centre_, radius_)});
+                stack.push_back({0u, nodeBound(nodes[0], centre_, radius_, box_)});
                 while (!stack.empty())
                 {
                     const OpenNode o = stack.back();
@@ -91,8 +133,8 @@ namespace meshgap
                         continue;
                     }
                     result_.boxTests += 2;
-                    OpenNode l{n.first, nodeBound(nodes[n.first], centre_, radius_)};
-                    OpenNode r{n.first + 1, nodeBound(nodes[n.first + 1], centre_, radius_)};
+                    OpenNode l{n.first, nodeBound(nodes[n.first], centre_, radius_, box_)};
+                    OpenNode r{n.first + 1, nodeBound(nodes[n.first + 1], centre_, radius_, box_)};
                     if (l.bound < r.bound)
                         std::swap(l, r);  // the nearer one on top
                     stack.push_back(l);
@@ -119,6 +161,7 @@ namespace meshgap
             const std::size_t budget_;
             Eigen::Vector3d centre_;
             double radius_{0.0};
+            SolidBox box_;
         };
     }  // namespace
 

@@ -87,6 +87,22 @@ namespace meshgap
         }
     }
 
+    Eigen::Vector3d primitiveBoxHalf(const Primitive &p)
+    {
+        const double r = p.size.x(), h = 0.5 * p.size.y();
+        switch (p.kind)
+        {
+            case Primitive::Kind::BOX:
+                return 0.5 * p.size;
+            case Primitive::Kind::SPHERE:
+                return Eigen::Vector3d::Constant(r);
+            case Primitive::Kind::CAPSULE:
+                return Eigen::Vector3d(r, r, h + r);
+            default:  // cylinder, cone
+                return Eigen::Vector3d(r, r, h);
+        }
+    }
+
     namespace solid
     {
         Core coreOf(const Primitive &p, const Eigen::Isometry3d &X)

@@ -45,6 +45,10 @@ namespace meshgap
     /** \brief Centre (in the frame Primitive::pose is in) and radius of a ball holding the solid \e p. */
     void primitiveBoundingBall(const Primitive &p, Eigen::Vector3d &center, double &radius);
 
+    /** \brief Half extents of a box holding the solid \e p, centred on the origin of its pose and along its axes
+        (a box's own; a cylinder's, cone's or capsule's r, r and half its length along z, the capsule's caps added). */
+    Eigen::Vector3d primitiveBoxHalf(const Primitive &p);
+
     /** \brief Distance between solid \e s, its frame (the one Primitive::pose is in) placed in the query frame by
         \e X, and the filled triangle abc (query frame): onA on the solid, onB on the triangle. With \e enough, the
         computation may stop once its lower bound exceeds it (a caller that prunes above it): distance is then that
