@@ -52,15 +52,60 @@ namespace meshgap
             return std::max(std::max(sphere, outside.norm() - r) * (1.0 - 1e-12), boxes);
         }
 
-        /** \brief Lower bound of the distance between triangle (\e a, \e b, \e c) and the solid box \e B: the
-            gap between their projections onto each of the box's axes. */
-        double triangleBoxBound(const Eigen::Vector3d &a, const Eigen::Vector3d &b, const Eigen::Vector3d &c,
-                                const SolidBox &B)
+        /** \brief The distance from the origin to the triangle (\e p, \e q, \e r) of the plane; 0 when the origin
+            is inside or on it, or it is flat. */
+        double originTriangleDistance2d(const Eigen::Vector2d &p, const Eigen::Vector2d &q, const Eigen::Vector2d &r)
+        {
+            const Eigen::Vector2d corner[3] = {p, q, r};
+            double side[3], nearest = std::numeric_limits<double>::infinity();
+            for (int i = 0; i < 3; ++i)
+            {
+                const Eigen::Vector2d &u = corner[i], e = corner[(i + 1) % 3] - u;
+                side[i] = e.x() * -u.y() - e.y() * -u.x();
+                const double ee = e.squaredNorm();
+                const double t = ee > 0.0 ? std::clamp(-u.dot(e) / ee, 0.0, 1.0) : 0.0;
+                nearest = std::min(nearest, (u + t * e).norm());
+            }
+            const bool inside = (side[0] >= 0.0 && side[1] >= 0.0 && side[2] >= 0.0) ||
+                                (side[0] <= 0.0 && side[1] <= 0.0 && side[2] <= 0.0);
+            return inside ? 0.0 : nearest;
+        }
+
+        /** \brief Lower bound of the distance between triangle (\e a, \e b, \e c) and the solid \e s held by the
+            box \e B: the gap between their projections onto each of the box's axes; for a box, also onto the
+            triangle's normal and the nine cross products of an edge of each (every separating axis of a box and a
+            triangle: the bound is above 0 whenever they are apart by more than roundoff); for a solid about the
+            z axis within radius x (a cylinder, capsule or cone), also the triangle's distance to that axis, less
+            the radius (the distance from the z axis is that in the projection along it). */
+        double triangleSolidBound(const Eigen::Vector3d &a, const Eigen::Vector3d &b, const Eigen::Vector3d &c,
+                                  const SolidBox &B, const Primitive &s)
         {
             const Eigen::Vector3d pa = B.axes.transpose() * (a - B.center), pb = B.axes.transpose() * (b - B.center),
                                   pc = B.axes.transpose() * (c - B.center);
             const Eigen::Vector3d lo = pa.cwiseMin(pb).cwiseMin(pc), hi = pa.cwiseMax(pb).cwiseMax(pc);
-            return std::max((lo - B.half).maxCoeff(), (-hi - B.half).maxCoeff()) - B.pad;
+            double gap = std::max((lo - B.half).maxCoeff(), (-hi - B.half).maxCoeff());
+            if (gap > 0.0 || s.kind == Primitive::Kind::SPHERE)
+                return gap - B.pad;
+            if (s.kind != Primitive::Kind::BOX)
+            {
+                const double radial = originTriangleDistance2d(pa.head<2>(), pb.head<2>(), pc.head<2>()) - s.size.x();
+                return std::max(gap, radial) - B.pad;
+            }
+            // In the box's frame: along a unit axis L the triangle spans [min p.L, max p.L], the box |L|.half.
+            auto along = [&](const Eigen::Vector3d &L)
+            {
+                const double length = L.norm();
+                if (!(length > 1e-9 * (pa - pb).norm()))
+                    return -std::numeric_limits<double>::infinity();  // an edge along a box axis: already tested
+                const double x = pa.dot(L), y = pb.dot(L), z = pc.dot(L), r = L.cwiseAbs().dot(B.half);
+                return std::max(std::min(x, std::min(y, z)) - r, -r - std::max(x, std::max(y, z))) / length;
+            };
+            const Eigen::Vector3d edges[3] = {pb - pa, pc - pb, pa - pc};
+            gap = std::max(gap, along(edges[0].cross(edges[1])));
+            for (int i = 0; i < 3 && !(gap > 0.0); ++i)
+                for (const Eigen::Vector3d &e : edges)
+                    gap = std::max(gap, along(Eigen::Vector3d::Unit(i).cross(e)));
+            return gap - B.pad;
         }
 
         /** \brief The traversal: depth first, nearer child first, pruning above the best distance so far. */
@@ -95,7 +140,7 @@ namespace meshgap
                 // The ball holding the solid first: a triangle farther from its centre than the best plus the radius
                 // cannot win.
                 if (result_.found || std::isfinite(result_.distance))
-                    if (triangleBoxBound(a, b, c, box_) > result_.distance ||
+                    if (triangleSolidBound(a, b, c, box_, s_) > result_.distance ||
                         pointTriangleDistance(centre_, a, b, c, on) * (1.0 - 1e-12) - radius_ > result_.distance)
                         return false;
                 ++result_.triangleTests;
