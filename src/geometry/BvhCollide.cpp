@@ -56,19 +56,29 @@ namespace meshgap
             return false;
         }
 
-        /** \brief Push the two children of pair \e e (nodes \e na, \e nb) split as splitA() says. */
-        void pushChildren(std::vector<PairEntry> &stack, const PairEntry &e, const TriangleBvh::Node &na,
-                          const TriangleBvh::Node &nb)
+        /** \brief Push the two children of pair \e e (nodes \e na of \e a, \e nb of \e b) split as splitA() says,
+            the child whose box centre lies nearer the other node's on top (tested first): at a colliding pose the
+            first intersecting pair is what ends the test, and it lies where the surfaces cross, nearer the middle of
+            the overlap than its edges. The verdict does not depend on the order. */
+        void pushChildren(std::vector<PairEntry> &stack, const PairEntry &e, const TriangleBvh &a,
+                          const TriangleBvh &b, const TriangleBvh::Node &na, const TriangleBvh::Node &nb,
+                          const RelativePose &X)
         {
             if (splitA(na, nb))
             {
-                stack.push_back({na.first, e.b});
-                stack.push_back({na.first + 1, e.b});
+                const Eigen::Vector3d other = X.place(nb).center;
+                const bool leftFirst = (a.nodes()[na.first].center - other).squaredNorm() <=
+                                       (a.nodes()[na.first + 1].center - other).squaredNorm();
+                stack.push_back({na.first + (leftFirst ? 1u : 0u), e.b});
+                stack.push_back({na.first + (leftFirst ? 0u : 1u), e.b});
             }
             else
             {
-                stack.push_back({e.a, nb.first});
-                stack.push_back({e.a, nb.first + 1});
+                const Eigen::Vector3d left = X.place(b.nodes()[nb.first]).center;
+                const bool leftFirst = (left - na.center).squaredNorm() <=
+                                       (X.place(b.nodes()[nb.first + 1]).center - na.center).squaredNorm();
+                stack.push_back({e.a, nb.first + (leftFirst ? 1u : 0u)});
+                stack.push_back({e.a, nb.first + (leftFirst ? 0u : 1u)});
             }
         }
 
@@ -135,7 +145,7 @@ namespace meshgap
                     }
                     continue;
                 }
-                pushChildren(stack, e, na, nb);
+                pushChildren(stack, e, a, b, na, nb, X);
             }
             pairs += visited;
             return false;
@@ -206,7 +216,7 @@ namespace meshgap
                         keep(e, bound);
                         continue;
                     }
-                    pushChildren(stack_, e, na, nb);
+                    pushChildren(stack_, e, a_, b_, na, nb, X_);
                 }
                 return false;
             }
