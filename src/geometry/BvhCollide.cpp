@@ -56,19 +56,29 @@ namespace meshgap
             return false;
         }
 
-        /** \brief Push the two children of pair \e e (nodes \e na, \e nb) split as splitA() says. */
-        void pushChildren(std::vector<PairEntry> &stack, const PairEntry &e, const TriangleBvh::Node &na,
-                          const TriangleBvh::Node &nb)
+        /** \brief Push the two children of pair \e e (nodes \e na of \e a, \e nb of \e b) split as splitA() says,
+            the child whose box centre lies nearer the other node's on top (tested first): at a colliding pose the
+            first intersecting pair is what ends the test, and it lies where the surfaces cross, nearer the middle of
+            the overlap than its edges. The verdict does not depend on the order. */
+        void pushChildren(std::vector<PairEntry> &stack, const PairEntry &e, const TriangleBvh &a,
+                          const TriangleBvh &b, const TriangleBvh::Node &na, const TriangleBvh::Node &nb,
+                          const RelativePose &X)
         {
             if (splitA(na, nb))
             {
-                stack.push_back({na.first, e.b});
-                stack.push_back({na.first + 1, e.b});
+                const Eigen::Vector3d other = X.place(nb).center;
+                const bool leftFirst = (a.nodes()[na.first].center - other).squaredNorm() <=
+                                       (a.nodes()[na.first + 1].center - other).squaredNorm();
+                stack.push_back({na.first + (leftFirst ? 1u : 0u), e.b});
+                stack.push_back({na.first + (leftFirst ? 0u : 1u), e.b});
             }
             else
             {
-                stack.push_back({e.a, nb.first});
-                stack.push_back({e.a, nb.first + 1});
+                const Eigen::Vector3d left = X.place(b.nodes()[nb.first]).center;
+                const bool leftFirst = (left - na.center).squaredNorm() <=
+                                       (X.place(b.nodes()[nb.first + 1]).center - na.center).squaredNorm();
+                stack.push_back({e.a, nb.first + (leftFirst ? 1u : 0u)});
+                stack.push_back({e.a, nb.first + (leftFirst ? 0u : 1u)});
             }
         }
 
@@ -101,37 +111,52 @@ namespace meshgap
         }
     }  // namespace
 
+    namespace
+    {
+        /** \brief The stateless test, counting the node pairs it visits into \e pairs. */
+        bool collideCounted(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB,
+                            std::uint32_t *hitA, std::uint32_t *hitB, std::size_t &pairs)
+        {
+            if (a.nodes().empty() || b.nodes().empty())
+                return false;
+            const RelativePose X(X_AB, b);
+            std::vector<PairEntry> &stack = threadStack<PairEntry, 3>();
+            stack.push_back({0u, 0u});
+            std::size_t visited = 0;
+            while (!stack.empty())
+            {
+                const PairEntry e = stack.back();
+                stack.pop_back();
+                ++visited;
+                const TriangleBvh::Node &na = a.nodes()[e.a], &nb = b.nodes()[e.b];
+                if (separated(na, nb, X))
+                    continue;
+                if (na.isLeaf() && nb.isLeaf())
+                {
+                    std::uint32_t ta, tb;
+                    if (leavesIntersect(a, b, X, na, nb, ta, tb))
+                    {
+                        if (hitA)
+                            *hitA = ta;
+                        if (hitB)
+                            *hitB = tb;
+                        pairs += visited;
+                        return true;
+                    }
+                    continue;
+                }
+                pushChildren(stack, e, a, b, na, nb, X);
+            }
+            pairs += visited;
+            return false;
+        }
+    }  // namespace
+
     bool bvhCollide(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, std::uint32_t *hitA,
                     std::uint32_t *hitB)
     {
-        if (a.nodes().empty() || b.nodes().empty())
-            return false;
-        const RelativePose X(X_AB, b);
-        std::vector<PairEntry> &stack = threadStack<PairEntry, 3>();
-        stack.push_back({0u, 0u});
-        while (!stack.empty())
-        {
-            const PairEntry e = stack.back();
-            stack.pop_back();
-            const TriangleBvh::Node &na = a.nodes()[e.a], &nb = b.nodes()[e.b];
-            if (separated(na, nb, X))
-                continue;
-            if (na.isLeaf() && nb.isLeaf())
-            {
-                std::uint32_t ta, tb;
-                if (leavesIntersect(a, b, X, na, nb, ta, tb))
-                {
-                    if (hitA)
-                        *hitA = ta;
-                    if (hitB)
-                        *hitB = tb;
-                    return true;
-                }
-                continue;
-            }
-            pushChildren(stack, e, na, nb);
-        }
-        return false;
+        std::size_t pairs = 0;
+        return collideCounted(a, b, X_AB, hitA, hitB, pairs);
     }
 
     namespace
@@ -146,7 +171,7 @@ namespace meshgap
         public:
             CollisionTraversal(const TriangleBvh &a, const TriangleBvh &b, const RelativePose &X, double margin,
                                const StepMotion &lookahead, std::vector<BvhFront::Entry> *record, double motion,
-                               std::uint32_t stamp)
+                               std::uint32_t stamp, std::size_t budget)
                 : a_(a),
                   b_(b),
                   X_(X),
@@ -155,17 +180,25 @@ namespace meshgap
                   record_(record),
                   motion_(motion),
                   stamp_(stamp),
+                  budget_(budget),
                   stack_(threadStack<PairEntry, 6>())
             {
             }
 
-            /** \brief True at the first intersecting pair of triangles below \e start (hitA / hitB name it). */
+            /** \brief True at the first intersecting pair of triangles below \e start (hitA / hitB name it). False
+                also when the node pairs visited by this traversal's runs together exceed its budget (over is then
+                set, and what was recorded is incomplete). */
             bool run(const PairEntry &start)
             {
                 stack_.clear();
                 stack_.push_back(start);
                 while (!stack_.empty())
                 {
+                    if (++visited_ > budget_)
+                    {
+                        over = true;
+                        return false;
+                    }
                     const PairEntry e = stack_.back();
                     stack_.pop_back();
                     const TriangleBvh::Node &na = a_.nodes()[e.a], &nb = b_.nodes()[e.b];
@@ -183,12 +216,13 @@ namespace meshgap
                         keep(e, bound);
                         continue;
                     }
-                    pushChildren(stack_, e, na, nb);
+                    pushChildren(stack_, e, a_, b_, na, nb, X_);
                 }
                 return false;
             }
 
             std::uint32_t hitA{0}, hitB{0};
+            bool over{false};  ///< the budget ran out
 
         private:
             void keep(const PairEntry &e, double gap)
@@ -240,6 +274,8 @@ namespace meshgap
             std::vector<BvhFront::Entry> *record_;
             const double motion_;
             const std::uint32_t stamp_;
+            const std::size_t budget_;
+            std::size_t visited_{0};
             std::vector<PairEntry> &stack_;
         };
 
@@ -251,7 +287,8 @@ namespace meshgap
             summed since the front was written) later: an entry is kept while key - motion stays above the margin,
             else while its gap lowered by its own node's displacement since then does (re-based on this pose); else
             the traversal runs below it and its sub-front (in traversal's record) replaces it. True at the first
-            intersecting pair (the front is then left as it is). \e retested counts the entries re-tested. */
+            intersecting pair (the front is then left as it is); false with traversal.over set when the traversal's
+            budget ran out (the front is then no longer a cut). \e retested counts the entries re-tested. */
         bool retestCollisionFront(BvhFront &front, CollisionTraversal &traversal, const TriangleBvh &b,
                                   const Eigen::Isometry3d &X_AB, double margin, double motion, std::uint32_t stamp,
                                   std::size_t &retested)
@@ -286,6 +323,8 @@ namespace meshgap
                 ++retested;
                 if (traversal.run({e.a, e.b}))
                     return true;
+                if (traversal.over)
+                    return false;
                 front.entries[i] = front.next.back();  // its sub-front replaces it (at least one entry)
                 front.next.pop_back();
             }
@@ -322,6 +361,25 @@ namespace meshgap
                 *hitB = t.hitB;
             return true;
         };
+        // The stateless test, its cost the yardstick of the next tests' budget.
+        auto stateless = [&]
+        {
+            std::size_t pairs = 0;
+            front.collided = collideCounted(a, b, X_AB, hitA, hitB, pairs);
+            front.statelessPairs = pairs;
+            return front.collided;
+        };
+        // A test with the front that visits more node pairs than its budget stops there and answers as the stateless
+        // test does; the front is dropped, and none is written for a while (as when fronts do not last).
+        auto overBudget = [&]
+        {
+            ++front.overBudget;
+            front.valid = false;
+            front.wait = front.backoff = std::min(2 * front.backoff + 1, 64u);
+            return stateless();
+        };
+        const std::size_t budget =
+            BvhFront::BUDGET * std::max<std::size_t>(front.statelessPairs, BvhFront::MIN_BUDGET);
         // The last step's motion, node by node: the lookahead of the pairs written now.
         const bool small = step <= 0.1 * rootB.radius;
         std::optional<StepMotion> last;
@@ -331,10 +389,12 @@ namespace meshgap
         {
             const double motion = front.motion + step;
             front.next.clear();
-            CollisionTraversal traversal(a, b, X, margin, *last, &front.next, motion, stamp);
+            CollisionTraversal traversal(a, b, X, margin, *last, &front.next, motion, stamp, budget);
             std::size_t retested = 0;
             if (retestCollisionFront(front, traversal, b, X_AB, margin, motion, stamp, retested))
                 return report(traversal);
+            if (traversal.over)
+                return overBudget();
             front.reused += front.entries.size() - retested;
             front.retested += retested;
             front.entries.insert(front.entries.end(), front.next.begin(), front.next.end());
@@ -356,15 +416,16 @@ namespace meshgap
         if (!write)
         {
             ++front.incoherent;
-            front.collided = bvhCollide(a, b, X_AB, hitA, hitB);
-            return front.collided;
+            return stateless();
         }
         front.uses = 0;
         ++front.rebuilds;
         front.entries.clear();
-        CollisionTraversal traversal(a, b, X, margin, *last, &front.entries, 0.0, stamp);
+        CollisionTraversal traversal(a, b, X, margin, *last, &front.entries, 0.0, stamp, budget);
         if (traversal.run({0u, 0u}))
             return report(traversal);
+        if (traversal.over)
+            return overBudget();
         front.motion = 0.0;
         front.motions[stamp % BvhFront::POSES] = 0.0;
         front.freshSize = front.entries.size();

@@ -221,7 +221,11 @@ namespace meshgap
             const Eigen::Matrix3d axes = principalFrame(covariance);
             const Eigen::AlignedBox3d principal = boxAlong(axes, corners.data(), corners.data() + corners.size());
             const Eigen::Vector3d principalHalf = 0.5 * principal.sizes();
-            auto measure = [](const Eigen::Vector3d &h) { return h.prod() + 1e-3 * h.squaredNorm() * h.minCoeff(); };
+            // Volumes of the boxes grown by a thousandth of the aligned box's half diagonal on every side, so that
+            // flat boxes (a triangle's, or coplanar ones') compare by their area: a slanted sliver in an axis plane
+            // has an aligned box of zero volume too, yet of up to hundreds of times its own area.
+            const double grow = 1e-3 * node.half.norm();
+            auto measure = [grow](const Eigen::Vector3d &h) { return (h.array() + grow).prod(); };
             if (axes.allFinite() && measure(principalHalf) < 0.8 * measure(node.half))
             {
                 node.axes = axes;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <iostream>
 #include <random>
 #include <vector>
@@ -202,6 +203,115 @@ TEST(BvhFront, ACollisionFrontGivesTheStatelessVerdictAndEveryEntryStaysApart)
     EXPECT_GT(front.reused, front.retested);
     EXPECT_GT(front.incoherent, 5u);  // the jumps do not write a front
     EXPECT_GT(entries, checked);
+}
+
+namespace
+{
+    /** \brief Whether some triangle of \e ma intersects some triangle of \e mb placed by \e X, over every pair. */
+    bool bruteForceCollide(const Mesh &ma, const Mesh &mb, const Eigen::Isometry3d &X)
+    {
+        Eigen::Vector3d pb[3];
+        for (const Triangle &g : mb.triangles)
+        {
+            for (int k = 0; k < 3; ++k)
+                pb[k] = X * mb.vertices[g[k]];
+            for (const Triangle &f : ma.triangles)
+                if (trianglesIntersect(ma.vertices[f[0]], ma.vertices[f[1]], ma.vertices[f[2]], pb[0], pb[1], pb[2]))
+                    return true;
+        }
+        return false;
+    }
+
+    /** \brief A disc of radius \e r in the plane z = 0, fanned out from one rim vertex into slivers (as CAD exports a
+        round face). */
+    Mesh fannedDisc(double r, int n)
+    {
+        Mesh m;
+        m.source = "fanned disc";
+        for (int i = 0; i < n; ++i)
+            m.vertices.emplace_back(r * std::cos(2.0 * M_PI * i / n), r * std::sin(2.0 * M_PI * i / n), 0.0);
+        for (int i = 1; i + 1 < n; ++i)
+            m.triangles.push_back({0u, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i + 1)});
+        return m;
+    }
+}  // namespace
+
+TEST(BvhCollide, TheStatelessVerdictIsBruteForceOverEveryTrianglePair)
+{
+    // bvhCollide() at seeded random poses of B about A (half of them colliding, as a planner's samples near
+    // obstacles are): the verdict of every triangle pair tested, and a reported pair that intersects. The children
+    // are visited in an order that depends on the pose; the verdict must not. On the bumpy bodies and on a bumpy
+    // body against a disc fanned into slivers.
+    const Mesh bumpyA = test::merged(bumpy(1.0, 3), fannedDisc(1.2, 40)), mb = bumpy(0.5, 2);
+    const TriangleBvh a(bumpyA), b(mb);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::normal_distribution<double> g;
+    const int poses = 400 / test::stride();
+    int hits = 0;
+    for (int i = 0; i < poses; ++i)
+    {
+        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+        X.linear() = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+        X.translation() = Eigen::Vector3d(1.8 * u(rng), 1.8 * u(rng), 0.9 * u(rng));
+        std::uint32_t ta = UINT32_MAX, tb = UINT32_MAX;
+        const bool hit = bvhCollide(a, b, X, &ta, &tb);
+        ASSERT_EQ(hit, bruteForceCollide(bumpyA, mb, X)) << "pose " << i;
+        if (!hit)
+            continue;
+        ++hits;
+        const Triangle &f = bumpyA.triangles[ta], &h = mb.triangles[tb];
+        ASSERT_TRUE(trianglesIntersect(bumpyA.vertices[f[0]], bumpyA.vertices[f[1]], bumpyA.vertices[f[2]],
+                                       X * mb.vertices[h[0]], X * mb.vertices[h[1]], X * mb.vertices[h[2]]));
+    }
+    EXPECT_GT(hits, poses / 5);
+    EXPECT_LT(hits, poses - poses / 5);
+}
+
+TEST(BvhFront, ACollisionFrontOverItsBudgetGivesTheStatelessVerdict)
+{
+    // A fine plate lowered onto another, tilted, in runs of 20 small steps (each run a little aside): near contact
+    // a front holds pairs of leaves by the hundred, where the stateless test prunes most of them at once (the
+    // plates' boxes are apart along their normals), so writing or re-testing the front runs out of its budget, at
+    // free poses and at colliding ones. Every verdict must still be the stateless one, and brute force's.
+    const Mesh ma = test::grid(1.0, 1.0, 16, 16), mb = test::grid(0.5, 0.5, 10, 10);
+    const TriangleBvh a(ma), b(mb);
+    BvhFront front;
+    const std::size_t stride = static_cast<std::size_t>(test::stride());
+    int hits = 0;
+    std::size_t overHit = 0, overFree = 0;  // tests over budget, by verdict
+    for (int i = 0; i < 600; ++i)
+    {
+        const int run = i / 20, step = i % 20;
+        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+        X.linear() =
+            Eigen::AngleAxisd(0.1, Eigen::Vector3d(1.0, 1.0 + 0.1 * run, 0.0).normalized()).toRotationMatrix();
+        X.translation() = Eigen::Vector3d(0.1 + 0.01 * run, 0.2 + 0.005 * run, 0.1 - 0.01 * step);
+        std::uint32_t ta = UINT32_MAX, tb = UINT32_MAX;
+        const std::size_t over = front.overBudget;
+        const bool warm = bvhCollide(a, b, X, front, &ta, &tb);
+        ASSERT_EQ(warm, bvhCollide(a, b, X)) << "pose " << i;
+        (warm ? overHit : overFree) += front.overBudget - over;
+        if (static_cast<std::size_t>(i) % (2 * stride) == 0)
+        {
+            ASSERT_EQ(warm, bruteForceCollide(ma, mb, X)) << "pose " << i;
+        }
+        if (!warm)
+            continue;
+        ++hits;
+        const Triangle &f = ma.triangles[ta], &h = mb.triangles[tb];
+        ASSERT_TRUE(trianglesIntersect(ma.vertices[f[0]], ma.vertices[f[1]], ma.vertices[f[2]], X * mb.vertices[h[0]],
+                                       X * mb.vertices[h[1]], X * mb.vertices[h[2]]));
+    }
+    test::Note() << "[ front    ] " << hits << " colliding poses; over budget " << overHit << " colliding, "
+                 << overFree << " free; rebuilds " << front.rebuilds << ", kept " << front.reused << ", re-tested "
+                 << front.retested << "\n";
+    EXPECT_GT(hits, 100);
+    EXPECT_LT(hits, 500);
+    // The budget ran out on both kinds of pose, and the stateless test answered; fronts were still kept between.
+    EXPECT_GT(overHit, 5u);
+    EXPECT_GT(overFree, 5u);
+    EXPECT_GT(front.reused, 100u);
 }
 
 TEST(BvhFront, MotionBoundCoversEveryPointsDisplacement)

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <set>
@@ -158,4 +159,43 @@ TEST(TriangleBvhBuild, EverySplitIsTheLeastCostCutOfASortedOrder)
     EXPECT_GE(expectEverySplitLeastCost(test::transformed(test::box(0.2, 0.3, 3, 20), X), "turned box"), 1024u);
     expectEverySplitLeastCost(test::transformed(randomSoup(9, 400, 2), X), "turned soup");
     expectEverySplitLeastCost(test::transformed(test::icosphere(1.0, 3), X), "turned icosphere");
+}
+
+TEST(TriangleBvhBuild, AFlatSliverInAnAxisPlaneGetsAFittedBox)
+{
+    // A disc in the plane z = 0 fanned out from one rim vertex (as CAD exports a round face): slivers crossing the
+    // disc at every angle. Both of a sliver's boxes have zero volume there, yet its aligned box can be hundreds of
+    // times its area: every leaf's box (its two largest extents) must be within a small factor of its triangle's
+    // area, in the axis plane as on the same disc turned.
+    const int n = 64;
+    Mesh disc;
+    disc.source = "fanned disc";
+    for (int i = 0; i < n; ++i)
+    {
+        const double angle = 2.0 * M_PI * i / n;
+        disc.vertices.emplace_back(std::cos(angle), std::sin(angle), 0.0);
+    }
+    for (int i = 1; i + 1 < n; ++i)
+        disc.triangles.push_back({0u, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i + 1)});
+    Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+    turn.linear() = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 3).normalized()).toRotationMatrix();
+    const std::pair<const char *, Mesh> cases[] = {{"in the plane z = 0", disc},
+                                                   {"turned", test::transformed(disc, turn)}};
+    for (const auto &[what, m] : cases)
+    {
+        const TriangleBvh bvh(m);
+        double worst = 0.0;
+        for (const TriangleBvh::Node &node : bvh.nodes())
+        {
+            if (!node.isLeaf())
+                continue;
+            const Triangle &f = m.triangles[bvh.order()[node.first]];
+            const double area =
+                0.5 * (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).norm();
+            Eigen::Vector3d half = node.half;
+            std::sort(half.data(), half.data() + 3);
+            worst = std::max(worst, 4.0 * half[1] * half[2] / area);
+        }
+        EXPECT_LT(worst, 4.0) << what;
+    }
 }

@@ -29,8 +29,13 @@ namespace meshgap
         step, so that they outlast the next one; it is rebuilt when it has grown past FRONT_GROWTH times a fresh
         one or a test re-tested more than half of it; when fronts keep failing within two tests (motions as large
         as the gaps), writing backs off (BvhFront::backoff). A collision leaves no front, and none is
-        written until a test has found the bodies apart (a colliding run costs the stateless tests). Belongs to one
-        caller. */
+        written until a test has found the bodies apart (a colliding run costs the stateless tests).
+
+        Near contact a front is a fine cut (pairs of leaves kept apart by twice their motion), where the stateless
+        test prunes whole box pairs at once: a test with the front (re-testing it, or writing it from the roots)
+        visits at most BvhFront::BUDGET times the node pairs of the last stateless test (at least
+        BvhFront::MIN_BUDGET); past that it drops the front, backs off as above and answers by the stateless test. A
+        warm test therefore costs at most about BUDGET + 1 stateless ones. Belongs to one caller. */
     bool bvhCollide(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, BvhFront &front,
                     std::uint32_t *hitA = nullptr, std::uint32_t *hitB = nullptr);
 

@@ -37,6 +37,10 @@ namespace meshgap
     {
         static constexpr std::size_t FRONT_GROWTH = 2;
         static constexpr std::uint32_t POSES = 8;
+        /** \brief Collision fronts: a test with the front visits at most BUDGET times as many node pairs as the last
+            stateless test did (at least MIN_BUDGET), else it answers as the stateless test does (bvhCollide()). */
+        static constexpr std::size_t BUDGET = 2;
+        static constexpr std::size_t MIN_BUDGET = 64;
 
         struct Entry
         {
@@ -58,6 +62,8 @@ namespace meshgap
         bool valid{false};          ///< entries cover the whole pair tree (false: start from the roots)
         bool started{false};        ///< a traversal has run (poses holds its pose)
         bool collided{false};       ///< collision fronts: the last test found a collision (no front is written)
+        std::size_t statelessPairs{0};  ///< collision fronts: node pairs the last stateless test visited
+        std::size_t overBudget{0};      ///< collision fronts: tests that ran out of budget (statistics)
         std::size_t reused{0};      ///< statistics: entries kept without a test, over the front's lifetime
         std::size_t retested{0};    ///< entries re-tested in full
         std::size_t axisKept{0};    ///< entries kept by their separating axis

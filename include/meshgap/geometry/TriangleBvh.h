@@ -16,10 +16,11 @@
 namespace meshgap
 {
     /** \brief A bounding-volume hierarchy over a mesh's triangles: a binary tree of boxes in the body frame, each the
-        tighter (smaller volume) of the axis-aligned box and the box along the principal axes of its triangles'
-        corners, with a bounding sphere about the box centre; built top-down, each node's triangles cut in two along
-        one of its box axes where the surface area heuristic (the children's box areas times their triangle counts)
-        is least, leaves of at most LEAF_SIZE triangles (a leaf's principal box is flat: a triangle's own plane).
+        tighter (smaller volume; flat ones by area) of the axis-aligned box and the box along the principal axes of
+        its triangles' corners, with a bounding sphere about the box centre; built top-down, each node's triangles cut
+        in two along one of its box axes where the surface area heuristic (the children's box areas times their
+        triangle counts) is least, leaves of at most LEAF_SIZE triangles (a leaf's principal box is flat: a
+        triangle's own plane).
         Between two trees at a relative pose, a box pair is bounded from below by the gap of the spheres, then by the
         gap of the boxes along the direction between their nearest points (BoxBound.h). Immutable; the mesh must
         outlive the tree. */
