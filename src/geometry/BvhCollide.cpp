@@ -330,6 +330,38 @@ namespace meshgap
             }
             return false;
         }
+        /** \brief A collision the test with \e front found: no front is kept, the hit is reported. */
+        bool reportHit(BvhFront &front, const CollisionTraversal &t, std::uint32_t *hitA, std::uint32_t *hitB)
+        {
+            front.valid = false;
+            front.collided = true;
+            if (hitA)
+                *hitA = t.hitA;
+            if (hitB)
+                *hitB = t.hitB;
+            return true;
+        }
+
+        /** \brief The stateless test, its cost the yardstick of the next tests' budget. */
+        bool statelessTest(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB,
+                           BvhFront &front, std::uint32_t *hitA, std::uint32_t *hitB)
+        {
+            std::size_t pairs = 0;
+            front.collided = collideCounted(a, b, X_AB, hitA, hitB, pairs);
+            front.statelessPairs = pairs;
+            return front.collided;
+        }
+
+        /** \brief A test with the front that visits more node pairs than its budget stops there and answers as the
+            stateless test does; the front is dropped, and none is written for a while (as when fronts do not last). */
+        bool overBudgetTest(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB,
+                            BvhFront &front, std::uint32_t *hitA, std::uint32_t *hitB)
+        {
+            ++front.overBudget;
+            front.valid = false;
+            front.wait = front.backoff = std::min(2 * front.backoff + 1, 64u);
+            return statelessTest(a, b, X_AB, front, hitA, hitB);
+        }
     }  // namespace
 
     bool bvhCollide(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB, BvhFront &front,
@@ -351,33 +383,6 @@ namespace meshgap
                                           : std::numeric_limits<double>::infinity();
         front.started = true;
         front.poses[stamp % BvhFront::POSES] = X_AB;
-        auto report = [&](const CollisionTraversal &t)
-        {
-            front.valid = false;
-            front.collided = true;
-            if (hitA)
-                *hitA = t.hitA;
-            if (hitB)
-                *hitB = t.hitB;
-            return true;
-        };
-        // The stateless test, its cost the yardstick of the next tests' budget.
-        auto stateless = [&]
-        {
-            std::size_t pairs = 0;
-            front.collided = collideCounted(a, b, X_AB, hitA, hitB, pairs);
-            front.statelessPairs = pairs;
-            return front.collided;
-        };
-        // A test with the front that visits more node pairs than its budget stops there and answers as the stateless
-        // test does; the front is dropped, and none is written for a while (as when fronts do not last).
-        auto overBudget = [&]
-        {
-            ++front.overBudget;
-            front.valid = false;
-            front.wait = front.backoff = std::min(2 * front.backoff + 1, 64u);
-            return stateless();
-        };
         const std::size_t budget =
             BvhFront::BUDGET * std::max<std::size_t>(front.statelessPairs, BvhFront::MIN_BUDGET);
         // The last step's motion, node by node: the lookahead of the pairs written now.
@@ -392,9 +397,9 @@ namespace meshgap
             CollisionTraversal traversal(a, b, X, margin, *last, &front.next, motion, stamp, budget);
             std::size_t retested = 0;
             if (retestCollisionFront(front, traversal, b, X_AB, margin, motion, stamp, retested))
-                return report(traversal);
+                return reportHit(front, traversal, hitA, hitB);
             if (traversal.over)
-                return overBudget();
+                return overBudgetTest(a, b, X_AB, front, hitA, hitB);
             front.reused += front.entries.size() - retested;
             front.retested += retested;
             front.entries.insert(front.entries.end(), front.next.begin(), front.next.end());
@@ -416,16 +421,16 @@ namespace meshgap
         if (!write)
         {
             ++front.incoherent;
-            return stateless();
+            return statelessTest(a, b, X_AB, front, hitA, hitB);
         }
         front.uses = 0;
         ++front.rebuilds;
         front.entries.clear();
         CollisionTraversal traversal(a, b, X, margin, *last, &front.entries, 0.0, stamp, budget);
         if (traversal.run({0u, 0u}))
-            return report(traversal);
+            return reportHit(front, traversal, hitA, hitB);
         if (traversal.over)
-            return overBudget();
+            return overBudgetTest(a, b, X_AB, front, hitA, hitB);
         front.motion = 0.0;
         front.motions[stamp % BvhFront::POSES] = 0.0;
         front.freshSize = front.entries.size();
