@@ -333,8 +333,7 @@ namespace meshgap
         /** \brief The most vertices of a hull with a direction table (their indices held in 16 bits; its build
             costs about 30 dot products a vertex and cell). */
         constexpr std::size_t MAX_TABLE_VERTICES = 512;
-        /** \brief Cells along a face's side: 6 x 16 x 16 cells, about 11 candidates a cell for a hull of 192 vertices
-            about a robot's link. */
+        /** \brief Cells along a face's side: 6 x 16 x 16 cells. */
         constexpr int TABLE_SIDE = 16;
         /** \brief How far each cell is widened in (u, v): over the roundoff of u = d_b / |d_a| (1 ulp of 1). */
         constexpr double CELL_PAD = 1e-9;
@@ -425,16 +424,11 @@ namespace meshgap
 
     Eigen::Vector3d ConvexHull::support(const Eigen::Vector3d &d) const
     {
-        // Cluster k's vertices x have d.x <= d.c_k + |d| r_k (its bounding sphere), so when the rounded bound plus
-        // a tolerance is below the best computed dot product found so far, no vertex of the cluster can have the
-        // largest computed one: |fl(d.x) - d.x| <= gamma_3 |d| |x| <= 3.4e-16 |d| reach, and the bound's own
-        // roundoff is below 1.3e-15 |d| reach (|c_k| <= sqrt(3) reach, r_k <= 2 reach); the tolerance is 1e-14
-        // |d| reach. The cluster of scan()'s vertex is hence opened, and the same ties rule (the smaller index in
-        // vertices_) returns that very vertex.
         const double scale = d.cwiseAbs().maxCoeff();
-        if (cells_.side > 0 && d.allFinite() && scale > 1e-150 && scale < 1e150)
+        // The table, where no product overflows and underflow's roundoff is far below the candidates' tolerance
+        // (|d| reach between 1e-200 and 1e200); an overflow (not a number) is left to scan(), as below.
+        if (cells_.side > 0 && d.allFinite() && scale * reach_ > 1e-200 && scale * reach_ < 1e200)
         {
-            // Within the table's range of scales no product overflows, and none is small enough to lose bits.
             const std::size_t cell = cellOf(d, cells_.side);
             const double dx = d.x(), dy = d.y(), dz = d.z();
             double best = -std::numeric_limits<double>::infinity();
@@ -450,8 +444,15 @@ namespace meshgap
                     where = i;
                 }
             }
-            return vertices_[where];
+            if (std::isfinite(best))
+                return vertices_[where];
         }
+        // Cluster k's vertices x have d.x <= d.c_k + |d| r_k (its bounding sphere), so when the rounded bound plus
+        // a tolerance is below the best computed dot product found so far, no vertex of the cluster can have the
+        // largest computed one: |fl(d.x) - d.x| <= gamma_3 |d| |x| <= 3.4e-16 |d| reach, and the bound's own
+        // roundoff is below 1.3e-15 |d| reach (|c_k| <= sqrt(3) reach, r_k <= 2 reach); the tolerance is 1e-14
+        // |d| reach. The cluster of scan()'s vertex is hence opened, and the same ties rule (the smaller index in
+        // vertices_) returns that very vertex.
         const Clusters &c = clustered_;
         const std::size_t clusters = c.radius.size();
         if (clusters == 0 || !(scale > 0.0) || !std::isfinite(scale))
