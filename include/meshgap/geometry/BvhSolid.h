@@ -29,8 +29,11 @@ namespace meshgap
 
     /** \brief Distance between the (filled) triangles of \e mesh (its frame M) and the solid \e s, whose frame (the
         one Primitive::pose is in) is placed in M by \e X_MS, searching only for triangles closer than \e upperBound.
-        A node is pruned by the gap between its box and a ball holding the solid; a triangle by its distance to the
-        ball's centre, then by primitiveTriangleGap(), which may stop once it proves the triangle cannot win. Stops
+        A node is pruned by the larger of its box's gap to a ball holding the solid and its gap to a box holding it
+        (projected onto either box's axes); a triangle by its gap to that box (against a box solid, along every
+        separating axis; against a cylinder, capsule or cone, also its distance to the solid's axis less the
+        radius) and its distance to the ball's centre, then by primitiveTriangleGap(), which may stop once it proves
+        the triangle cannot win. Stops
         at the first triangle at or below \e stopBelow (negative: never). Ties go to the smaller triangle index, so
         the answer does not depend on \e seed (a triangle tested first, whose distance then prunes the search).
         \e budget as in bvhDistance(). Touching (distance 0) includes a triangle inside the solid; a solid inside a
