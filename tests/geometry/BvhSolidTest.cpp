@@ -97,9 +97,13 @@ TEST(BvhSolid, DistanceAndCollisionAreBruteForcesOverEveryTriangle)
             BvhSolidResult bounded;
             bvhSolidDistance(bvh, p, X_MS, 0.05, -1.0, bounded);
             if (expected.upper < 0.05)
+            {
                 EXPECT_TRUE(bounded.found) << what;
+            }
             if (!(expected.lower < 0.05))
+            {
                 EXPECT_FALSE(bounded.found) << what;
+            }
             if (bounded.found)
             {
                 EXPECT_GE(bounded.distance, expected.lower - tol) << what;
