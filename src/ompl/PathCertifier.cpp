@@ -12,6 +12,59 @@ namespace meshgap
     namespace ob = ompl::base;
     namespace og = ompl::geometric;
 
+    namespace
+    {
+        /** \brief Samples for a detour around the motion from \e a to \e b: every other one near the motion (a state
+            within \e radius, by the space's own sampleUniformNear(), of a point of the straight motion at a uniform
+            fraction), the others uniform over the space as the space's sampler draws them. */
+        class NearMotionSampler : public ob::StateSampler
+        {
+        public:
+            NearMotionSampler(const ob::StateSpace *space, const ob::State *a, const ob::State *b, double radius)
+              : ob::StateSampler(space), inner_(space->allocDefaultStateSampler()), a_(a), b_(b), radius_(radius),
+                on_(space->allocState())
+            {
+            }
+            ~NearMotionSampler() override { space_->freeState(on_); }
+            NearMotionSampler(const NearMotionSampler &) = delete;
+            NearMotionSampler &operator=(const NearMotionSampler &) = delete;
+
+            void sampleUniform(ob::State *state) override
+            {
+                if ((near_ = !near_))
+                {
+                    space_->interpolate(a_, b_, rng_.uniform01(), on_);
+                    inner_->sampleUniformNear(state, on_, radius_);
+                }
+                else
+                    inner_->sampleUniform(state);
+            }
+            void sampleUniformNear(ob::State *state, const ob::State *near, double distance) override
+            {
+                inner_->sampleUniformNear(state, near, distance);
+            }
+            void sampleGaussian(ob::State *state, const ob::State *mean, double stdDev) override
+            {
+                inner_->sampleGaussian(state, mean, stdDev);
+            }
+
+        private:
+            ob::StateSamplerPtr inner_;
+            const ob::State *a_, *b_;
+            double radius_;
+            ob::State *on_;
+            bool near_{false};
+        };
+
+        /** \brief RRTConnect drawing its samples from a sampler given (OMPL's draws from the space's). */
+        class DetourRRTConnect : public og::RRTConnect
+        {
+        public:
+            using og::RRTConnect::RRTConnect;
+            void useSampler(ob::StateSamplerPtr sampler) { sampler_ = std::move(sampler); }
+        };
+    }  // namespace
+
     PathCertifier::PathCertifier(ob::SpaceInformationPtr si) : si_(std::move(si))
     {
         if (!si_)
@@ -39,11 +92,13 @@ namespace meshgap
             return false;
         auto pdef = std::make_shared<ob::ProblemDefinition>(si);
         pdef->setStartAndGoalStates(a, b);
-        auto planner = std::make_shared<og::RRTConnect>(si);
+        auto planner = std::make_shared<DetourRRTConnect>(si);
         // Short steps: the detour stays near the motion it replaces, and each certified step is cheap to prove.
-        planner->setRange(repairRange_ * si->distance(a, b));
+        const double length = si->distance(a, b);
+        planner->setRange(repairRange_ * length);
         planner->setProblemDefinition(pdef);
         planner->setup();
+        planner->useSampler(std::make_shared<NearMotionSampler>(si->getStateSpace().get(), a, b, length));
         unsigned calls = 0;
         const unsigned budget = repairIterations_;
         const ob::PlannerTerminationCondition local([&ptc, &calls, budget] { return ++calls > budget || ptc(); });
