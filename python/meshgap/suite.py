@@ -17,7 +17,9 @@ ompl_benchmark_statistics, for Planner Arena; skipped with a note when ompl-demo
 default to the only *.urdf and *.srdf beside the archive or folder. meshgap_benchmark is found as meshgap.campaign
 finds it ($MESHGAP_BENCHMARK, beside the package, or on PATH). Progress goes to stderr, one line a problem. Also
 runs as a file, without the compiled package: python3 python/meshgap/suite.py ... --executable
-build/planners/meshgap_benchmark.
+build/planners/meshgap_benchmark. With --tables-of OUT[,OUT...] it plans nothing and prints the tables of the .log
+files earlier runs left in those folders: an interrupted run's finished problems, or runs over different scenarios
+(on two machines, or side by side) read as one.
 """
 import argparse
 import glob
@@ -177,9 +179,42 @@ def comparison(rows, subject="meshgap-certified", peer="fcl"):
     return "\n".join(out)
 
 
+def logs_of(folders):
+    """{(scenario, planner): [runs]} of the OMPL .log files a run wrote into each folder (FOLDER/<scenario>/<NNNN>/),
+    folders read in turn (each its own scenarios, or more runs of the same ones)."""
+    logs = {}
+    for folder in folders:
+        if not os.path.isdir(folder):
+            raise ValueError("%s: no such folder" % folder)
+        found = sorted(glob.glob(os.path.join(folder, "*", "*", "*.log")))
+        if not found:
+            raise ValueError("%s: no <scenario>/<NNNN>/*.log in it (not a suite's --out)" % folder)
+        for log in found:
+            scenario = os.path.basename(os.path.dirname(os.path.dirname(log)))
+            for planner, runs in read_log(log).items():
+                logs.setdefault((scenario, planner), []).extend(runs)
+    return logs
+
+
+def print_tables(logs, out=None):
+    """The table and the comparison of logs (logs_of()'s form), printed; into out/summary.md and
+    out/comparison.md when out is given."""
+    rows = {key: summarize(runs) for key, runs in logs.items()}
+    text, versus = table(rows), comparison(rows)
+    if out:
+        with open(os.path.join(out, "summary.md"), "w", encoding="utf-8") as f:
+            f.write(text + "\n")
+        if versus:
+            with open(os.path.join(out, "comparison.md"), "w", encoding="utf-8") as f:
+                f.write(versus + "\n")
+    print(text)
+    if versus:
+        print("\n" + versus)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m meshgap.suite", description=__doc__.split("\n\n")[0])
-    parser.add_argument("problems", help="a MotionBenchMaker problems folder or its .tar.bz2")
+    parser.add_argument("problems", nargs="?", help="a MotionBenchMaker problems folder or its .tar.bz2")
     parser.add_argument("--urdf")
     parser.add_argument("--srdf")
     parser.add_argument("--planners", default="rrtconnect", help="comma-separated (default rrtconnect)")
@@ -194,7 +229,19 @@ def main(argv=None):
     parser.add_argument("--database", default="results.db",
                         help="the SQLite database of every .log, in --out (default results.db; needs ompl-demos' "
                              "ompl_benchmark_statistics, else skipped with a note; '' for none)")
+    parser.add_argument("--tables-of", metavar="FOLDER[,FOLDER...]",
+                        help="no planning: the tables of the .log files earlier runs wrote into these --out folders "
+                             "(an interrupted run's, or runs over different scenarios), printed")
     args = parser.parse_args(argv)
+    if args.tables_of is not None:
+        try:
+            print_tables(logs_of([f for f in args.tables_of.split(",") if f] or [""]))
+            return 0
+        except (ValueError, OSError) as e:
+            print("error: %s" % e, file=sys.stderr)
+            return 1
+    if args.problems is None:
+        parser.error("the problems folder or archive is needed (or --tables-of)")
     try:
         from .campaign import find_executable, load_database
     except ImportError:  # run as a file (python3 python/meshgap/suite.py), without the package
@@ -226,16 +273,7 @@ def main(argv=None):
                 for log in sorted(glob.glob(os.path.join(out, "*.log"))):
                     for planner, runs in read_log(log).items():
                         logs.setdefault((scenario, planner), []).extend(runs)
-        rows = {key: summarize(runs) for key, runs in logs.items()}
-        text = table(rows)
-        with open(os.path.join(args.out, "summary.md"), "w", encoding="utf-8") as f:
-            f.write(text + "\n")
-        print(text)
-        versus = comparison(rows)
-        if versus:
-            with open(os.path.join(args.out, "comparison.md"), "w", encoding="utf-8") as f:
-                f.write(versus + "\n")
-            print("\n" + versus)
+        print_tables(logs, args.out)
         if args.database:
             try:
                 # One experiment per .log: problems of different scenarios share their file names.

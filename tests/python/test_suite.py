@@ -59,7 +59,7 @@ def rows(out):
         return [l.split("|")[1:-1] for l in f.read().splitlines()[2:]]
 
 
-def test_table_from_a_folder_and_from_its_archive(benchmark, tmp_path):
+def test_table_from_a_folder_and_from_its_archive(benchmark, tmp_path, capsys):
     folder = problems(str(tmp_path / "data"))
     assert run(benchmark, folder, str(tmp_path / "a")) == 0
     table = rows(str(tmp_path / "a"))
@@ -77,6 +77,18 @@ def test_table_from_a_folder_and_from_its_archive(benchmark, tmp_path):
         logs = os.listdir(str(tmp_path / "a" / "block_arm2" / n))
         assert sorted(logs) == ["request%s.RRTConnect.meshgap-certified.log" % n,
                                 "request%s.RRTConnect.meshgap-discrete.log" % n]
+    # The tables of the run's folder read back, and of its problems split over two folders, are the run's own.
+    import shutil
+    for n, part in (("0001", "x"), ("0002", "y")):
+        shutil.copytree(str(tmp_path / "a" / "block_arm2" / n), str(tmp_path / part / "block_arm2" / n))
+    with open(str(tmp_path / "a" / "summary.md")) as f:
+        summary = f.read()
+    for folders in (str(tmp_path / "a"), "%s,%s" % (tmp_path / "x", tmp_path / "y")):
+        capsys.readouterr()
+        assert suite.main(["--tables-of", folders]) == 0
+        assert capsys.readouterr().out == summary
+    assert suite.main(["--tables-of", str(tmp_path / "data")]) == 1
+    assert "not a suite's --out" in capsys.readouterr().err
     archive = str(tmp_path / "problems.tar.bz2")
     with tarfile.open(archive, "w:bz2") as t:
         t.add(folder, arcname="problems")
