@@ -3,6 +3,7 @@
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/PathSimplifier.h>
 
 #include <chrono>
 #include <cmath>
@@ -203,7 +204,9 @@ namespace meshgap
             const double difference = searchPdef_->getSolutionDifference();
             // The answer lives in the problem's SpaceInformation (its checks, its simplification: certified).
             auto path = std::make_shared<og::PathGeometric>(si_);
-            for (const ob::State *s : searchPdef_->getSolutionPath()->as<og::PathGeometric>()->getStates())
+            og::PathGeometric rough(*searchPdef_->getSolutionPath()->as<og::PathGeometric>());
+            og::PathSimplifier(searchSi_).reduceVertices(rough);
+            for (const ob::State *s : rough.getStates())
                 path->append(s);
             const auto start = std::chrono::steady_clock::now();
             if (!repairSi_->isSetup())

@@ -15,7 +15,9 @@ namespace meshgap
        A planner whose every returned motion is certified, at the price of a sampled search: another planner
        (allocated by the function it is given) searches in a twin of the SpaceInformation, with the same state
        space and validity checker but a sampled motion check (states at searchResolution() of the space's extent
-       apart, OMPL's order: the end state, then halves of halves); the path it finds is then put, motion by motion,
+       apart, OMPL's order: the end state, then halves of halves); the path it finds, its vertices first reduced
+       under that sampled check (OMPL's PathSimplifier::reduceVertices(): fewer and shorter motions to prove, the
+       proof's cost growing with each motion's length), is then put, motion by motion,
        to the SpaceInformation's own motion validator, the certified one (RobotMotionValidator,
        ClearanceMotionValidator), and a motion it refuses is replanned between its two states (PathCertifier): first
        by RRTConnect in a second twin whose sampled check is REPAIR_REFINEMENT times as fine as the search's, that
