@@ -56,6 +56,82 @@ namespace meshgap
             return false;
         }
 
+        /** \brief Whether triangle \e p (three corners, A's frame) lies apart from the box of centre \e c, axes \e axes
+            (columns, A's frame) and half extents \e half by more than \e beyond along one of the 13 separating axes
+            of a triangle and a box (the box's 3 face normals, the triangle's normal, the 9 crosses of a box axis and
+            an edge), plus a pad of 1e-11 of the coordinates' scale against roundoff: far beyond
+            trianglesIntersect()'s contact tolerance, so no triangle within the box can be reported touching it. The
+            gap along an axis is measured against the axis's 1-norm, not its length (no square root; the gap
+            proven is the smaller). Exact for a triangle and a box: some axis separates them whenever they are apart
+            by more than that. */
+        bool triangleApartFromBox(const Eigen::Vector3d *p, const Eigen::Vector3d &c, const Eigen::Matrix3d &axes,
+                                  const Eigen::Vector3d &half, double beyond)
+        {
+            const Eigen::Vector3d q0 = axes.transpose() * (p[0] - c), q1 = axes.transpose() * (p[1] - c),
+                                  q2 = axes.transpose() * (p[2] - c);
+            const double pad = beyond + 1e-11 * (c.cwiseAbs().sum() + half.sum() +
+                                                 (p[0].cwiseAbs() + p[1].cwiseAbs() + p[2].cwiseAbs()).sum());
+            // The box's face normals (its frame's unit vectors).
+            const Eigen::Vector3d lo = q0.cwiseMin(q1).cwiseMin(q2), hi = q0.cwiseMax(q1).cwiseMax(q2);
+            if (((lo - half).array() > pad).any() || ((-hi - half).array() > pad).any())
+                return true;
+            // Along m, corners projecting to u (twice) and v lie apart from the box (radius r) by more than the pad
+            // (against m's 1-norm, at least its length).
+            auto apart = [pad](double u, double v, double r, double norm1) {
+                const double reach = r + pad * norm1;
+                return std::min(u, v) > reach || std::max(u, v) < -reach;
+            };
+            const double hx = half.x(), hy = half.y(), hz = half.z();
+            // Box axis x, y, z crossed with each edge E (corners S and S + E on it, T the third corner):
+            // x × E = (0, -E.z, E.y), y × E = (E.z, 0, -E.x), z × E = (-E.y, E.x, 0).
+            const Eigen::Vector3d *edge[3][2] = {{&q0, &q2}, {&q1, &q0}, {&q2, &q1}};
+            const Eigen::Vector3d e[3] = {q1 - q0, q2 - q1, q0 - q2};
+            for (int k = 0; k < 3; ++k)
+            {
+                const Eigen::Vector3d &S = *edge[k][0], &T = *edge[k][1], &E = e[k];
+                const double ax = std::abs(E.x()), ay = std::abs(E.y()), az = std::abs(E.z());
+                if (apart(E.y() * S.z() - E.z() * S.y(), E.y() * T.z() - E.z() * T.y(), hy * az + hz * ay, ay + az) ||
+                    apart(E.z() * S.x() - E.x() * S.z(), E.z() * T.x() - E.x() * T.z(), hx * az + hz * ax, ax + az) ||
+                    apart(E.x() * S.y() - E.y() * S.x(), E.x() * T.y() - E.y() * T.x(), hx * ay + hy * ax, ax + ay))
+                    return true;
+            }
+            // The triangle's normal: every corner projects to about the same value (the extremes of the three
+            // taken).
+            const Eigen::Vector3d n = e[0].cross(e[1]);
+            const double a = n.dot(q0), b = n.dot(q1), d = n.dot(q2);
+            const double reach = half.dot(n.cwiseAbs()) + pad * n.cwiseAbs().sum();
+            return std::min({a, b, d}) > reach || std::max({a, b, d}) < -reach;
+        }
+
+        /** \brief Whether a leaf's triangle lies apart from the other node's box by more than \e beyond (see
+            triangleApartFromBox()): \e na's (A's) triangle against \e nb's box placed by \e X, then \e nb's
+            triangle placed by \e X against \e na's box. A leaf's box, even the tightest, reaches past its
+            triangle's corners, and a node near a triangle's slanted side but not touching it (as a robot's passing
+            through a hole in a wall of large triangles) meets the box, not the triangle. */
+        bool leafApart(const TriangleBvh &a, const TriangleBvh &b, const RelativePose &X, const TriangleBvh::Node &na,
+                       const TriangleBvh::Node &nb, double beyond = 0.0)
+        {
+            if (na.isLeaf() && na.count == 1)
+            {
+                const Mesh &m = a.mesh();
+                const Triangle &f = m.triangles[a.order()[na.first]];
+                const Eigen::Vector3d p[3] = {m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]};
+                const bvh::PlacedNode &placed = X.place(nb);
+                if (triangleApartFromBox(p, placed.center, placed.axes, nb.half, beyond))
+                    return true;
+            }
+            if (nb.isLeaf() && nb.count == 1)
+            {
+                const Mesh &m = b.mesh();
+                const Triangle &f = m.triangles[b.order()[nb.first]];
+                const Eigen::Vector3d p[3] = {X.R * m.vertices[f[0]] + X.t, X.R * m.vertices[f[1]] + X.t,
+                                              X.R * m.vertices[f[2]] + X.t};
+                if (triangleApartFromBox(p, na.center, na.axes, na.half, beyond))
+                    return true;
+            }
+            return false;
+        }
+
         /** \brief Push the two children of pair \e e (nodes \e na of \e a, \e nb of \e b) split as splitA() says,
             the child whose box centre lies nearer the other node's on top (tested first): at a colliding pose the
             first intersecting pair is what ends the test, and it lies where the surfaces cross, nearer the middle of
@@ -129,7 +205,7 @@ namespace meshgap
                 stack.pop_back();
                 ++visited;
                 const TriangleBvh::Node &na = a.nodes()[e.a], &nb = b.nodes()[e.b];
-                if (separated(na, nb, X))
+                if (separated(na, nb, X) || ((na.isLeaf() || nb.isLeaf()) && leafApart(a, b, X, na, nb)))
                     continue;
                 if (na.isLeaf() && nb.isLeaf())
                 {
@@ -210,10 +286,17 @@ namespace meshgap
                     }
                     const double bound = lowerBound(na, nb, X_);
                     // Kept when apart by the margin plus twice the last step's motion of B's node, so that it stays
-                    // proven at the next pose or two.
-                    if (bound > margin_ + 2.0 * lookahead_.displacement(nb))
+                    // proven at the next pose or two; a leaf's triangle apart by that much from the other box is kept
+                    // with that much as its gap.
+                    const double enough = margin_ + 2.0 * lookahead_.displacement(nb);
+                    if (bound > enough)
                     {
                         keep(e, bound);
+                        continue;
+                    }
+                    if (leafApart(a_, b_, X_, na, nb, enough))
+                    {
+                        keep(e, enough);
                         continue;
                     }
                     pushChildren(stack_, e, a_, b_, na, nb, X_);

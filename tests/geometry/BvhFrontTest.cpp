@@ -207,14 +207,18 @@ TEST(BvhFront, ACollisionFrontGivesTheStatelessVerdictAndEveryEntryStaysApart)
 
 namespace
 {
-    /** \brief Whether some triangle of \e ma intersects some triangle of \e mb placed by \e X, over every pair. */
+    /** \brief Whether some triangle of \e ma intersects some triangle of \e mb placed by \e X, over every pair. B's
+        corners are placed as bvhCollide() places them (rotation times corner, plus translation), bit for bit: at a
+        pose where a pair's verdict changes (found by bisection) another rounding of the placement could change it. */
     bool bruteForceCollide(const Mesh &ma, const Mesh &mb, const Eigen::Isometry3d &X)
     {
+        const Eigen::Matrix3d R = X.linear();
+        const Eigen::Vector3d t = X.translation();
         Eigen::Vector3d pb[3];
         for (const Triangle &g : mb.triangles)
         {
             for (int k = 0; k < 3; ++k)
-                pb[k] = X * mb.vertices[g[k]];
+                pb[k] = R * mb.vertices[g[k]] + t;
             for (const Triangle &f : ma.triangles)
                 if (trianglesIntersect(ma.vertices[f[0]], ma.vertices[f[1]], ma.vertices[f[2]], pb[0], pb[1], pb[2]))
                     return true;
@@ -266,6 +270,83 @@ TEST(BvhCollide, TheStatelessVerdictIsBruteForceOverEveryTrianglePair)
     }
     EXPECT_GT(hits, poses / 5);
     EXPECT_LT(hits, poses - poses / 5);
+}
+
+namespace
+{
+    /** \brief A square wall in the plane x = 0 (half side 2) with a square hole (half side 0.5) through it, the
+        frame between them in eight large slanted triangles, each split trapezoid's diagonal running from a hole
+        corner to an outer one: their boxes reach into the hole past the triangles' corners. */
+    Mesh wallWithHole()
+    {
+        Mesh m;
+        m.source = "wall with a hole";
+        const double outer = 2.0, hole = 0.5;
+        const double corners[4][2] = {{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}};
+        for (const auto &c : corners)
+            m.vertices.emplace_back(0.0, outer * c[0], outer * c[1]);
+        for (const auto &c : corners)
+            m.vertices.emplace_back(0.0, hole * c[0], hole * c[1]);
+        for (std::uint32_t i = 0; i < 4; ++i)
+        {
+            const std::uint32_t j = (i + 1) % 4;
+            m.triangles.push_back({i, j, 4 + j});
+            m.triangles.push_back({i, 4 + j, 4 + i});
+        }
+        return m;
+    }
+}  // namespace
+
+TEST(BvhCollide, ABodyGrazingTheEdgesOfAHoleGetsBruteForcesVerdict)
+{
+    // A box passing through a hole in a wall of large slanted triangles: the triangles' boxes overlap the box's nodes
+    // in the hole where the triangles do not, and a leaf's triangle is tested against the other node's box before
+    // descending. At seeded random orientations and directions, the pose where brute force's verdict changes is found
+    // by bisection (to a few 1e-16 of the offset), so that the poses on either side of it touch within
+    // trianglesIntersect()'s tolerance or miss by a little more: the stateless and the warm test (a front carried
+    // along the approach) must give brute force's verdict at each.
+    const Mesh ma = wallWithHole(), mb = test::box(0.2, 0.3, 0.25, 2);
+    const TriangleBvh a(ma), b(mb);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::normal_distribution<double> g;
+    const int approaches = 60 / test::stride();
+    int hits = 0, misses = 0;
+    for (int i = 0; i < approaches; ++i)
+    {
+        // From the hole's centre (free: the box fits through it) towards its rim, turned a little.
+        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+        X.linear() = Eigen::AngleAxisd(0.3 * u(rng), Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized())
+                         .toRotationMatrix();
+        X.translation() = Eigen::Vector3d(0.1 * u(rng), 0.05 * u(rng), 0.05 * u(rng));
+        const Eigen::Vector3d direction = Eigen::Vector3d(0.0, u(rng), u(rng)).normalized();
+        auto at = [&](double s) {
+            Eigen::Isometry3d Y = X;
+            Y.translation() += s * direction;
+            return Y;
+        };
+        ASSERT_FALSE(bruteForceCollide(ma, mb, at(0.0))) << "approach " << i;
+        double free = 0.0, touching = 1.0;
+        ASSERT_TRUE(bruteForceCollide(ma, mb, at(touching))) << "approach " << i;
+        for (int k = 0; k < 80; ++k)
+        {
+            const double mid = 0.5 * (free + touching);
+            (bruteForceCollide(ma, mb, at(mid)) ? touching : free) = mid;
+        }
+        BvhFront front;
+        const double offsets[] = {-1e-3, -1e-6, -1e-9, -1e-11, 0.0, 1e-12, 1e-10, 1e-6, 1e-3};
+        for (double d : offsets)
+            for (double s : {free + d, touching + d})
+            {
+                const Eigen::Isometry3d Y = at(s);
+                const bool truth = bruteForceCollide(ma, mb, Y);
+                ASSERT_EQ(bvhCollide(a, b, Y), truth) << "approach " << i << ", offset " << s;
+                ASSERT_EQ(bvhCollide(a, b, Y, front), truth) << "approach " << i << ", offset " << s;
+                (truth ? hits : misses) += 1;
+            }
+    }
+    EXPECT_GT(hits, approaches * 6);
+    EXPECT_GT(misses, approaches * 6);
 }
 
 TEST(BvhFront, ACollisionFrontOverItsBudgetGivesTheStatelessVerdict)

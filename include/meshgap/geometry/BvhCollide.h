@@ -11,15 +11,20 @@ namespace meshgap
     class TriangleBvh;
 
     /** \brief True when some triangle of \e a intersects (or touches) some triangle of \e b placed by \e X_AB;
-        stops at the first such pair, which is reported through \e hitA / \e hitB when given. */
+        stops at the first such pair, which is reported through \e hitA / \e hitB when given. A pair of nodes is
+        pruned when their boxes are apart, or when one is a leaf whose triangle lies apart from the other's box (by
+        the 13 separating axes of a triangle and a box, with a margin far beyond trianglesIntersect()'s tolerance):
+        a leaf's box reaches past its triangle's corners, and a node can meet it there without meeting the
+        triangle. */
     bool bvhCollide(const TriangleBvh &a, const TriangleBvh &b, const Eigen::Isometry3d &X_AB,
                     std::uint32_t *hitA = nullptr, std::uint32_t *hitB = nullptr);
 
     /** \brief bvhCollide() carried along a run of nearby poses: \e front keeps the node pairs the last test proved
         apart, each with a lower bound on its gap (the sphere and nearest-direction bound of a box pair, the
-        separating-axis gap of a triangle pair), and the next test re-tests only the entries whose gap B's motion
-        since then could have closed, descending below those that no longer separate. The verdict and the reported pair are those of
-        the stateless bvhCollide(): a pair is kept only while its gap exceeds ten times the contact tolerance of
+        separating-axis gap of a triangle pair, for a leaf and a node the gap its triangle is proven apart from the
+        node's box by), and the next test re-tests only the entries whose gap B's motion since then could have
+        closed, descending below those that no longer separate. The verdict and the reported pair are those of the
+        stateless bvhCollide(): a pair is kept only while its gap exceeds ten times the contact tolerance of
         trianglesIntersect(), and every pair that might touch is decided by trianglesIntersect() itself.
 
         An entry whose gap B's whole motion since then could have closed is kept if its own node's displacement
