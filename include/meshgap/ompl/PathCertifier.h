@@ -18,7 +18,10 @@ namespace meshgap
        obstacle between two checked states or passes too close to be proven free) is replanned between its two
        states with RRTConnect in that same SpaceInformation, so that every motion of the detour is one the
        validator accepted, in steps of repairRange() of the motion's length, for at most repairIterations()
-       iterations of the planner (and until the termination condition). The path's own states are never moved,
+       iterations of the planner (and until the termination condition); every other sample of that RRTConnect is
+       drawn within the motion's length of a point on it (the space's sampleUniformNear()), the others uniformly,
+       so a detour around an obstacle's edge stays near the motion but one that must go far still can. The path's
+       own states are never moved,
        only states inserted between them. Given a SpaceInformation with a sampled motion check
        (setSampledSpaceInformation(): the search's), a refused motion is first replanned there, at the price of
        sampled checks, and each motion of that detour is then put to the certified validator in turn, a refused one
