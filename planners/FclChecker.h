@@ -80,8 +80,12 @@ namespace meshgap
         /** \brief FclRobotScene::inCollision() (no counting). */
         bool inCollision(const std::vector<Eigen::Isometry3d> &X) const { return fcl_.inCollision(X); }
 
-        /** \brief FclRobotScene::distance() (no counting). */
-        double distance(const std::vector<Eigen::Isometry3d> &X) const { return fcl_.distance(X); }
+        /** \brief FclRobotScene::distance() (no counting), below \e below. */
+        double distance(const std::vector<Eigen::Isometry3d> &X,
+                        double below = std::numeric_limits<double>::infinity()) const
+        {
+            return fcl_.distance(X, below);
+        }
 
     private:
         /** \brief pose() into this thread's buffers (no allocation once they have their size), valid until the

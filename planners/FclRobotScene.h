@@ -138,11 +138,15 @@ namespace meshgap
         }
 
         /** \brief The least distance over the pairs the scene checks with the links at \e X, at least 0 (0 in
-            collision, as FCL's distance answers it); +infinity when the scene checks no pair. */
-        double distance(const std::vector<Eigen::Isometry3d> &X) const
+            collision, as FCL's distance answers it); +infinity when the scene checks no pair. With \e below, the
+            least distance when it is less than \e below, else \e below: the managers prune the pairs whose boxes
+            are \e below apart or more, and FCL's traversal of a pair the nodes that are (the least over many states
+            at the price of the states that come near it). */
+        double distance(const std::vector<Eigen::Isometry3d> &X,
+                        double below = std::numeric_limits<double>::infinity()) const
         {
             Lease robot(*this, X);
-            DistanceData data{this, std::numeric_limits<double>::infinity()};
+            DistanceData data{this, below};
             if (robot->objects.size() == 1)
                 world_.distance(robot->objects[0].get(), &data, &FclRobotScene::distanceCallback);
             else
@@ -278,6 +282,7 @@ namespace meshgap
                 order(a, b);
                 const fcl::DistanceRequestd request;
                 fcl::DistanceResultd result;
+                result.min_distance = data.least;  // FCL's traversal keeps only what is nearer
                 fcl::distance(a, b, request, result);
                 data.least = std::min(data.least, std::max(0.0, result.min_distance));
             }

@@ -117,6 +117,13 @@ namespace meshgap
                 const double d = fcl.distance(X);
                 EXPECT_NEAR(d, least, 1e-12 * std::max(1.0, least)) << "state " << tally.states;
                 EXPECT_EQ(hit, d == 0.0) << "state " << tally.states << ": distance " << d;
+                // Asked below a bound: the least distance when nearer, else the bound.
+                for (const double factor : {0.5, 0.999, 1.001, 2.0})
+                {
+                    const double below = factor * least;
+                    EXPECT_NEAR(fcl.distance(X, below), std::min(least, below), 1e-12 * std::max(1.0, least))
+                        << "state " << tally.states << ", below " << below;
+                }
             }
         }
 
@@ -158,6 +165,8 @@ namespace meshgap
                 scene->distance(q.data(), q.size(), RobotRequest(), warm, result);
                 const bool hit = fcl.inCollision(X);
                 const double d = fcl.distance(X), ours = std::max(0.0, result.distance);
+                EXPECT_NEAR(fcl.distance(X, 0.5 * d), 0.5 * d, 1e-12) << "state " << n;
+                EXPECT_NEAR(fcl.distance(X, 2.0 * d), d, 1e-12) << "state " << n;
                 if (result.distance > gjk)
                 {
                     EXPECT_FALSE(hit) << "state " << n << ": meshgap " << result.distance;
