@@ -3,6 +3,7 @@
 #include <ompl/base/SpaceInformation.h>
 
 #include <algorithm>
+#include <tuple>
 #include <vector>
 
 #include "meshgap/Exception.h"
@@ -38,6 +39,10 @@ namespace meshgap
             problems": 30 to 3,000 tried, 100 the least total). */
         constexpr std::size_t FIRST_BUDGET = 100;
         constexpr unsigned int UNLIMITED_AFTER = 5;
+        /** \brief Middles of pieces kept placed for their halves' ends, at most (beyond, a piece's ends are placed
+            when it needs them); NO_PLACE: none kept. */
+        constexpr std::size_t MAX_PLACES = 1024;
+        constexpr std::size_t NO_PLACE = ~std::size_t(0);
 
         /** \brief A pair still to prove on a piece, and how many times a question about it gave up. */
         struct Pending
@@ -53,6 +58,7 @@ namespace meshgap
             double t0, t1;
             std::size_t first, count;
             int depth;
+            std::size_t end0, end1;  ///< the places of its ends: Work::places[end0], [end1]
         };
 
         /** \brief One thread's buffers, kept between motions (no allocation once warm). */
@@ -67,9 +73,16 @@ namespace meshgap
             /** \brief Per pair, whether each of its links stays put over the motion (MotionBound::stays(): in the
                 world, or in the self pair's nearest common frame), as bends. */
             std::vector<unsigned char> stays;
-            RobotScene::Placement at0, at1;  ///< the piece's ends
-            std::vector<Piece> pieces;     ///< breadth first: a queue read from its head
-            std::vector<Pending> pending;  ///< a range per piece
+            /** \brief The robot placed at the motion's two ends ([0] and [1], placed when a pair first needs
+                them, \e endsPlaced) and at the middle of every piece halved (copied from \e warm there): a piece's
+                ends are its parent's end and middle, placed once. The first \e used are this motion's. */
+            std::vector<RobotScene::Placement> places;
+            RobotScene::Placement at0, at1;  ///< the ends of a piece past MAX_PLACES
+            std::size_t used{0};
+            bool endsPlaced[2]{false, false};
+            std::vector<unsigned char> need;  ///< per link: in a pair pending on the piece (MotionBound bounds it)
+            std::vector<Piece> pieces;        ///< breadth first: a queue read from its head
+            std::vector<Pending> pending;     ///< a range per piece
         };
     }  // namespace
 
@@ -94,7 +107,11 @@ namespace meshgap
         w.pending.clear();
         for (std::size_t k = 0; k < pairs; ++k)
             w.pending.push_back({k, 0});
-        w.pieces.assign(1, Piece{0.0, 1.0, 0, pairs, 0});
+        w.pieces.assign(1, Piece{0.0, 1.0, 0, pairs, 0, 0, 1});
+        if (w.places.size() < 2)
+            w.places.resize(2);
+        w.used = 2;
+        w.endsPlaced[0] = w.endsPlaced[1] = false;
         const StatePool::Lease lease(states_);
         ompl::base::State *middle = lease.get();
         bool free = true;
@@ -102,24 +119,43 @@ namespace meshgap
         {
             const Piece p = w.pieces[head];
             const double t = 0.5 * (p.t0 + p.t1), half = 0.5 * (p.t1 - p.t0);
-            // The piece's ends, for the swept hulls, placed when a pair first needs them: a point strays at most
-            // h^2 / 8 times its bend from its chord.
-            bool ends = false;
+            // The piece's ends, for the swept hulls: the motion's own placed when a pair first needs them, the
+            // others were placed as a middle (past MAX_PLACES, placed here). A point strays at most h^2 / 8 times
+            // its bend from its chord.
+            const RobotScene::Placement *at0 = nullptr, *at1 = nullptr;
             auto placeEnds = [&]
             {
-                for (auto [at, end] : {std::pair(&w.at0, p.t0), std::pair(&w.at1, p.t1)})
+                for (auto [at, index, end, scratch] : {std::tuple(&at0, p.end0, p.t0, &w.at0),
+                                                       std::tuple(&at1, p.end1, p.t1, &w.at1)})
                 {
-                    space.interpolate(s1, s2, end, middle);  // the middle state is placed already
-                    robotStateToVector(space, middle, w.qEnd);
-                    scene_->placeEnds(w.qEnd.data(), w.qEnd.size(), *at);
+                    const bool kept = index != NO_PLACE && (index >= 2 || w.endsPlaced[index]);
+                    if (!kept)
+                    {
+                        space.interpolate(s1, s2, end, middle);  // the middle state is placed already
+                        robotStateToVector(space, middle, w.qEnd);
+                        RobotScene::Placement &into = index == NO_PLACE ? *scratch : w.places[index];
+                        scene_->placeEnds(w.qEnd.data(), w.qEnd.size(), into);
+                        if (index != NO_PLACE)
+                            w.endsPlaced[index] = true;
+                    }
+                    *at = index == NO_PLACE ? scratch : &w.places[index];
                 }
-                return ends = true;
+                return true;
             };
             const double stray = 0.5 * half * half * (1.0 + 1e-9);
             space.interpolate(s1, s2, t, middle);  // OMPL's own interpolation (SO(2) by the shorter arc)
             robotStateToVector(space, middle, w.q);
             scene_->place(w.q.data(), w.q.size(), w.warm);
-            bound_.pieceBounds(w.motion, w.warm.frames, w.warm.poses, half, w.sums);
+            w.need.assign(links, 0);
+            for (std::size_t i = p.first; i < p.first + p.count; ++i)
+            {
+                const std::size_t k = w.pending[i].pair;
+                if (k < links)
+                    w.need[k] = 1;
+                else
+                    w.need[scene_->selfPairs()[k - links].first] = w.need[scene_->selfPairs()[k - links].second] = 1;
+            }
+            bound_.pieceBounds(w.motion, w.warm.frames, w.warm.poses, half, w.sums, &w.need);
             const std::size_t start = w.pending.size();
             for (std::size_t i = p.first; free && i < p.first + p.count; ++i)
             {
@@ -129,9 +165,9 @@ namespace meshgap
                 const double margin = std::min(half * w.lambda[k], pieceBound(k, w.sums));
                 // Cheapest first: boxes and spheres at the middle state, the swept hulls, then the meshes.
                 if (scene_->pairBoundsApart(k, margin, w.warm) ||
-                    ((ends || placeEnds()) &&
-                     scene_->sweptApart(k, w.at0, w.at1, stray * w.bends[2 * k], stray * w.bends[2 * k + 1], w.warm,
-                                        w.stays[2 * k], w.stays[2 * k + 1])) ||
+                    ((at0 || placeEnds()) &&
+                     scene_->sweptApart(k, *at0, *at1, stray * w.bends[2 * k],
+                                        stray * w.bends[2 * k + 1], w.warm, w.stays[2 * k], w.stays[2 * k + 1])) ||
                     scene_->pairApart(k, margin, w.warm, budget, &gaveUp))
                     continue;
                 // A pair given up on is within reach of its margin, not within it: no collision to look for.
@@ -142,8 +178,19 @@ namespace meshgap
             if (!free || left == 0)
                 continue;
             free = p.depth + 1 < MAX_DEPTH && w.pieces.size() + 2 <= MAX_PIECES;
-            w.pieces.push_back({p.t0, t, start, left, p.depth + 1});
-            w.pieces.push_back({t, p.t1, start, left, p.depth + 1});
+            if (!free)
+                continue;
+            std::size_t mid = NO_PLACE;
+            if (w.used < MAX_PLACES)
+            {
+                mid = w.used++;
+                if (w.places.size() < w.used)
+                    w.places.resize(w.used);
+                w.places[mid].frames = w.warm.frames;  // as placeEnds() would place the middle state
+                w.places[mid].links = w.warm.poses;
+            }
+            w.pieces.push_back({p.t0, t, start, left, p.depth + 1, p.end0, mid});
+            w.pieces.push_back({t, p.t1, start, left, p.depth + 1, mid, p.end1});
         }
         if (w.pieces.capacity() > KEPT_PIECES)
         {

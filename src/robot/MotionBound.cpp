@@ -188,12 +188,14 @@ namespace meshgap
 
     void MotionBound::pieceBounds(const Motion &motion, const std::vector<Eigen::Isometry3d> &frames,
                                   const std::vector<Eigen::Isometry3d> &links, double half,
-                                  std::vector<double> &out) const
+                                  std::vector<double> &out, const std::vector<unsigned char> *only) const
     {
         out.resize(terms_.size() + chains_.size());
         std::array<Eigen::Vector3d, 8> corners;
         for (std::size_t i = 0; i < chains_.size(); ++i)
         {
+            if (only && !(*only)[i])
+                continue;
             for (int c = 0; c < 8; ++c)
                 corners[c] = links[i] * corners_[i][c];
             // below: the crude bound of the frames nearer the link than the current term's (its own motion
@@ -214,12 +216,13 @@ namespace meshgap
                 {
                     const Eigen::Vector3d o = frames[term.frame].translation();
                     const Eigen::Vector3d u = frames[term.frame].linear() * term.axis;
-                    double rho = 0.0;
+                    double rho2 = 0.0;  // squared, one root for the 8 (the root is monotone, so the same)
                     for (const Eigen::Vector3d &x : corners)
                     {
                         const Eigen::Vector3d r = x - o;
-                        rho = std::max(rho, term.lever == Lever::AXIS ? r.cross(u).norm() : r.norm());
+                        rho2 = std::max(rho2, term.lever == Lever::AXIS ? r.cross(u).squaredNorm() : r.squaredNorm());
                     }
+                    double rho = std::sqrt(rho2);
                     rho += 1e-12 * (1.0 + rho + o.norm());  // roundoff in the world coordinates
                     // The crude lever bounds the distance at every state: keep the smaller.
                     add *= std::min(term.reach, rho + 0.5 * half * below);

@@ -60,9 +60,11 @@ namespace meshgap
             is measured at the middle state, rho_f, and grows over the piece by at most the link's own displacement
             relative to f (the crude bound of the frames below f, C_f). Integrating, f adds |dq_f| (half rho_f +
             half^2 C_f / 2); a translation adds half |dq_f|. \e out gets, per link, the running sums of its terms
-            nearest first (pairBound() reads them). */
+            nearest first (pairBound() reads them). With \e only, just the links it marks (non-zero, one entry per
+            link): the others' sums are left as they were. */
         void pieceBounds(const Motion &motion, const std::vector<Eigen::Isometry3d> &frames,
-                         const std::vector<Eigen::Isometry3d> &links, double half, std::vector<double> &out) const;
+                         const std::vector<Eigen::Isometry3d> &links, double half, std::vector<double> &out,
+                         const std::vector<unsigned char> *only = nullptr) const;
         /** \brief From pieceBounds()' \e sums: the bound for link \e link against the world. */
         double linkBound(std::size_t link, const std::vector<double> &sums) const
         {
