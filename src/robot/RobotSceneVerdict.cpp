@@ -309,7 +309,10 @@ namespace meshgap
         const auto [a, b] = selfPairs_[p];
         if (boxGap(warm.boxes[a], warm.boxes[b]) > 0.0)
             return false;
-        return meshgap::inCollision(*links_[a].body, *links_[b].body, warm.poses[a].inverse() * warm.poses[b],
-                                    &warm.self[p]);
+        const Eigen::Isometry3d X_AB = warm.poses[a].inverse() * warm.poses[b];
+        const ConvexHull *ha = links_[a].body->convexHull(), *hb = links_[b].body->convexHull();
+        if (ha && hb && hullGap(*ha, *hb, X_AB, 0.0) > 0.0)
+            return false;
+        return meshgap::inCollision(*links_[a].body, *links_[b].body, X_AB, &warm.self[p]);
     }
 }  // namespace meshgap
