@@ -162,7 +162,7 @@ namespace meshgap
                 const auto [k, tries] = w.pending[i];
                 const std::size_t budget = tries >= UNLIMITED_AFTER ? 0 : FIRST_BUDGET << (2 * tries);
                 bool gaveUp = false;
-                const double margin = std::min(half * w.lambda[k], pieceBound(k, w.sums));
+                const double margin = std::min(half * w.lambda[k], pieceBound(k, w.sums, w.motion, half));
                 // Cheapest first: boxes and spheres at the middle state, the swept hulls, then the meshes.
                 if (scene_->pairBoundsApart(k, margin, w.warm) ||
                     ((at0 || placeEnds()) &&
@@ -220,13 +220,14 @@ namespace meshgap
         }
     }
 
-    double RobotMotionValidator::pieceBound(std::size_t k, const std::vector<double> &sums) const
+    double RobotMotionValidator::pieceBound(std::size_t k, const std::vector<double> &sums,
+                                            const MotionBound::Motion &motion, double half) const
     {
         const std::size_t links = scene_->links().size();
         if (k < links)
             return bound_.linkBound(k, sums);
         const auto [a, b] = scene_->selfPairs()[k - links];
-        return bound_.pairBound(a, b, pairTerms_[k - links], sums);
+        return bound_.pairPieceBound(a, b, pairTerms_[k - links], sums, motion, half);
     }
 
     bool RobotMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const

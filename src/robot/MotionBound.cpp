@@ -1,6 +1,8 @@
 #include "meshgap/robot/MotionBound.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "meshgap/Exception.h"
 #include "meshgap/Text.h"
@@ -34,9 +36,11 @@ namespace meshgap
             for (const Eigen::Vector3d &v : link.body->surface().vertices)
                 reach = std::max(reach, (link.X_FL * v).norm());
             std::vector<std::size_t> chain;
+            std::vector<double> chainReach;
             for (std::size_t f = link.frame, step = 0; f != RobotModel::NONE; f = robot.frames()[f].parent, ++step)
             {
                 chain.push_back(f);
+                chainReach.push_back(reach);
                 if (motions[f].kind != FrameMotion::Kind::FIXED && !std::isfinite(reach))
                     throw Exception("MotionBound", "frame " + quote(robot.frames()[f].name) +
                                                        " moves a frame that moves free (no bound on its reach)");
@@ -47,6 +51,7 @@ namespace meshgap
             }
             offsets_.push_back(terms_.size());
             chains_.push_back(chain);
+            chainReach_.push_back(chainReach);
             corners_.push_back(boxCorners(link.body->bvh().nodes().front()));
         }
     }
@@ -110,19 +115,20 @@ namespace meshgap
         return t.scale * change;
     }
 
+    std::pair<std::size_t, std::size_t> MotionBound::commonSteps(std::size_t first, std::size_t second) const
+    {
+        const std::vector<std::size_t> &up1 = chains_[first], &up2 = chains_[second];
+        for (std::size_t i = 0; i < up1.size(); ++i)
+            for (std::size_t k = 0; k < up2.size(); ++k)
+                if (up1[i] == up2[k])
+                    return {i, k};
+        return {up1.size(), up2.size()};
+    }
+
     std::pair<std::size_t, std::size_t> MotionBound::pairTerms(std::size_t first, std::size_t second) const
     {
         // The nearest common ancestor: its place on each link's way up (past the end: none, two separate roots).
-        const std::vector<std::size_t> &up1 = chains_[first], &up2 = chains_[second];
-        std::size_t at1 = up1.size(), at2 = up2.size();
-        for (std::size_t i = 0; i < up1.size() && at1 == up1.size(); ++i)
-            for (std::size_t k = 0; k < up2.size(); ++k)
-                if (up1[i] == up2[k])
-                {
-                    at1 = i;
-                    at2 = k;
-                    break;
-                }
+        const auto [at1, at2] = commonSteps(first, second);
         auto below = [&](std::size_t link, std::size_t at)
         {
             std::size_t n = 0;
@@ -232,5 +238,67 @@ namespace meshgap
                 out[++at] = sum;
             }
         }
+    }
+}  // namespace meshgap
+
+namespace meshgap
+{
+    std::size_t MotionBound::pairSplits(std::size_t first, std::size_t second,
+                                        std::pair<std::size_t, std::size_t> terms) const
+    {
+        return commonSteps(first, second).first < chains_[first].size() ? terms.first + terms.second + 1 : 1;
+    }
+
+    double MotionBound::pairSplitBound(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
+                                       std::size_t split, const std::vector<double> &sums, const Motion &motion,
+                                       double half) const
+    {
+        if (pairSplits(first, second, terms) == 1)
+            return pairBound(first, second, terms, sums);
+        const auto [at1, at2] = commonSteps(first, second);
+        const double common = chainReach_[first][at1] + chainReach_[second][at2];
+        // Link "own" keeps its nearest kept terms (its piece sums); its terms from kept on, up to the common
+        // ancestor, move link "other" about their frames, at most common - own's reach from the frame away.
+        auto charged = [&](std::size_t own, std::size_t count, std::size_t kept)
+        {
+            const std::size_t o = offsets_[own];
+            if (kept > 0 && kept < count && terms_[o + kept - 1].step == terms_[o + kept].step)
+                return std::numeric_limits<double>::infinity();  // between a free frame's move and turn: no split
+            double sum = sums[offsets_[own] + own + kept];
+            for (std::size_t i = kept; i < count; ++i)
+            {
+                const Term &term = terms_[offsets_[own] + i];
+                const double move = motion.move[offsets_[own] + i];
+                if (move == 0.0)
+                    continue;
+                sum += move * half * (term.lever == Lever::NONE ? 1.0 : common - chainReach_[own][term.step]);
+            }
+            return sum;
+        };
+        if (split <= terms.first)
+            return charged(first, terms.first, split) + sums[offsets_[second] + second + terms.second];
+        return sums[offsets_[first] + first + terms.first] +
+               charged(second, terms.second, terms.first + terms.second - split);
+    }
+
+    std::size_t MotionBound::splitFrame(std::size_t first, std::size_t second,
+                                        std::pair<std::size_t, std::size_t> terms, std::size_t split) const
+    {
+        const auto [at1, at2] = commonSteps(first, second);
+        if (at1 >= chains_[first].size())
+            return RobotModel::NONE;
+        if (split < terms.first)
+            return chains_[first][terms_[offsets_[first] + split].step];
+        const std::size_t kept = terms.first + terms.second - split;  // the second link's terms it keeps
+        return kept < terms.second ? chains_[second][terms_[offsets_[second] + kept].step] : chains_[first][at1];
+    }
+
+    double MotionBound::pairPieceBound(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
+                                       const std::vector<double> &sums, const Motion &motion, double half) const
+    {
+        double least = std::numeric_limits<double>::infinity();
+        for (std::size_t split = 0, n = pairSplits(first, second, terms); split < n; ++split)
+            least = std::min(least, pairSplitBound(first, second, terms, split, sums, motion, half));
+        return least;
     }
 }  // namespace meshgap

@@ -213,9 +213,20 @@ namespace meshgap
                             continue;
                         const std::size_t c =
                             test::commonFrame(robot, robot.links()[first].frame, robot.links()[second].frame);
-                        const double piece = bound.pairBound(first, second, bound.pairTerms(first, second), sums);
+                        const auto terms = bound.pairTerms(first, second);
+                        const double piece = bound.pairBound(first, second, terms, sums);
                         EXPECT_LE(moved(first, c) + moved(second, c), piece + 1e-9)
                             << robot.links()[first].name << " " << robot.links()[second].name << " " << trial;
+                        // Every split of the joints between them: the two links' moves in the frame between.
+                        for (std::size_t split = 0; split < bound.pairSplits(first, second, terms); ++split)
+                        {
+                            const std::size_t f = bound.splitFrame(first, second, terms, split);
+                            const double part = bound.pairSplitBound(first, second, terms, split, sums, motion, half);
+                            EXPECT_LE(moved(first, f) + moved(second, f), part + 1e-9)
+                                << robot.links()[first].name << " " << robot.links()[second].name << " split "
+                                << split << " trial " << trial;
+                        }
+                        EXPECT_LE(bound.pairPieceBound(first, second, terms, sums, motion, half), piece);
                     }
                 }
             }

@@ -68,8 +68,11 @@ namespace meshgap
         void pairBends(const MotionBound::Motion &motion, std::vector<double> &bends,
                        std::vector<unsigned char> &stays) const;
 
-        /** \brief Pair \e k's displacement bound over a piece, from MotionBound::pieceBounds()' \e sums. */
-        double pieceBound(std::size_t k, const std::vector<double> &sums) const;
+        /** \brief How far pair \e k's distance may change over a piece \e half of \e motion long (a fraction), from
+            MotionBound::pieceBounds()' \e sums: a link's displacement, or a self pair's least split bound
+            (MotionBound::pairPieceBound()). */
+        double pieceBound(std::size_t k, const std::vector<double> &sums, const MotionBound::Motion &motion,
+                          double half) const;
 
         RobotSceneConstPtr scene_;
         MotionBound bound_;

@@ -105,7 +105,36 @@ namespace meshgap
             return sums[offsets_[first] + first + terms.first] + sums[offsets_[second] + second + terms.second];
         }
 
+        /** \brief How many ways pairSplitBound() splits the path of joints between links \e first and \e second
+            (\e terms from pairTerms()): one more than the terms on it; 1 for two bodies with no common frame. */
+        std::size_t pairSplits(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms) const;
+        /** \brief A bound over a piece of \e motion (\e half a fraction of it, \e sums from pieceBounds()) for
+            links \e first and \e second relative to each other, split at \e split (< pairSplits()): the path of
+            joints from the first link up to their nearest common ancestor and down to the second, its first
+            \e split joints charged to the first link, the rest to the second. Their distance d(A, M B), M the
+            product of the path's joints, is d(M1^-1 A, M2 B) with M = M1 M2, so it changes by at most what the
+            first link moves under M1^-1 plus what the second moves under M2, both in the frame between. A link's own
+            joints add what pieceBounds() summed; a joint of the other link's way charged to it adds its step times
+            the link's reach from the joint's origin at any state, at most its reach from the common ancestor's
+            origin plus how far that origin is from the joint's (the frames' reaches between). Split at
+            terms.first, it is pairBound(); a link far from the other's joints (a base against the upper arm two
+            joints away) moves far less about them than the other does. +infinity for a split between two terms of
+            one frame (a free frame's move and turn), which is no split between frames. */
+        double pairSplitBound(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
+                              std::size_t split, const std::vector<double> &sums, const Motion &motion,
+                              double half) const;
+        /** \brief The frame between the two parts of \e split (pairSplitBound()): the first link's displacement
+            in it plus the second's bound how far their distance changes. RobotModel::NONE for two separate roots. */
+        std::size_t splitFrame(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
+                               std::size_t split) const;
+        /** \brief The least pairSplitBound() over every split. */
+        double pairPieceBound(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
+                              const std::vector<double> &sums, const Motion &motion, double half) const;
+
     private:
+        /** \brief Where links \e first and \e second's nearest common ancestor is on each one's way up (an index
+            into chains_; past the end for two separate roots). */
+        std::pair<std::size_t, std::size_t> commonSteps(std::size_t first, std::size_t second) const;
         /** \brief What a term measures between the two states. */
         enum class Measure
         {
@@ -150,6 +179,9 @@ namespace meshgap
         std::vector<std::array<Eigen::Vector3d, 8>> corners_;
         /** \brief Per link, its frame and every frame above it, up to the root. */
         std::vector<std::vector<std::size_t>> chains_;
+        /** \brief Per link, per frame on its way up (as chains_): how far any point of the link is from that
+            frame's origin at any state (the link's own reach, plus the reaches of the frames between). */
+        std::vector<std::vector<double>> chainReach_;
     };
 }  // namespace meshgap
 
