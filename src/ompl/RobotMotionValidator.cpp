@@ -83,6 +83,59 @@ namespace meshgap
             std::vector<unsigned char> need;  ///< per link: in a pair pending on the piece (MotionBound bounds it)
             std::vector<Piece> pieces;        ///< breadth first: a queue read from its head
             std::vector<Pending> pending;     ///< a range per piece
+
+            /** \brief Piece \e p's two ends placed, into \e at0 and \e at1: the motion's own placed the first time
+                a pair needs them, the others kept as a middle (past MAX_PLACES, placed here). \e middle is the
+                working state (its own place is made already). True (for a condition). */
+            bool placeEnds(const RobotScene &scene, const ompl::base::StateSpace &space, const Piece &p,
+                           const ompl::base::State *s1, const ompl::base::State *s2, ompl::base::State *middle,
+                           const RobotScene::Placement *&end0, const RobotScene::Placement *&end1)
+            {
+                for (auto [end, index, t, scratch] :
+                     {std::tuple(&end0, p.end0, p.t0, &at0), std::tuple(&end1, p.end1, p.t1, &at1)})
+                {
+                    const bool kept = index != NO_PLACE && (index >= 2 || endsPlaced[index]);
+                    if (!kept)
+                    {
+                        space.interpolate(s1, s2, t, middle);
+                        robotStateToVector(space, middle, qEnd);
+                        scene.placeEnds(qEnd.data(), qEnd.size(), index == NO_PLACE ? *scratch : places[index]);
+                        if (index != NO_PLACE)
+                            endsPlaced[index] = true;
+                    }
+                    *end = index == NO_PLACE ? scratch : &places[index];
+                }
+                return true;
+            }
+
+            /** \brief need: the links of the pairs pending on piece \e p. */
+            void markLinks(const RobotScene &scene, const Piece &p)
+            {
+                const std::size_t links = scene.links().size();
+                need.assign(links, 0);
+                for (std::size_t i = p.first; i < p.first + p.count; ++i)
+                {
+                    const std::size_t k = pending[i].pair;
+                    if (k < links)
+                        need[k] = 1;
+                    else
+                        need[scene.selfPairs()[k - links].first] = need[scene.selfPairs()[k - links].second] = 1;
+                }
+            }
+
+            /** \brief The place of the middle just placed in \e warm, kept for the halves' ends (NO_PLACE past
+                MAX_PLACES). */
+            std::size_t keepMiddle()
+            {
+                if (used >= MAX_PLACES)
+                    return NO_PLACE;
+                const std::size_t mid = used++;
+                if (places.size() < used)
+                    places.resize(used);
+                places[mid].frames = warm.frames;  // as RobotScene::placeEnds() places the middle state
+                places[mid].links = warm.poses;
+                return mid;
+            }
         };
     }  // namespace
 
@@ -119,42 +172,14 @@ namespace meshgap
         {
             const Piece p = w.pieces[head];
             const double t = 0.5 * (p.t0 + p.t1), half = 0.5 * (p.t1 - p.t0);
-            // The piece's ends, for the swept hulls: the motion's own placed when a pair first needs them, the
-            // others were placed as a middle (past MAX_PLACES, placed here). A point strays at most h^2 / 8 times
-            // its bend from its chord.
+            // The piece's ends, for the swept hulls, placed when a pair first needs them. A point strays at most
+            // h^2 / 8 times its bend from its chord.
             const RobotScene::Placement *at0 = nullptr, *at1 = nullptr;
-            auto placeEnds = [&]
-            {
-                for (auto [at, index, end, scratch] : {std::tuple(&at0, p.end0, p.t0, &w.at0),
-                                                       std::tuple(&at1, p.end1, p.t1, &w.at1)})
-                {
-                    const bool kept = index != NO_PLACE && (index >= 2 || w.endsPlaced[index]);
-                    if (!kept)
-                    {
-                        space.interpolate(s1, s2, end, middle);  // the middle state is placed already
-                        robotStateToVector(space, middle, w.qEnd);
-                        RobotScene::Placement &into = index == NO_PLACE ? *scratch : w.places[index];
-                        scene_->placeEnds(w.qEnd.data(), w.qEnd.size(), into);
-                        if (index != NO_PLACE)
-                            w.endsPlaced[index] = true;
-                    }
-                    *at = index == NO_PLACE ? scratch : &w.places[index];
-                }
-                return true;
-            };
             const double stray = 0.5 * half * half * (1.0 + 1e-9);
             space.interpolate(s1, s2, t, middle);  // OMPL's own interpolation (SO(2) by the shorter arc)
             robotStateToVector(space, middle, w.q);
             scene_->place(w.q.data(), w.q.size(), w.warm);
-            w.need.assign(links, 0);
-            for (std::size_t i = p.first; i < p.first + p.count; ++i)
-            {
-                const std::size_t k = w.pending[i].pair;
-                if (k < links)
-                    w.need[k] = 1;
-                else
-                    w.need[scene_->selfPairs()[k - links].first] = w.need[scene_->selfPairs()[k - links].second] = 1;
-            }
+            w.markLinks(*scene_, p);
             bound_.pieceBounds(w.motion, w.warm.frames, w.warm.poses, half, w.sums, &w.need);
             const std::size_t start = w.pending.size();
             for (std::size_t i = p.first; free && i < p.first + p.count; ++i)
@@ -165,7 +190,7 @@ namespace meshgap
                 const double margin = std::min(half * w.lambda[k], pieceBound(k, w.sums, w.motion, half));
                 // Cheapest first: boxes and spheres at the middle state, the swept hulls, then the meshes.
                 if (scene_->pairBoundsApart(k, margin, w.warm) ||
-                    ((at0 || placeEnds()) &&
+                    ((at0 || w.placeEnds(*scene_, space, p, s1, s2, middle, at0, at1)) &&
                      scene_->sweptApart(k, *at0, *at1, stray * w.bends[2 * k],
                                         stray * w.bends[2 * k + 1], w.warm, w.stays[2 * k], w.stays[2 * k + 1])) ||
                     scene_->pairApart(k, margin, w.warm, budget, &gaveUp))
@@ -180,15 +205,7 @@ namespace meshgap
             free = p.depth + 1 < MAX_DEPTH && w.pieces.size() + 2 <= MAX_PIECES;
             if (!free)
                 continue;
-            std::size_t mid = NO_PLACE;
-            if (w.used < MAX_PLACES)
-            {
-                mid = w.used++;
-                if (w.places.size() < w.used)
-                    w.places.resize(w.used);
-                w.places[mid].frames = w.warm.frames;  // as placeEnds() would place the middle state
-                w.places[mid].links = w.warm.poses;
-            }
+            const std::size_t mid = w.keepMiddle();
             w.pieces.push_back({p.t0, t, start, left, p.depth + 1, p.end0, mid});
             w.pieces.push_back({t, p.t1, start, left, p.depth + 1, mid, p.end1});
         }
