@@ -84,9 +84,10 @@ namespace meshgap
             std::vector<Piece> pieces;        ///< breadth first: a queue read from its head
             std::vector<Pending> pending;     ///< a range per piece
 
-            /** \brief Piece \e p's two ends placed, into \e at0 and \e at1: the motion's own placed the first time
-                a pair needs them, the others kept as a middle (past MAX_PLACES, placed here). \e middle is the
-                working state (its own place is made already). True (for a condition). */
+            /** \brief Piece \e p's two ends placed, pointed to by \e end0 and \e end1: the motion's own placed the
+                first time a pair needs them, the others kept as a middle (past MAX_PLACES, placed here, in \e at0
+                and \e at1). \e middle is the working state (its own place is made already). True (for a
+                condition). */
             bool placeEnds(const RobotScene &scene, const ompl::base::StateSpace &space, const Piece &p,
                            const ompl::base::State *s1, const ompl::base::State *s2, ompl::base::State *middle,
                            const RobotScene::Placement *&end0, const RobotScene::Placement *&end1)
