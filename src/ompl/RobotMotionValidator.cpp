@@ -188,7 +188,8 @@ namespace meshgap
                 const auto [k, tries] = w.pending[i];
                 const std::size_t budget = tries >= UNLIMITED_AFTER ? 0 : FIRST_BUDGET << (2 * tries);
                 bool gaveUp = false;
-                const double margin = std::min(half * w.lambda[k], pieceBound(k, w.sums, w.motion, half));
+                const double margin =
+                    std::min(half * w.lambda[k], pieceBound(k, w.sums, w.motion, half, w.warm.frames, w.warm.poses));
                 // Cheapest first: boxes and spheres at the middle state, the swept hulls, then the meshes.
                 if (scene_->pairBoundsApart(k, margin, w.warm) ||
                     ((at0 || w.placeEnds(*scene_, space, p, s1, s2, middle, at0, at1)) &&
@@ -239,13 +240,15 @@ namespace meshgap
     }
 
     double RobotMotionValidator::pieceBound(std::size_t k, const std::vector<double> &sums,
-                                            const MotionBound::Motion &motion, double half) const
+                                            const MotionBound::Motion &motion, double half,
+                                            const std::vector<Eigen::Isometry3d> &frames,
+                                            const std::vector<Eigen::Isometry3d> &poses) const
     {
         const std::size_t links = scene_->links().size();
         if (k < links)
             return bound_.linkBound(k, sums);
         const auto [a, b] = scene_->selfPairs()[k - links];
-        return bound_.pairPieceBound(a, b, pairTerms_[k - links], sums, motion, half);
+        return bound_.pairPieceBound(a, b, pairTerms_[k - links], sums, motion, half, frames, poses);
     }
 
     bool RobotMotionValidator::checkMotion(const ompl::base::State *s1, const ompl::base::State *s2) const

@@ -53,6 +53,8 @@ namespace meshgap
             chains_.push_back(chain);
             chainReach_.push_back(chainReach);
             corners_.push_back(boxCorners(link.body->bvh().nodes().front()));
+            centres_.push_back(link.body->bvh().nodes().front().center);
+            radii_.push_back(link.body->bvh().nodes().front().radius);
         }
     }
 
@@ -249,36 +251,76 @@ namespace meshgap
         return commonSteps(first, second).first < chains_[first].size() ? terms.first + terms.second + 1 : 1;
     }
 
+    double MotionBound::charged(std::size_t own, std::size_t other, std::pair<std::size_t, std::size_t> counts,
+                                std::size_t kept, const std::vector<double> &sums, const Motion &motion, double half,
+                                const std::vector<Eigen::Isometry3d> &frames,
+                                const std::vector<Eigen::Isometry3d> &links) const
+    {
+        const auto [count, otherCount] = counts;
+        const auto [atOwn, atOther] = commonSteps(own, other);
+        const double common = chainReach_[own][atOwn] + chainReach_[other][atOther];
+        const std::size_t o = offsets_[own];
+        // How fast the other link's points move about a frame of own's way (per unit of the motion): its own
+        // terms below the common ancestor, then own's terms above that frame (each frame's terms together).
+        double below = 0.0, pending = 0.0;
+        for (std::size_t t = offsets_[other]; t < offsets_[other] + otherCount; ++t)
+            below += motion.crude[t];
+        const Eigen::Vector3d centre = links[other] * centres_[other];
+        double suffix = 0.0, least = std::numeric_limits<double>::infinity();
+        std::size_t step = RobotModel::NONE;
+        for (std::size_t i = count; i-- > 0;)
+        {
+            const Term &term = terms_[o + i];
+            if (term.step != step)
+            {
+                below += pending;
+                pending = 0.0;
+                step = term.step;
+            }
+            const double move = motion.move[o + i];
+            if (move != 0.0)
+            {
+                // At any state, the other link's points lie within common - own's reach there of the frame's origin;
+                // at the middle, within the other's root sphere, its centre this far from the axis (or origin).
+                const double crude = term.lever == Lever::NONE ? 1.0 : common - chainReach_[own][term.step];
+                double lever = crude;
+                if (term.lever != Lever::NONE)
+                {
+                    const Eigen::Vector3d origin = frames[term.frame].translation();
+                    const Eigen::Vector3d r = centre - origin;
+                    double d = term.lever == Lever::AXIS ? r.cross(frames[term.frame].linear() * term.axis).norm()
+                                                         : r.norm();
+                    d += radii_[other] + 1e-12 * (1.0 + d + origin.norm() + centre.norm());  // roundoff
+                    lever = std::min(crude, d + 0.5 * half * below);
+                }
+                suffix += move * half * lever;
+                pending += move * crude;
+            }
+            // Own keeps its terms below i (its piece sums), charges i and those above to the other link; not
+            // between two terms of one frame (a free frame's move and turn), which is no split between frames.
+            const bool between = i == 0 || terms_[o + i - 1].step != term.step;
+            const double bound = between ? sums[o + own + i] + suffix : std::numeric_limits<double>::infinity();
+            if (i == kept)
+                return bound;
+            least = std::min(least, bound);
+        }
+        return least;
+    }
+
     double MotionBound::pairSplitBound(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
                                        std::size_t split, const std::vector<double> &sums, const Motion &motion,
-                                       double half) const
+                                       double half, const std::vector<Eigen::Isometry3d> &frames,
+                                       const std::vector<Eigen::Isometry3d> &links) const
     {
-        if (pairSplits(first, second, terms) == 1)
-            return pairBound(first, second, terms, sums);
-        const auto [at1, at2] = commonSteps(first, second);
-        const double common = chainReach_[first][at1] + chainReach_[second][at2];
-        // Link "own" keeps its nearest kept terms (its piece sums); its terms from kept on, up to the common
-        // ancestor, move link "other" about their frames, at most common - own's reach from the frame away.
-        auto charged = [&](std::size_t own, std::size_t count, std::size_t kept)
-        {
-            const std::size_t o = offsets_[own];
-            if (kept > 0 && kept < count && terms_[o + kept - 1].step == terms_[o + kept].step)
-                return std::numeric_limits<double>::infinity();  // between a free frame's move and turn: no split
-            double sum = sums[offsets_[own] + own + kept];
-            for (std::size_t i = kept; i < count; ++i)
-            {
-                const Term &term = terms_[offsets_[own] + i];
-                const double move = motion.move[offsets_[own] + i];
-                if (move == 0.0)
-                    continue;
-                sum += move * half * (term.lever == Lever::NONE ? 1.0 : common - chainReach_[own][term.step]);
-            }
-            return sum;
-        };
-        if (split <= terms.first)
-            return charged(first, terms.first, split) + sums[offsets_[second] + second + terms.second];
+        const double held = pairBound(first, second, terms, sums);  // each link its own terms
+        if (pairSplits(first, second, terms) == 1 || split == terms.first)
+            return held;
+        if (split < terms.first)
+            return charged(first, second, terms, split, sums, motion, half, frames, links) +
+                   sums[offsets_[second] + second + terms.second];
         return sums[offsets_[first] + first + terms.first] +
-               charged(second, terms.second, terms.first + terms.second - split);
+               charged(second, first, {terms.second, terms.first}, terms.first + terms.second - split, sums, motion,
+                       half, frames, links);
     }
 
     std::size_t MotionBound::splitFrame(std::size_t first, std::size_t second,
@@ -294,11 +336,19 @@ namespace meshgap
     }
 
     double MotionBound::pairPieceBound(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
-                                       const std::vector<double> &sums, const Motion &motion, double half) const
+                                       const std::vector<double> &sums, const Motion &motion, double half,
+                                       const std::vector<Eigen::Isometry3d> &frames,
+                                       const std::vector<Eigen::Isometry3d> &links) const
     {
-        double least = std::numeric_limits<double>::infinity();
-        for (std::size_t split = 0, n = pairSplits(first, second, terms); split < n; ++split)
-            least = std::min(least, pairSplitBound(first, second, terms, split, sums, motion, half));
-        return least;
+        const double held = pairBound(first, second, terms, sums);
+        if (pairSplits(first, second, terms) == 1)
+            return held;
+        const double firstSide =
+            charged(first, second, terms, ALL_SPLITS, sums, motion, half, frames, links) +
+            sums[offsets_[second] + second + terms.second];
+        const double secondSide = sums[offsets_[first] + first + terms.first] +
+                                  charged(second, first, {terms.second, terms.first}, ALL_SPLITS, sums, motion, half,
+                                          frames, links);
+        return std::min({held, firstSide, secondSide});
     }
 }  // namespace meshgap

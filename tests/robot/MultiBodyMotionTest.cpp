@@ -221,12 +221,13 @@ namespace meshgap
                         for (std::size_t split = 0; split < bound.pairSplits(first, second, terms); ++split)
                         {
                             const std::size_t f = bound.splitFrame(first, second, terms, split);
-                            const double part = bound.pairSplitBound(first, second, terms, split, sums, motion, half);
+                            const double part =
+                                bound.pairSplitBound(first, second, terms, split, sums, motion, half, framesM, linksM);
                             EXPECT_LE(moved(first, f) + moved(second, f), part + 1e-9)
                                 << robot.links()[first].name << " " << robot.links()[second].name << " split "
                                 << split << " trial " << trial;
                         }
-                        EXPECT_LE(bound.pairPieceBound(first, second, terms, sums, motion, half), piece);
+                        EXPECT_LE(bound.pairPieceBound(first, second, terms, sums, motion, half, framesM, linksM), piece);
                     }
                 }
             }

@@ -70,9 +70,10 @@ namespace meshgap
 
         /** \brief How far pair \e k's distance may change over a piece \e half of \e motion long (a fraction), from
             MotionBound::pieceBounds()' \e sums: a link's displacement, or a self pair's least split bound
-            (MotionBound::pairPieceBound()). */
+            (MotionBound::pairPieceBound(), with the middle state's \e frames and link \e poses). */
         double pieceBound(std::size_t k, const std::vector<double> &sums, const MotionBound::Motion &motion,
-                          double half) const;
+                          double half, const std::vector<Eigen::Isometry3d> &frames,
+                          const std::vector<Eigen::Isometry3d> &poses) const;
 
         RobotSceneConstPtr scene_;
         MotionBound bound_;

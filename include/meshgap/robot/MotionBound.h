@@ -115,23 +115,38 @@ namespace meshgap
             product of the path's joints, is d(M1^-1 A, M2 B) with M = M1 M2, so it changes by at most what the
             first link moves under M1^-1 plus what the second moves under M2, both in the frame between. A link's own
             joints add what pieceBounds() summed; a joint of the other link's way charged to it adds its step times
-            the link's reach from the joint's origin at any state, at most its reach from the common ancestor's
-            origin plus how far that origin is from the joint's (the frames' reaches between). Split at
+            the link's distance from the joint's axis: at any state at most its reach from the common ancestor's
+            origin plus how far that origin is from the joint's (the frames' reaches between); over the piece at
+            most its root sphere's at the middle state (\e frames and \e links, as pieceBounds() takes them),
+            grown by how fast the link moves about that axis (its own terms' and the frames' between). Split at
             terms.first, it is pairBound(); a link far from the other's joints (a base against the upper arm two
             joints away) moves far less about them than the other does. +infinity for a split between two terms of
             one frame (a free frame's move and turn), which is no split between frames. */
         double pairSplitBound(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
-                              std::size_t split, const std::vector<double> &sums, const Motion &motion,
-                              double half) const;
+                              std::size_t split, const std::vector<double> &sums, const Motion &motion, double half,
+                              const std::vector<Eigen::Isometry3d> &frames,
+                              const std::vector<Eigen::Isometry3d> &links) const;
         /** \brief The frame between the two parts of \e split (pairSplitBound()): the first link's displacement
             in it plus the second's bound how far their distance changes. RobotModel::NONE for two separate roots. */
         std::size_t splitFrame(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
                                std::size_t split) const;
         /** \brief The least pairSplitBound() over every split. */
         double pairPieceBound(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
-                              const std::vector<double> &sums, const Motion &motion, double half) const;
+                              const std::vector<double> &sums, const Motion &motion, double half,
+                              const std::vector<Eigen::Isometry3d> &frames,
+                              const std::vector<Eigen::Isometry3d> &links) const;
 
     private:
+        /** \brief For charged(): every split on one side, the least. */
+        static constexpr std::size_t ALL_SPLITS = ~std::size_t(0);
+        /** \brief Link \e own keeping its \e kept nearest terms of the \e counts.first below the common ancestor
+            with link \e other (which has \e counts.second there), the rest charged to \e other: own's piece sum
+            plus the charged terms' bounds (pairSplitBound()); with ALL_SPLITS, the least over every \e kept below
+            counts.first. */
+        double charged(std::size_t own, std::size_t other, std::pair<std::size_t, std::size_t> counts,
+                       std::size_t kept, const std::vector<double> &sums, const Motion &motion, double half,
+                       const std::vector<Eigen::Isometry3d> &frames,
+                       const std::vector<Eigen::Isometry3d> &links) const;
         /** \brief Where links \e first and \e second's nearest common ancestor is on each one's way up (an index
             into chains_; past the end for two separate roots). */
         std::pair<std::size_t, std::size_t> commonSteps(std::size_t first, std::size_t second) const;
@@ -177,6 +192,9 @@ namespace meshgap
         std::vector<std::size_t> offsets_;
         /** \brief Per link, the 8 corners of its BVH's root box, in its body frame. */
         std::vector<std::array<Eigen::Vector3d, 8>> corners_;
+        /** \brief Per link, its BVH's root sphere in its body frame: centre, radius. */
+        std::vector<Eigen::Vector3d> centres_;
+        std::vector<double> radii_;
         /** \brief Per link, its frame and every frame above it, up to the root. */
         std::vector<std::vector<std::size_t>> chains_;
         /** \brief Per link, per frame on its way up (as chains_): how far any point of the link is from that
