@@ -27,7 +27,11 @@ namespace meshgap
        that is more than that apart at the middle (RobotScene::pairApart(), a bounded question: nothing beyond the
        margin is looked at) is free on the whole piece. The margin is the least of that and the piece's own bound
        at its middle state (MotionBound::pieceBounds(): each joint's step times the distance of the link's box from
-       that joint's axis there, not its farthest reach over every state; two to three times tighter on an arm).
+       that joint's axis there, not its farthest reach over every state; two to three times tighter on an arm; for
+       a self pair, MotionBound::pairPieceBound(): the joints between the two links split where that bounds least,
+       each part charged to the link that moves less about it, so that a base is not charged for its upper arm
+       sweeping about the shoulder). A piece's bounds are computed for the links of its pending pairs only, and its
+       ends are its parent's end and middle, placed once.
        Before the middle state's meshes are asked, a pair that the boxes at the middle do not prove apart is asked
        about the piece as a whole (RobotScene::sweptApart()): each link's convex hull swept between its places at
        the piece's two ends, grown by how far its points may stray from those straight lines (MotionBound::bend():
