@@ -147,9 +147,10 @@ namespace meshgap
 
         /** \brief Random pieces of random motions of \e robot (middle state, half-length 0.5, 0.1 or 0.01 of the
             motion): no vertex of a link is further from where it is at the middle than MotionBound::pieceBounds()
-            says, at 100 states of the piece, and no checked pair moved more in its nearest common frame than
-            pairBound(); each bound is at most the piece's share of the whole motion's crude bound. Returns the
-            mean ratio of the piece bound to that share (how much tighter it is). */
+            says, at 100 states of the piece, no checked pair moved more in its nearest common frame than
+            pairBound(), nor in any split's frame than pairSplitBound() (MotionBound::splitFrame()); each bound is at
+            most the piece's share of the whole motion's crude bound. Returns the mean ratio of the piece bound to
+            that share (how much tighter it is). */
         double checkPieceBounds(const RobotModel &robot, const std::function<double(std::size_t)> &joints,
                                 unsigned seed)
         {
