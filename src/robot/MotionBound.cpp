@@ -56,6 +56,22 @@ namespace meshgap
             centres_.push_back(link.body->bvh().nodes().front().center);
             radii_.push_back(link.body->bvh().nodes().front().radius);
         }
+        // Every pair of links' nearest common ancestor, once (the proof asks it for every self pair of every piece).
+        const std::size_t n = chains_.size();
+        common_.resize(n * n);
+        for (std::size_t a = 0; a < n; ++a)
+            for (std::size_t b = 0; b < n; ++b)
+            {
+                const std::vector<std::size_t> &up1 = chains_[a], &up2 = chains_[b];
+                common_[a * n + b] = {up1.size(), up2.size()};
+                for (std::size_t i = 0; i < up1.size() && common_[a * n + b].first == up1.size(); ++i)
+                    for (std::size_t k = 0; k < up2.size(); ++k)
+                        if (up1[i] == up2[k])
+                        {
+                            common_[a * n + b] = {i, k};
+                            break;
+                        }
+            }
     }
 
     void MotionBound::addTerms(const FrameMotion &m, std::size_t frame, std::size_t step, double reach,
@@ -115,16 +131,6 @@ namespace meshgap
             }
         }
         return t.scale * change;
-    }
-
-    std::pair<std::size_t, std::size_t> MotionBound::commonSteps(std::size_t first, std::size_t second) const
-    {
-        const std::vector<std::size_t> &up1 = chains_[first], &up2 = chains_[second];
-        for (std::size_t i = 0; i < up1.size(); ++i)
-            for (std::size_t k = 0; k < up2.size(); ++k)
-                if (up1[i] == up2[k])
-                    return {i, k};
-        return {up1.size(), up2.size()};
     }
 
     std::pair<std::size_t, std::size_t> MotionBound::pairTerms(std::size_t first, std::size_t second) const
@@ -312,9 +318,8 @@ namespace meshgap
                                        double half, const std::vector<Eigen::Isometry3d> &frames,
                                        const std::vector<Eigen::Isometry3d> &links) const
     {
-        const double held = pairBound(first, second, terms, sums);  // each link its own terms
         if (pairSplits(first, second, terms) == 1 || split == terms.first)
-            return held;
+            return pairBound(first, second, terms, sums);  // each link its own terms
         if (split < terms.first)
             return charged(first, second, terms, split, sums, motion, half, frames, links) +
                    sums[offsets_[second] + second + terms.second];

@@ -107,16 +107,6 @@ namespace meshgap
         return gap >= bound;
     }
 
-    bool RobotScene::selfCollides(std::size_t p, RobotWarmStart &warm) const
-    {
-        double gap;
-        if (spheresApart(p, warm, 0.0, gap) && gap > 0.0)
-            return false;
-        const auto [a, b] = selfPairs_[p];
-        return meshgap::inCollision(*links_[a].body, *links_[b].body, warm.poses[a].inverse() * warm.poses[b],
-                                    &warm.self[p]);
-    }
-
     bool RobotScene::inCollision(const double *state, std::size_t size, RobotWarmStart &warm,
                                  bool selfCollision) const
     {
@@ -146,7 +136,7 @@ namespace meshgap
             // In collision, only a deeper collision can change the answer: the exact collision test first (a
             // bound near zero would prune nothing the test does not), then the signed distance of a colliding pair.
             const bool collides = k < links_.size() ? scenes_[k]->inCollision(warm.poses[k], warm.links[k])
-                                                    : selfCollides(k - links_.size(), warm);
+                                                    : selfVerdict(k - links_.size(), warm);
             if (!collides)
             {
                 ++best.pairsChecked;

@@ -149,7 +149,10 @@ namespace meshgap
                        const std::vector<Eigen::Isometry3d> &links) const;
         /** \brief Where links \e first and \e second's nearest common ancestor is on each one's way up (an index
             into chains_; past the end for two separate roots). */
-        std::pair<std::size_t, std::size_t> commonSteps(std::size_t first, std::size_t second) const;
+        std::pair<std::size_t, std::size_t> commonSteps(std::size_t first, std::size_t second) const
+        {
+            return common_[first * chains_.size() + second];
+        }
         /** \brief What a term measures between the two states. */
         enum class Measure
         {
@@ -200,6 +203,8 @@ namespace meshgap
         /** \brief Per link, per frame on its way up (as chains_): how far any point of the link is from that
             frame's origin at any state (the link's own reach, plus the reaches of the frames between). */
         std::vector<std::vector<double>> chainReach_;
+        /** \brief commonSteps() of every pair of links, row by the first. */
+        std::vector<std::pair<std::size_t, std::size_t>> common_;
     };
 }  // namespace meshgap
 

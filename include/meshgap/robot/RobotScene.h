@@ -237,7 +237,6 @@ namespace meshgap
         /** \brief True when the bounding spheres of self pair \e p's links are at least \e bound apart; their gap
             into \e gap. */
         bool spheresApart(std::size_t p, const RobotWarmStart &warm, double bound, double &gap) const;
-        bool selfCollides(std::size_t p, RobotWarmStart &warm) const;
         /** \brief Answer pair \e k (RobotResult::pairs order) below \e bound into \e answer (bound 0: only a
             collision matters); true when it is the best so far, then copied into \e best. \e complete turns false
             when the pair's answer is not certified. */
@@ -263,7 +262,8 @@ namespace meshgap
             common one fixed to its parent), their certified clearance (up to RIGID_CLEARANCE_CAP, less a pad
             against roundoff); 0 for any other pair, or one within the pad. */
         double rigidPairClearance(std::size_t a, std::size_t b) const;
-        /** \brief The collision verdict of self pair \e p at the state placed: spheres, root boxes, then exact. */
+        /** \brief The collision verdict of self pair \e p at the state placed: proven apart once if fixed together,
+            then spheres, root boxes, convex hulls, then exact (containment included). */
         bool selfVerdict(std::size_t p, RobotWarmStart &warm) const;
 
         /** \brief What the verdict's broad phase knows of an obstacle: its axis-aligned box (padded), the boxes of
