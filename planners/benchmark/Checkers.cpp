@@ -223,7 +223,7 @@ namespace meshgap
             if (!problem.goal)
                 throw Exception(problem.file, "no goal (goal.x ..., goal.joints, or goal.N.* for every body)");
             setup_ = std::make_shared<ompl::geometric::SimpleSetup>(planningSpace(problem));
-            scene_ = std::make_shared<RobotScene>(problem.robot, problem.obstacles, problem.allowedObstacles);
+            scene_ = planningScene(problem);
             const ob::SpaceInformationPtr si = setup_->getSpaceInformation();
             if (&menuOf(*problem.robot) == &RIGID_BODY)
             {

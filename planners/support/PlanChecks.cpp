@@ -298,7 +298,7 @@ namespace meshgap
                                             "plan; meshgap_distance --cfg gives its clearance");
                 if (!p.goal)
                     throw Exception(p.file, "no goal (goal.joints, or goal.N.x ... for each body)");
-                run.scene = std::make_shared<RobotScene>(p.robot, p.obstacles, p.allowedObstacles);
+                run.scene = planningScene(p);
                 run.ends = {p.start, *p.goal};
                 run.setup = std::make_shared<og::SimpleSetup>(robotStateSpace(*p.robot, bounds()));
                 const ob::SpaceInformationPtr si = run.setup->getSpaceInformation();

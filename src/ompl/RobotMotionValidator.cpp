@@ -3,6 +3,7 @@
 #include <ompl/base/SpaceInformation.h>
 
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 #include <vector>
 
@@ -22,6 +23,10 @@ namespace meshgap
             throw Exception("RobotMotionValidator", "the robot scene was built with another set of links");
         for (const auto &[a, b] : scene_->selfPairs())
             pairTerms_.push_back(bound_.pairTerms(a, b));
+        angles_.assign(robot.dimension(), 0);
+        for (const StateBlock &block : robot.stateBlocks())
+            if (block.space == JointSpace::SO2)
+                angles_[block.first] = 1;
     }
 
     namespace
@@ -67,6 +72,9 @@ namespace meshgap
             RobotWarmStart warm;
             MotionBound::Motion motion;
             std::vector<double> q0, q1, q, qEnd, moves, lambda, sums;
+            /** \brief Per state number, its step over the motion (an angle's along the shorter arc), and how far
+                it strays from its value at the middle of the piece at hand. */
+            std::vector<double> steps, reach;
             /** \brief Per pair, its links' bends over the motion (MotionBound::bend(); the second 0 for a link
                 against the obstacles). */
             std::vector<double> bends;
@@ -158,6 +166,17 @@ namespace meshgap
         for (const auto &[a, b] : scene_->selfPairs())
             w.lambda.push_back(bound_.pairDisplacement(a, b, w.q0, w.q1));
         pairBends(w.motion, w.bends, w.stays);
+        const SelfPairTable *table = scene_->selfPairTable();
+        if (table)
+        {
+            w.steps.resize(w.q0.size());
+            w.reach.resize(w.q0.size());
+            for (std::size_t v = 0; v < w.q0.size(); ++v)
+            {
+                const double step = std::abs(w.q1[v] - w.q0[v]);
+                w.steps[v] = angles_[v] ? std::min(step, 2.0 * M_PI - step) : step;
+            }
+        }
         w.pending.clear();
         for (std::size_t k = 0; k < pairs; ++k)
             w.pending.push_back({k, 0});
@@ -182,10 +201,16 @@ namespace meshgap
             scene_->place(w.q.data(), w.q.size(), w.warm);
             w.markLinks(*scene_, p);
             bound_.pieceBounds(w.motion, w.warm.frames, w.warm.poses, half, w.sums, &w.need);
+            if (table)
+                for (std::size_t v = 0; v < w.steps.size(); ++v)  // padded against roundoff in the interpolation
+                    w.reach[v] = half * w.steps[v] * (1.0 + 1e-9) + 1e-12 * (1.0 + std::abs(w.q[v]));
             const std::size_t start = w.pending.size();
             for (std::size_t i = p.first; free && i < p.first + p.count; ++i)
             {
                 const auto [k, tries] = w.pending[i];
+                // A self pair whose joints stay within cells of joint space proven apart: one look-up.
+                if (table && k >= links && table->apartWithin(k - links, w.q.data(), w.reach.data()))
+                    continue;
                 const std::size_t budget = tries >= UNLIMITED_AFTER ? 0 : FIRST_BUDGET << (2 * tries);
                 bool gaveUp = false;
                 const double margin =

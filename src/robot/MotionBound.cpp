@@ -340,6 +340,29 @@ namespace meshgap
         return kept < terms.second ? chains_[second][terms_[offsets_[second] + kept].step] : chains_[first][at1];
     }
 
+    bool MotionBound::pairNumbers(std::size_t first, std::size_t second, std::vector<std::size_t> &numbers,
+                                  std::vector<unsigned char> &arcs) const
+    {
+        numbers.clear();
+        arcs.clear();
+        if (commonSteps(first, second).first >= chains_[first].size())
+            return false;  // two separate roots
+        const auto [n1, n2] = pairTerms(first, second);
+        for (auto [link, count] : {std::pair(first, n1), std::pair(second, n2)})
+            for (std::size_t t = offsets_[link]; t < offsets_[link] + count; ++t)
+            {
+                const Term &term = terms_[t];
+                if (term.measure != Measure::SCALAR && term.measure != Measure::ARC)
+                    return false;
+                const auto at = std::lower_bound(numbers.begin(), numbers.end(), term.variable);
+                if (at != numbers.end() && *at == term.variable)
+                    continue;
+                arcs.insert(arcs.begin() + (at - numbers.begin()), term.measure == Measure::ARC ? 1 : 0);
+                numbers.insert(at, term.variable);
+            }
+        return true;
+    }
+
     double MotionBound::pairPieceBound(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
                                        const std::vector<double> &sums, const Motion &motion, double half,
                                        const std::vector<Eigen::Isometry3d> &frames,

@@ -385,6 +385,14 @@ namespace meshgap
         return problem;
     }
 
+    RobotScenePtr planningScene(const RobotProblem &problem)
+    {
+        const auto scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles, problem.allowedObstacles);
+        if (!scene->selfPairs().empty())
+            scene->tabulateSelfPairs();
+        return scene;
+    }
+
     RobotProblem readAnyRobotProblem(const std::string &path, const BodyOptions &options)
     {
         Problem problem = readProblem(path, options);

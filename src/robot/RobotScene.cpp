@@ -91,10 +91,17 @@ namespace meshgap
             warm.scene = id_;
         }
         robot_->framePoses(state, size, warm.frames);
+        warm.state.assign(state, state + size);
         warm.poses.resize(links_.size());
         for (std::size_t i = 0; i < links_.size(); ++i)
             warm.poses[i] = warm.frames[links_[i].frame] * links_[i].X_FL;
         placeBounds(warm);
+    }
+
+    void RobotScene::tabulateSelfPairs(const SelfPairTable::Options &options)
+    {
+        table_.reset();  // the table's own questions are asked without it
+        table_ = std::make_shared<const SelfPairTable>(*this, options);
     }
 
     bool RobotScene::spheresApart(std::size_t p, const RobotWarmStart &warm, double bound, double &gap) const

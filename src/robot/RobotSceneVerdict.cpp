@@ -303,6 +303,8 @@ namespace meshgap
     {
         if (rigidClearance_[p] > 0.0)
             return false;  // fixed to one another, proven apart once
+        if (table_ && table_->apartAt(p, warm.state.data()))
+            return false;  // in a cell of joint space where the pair is proven apart
         double gap;
         if (spheresApart(p, warm, 0.0, gap) && gap > 0.0)
             return false;

@@ -172,56 +172,82 @@ namespace meshgap
         EXPECT_GT(tightest, 0.05);  // a bound, not a wild one
     }
 
+    namespace
+    {
+        /** \brief Random motions of the test tree among the posts: every one the validator certifies is free at
+            states no joint of which is more than 1e-3 from the next, by the exact collision test of a scene of its
+            own (no self-pair table). With \e tabulate, the validator's scene has its self pairs tabulated
+            (RobotScene::tabulateSelfPairs()). */
+        void expectCertifiedMotionsFree(bool tabulate)
+        {
+            const UrdfRobotPtr robot = test::treeWithPayload();
+            const std::vector<BodyConstPtr> obstacles = test::postsAroundTree();
+            const auto checked = std::make_shared<RobotScene>(robot, obstacles);
+            if (tabulate)
+            {
+                SelfPairTable::Options options;
+                options.rootCells = 4;
+                options.levels = 4;
+                checked->tabulateSelfPairs(options);
+            }
+            const RobotSceneConstPtr scene = checked;
+            const RobotScene oracle(robot, obstacles);
+            ob::RealVectorBounds bounds(3);
+            bounds.setLow(-1);
+            bounds.setHigh(1);
+            auto si = std::make_shared<ob::SpaceInformation>(robotStateSpace(*robot, bounds));
+            si->setStateValidityChecker(std::make_shared<RobotChecker>(si, scene));
+            const auto validator = std::make_shared<RobotMotionValidator>(si, scene, *robot);
+            si->setMotionValidator(validator);
+            si->setup();
+            ompl::RNG::setSeed(13);
+            ob::StateSamplerPtr sampler = si->allocStateSampler();
+            ob::State *a = si->allocState(), *b = si->allocState(), *s = si->allocState();
+            std::size_t certified = 0, rejected = 0, dense = 0;
+            std::vector<double> q;
+            RobotWarmStart warm;
+            // MESHGAP_ROBOT_MOTIONS sets the count of motions tried (300 by default, scaled by test::scale()).
+            const char *count = std::getenv("MESHGAP_ROBOT_MOTIONS");
+            const int motions = count ? std::atoi(count) : test::scaled(300, 150);
+            for (int m = 0; m < motions; ++m)
+            {
+                do
+                    sampler->sampleUniform(a);
+                while (!si->isValid(a));
+                sampler->sampleUniformNear(b, a, 0.6);
+                if (!validator->checkMotion(a, b))
+                {
+                    ++rejected;
+                    continue;
+                }
+                ++certified;
+                // Dense: no joint changes by more than 1e-3 between checked states.
+                const int steps = static_cast<int>(std::ceil(si->distance(a, b) / 1e-3)) + 1;
+                for (int i = 0; i <= steps; ++i)
+                {
+                    si->getStateSpace()->interpolate(a, b, double(i) / steps, s);
+                    robotStateToVector(*si->getStateSpace(), s, q);
+                    ++dense;
+                    ASSERT_FALSE(oracle.inCollision(q.data(), q.size(), warm)) << "motion " << m << " at " << i;
+                }
+            }
+            si->freeState(a);
+            si->freeState(b);
+            si->freeState(s);
+            test::Note() << certified << " certified motions (" << dense << " states checked densely), " << rejected
+                         << " rejected";
+            EXPECT_GT(certified, 50u);
+            EXPECT_GT(rejected, 10u);
+        }
+    }  // namespace
+
     TEST(RobotMotionValidator, CertifiedMotionsAreFreeWhenCheckedDensely)
     {
-        const UrdfRobotPtr robot = test::treeWithPayload();
-        const std::vector<BodyConstPtr> obstacles = test::postsAroundTree();
-        const auto scene = std::make_shared<RobotScene>(robot, obstacles);
-        ob::RealVectorBounds bounds(3);
-        bounds.setLow(-1);
-        bounds.setHigh(1);
-        auto si = std::make_shared<ob::SpaceInformation>(robotStateSpace(*robot, bounds));
-        si->setStateValidityChecker(std::make_shared<RobotChecker>(si, scene));
-        const auto validator = std::make_shared<RobotMotionValidator>(si, scene, *robot);
-        si->setMotionValidator(validator);
-        si->setup();
-        ompl::RNG::setSeed(13);
-        ob::StateSamplerPtr sampler = si->allocStateSampler();
-        ob::State *a = si->allocState(), *b = si->allocState(), *s = si->allocState();
-        std::size_t certified = 0, rejected = 0, dense = 0;
-        std::vector<double> q;
-        RobotWarmStart warm;
-        // MESHGAP_ROBOT_MOTIONS sets the count of motions tried (300 by default, scaled by test::scale()).
-        const char *count = std::getenv("MESHGAP_ROBOT_MOTIONS");
-        const int motions = count ? std::atoi(count) : test::scaled(300, 150);
-        for (int m = 0; m < motions; ++m)
-        {
-            do
-                sampler->sampleUniform(a);
-            while (!si->isValid(a));
-            sampler->sampleUniformNear(b, a, 0.6);
-            if (!validator->checkMotion(a, b))
-            {
-                ++rejected;
-                continue;
-            }
-            ++certified;
-            // Dense: no joint changes by more than 1e-3 between checked states.
-            const int steps = static_cast<int>(std::ceil(si->distance(a, b) / 1e-3)) + 1;
-            for (int i = 0; i <= steps; ++i)
-            {
-                si->getStateSpace()->interpolate(a, b, double(i) / steps, s);
-                robotStateToVector(*si->getStateSpace(), s, q);
-                ++dense;
-                ASSERT_FALSE(scene->inCollision(q.data(), q.size(), warm)) << "motion " << m << " at " << i;
-            }
-        }
-        si->freeState(a);
-        si->freeState(b);
-        si->freeState(s);
-        test::Note() << certified << " certified motions (" << dense << " states checked densely), " << rejected
-                     << " rejected";
-        EXPECT_GT(certified, 50u);
-        EXPECT_GT(rejected, 10u);
+        expectCertifiedMotionsFree(false);
+    }
+
+    TEST(RobotMotionValidator, CertifiedMotionsWithTheSelfPairTableAreFreeWhenCheckedDensely)
+    {
+        expectCertifiedMotionsFree(true);
     }
 }  // namespace meshgap

@@ -83,6 +83,8 @@ namespace meshgap
         MotionBound bound_;
         /** \brief Per self pair, MotionBound::pairTerms(). */
         std::vector<std::pair<std::size_t, std::size_t>> pairTerms_;
+        /** \brief Per state number: 1 for an angle interpolated along the shorter arc (an SO(2) space's). */
+        std::vector<unsigned char> angles_;
         mutable StatePool states_;  ///< the working state of each thread checking a motion
     };
 }  // namespace meshgap

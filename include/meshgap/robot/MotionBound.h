@@ -130,6 +130,13 @@ namespace meshgap
             in it plus the second's bound how far their distance changes. RobotModel::NONE for two separate roots. */
         std::size_t splitFrame(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
                                std::size_t split) const;
+        /** \brief The state numbers that move links \e first and \e second relative to each other (those of their
+            terms below their nearest common ancestor, pairTerms()), each once, in increasing order, into
+            \e numbers; per number, whether it is an angle moved along the shorter arc (a continuous joint), into
+            \e arcs. False (no claim) when a free frame (SE(2), SE(3)) moves either below that ancestor, or the two
+            have no common frame: their relative pose is then no function of a few numbers. */
+        bool pairNumbers(std::size_t first, std::size_t second, std::vector<std::size_t> &numbers,
+                         std::vector<unsigned char> &arcs) const;
         /** \brief The least pairSplitBound() over every split. */
         double pairPieceBound(std::size_t first, std::size_t second, std::pair<std::size_t, std::size_t> terms,
                               const std::vector<double> &sums, const Motion &motion, double half,

@@ -9,6 +9,7 @@
 
 #include "meshgap/geometry/Body.h"
 #include "meshgap/robot/RobotModel.h"
+#include "meshgap/robot/RobotScene.h"
 #include "meshgap/scene/ProblemConfig.h"
 
 namespace meshgap
@@ -88,6 +89,11 @@ namespace meshgap
         gap, a missing file (URDF, SRDF, world, payload, a robot mesh), and whatever the URDF or SRDF reader
         rejects (a URDF mesh that cannot be found, ...). */
     RobotProblem readRobotProblem(const std::string &path, const BodyOptions &options = BodyOptions());
+
+    /** \brief The robot scene the planning tools check \e problem with: its robot among its obstacles, its allowed
+        pairs honoured, and its self pairs tabulated over their joints (RobotScene::tabulateSelfPairs(), a
+        fraction of a second for an arm; nothing for a robot without self pairs). */
+    RobotScenePtr planningScene(const RobotProblem &problem);
 }  // namespace meshgap
 
 #endif

@@ -9,6 +9,7 @@
 #include "meshgap/ClassForward.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/robot/RobotModel.h"
+#include "meshgap/robot/SelfPairTable.h"
 #include "meshgap/scene/Scene.h"
 
 namespace meshgap
@@ -99,6 +100,8 @@ namespace meshgap
         std::vector<SceneWarmStart> links;
         std::vector<ExactWarmStart> self;
         std::vector<Eigen::Isometry3d> frames, poses;
+        /** \brief The state placed (its numbers). */
+        std::vector<double> state;
         /** \brief At the state placed: per link, its BVH root box in the world, the axis-aligned box around it
             (padded against roundoff) and its bounding sphere's centre in the world. */
         std::vector<WorldBox> boxes;
@@ -169,6 +172,14 @@ namespace meshgap
         const std::vector<std::size_t> &linkObstacles(std::size_t i) const { return linkObstacles_[i]; }
         /** \brief Number of pairs: one per link (against the obstacles), then one per self pair. */
         std::size_t numPairs() const { return links_.size() + selfPairs_.size(); }
+        /** \brief Tabulate the self pairs over their joints (SelfPairTable, with \e options): from then on a self
+            pair's verdict at a state in one of its proven cells is that look-up. Costs what the table's questions
+            cost (a fraction of a second for an arm); call it before the scene is shared, as a RobotModel is
+            configured before. */
+        void tabulateSelfPairs(const SelfPairTable::Options &options = SelfPairTable::Options());
+        /** \brief The table of tabulateSelfPairs(), or null. */
+        const SelfPairTable *selfPairTable() const { return table_.get(); }
+
         /** \brief Unique per robot scene (keys the warm starts made with it). */
         std::uint64_t id() const { return id_; }
 
@@ -263,7 +274,8 @@ namespace meshgap
             against roundoff); 0 for any other pair, or one within the pad. */
         double rigidPairClearance(std::size_t a, std::size_t b) const;
         /** \brief The collision verdict of self pair \e p at the state placed: proven apart once if fixed together,
-            then spheres, root boxes, convex hulls, then exact (containment included). */
+            or in a proven cell of the self-pair table, then spheres, root boxes, convex hulls, then exact
+            (containment included). */
         bool selfVerdict(std::size_t p, RobotWarmStart &warm) const;
 
         /** \brief What the verdict's broad phase knows of an obstacle: its axis-aligned box (padded), the boxes of
@@ -294,6 +306,8 @@ namespace meshgap
         /** \brief Per link, where its sweptApart() questions start in RobotWarmStart::sweepAxes (one per obstacle of
             its scene, or per primitive solid of one); then the self pairs', one each; their number last. */
         std::vector<std::size_t> sweepOffset_;
+        /** \brief Where the self pairs are proven apart in joint space (tabulateSelfPairs()), or null. */
+        SelfPairTableConstPtr table_;
         std::uint64_t id_;
     };
 }  // namespace meshgap

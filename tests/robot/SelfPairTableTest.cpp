@@ -1,0 +1,219 @@
+// The self-pair table (SelfPairTable): every cell it calls proven holds no colliding state, checked by the exact
+// distance of the pair (refineExact() at random states within the cell, its corners included, and at states bisected
+// to within 1e-7 of a contact), and a scene's verdict with the table is the verdict without it at random states; on
+// the test tree (joints of every kind: a continuous joint's cells wrap around) and on MotionBenchMaker's UR5 (from
+// ../shared/data, skipped when absent).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <sstream>
+
+#include "TestNote.h"
+#include "TestScale.h"
+#include "meshgap/Exception.h"
+#include "meshgap/robot/RobotScene.h"
+#include "meshgap/robot/SelfPairTable.h"
+#include "meshgap/robot/Srdf.h"
+#include "robot/TestTree.h"
+
+namespace fs = std::filesystem;
+
+namespace meshgap
+{
+    namespace
+    {
+        /** \brief Self pair \e p's signed distance at \e q, exact, from the links' meshes (no table, no broad phase). */
+        double pairDistance(const RobotScene &scene, std::size_t p, const std::vector<double> &q)
+        {
+            const std::vector<Eigen::Isometry3d> poses = scene.robot().linkPoses(q);
+            const auto [a, b] = scene.selfPairs()[p];
+            DistanceRequest request;
+            request.computeDepth = false;
+            DistanceResult r;
+            refineExact(*scene.links()[a].body, *scene.links()[b].body, poses[a].inverse() * poses[b], r, request);
+            return r.inCollision ? -1.0 : r.distance;
+        }
+
+        /** \brief A state within the robot's limits (an angle without limits within [-pi, pi)). */
+        std::vector<double> randomState(const RobotModel &robot, std::mt19937 &rng)
+        {
+            std::vector<double> q(robot.dimension());
+            for (std::size_t v = 0; v < q.size(); ++v)
+            {
+                const double lo = std::isfinite(robot.stateLower(v)) ? robot.stateLower(v) : -M_PI;
+                const double hi = std::isfinite(robot.stateUpper(v)) ? robot.stateUpper(v) : M_PI;
+                q[v] = std::uniform_real_distribution<double>(lo, hi)(rng);
+            }
+            return q;
+        }
+
+        /** \brief What the checks saw. */
+        struct Seen
+        {
+            std::size_t tabulated{0}, claims{0}, states{0}, colliding{0}, nearContact{0}, boxes{0}, boxClaims{0};
+        };
+
+        /** \brief For every tabulated pair of \e scene (with \e table): at random states, where the table says
+            apart, the exact distance is positive; where the pair collides, the table does not say apart; between a
+            claimed state and a colliding one, bisected to 1e-7 of each other, the claim still holds where the
+            table makes it. Then random boxes of numbers (apartWithin()): where claimed, every sampled state in the
+            box, corners included, is free. */
+        void expectClaimsHold(const RobotScene &scene, const SelfPairTable &table, int states, Seen &seen)
+        {
+            const RobotModel &robot = scene.robot();
+            std::mt19937 rng(3);
+            for (std::size_t p = 0; p < table.numPairs(); ++p)
+            {
+                if (!table.tabulated(p))
+                    continue;
+                ++seen.tabulated;
+                std::vector<double> claimed, hit;
+                for (int s = 0; s < states; ++s)
+                {
+                    const std::vector<double> q = randomState(robot, rng);
+                    const double d = pairDistance(scene, p, q);
+                    const bool says = table.apartAt(p, q.data());
+                    ++seen.states;
+                    seen.claims += says;
+                    seen.colliding += d <= 0.0;
+                    if (says)
+                    {
+                        EXPECT_GT(d, 0.0) << "pair " << p << ", state " << s;
+                        claimed = q;
+                    }
+                    if (d <= 0.0)
+                        hit = q;
+                    if (!claimed.empty() && !hit.empty())
+                    {
+                        // Bisect between the two: the last claimed state nearest the contact.
+                        std::vector<double> a = claimed, b = hit, m(q.size());
+                        for (int k = 0; k < 40; ++k)
+                        {
+                            for (std::size_t v = 0; v < m.size(); ++v)
+                                m[v] = 0.5 * (a[v] + b[v]);
+                            (pairDistance(scene, p, m) > 0.0 ? a : b) = m;
+                        }
+                        if (table.apartAt(p, b.data()))
+                            ADD_FAILURE() << "pair " << p << ": a colliding state said apart";
+                        seen.nearContact += table.apartAt(p, a.data());
+                        hit.clear();
+                    }
+                }
+                for (int s = 0; s < states / 4; ++s)
+                {
+                    const std::vector<double> middle = randomState(robot, rng);
+                    std::vector<double> reach(middle.size());
+                    for (double &r : reach)
+                        r = std::uniform_real_distribution<double>(0.0, 0.3)(rng);
+                    ++seen.boxes;
+                    if (!table.apartWithin(p, middle.data(), reach.data()))
+                        continue;
+                    ++seen.boxClaims;
+                    for (int k = 0; k < 24; ++k)
+                    {
+                        std::vector<double> q = middle;
+                        for (std::size_t v = 0; v < q.size(); ++v)
+                        {
+                            // Corners first (every number at one end of its reach), then inside.
+                            const double u = k < 8 ? ((k >> (v % 3)) & 1 ? 1.0 : -1.0)
+                                                   : std::uniform_real_distribution<double>(-1.0, 1.0)(rng);
+                            q[v] = middle[v] + u * reach[v];
+                            if (std::isfinite(robot.stateLower(v)))
+                                q[v] = std::clamp(q[v], robot.stateLower(v), robot.stateUpper(v));
+                        }
+                        EXPECT_GT(pairDistance(scene, p, q), 0.0) << "pair " << p << ", box " << s << ", state " << k;
+                    }
+                }
+            }
+        }
+
+        /** \brief The scene's verdict with the table is the verdict of a scene without it, at random states. */
+        void expectSameVerdicts(const RobotScene &with, const RobotScene &without, int states)
+        {
+            std::mt19937 rng(7);
+            RobotWarmStart w1, w2;
+            std::size_t colliding = 0;
+            for (int s = 0; s < states; ++s)
+            {
+                const std::vector<double> q = randomState(with.robot(), rng);
+                const bool hit = without.inCollision(q.data(), q.size(), w2);
+                colliding += hit;
+                ASSERT_EQ(with.inCollision(q.data(), q.size(), w1), hit) << "state " << s;
+            }
+            EXPECT_GT(colliding, 0u);
+            EXPECT_LT(colliding, std::size_t(states));
+        }
+    }  // namespace
+
+    TEST(SelfPairTable, TreeCellsProvenApartHoldNoContact)
+    {
+        const UrdfRobotPtr robot = test::treeWithPayload();
+        RobotScene scene(robot, {});
+        RobotScene plain(robot, {});
+        SelfPairTable::Options options;
+        options.rootCells = 4;
+        options.levels = 4;
+        scene.tabulateSelfPairs(options);
+        const SelfPairTable &table = *scene.selfPairTable();
+        Seen seen;
+        expectClaimsHold(scene, table, test::scaled(400, 100), seen);
+        std::ostringstream fractions;
+        for (std::size_t p = 0; p < table.numPairs(); ++p)
+            if (table.tabulated(p))
+                fractions << " " << table.provenFraction(p);
+        test::Note() << seen.tabulated << " of " << table.numPairs() << " pairs tabulated (proven fractions"
+                     << fractions.str() << "), " << table.questions() << " questions; " << seen.claims << " of "
+                     << seen.states << " states said apart (" << seen.colliding << " colliding), " << seen.nearContact
+                     << " within 1e-7 of a contact; " << seen.boxClaims << " of " << seen.boxes << " boxes";
+        EXPECT_GT(seen.tabulated, 0u);
+        EXPECT_GT(seen.claims, seen.states / 4);
+        EXPECT_GT(seen.colliding, 0u);
+        EXPECT_GT(seen.boxClaims, 0u);
+        expectSameVerdicts(scene, plain, test::scaled(2000, 300));
+    }
+
+    TEST(SelfPairTable, BadOptionsAreRefused)
+    {
+        RobotScene scene(test::treeWithPayload(), {});
+        SelfPairTable::Options options;
+        options.rootCells = 2;
+        EXPECT_THROW(SelfPairTable(scene, options), Exception);
+        options.rootCells = 8;
+        options.levels = 12;
+        EXPECT_THROW(SelfPairTable(scene, options), Exception);
+    }
+
+    TEST(SelfPairTable, Ur5CellsProvenApartHoldNoContact)
+    {
+        const fs::path folder = fs::path(MESHGAP_SHARED_DATA_DIR) / "mbm" / "ur5";
+        if (!fs::exists(folder / "ur5.urdf"))
+            GTEST_SKIP() << "MotionBenchMaker's UR5 is not in " << folder.string();
+        UrdfOptions options;
+        options.packagePath = {folder.string()};
+        const UrdfRobotPtr robot = UrdfRobot::load((folder / "ur5.urdf").string(), options);
+        readSrdf(*robot, (folder / "ur5.srdf").string());
+        RobotScene scene(robot, {});
+        RobotScene plain(robot, {});
+        const auto start = std::chrono::steady_clock::now();
+        scene.tabulateSelfPairs();
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const SelfPairTable &table = *scene.selfPairTable();
+        Seen seen;
+        expectClaimsHold(scene, table, test::scaled(300, 40), seen);
+        std::ostringstream fractions;
+        for (std::size_t p = 0; p < table.numPairs(); ++p)
+            if (table.tabulated(p))
+                fractions << " " << scene.links()[scene.selfPairs()[p].first].name << "-"
+                          << scene.links()[scene.selfPairs()[p].second].name << " " << table.provenFraction(p);
+        test::Note() << seen.tabulated << " of " << table.numPairs() << " pairs tabulated in " << seconds << " s, "
+                     << table.questions() << " questions:" << fractions.str() << "; " << seen.claims << " of "
+                     << seen.states << " states said apart (" << seen.colliding << " colliding); " << seen.boxClaims
+                     << " of " << seen.boxes << " boxes";
+        EXPECT_GT(seen.tabulated, 3u);
+        EXPECT_GT(seen.claims, seen.states / 2);
+        expectSameVerdicts(scene, plain, test::scaled(2000, 300));
+    }
+}  // namespace meshgap
