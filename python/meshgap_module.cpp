@@ -905,7 +905,7 @@ namespace
             py::gil_scoped_release release;
             const RobotProblem problem = read();
             s.model = problem.robot;
-            s.scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles, problem.allowedObstacles);
+            s.scene = planningScene(problem);
             s.name = problem.name;
             s.start = problem.start;
             s.goal = problem.goal;
@@ -1129,7 +1129,9 @@ namespace
                         "A robot problem file (robot.urdf = FILE with robot.srdf, robot.package_path, world, attach, "
                         "start.joints and goal.joints; or several bodies robot.1 = FILE, ...), or a single-body "
                         "OMPL.app file (robot = FILE: a robot of one link named 'robot', its state the pose, x y "
-                        "theta or x y z qx qy qz qw): its robot among its world; start and goal its states.")
+                        "theta or x y z qx qy qz qw): its robot among its world; start and goal its states. As "
+                        "the planning tools do, the self pairs that one or two joints move are tabulated "
+                        "(SelfPairTable: a fraction of a second for an arm).")
             .def_static("from_moveit", &robotSceneFromMoveIt, py::arg("urdf"), py::arg("srdf") = py::none(),
                         py::arg("scene") = py::none(), py::kw_only(), py::arg("request") = py::none(),
                         py::arg("package_path") = py::none(),
@@ -1137,7 +1139,7 @@ namespace
                         "(moveit_msgs/PlanningScene: its collision objects the obstacles, its allowed collision "
                         "matrix honoured, its robot state the start), and a motion plan request YAML "
                         "(moveit_msgs/MotionPlanRequest: start state, goal joint constraints). MotionBenchMaker's "
-                        "problems read as shipped.")
+                        "problems read as shipped. Self pairs tabulated as from_cfg's.")
             .def_static("from_urdf", &robotSceneFromUrdf, py::arg("urdf"), py::kw_only(),
                         py::arg("world") = py::none(), py::arg("srdf") = py::none(),
                         py::arg("package_path") = py::none(), py::arg("attach") = py::none(),

@@ -32,6 +32,10 @@ namespace meshgap
        each part charged to the link that moves less about it, so that a base is not charged for its upper arm
        sweeping about the shoulder). A piece's bounds are computed for the links of its pending pairs only, and its
        ends are its parent's end and middle, placed once.
+       A self pair of a scene whose self pairs are tabulated (RobotScene::tabulateSelfPairs()) is first looked up:
+       when the numbers that move it stay, over the piece, within cells of joint space proven apart
+       (SelfPairTable::apartWithin(): each number within its step over the motion times the piece's half length of
+       its value at the middle), it needs no other question on the piece or its halves.
        Before the middle state's meshes are asked, a pair that the boxes at the middle do not prove apart is asked
        about the piece as a whole (RobotScene::sweptApart()): each link's convex hull swept between its places at
        the piece's two ends, grown by how far its points may stray from those straight lines (MotionBound::bend():

@@ -148,7 +148,8 @@ namespace meshgap
         that survives is put to the exact layer. An obstacle of boxes alone is answered as the solid boxes it is
         (a triangle of the link touching or inside a box, or the box inside the closed link), by a traversal of
         the link's BVH that prunes a node apart from the box and stops at the first node inside it; a self pair
-        is first tested by bounding spheres, then by the links' root boxes; a pair of links fixed to one another
+        is first looked up in the self-pair table when the scene has one (tabulateSelfPairs()), then tested by
+        bounding spheres, then by the links' root boxes; a pair of links fixed to one another
         (no joint between them moves with the state) is proven apart once, when the scene is built, and never
         asked again (pairApart() too, for a margin below that clearance). */
     class RobotScene
