@@ -48,6 +48,9 @@ namespace meshgap
             when it needs them); NO_PLACE: none kept. */
         constexpr std::size_t MAX_PLACES = 1024;
         constexpr std::size_t NO_PLACE = ~std::size_t(0);
+        /** \brief A self pair's look-up in the self-pair table covers its piece's segment by a box, or by boxes around
+            its halves, halves of halves, ... this many times deep (at most 2^(this + 1) - 1 look-ups). */
+        constexpr unsigned int TABLE_SPLITS = 5;
 
         /** \brief A pair still to prove on a piece, and how many times a question about it gave up. */
         struct Pending
@@ -72,9 +75,8 @@ namespace meshgap
             RobotWarmStart warm;
             MotionBound::Motion motion;
             std::vector<double> q0, q1, q, qEnd, moves, lambda, sums;
-            /** \brief Per state number, its step over the motion (an angle's along the shorter arc), and how far
-                it strays from its value at the middle of the piece at hand. */
-            std::vector<double> steps, reach;
+            /** \brief Per state number, its step over the motion (an angle's along the shorter arc, signed). */
+            std::vector<double> steps;
             /** \brief Per pair, its links' bends over the motion (MotionBound::bend(); the second 0 for a link
                 against the obstacles). */
             std::vector<double> bends;
@@ -170,11 +172,11 @@ namespace meshgap
         if (table)
         {
             w.steps.resize(w.q0.size());
-            w.reach.resize(w.q0.size());
             for (std::size_t v = 0; v < w.q0.size(); ++v)
             {
-                const double step = std::abs(w.q1[v] - w.q0[v]);
-                w.steps[v] = angles_[v] ? std::min(step, 2.0 * M_PI - step) : step;
+                // An angle along the shorter arc, as OMPL's SO(2) interpolation turns it.
+                const double step = w.q1[v] - w.q0[v];
+                w.steps[v] = angles_[v] && std::abs(step) > M_PI ? step - std::copysign(2.0 * M_PI, step) : step;
             }
         }
         w.pending.clear();
@@ -201,15 +203,13 @@ namespace meshgap
             scene_->place(w.q.data(), w.q.size(), w.warm);
             w.markLinks(*scene_, p);
             bound_.pieceBounds(w.motion, w.warm.frames, w.warm.poses, half, w.sums, &w.need);
-            if (table)
-                for (std::size_t v = 0; v < w.steps.size(); ++v)  // padded against roundoff in the interpolation
-                    w.reach[v] = half * w.steps[v] * (1.0 + 1e-9) + 1e-12 * (1.0 + std::abs(w.q[v]));
             const std::size_t start = w.pending.size();
             for (std::size_t i = p.first; free && i < p.first + p.count; ++i)
             {
                 const auto [k, tries] = w.pending[i];
                 // A self pair whose joints stay within cells of joint space proven apart: one look-up.
-                if (table && k >= links && table->apartWithin(k - links, w.q.data(), w.reach.data()))
+                if (table && k >= links &&
+                    table->apartAlong(k - links, w.q.data(), w.steps.data(), half, TABLE_SPLITS))
                     continue;
                 const std::size_t budget = tries >= UNLIMITED_AFTER ? 0 : FIRST_BUDGET << (2 * tries);
                 bool gaveUp = false;

@@ -272,6 +272,45 @@ namespace meshgap
         return provenOver(g, from, to);
     }
 
+    bool SelfPairTable::provenAlong(const Grid &g, const double middle[2], const double step[2], double half,
+                                    unsigned int splits)
+    {
+        double from[2] = {0.0, 0.0}, to[2] = {0.0, 0.0};
+        for (int d = 0; d < g.dims; ++d)
+        {
+            // Padded against roundoff in the interpolation that places the segment's states.
+            const double reach = std::abs(half * step[d]) * (1.0 + 1e-9) + 1e-12 * (1.0 + std::abs(middle[d]));
+            from[d] = middle[d] - reach;
+            to[d] = middle[d] + reach;
+        }
+        if (provenOver(g, from, to))
+            return true;
+        if (splits == 0)
+            return false;
+        double m0[2] = {0.0, 0.0}, m1[2] = {0.0, 0.0};
+        for (int d = 0; d < g.dims; ++d)
+        {
+            m0[d] = middle[d] - 0.5 * half * step[d];
+            m1[d] = middle[d] + 0.5 * half * step[d];
+        }
+        return provenAlong(g, m0, step, 0.5 * half, splits - 1) && provenAlong(g, m1, step, 0.5 * half, splits - 1);
+    }
+
+    bool SelfPairTable::apartAlong(std::size_t p, const double *middle, const double *step, double half,
+                                   unsigned int splits) const
+    {
+        const Grid &g = pairs_[p];
+        if (g.dims == 0)
+            return false;
+        double m[2] = {0.0, 0.0}, s[2] = {0.0, 0.0};
+        for (int d = 0; d < g.dims; ++d)
+        {
+            m[d] = middle[g.numbers[d]];
+            s[d] = step[g.numbers[d]];
+        }
+        return provenAlong(g, m, s, half, splits);
+    }
+
     double SelfPairTable::provenFraction(std::size_t p) const
     {
         const Grid &g = pairs_[p];

@@ -1,6 +1,6 @@
 // The self-pair table (SelfPairTable): every cell it calls proven holds no colliding state, checked by the exact
-// distance of the pair (refineExact() at random states within the cell, its corners included, and at states bisected
-// to within 1e-7 of a contact), and a scene's verdict with the table is the verdict without it at random states; on
+// distance of the pair (refineExact() at random states, at states bisected to within 1e-7 of a contact, and along
+// random segments and in random boxes of joint space, corners included, that it says are free), and a scene's verdict with the table is the verdict without it at random states; on
 // the test tree (joints of every kind: a continuous joint's cells wrap around) and on MotionBenchMaker's UR5 (from
 // ../shared/data, skipped when absent).
 #include <gtest/gtest.h>
@@ -53,7 +53,8 @@ namespace meshgap
         /** \brief What the checks saw. */
         struct Seen
         {
-            std::size_t tabulated{0}, claims{0}, states{0}, colliding{0}, nearContact{0}, boxes{0}, boxClaims{0};
+            std::size_t tabulated{0}, claims{0}, states{0}, colliding{0}, nearContact{0}, boxes{0}, boxClaims{0},
+                segments{0}, segmentClaims{0};
         };
 
         /** \brief For every tabulated pair of \e scene (with \e table): at random states, where the table says
@@ -102,7 +103,33 @@ namespace meshgap
                         hit.clear();
                     }
                 }
-                for (int s = 0; s < states / 4; ++s)
+                for (int s = 0; s < states / 8; ++s)
+                {
+                    // A segment through a random state, up to a radian long in each number (an angle's across
+                    // -pi and pi too): where claimed, free at 24 states along it, its ends included.
+                    const std::vector<double> middle = randomState(robot, rng);
+                    std::vector<double> step(middle.size());
+                    for (double &x : step)
+                        x = std::uniform_real_distribution<double>(-1.0, 1.0)(rng);
+                    const double half = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+                    ++seen.segments;
+                    if (!table.apartAlong(p, middle.data(), step.data(), half, 5))
+                        continue;
+                    ++seen.segmentClaims;
+                    for (int k = 0; k <= 23; ++k)
+                    {
+                        std::vector<double> q = middle;
+                        for (std::size_t v = 0; v < q.size(); ++v)
+                        {
+                            // Within its limits (the pair's own numbers are, where the table makes a claim).
+                            q[v] += (2.0 * k / 23.0 - 1.0) * half * step[v];
+                            if (std::isfinite(robot.stateLower(v)))
+                                q[v] = std::clamp(q[v], robot.stateLower(v), robot.stateUpper(v));
+                        }
+                        EXPECT_GT(pairDistance(scene, p, q), 0.0) << "pair " << p << ", segment " << s << ", " << k;
+                    }
+                }
+                for (int s = 0; s < states / 8; ++s)
                 {
                     const std::vector<double> middle = randomState(robot, rng);
                     std::vector<double> reach(middle.size());
@@ -167,11 +194,13 @@ namespace meshgap
         test::Note() << seen.tabulated << " of " << table.numPairs() << " pairs tabulated (proven fractions"
                      << fractions.str() << "), " << table.questions() << " questions; " << seen.claims << " of "
                      << seen.states << " states said apart (" << seen.colliding << " colliding), " << seen.nearContact
-                     << " within 1e-7 of a contact; " << seen.boxClaims << " of " << seen.boxes << " boxes";
+                     << " within 1e-7 of a contact; " << seen.boxClaims << " of " << seen.boxes << " boxes, "
+                     << seen.segmentClaims << " of " << seen.segments << " segments";
         EXPECT_GT(seen.tabulated, 0u);
         EXPECT_GT(seen.claims, seen.states / 4);
         EXPECT_GT(seen.colliding, 0u);
         EXPECT_GT(seen.boxClaims, 0u);
+        EXPECT_GT(seen.segmentClaims, 0u);
         expectSameVerdicts(scene, plain, test::scaled(2000, 300));
     }
 
@@ -211,7 +240,8 @@ namespace meshgap
         test::Note() << seen.tabulated << " of " << table.numPairs() << " pairs tabulated in " << seconds << " s, "
                      << table.questions() << " questions:" << fractions.str() << "; " << seen.claims << " of "
                      << seen.states << " states said apart (" << seen.colliding << " colliding); " << seen.boxClaims
-                     << " of " << seen.boxes << " boxes";
+                     << " of " << seen.boxes << " boxes, " << seen.segmentClaims << " of " << seen.segments
+                     << " segments";
         EXPECT_GT(seen.tabulated, 3u);
         EXPECT_GT(seen.claims, seen.states / 2);
         expectSameVerdicts(scene, plain, test::scaled(2000, 300));

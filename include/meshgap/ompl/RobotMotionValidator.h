@@ -34,8 +34,8 @@ namespace meshgap
        ends are its parent's end and middle, placed once.
        A self pair of a scene whose self pairs are tabulated (RobotScene::tabulateSelfPairs()) is first looked up:
        when the numbers that move it stay, over the piece, within cells of joint space proven apart
-       (SelfPairTable::apartWithin(): each number within its step over the motion times the piece's half length of
-       its value at the middle), it needs no other question on the piece or its halves.
+       (SelfPairTable::apartAlong(): the piece's segment in those numbers covered by a box, or by boxes around its
+       halves, down to 2^5 of them), it needs no other question on the piece or its halves.
        Before the middle state's meshes are asked, a pair that the boxes at the middle do not prove apart is asked
        about the piece as a whole (RobotScene::sweptApart()): each link's convex hull swept between its places at
        the piece's two ends, grown by how far its points may stray from those straight lines (MotionBound::bend():

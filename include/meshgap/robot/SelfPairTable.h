@@ -58,6 +58,11 @@ namespace meshgap
             \e middle[v] (both indexed by state number; an angle's reach along the circle). */
         bool apartWithin(std::size_t p, const double *middle, const double *reach) const;
 
+        /** \brief True when self pair \e p is proven apart at every state middle + t step, |t| <= \e half (both
+            indexed by state number; an angle's step along the circle, signed): the box around the segment
+            (apartWithin()), or else each half of the segment in the same way, at most \e splits times deep. */
+        bool apartAlong(std::size_t p, const double *middle, const double *step, double half,
+                        unsigned int splits) const;
         /** \brief The fraction of self pair \e p's range proven apart (0 for a pair not tabulated). */
         double provenFraction(std::size_t p) const;
         /** \brief How many cells were asked about while building, over every pair. */
@@ -87,6 +92,9 @@ namespace meshgap
                           int &runs);
         /** \brief How many cells of \e g are not proven in the index box [i0, i1] x [j0, j1]. */
         static std::uint32_t unproven(const Grid &g, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1);
+        /** \brief apartAlong() for grid \e g, the segment's middle and step in its numbers. */
+        static bool provenAlong(const Grid &g, const double middle[2], const double step[2], double half,
+                                unsigned int splits);
         /** \brief True when every cell of \e g that the box of numbers [from[d], to[d]] covers is proven. */
         static bool provenOver(const Grid &g, const double from[2], const double to[2]);
 
