@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -47,7 +48,6 @@ namespace meshgap
                 }
             return state;
         }
-
     }  // namespace
 
     SelfPairTable::SelfPairTable(const RobotScene &scene, const Options &options)
@@ -57,10 +57,19 @@ namespace meshgap
                                                  std::to_string(options.rootCells) + " and " +
                                                  std::to_string(options.levels));
         const RobotModel &robot = scene.robot();
-        const MotionBound bound(robot);
+        pairs_.resize(scene.selfPairs().size());
+        std::unique_ptr<const MotionBound> bounds;
+        try
+        {
+            bounds = std::make_unique<const MotionBound>(robot);
+        }
+        catch (const Exception &)
+        {
+            return;  // a frame moving free below a moving one: no motion bound (as the validator has none), no table
+        }
+        const MotionBound &bound = *bounds;
         std::vector<std::size_t> numbers, todo;
         std::vector<unsigned char> arcs;
-        pairs_.resize(scene.selfPairs().size());
         for (std::size_t p = 0; p < pairs_.size(); ++p)
         {
             const auto [a, b] = scene.selfPairs()[p];

@@ -14,6 +14,7 @@
 #include "TestNote.h"
 #include "TestScale.h"
 #include "meshgap/Exception.h"
+#include "meshgap/robot/MotionBound.h"
 #include "meshgap/robot/RobotScene.h"
 #include "meshgap/robot/SelfPairTable.h"
 #include "meshgap/robot/Srdf.h"
@@ -157,8 +158,9 @@ namespace meshgap
             }
         }
 
-        /** \brief The scene's verdict with the table is the verdict of a scene without it, at random states. */
-        void expectSameVerdicts(const RobotScene &with, const RobotScene &without, int states)
+        /** \brief The scene's verdict with the table is the verdict of a scene without it, at random states (with
+            \e bothSides, some colliding and some free). */
+        void expectSameVerdicts(const RobotScene &with, const RobotScene &without, int states, bool bothSides = true)
         {
             std::mt19937 rng(7);
             RobotWarmStart w1, w2;
@@ -170,6 +172,8 @@ namespace meshgap
                 colliding += hit;
                 ASSERT_EQ(with.inCollision(q.data(), q.size(), w1), hit) << "state " << s;
             }
+            if (!bothSides)
+                return;
             EXPECT_GT(colliding, 0u);
             EXPECT_LT(colliding, std::size_t(states));
         }
@@ -202,6 +206,29 @@ namespace meshgap
         EXPECT_GT(seen.boxClaims, 0u);
         EXPECT_GT(seen.segmentClaims, 0u);
         expectSameVerdicts(scene, plain, test::scaled(2000, 300));
+    }
+
+    TEST(SelfPairTable, PairsAFreeFrameMovesHaveNoGrid)
+    {
+        // A planar base carrying a revolute arm, a floating drone and a planar slider: every self pair is moved by a
+        // free frame (the arm is adjacent to its base), so none has a grid, and the verdict is the plain scene's.
+        const UrdfRobotPtr robot = UrdfRobot::load(test::MOBILE_URDF);
+        RobotScene scene(robot, {});
+        RobotScene plain(robot, {});
+        scene.tabulateSelfPairs();
+        const SelfPairTable &table = *scene.selfPairTable();
+        const MotionBound bound(*robot);
+        std::vector<std::size_t> numbers;
+        std::vector<unsigned char> arcs;
+        ASSERT_GT(table.numPairs(), 0u);
+        for (std::size_t p = 0; p < table.numPairs(); ++p)
+        {
+            const auto [a, b] = scene.selfPairs()[p];
+            EXPECT_FALSE(bound.pairNumbers(a, b, numbers, arcs)) << "pair " << p;
+            EXPECT_FALSE(table.tabulated(p)) << "pair " << p;
+            EXPECT_EQ(table.provenFraction(p), 0.0);
+        }
+        expectSameVerdicts(scene, plain, test::scaled(500, 100), false);
     }
 
     TEST(SelfPairTable, BadOptionsAreRefused)

@@ -29,7 +29,8 @@ namespace meshgap
 
         A number of a joint with limits is tabulated over them; a continuous joint's angle over [-pi, pi), the
         cells wrapping around. A state outside the range (beyond roundoff) gets no claim. Pairs moved by a free
-        frame, by more than two numbers, or by a number without limits other than an angle are not tabulated.
+        frame, by more than two numbers, or by a number without limits other than an angle are not tabulated, nor
+        is any pair of a robot MotionBound does not take (a frame moving free below a moving one).
         Immutable once built; thread-safe; look-ups allocate nothing. */
     class SelfPairTable
     {
