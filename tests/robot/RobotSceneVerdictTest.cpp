@@ -213,9 +213,9 @@ namespace meshgap
             GTEST_SKIP() << "MotionBenchMaker's UR5 problems are not in " << folder.string();
         const fs::path dir = fs::temp_directory_path() / ("meshgap_verdict_mbm_" + std::to_string(::getpid()));
         fs::create_directories(dir);
-        // Two of the four scenes under test::scale() < 1 (each costs its robot's load and its exact queries anew).
+        // One of the four scenes under test::scale() < 1 (each costs its robot's load and its exact queries anew).
         std::vector<std::string> scenarios = {"table_pick_ur5", "box_ur5", "bookshelf_small_ur5", "cage_ur5"};
-        scenarios.resize(static_cast<std::size_t>(test::scaled(4, 2)));
+        scenarios.resize(static_cast<std::size_t>(test::scaled(4)));
         std::string command = "tar -xjf '" + (folder / "problems.tar.bz2").string() + "' -C '" + dir.string() + "'";
         for (const std::string &s : scenarios)
             command += " problems/" + s + "/scene0001.yaml problems/" + s + "/request0001.yaml";
