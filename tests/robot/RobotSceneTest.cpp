@@ -307,7 +307,7 @@ namespace meshgap
             std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/meshgap_test_description/urdf/tree.urdf", options);
         Mesh payload = cShape(0.1);
         robot->attach("payload", payload, "tool", test::translation(0.0, 0.0, 0.05));
-        const std::vector<std::vector<double>> states = randomJointStates(*robot, test::scaled(300, 100), 5);
+        const std::vector<std::vector<double>> states = randomJointStates(*robot, test::scaled(300, 40), 5);
         const RobotScene scene(robot, world(reach(*robot, std::vector<double>(5, 0.0)), Eigen::Vector3d::Zero()));
         FclTally tally;
         compareWithFcl(scene, states, tally);
