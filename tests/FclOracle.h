@@ -28,24 +28,25 @@ namespace meshgap
             return model;
         }
 
-        /** \brief Exact distance between A (identity) and B at X_AB; 0 or less when they collide. */
+        /** \brief Exact distance between A (identity) and B at X_AB; 0 or less when they collide. (FCL's geometry
+            overloads: a CollisionObject would recompute the model's local box over every vertex at each call.) */
         inline double fclDistance(const std::shared_ptr<FclModel> &a, const std::shared_ptr<FclModel> &b,
                                   const Eigen::Isometry3d &X_AB)
         {
-            fcl::CollisionObjectd oa(a, fcl::Transform3d::Identity()), ob(b, fcl::Transform3d(X_AB.matrix()));
             fcl::DistanceRequestd request(true);
             fcl::DistanceResultd result;
-            fcl::distance(&oa, &ob, request, result);
+            fcl::distance(a.get(), fcl::Transform3d::Identity(), b.get(), fcl::Transform3d(X_AB.matrix()), request,
+                          result);
             return result.min_distance;
         }
 
         inline bool fclCollide(const std::shared_ptr<FclModel> &a, const std::shared_ptr<FclModel> &b,
                                const Eigen::Isometry3d &X_AB)
         {
-            fcl::CollisionObjectd oa(a, fcl::Transform3d::Identity()), ob(b, fcl::Transform3d(X_AB.matrix()));
             fcl::CollisionRequestd request;
             fcl::CollisionResultd result;
-            fcl::collide(&oa, &ob, request, result);
+            fcl::collide(a.get(), fcl::Transform3d::Identity(), b.get(), fcl::Transform3d(X_AB.matrix()), request,
+                         result);
             return result.isCollision();
         }
     }  // namespace test

@@ -34,6 +34,13 @@ namespace meshgap::test
         return std::max(std::min(least, full), static_cast<int>(std::ceil(full * scale())));
     }
 
+    /** \brief scaled(full, least), and at most \e most (but at least \e least) under scale() < 1: \e full at full
+        scale. For a test whose items each cost so much instrumented that a share of them is still many. */
+    inline int scaledAtMost(int full, int most, int least = 1)
+    {
+        return scale() < 1.0 ? std::min(scaled(full, least), std::max(most, least)) : full;
+    }
+
     /** \brief Every how many items of a sequence whose order matters (a motion's poses, with a warm start carried
         along) the expensive oracle looks: 1 at full scale, about 1 / scale() otherwise. */
     inline int stride()

@@ -550,7 +550,7 @@ TEST(PenetrationDepth, DeepRandomPosesEqualBruteForceAndTheGridPrunes)
     const std::vector<std::pair<const Body *, const Body *>> pairs = {
         {u.get(), box.get()}, {box.get(), ball.get()}, {ball.get(), u.get()}, {box.get(), pebble.get()}};
     // 40 poses a pair (test::scaled: fewer under the sanitizers, the thresholds below in proportion).
-    const auto poses = static_cast<std::uint32_t>(test::scaled(40, 10));
+    const auto poses = static_cast<std::uint32_t>(test::scaled(40, 5));
     std::size_t checked = 0, deep = 0, nodes = 0, clusters = 0;
     for (std::size_t k = 0; k < pairs.size(); ++k)
     {

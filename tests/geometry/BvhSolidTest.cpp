@@ -72,7 +72,7 @@ TEST(BvhSolid, DistanceAndCollisionAreBruteForcesOverEveryTriangle)
     std::mt19937 rng(77);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     int touching = 0, near = 0;
-    const int trials = test::scaled(600, 100);
+    const int trials = test::scaled(600, 40);
     for (const Primitive &p : solids())
         for (int trial = 0; trial < trials; ++trial)
         {

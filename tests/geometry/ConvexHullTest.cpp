@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "TestMeshes.h"
+#include "TestScale.h"
 #include "meshgap/distance/ExactDistance.h"
 #include "meshgap/geometry/Body.h"
 #include "meshgap/geometry/ConvexHull.h"
@@ -314,12 +315,13 @@ TEST(ConvexHull, GapNeverExceedsTheMeshDistanceToASolid)
     const Primitive::Kind kinds[] = {Primitive::Kind::BOX, Primitive::Kind::SPHERE, Primitive::Kind::CYLINDER,
                                      Primitive::Kind::CONE, Primitive::Kind::CAPSULE};
     std::size_t poses = 0, apart = 0;
+    const auto seeds = static_cast<std::uint32_t>(test::scaled(200, 20));  // the counts below in proportion
     for (std::size_t i = 0; i < 3; ++i)
     {
         const BodyPtr body = test::unrefinedBody(meshes[i]);
         ASSERT_NE(body->convexHull(), nullptr);
         for (std::size_t k = 0; k < 5; ++k)
-            for (std::uint32_t seed = 0; seed < 200; ++seed)
+            for (std::uint32_t seed = 0; seed < seeds; ++seed)
             {
                 const Primitive p = solid(kinds[k], 0.2, 0.5, 0.3, test::randomPose(1000 * k + seed, 0.1));
                 const BodyPtr obstacle = solidBody(p);
@@ -335,8 +337,8 @@ TEST(ConvexHull, GapNeverExceedsTheMeshDistanceToASolid)
                 }
             }
     }
-    EXPECT_EQ(poses, 3000u);
-    EXPECT_GT(apart, 1000u) << "the poses should be mostly apart";
+    EXPECT_EQ(poses, 15u * seeds);
+    EXPECT_GT(apart, 5u * seeds) << "the poses should be mostly apart";
 }
 
 TEST(ConvexHull, GapNeverExceedsTheDistanceBetweenMeshes)
@@ -344,7 +346,8 @@ TEST(ConvexHull, GapNeverExceedsTheDistanceBetweenMeshes)
     const BodyPtr a = test::unrefinedBody(bumpySphere(0.3, 3, 3)), b = test::unrefinedBody(lShape());
     const BodyPtr c = test::unrefinedBody(test::icosphere(0.25, 2));
     std::size_t apart = 0;
-    for (std::uint32_t seed = 0; seed < 1000; ++seed)
+    const auto seeds = static_cast<std::uint32_t>(test::scaled(1000, 100));  // the count below in proportion
+    for (std::uint32_t seed = 0; seed < seeds; ++seed)
     {
         const Isometry3d X = test::randomPose(seed, 1.2);
         const double exact = exactDistance(*a, *b, X);
@@ -356,7 +359,7 @@ TEST(ConvexHull, GapNeverExceedsTheDistanceBetweenMeshes)
         ASSERT_LE(both, convex * (1.0 + 1e-9) + 1e-12) << seed;
         EXPECT_GE(both, convex - 1e-9) << seed;
     }
-    EXPECT_GT(apart, 300u);
+    EXPECT_GT(apart, 3u * seeds / 10);
 }
 
 TEST(ConvexHull, BoundedQuestionsAnswerAsTheTraversal)
@@ -471,7 +474,8 @@ TEST(ConvexHull, SweptHullsGapIsTheConvexSweepsDistance)
     const Mesh ball = test::icosphere(0.25, 2);
     const BodyPtr a = test::unrefinedBody(ball);
     std::size_t apart = 0;
-    for (std::uint32_t seed = 0; seed < 40; ++seed)
+    const auto seeds = static_cast<std::uint32_t>(test::scaled(40, 12));  // 169 exact distances each
+    for (std::uint32_t seed = 0; seed < seeds; ++seed)
     {
         const Isometry3d A0 = test::randomPose(seed, 1.0), B0 = test::randomPose(seed + 100, 1.0);
         const Vector3d da = test::randomPose(seed + 200, 0.6).translation();
@@ -496,7 +500,8 @@ TEST(ConvexHull, SweptGapFromAnyFirstAxisIsStillABound)
     const ConvexHull &hull = *a->convexHull();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     std::size_t apart = 0, provenFirst = 0;
-    for (std::uint32_t seed = 0; seed < 30; ++seed)
+    const auto seeds = static_cast<std::uint32_t>(test::scaled(30, 12));  // 169 exact distances each
+    for (std::uint32_t seed = 0; seed < seeds; ++seed)
     {
         // Two translated balls: the gap's truth by brute force over 13 x 13 pairs of places (as above).
         const Isometry3d A0 = test::randomPose(seed, 1.0), B0 = test::randomPose(seed + 100, 1.0);

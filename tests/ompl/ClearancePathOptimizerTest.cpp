@@ -91,7 +91,7 @@ TEST(ClearancePathOptimizer, NeverLessClearAndEveryAcceptedMotionIsFree)
 {
     const ScenePtr scene = slotScene();
     int raised = 0;
-    const int seeds = 10;
+    const int seeds = test::scaled(10, 4);  // raw and simplified inputs either way
     for (int seed = 1; seed <= seeds; ++seed)
     {
         Problem p = makeProblem(scene);

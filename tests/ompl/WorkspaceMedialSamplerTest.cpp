@@ -169,7 +169,7 @@ TEST(WorkspaceMedialSampler, PassageSamplesCrowdIntoTheChannel)
     medial.setUniformProbability(0.0);  // passage samples only
     RetractionSampler retraction(si.get());
     const auto uniform = validStateSamplerAllocator("uniform")(si.get());
-    const int n = test::scaled(200, 100);  // the counts below are shares of n
+    const int n = test::scaled(200, 50);  // the counts below are shares of n
     int returnedMedial, returnedRetraction, returnedUniform;
     const int inMedial = channelSamples(si, medial, n, returnedMedial);
     const int inRetraction = channelSamples(si, retraction, n, returnedRetraction);

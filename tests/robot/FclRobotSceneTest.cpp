@@ -16,6 +16,7 @@
 
 #include "FclRobotScene.h"
 #include "FclOracle.h"
+#include "TestScale.h"
 #include "meshgap/mesh/MeshLoader.h"
 #include "meshgap/robot/MoveItScene.h"
 #include "meshgap/robot/RobotProblem.h"
@@ -335,7 +336,8 @@ namespace meshgap
         EXPECT_GT(cylinders, 0u);
         const auto scene = std::make_shared<RobotScene>(problem.robot, problem.obstacles, problem.allowedObstacles);
         // FCL's distance between the UR5's meshes costs a large part of a second a state: a few states.
-        const std::vector<std::vector<double>> states = armStates(problem, 12, 14);
+        const std::vector<std::vector<double>> states =
+            armStates(problem, static_cast<std::size_t>(test::scaled(12, 8)), 14);
         Tally tally;
         expectPairByPair(scene, states, tally);
         EXPECT_GE(tally.colliding, 2u);

@@ -465,7 +465,7 @@ namespace meshgap
     TEST(MultiBodyMotion, PlannedSwapPathsAreFreeWhenCheckedDensely)
     {
         ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-        planAndCheckDensely("swap_se2", 3);
-        planAndCheckDensely("swap_se3", 3);
+        planAndCheckDensely("swap_se2", test::scaled(3));
+        planAndCheckDensely("swap_se3", test::scaled(3));
     }
 }  // namespace meshgap

@@ -211,7 +211,8 @@ namespace meshgap
         ompl::msg::setLogLevel(level);
         og::PathGeometric &path = setup.getSolutionPath();
 
-        // The dense exact minimum, at steps of at most 1e-4 rad in every joint.
+        // The dense exact minimum, at steps of at most 1e-4 rad in every joint (1e-4 times test::stride() under
+        // test::scale() < 1).
         const auto denseMinimum = [&f](const og::PathGeometric &p, std::size_t &collisions)
         {
             const ob::StateSpace &space = *f.si->getStateSpace();
@@ -226,7 +227,7 @@ namespace meshgap
                 double largest = 0.0;
                 for (std::size_t k = 0; k < qa.size(); ++k)
                     largest = std::max(largest, std::abs(qb[k] - qa[k]));
-                const auto n = static_cast<std::size_t>(std::ceil(largest / 1e-4)) + 1;
+                const auto n = static_cast<std::size_t>(std::ceil(largest / (1e-4 * test::stride()))) + 1;
                 for (std::size_t j = 0; j <= n; ++j)
                 {
                     space.interpolate(p.getState(i), p.getState(i + 1), double(j) / double(n), s);
@@ -244,7 +245,8 @@ namespace meshgap
 
         ClearancePathOptimizer optimizer(f.si, f.checker);
         optimizer.setTimeLimit(600.0);
-        optimizer.setMaxRounds(8);  // no clock: the result depends on the input and the seed alone
+        // No clock: the result depends on the input and the seed alone. Fewer rounds under test::scale() < 1.
+        optimizer.setMaxRounds(static_cast<unsigned>(test::scaled(8, 3)));
         const RobotMotionValidator certifier(f.si, f.scene, *problem.robot);
         std::size_t accepted = 0, refused = 0;
         optimizer.setAcceptedMotionCallback(

@@ -10,6 +10,7 @@
 
 #include "TestMeshes.h"
 #include "TestNote.h"
+#include "TestScale.h"
 #include "meshgap/scene/Scene.h"
 
 using namespace meshgap;
@@ -163,13 +164,16 @@ TEST(SceneWarmStart, ChoosesTheNearestCertificateByTheMotionBound)
 TEST(SceneWarmStart, NeverCostsMoreThanColdOnUnrelatedPosesAndPaysAlongPaths)
 {
     const ScenePtr scene = clutter();
+    // Under test::scale() < 1 a share of each stream: its first poses, at the same steps (what is carried along a
+    // stream depends on its steps, not on its length), and one motion of the three.
+    const auto share = [](std::size_t n) { return static_cast<std::size_t>(test::scaled(static_cast<int>(n), 200)); };
     std::mt19937 rng(11);
     std::vector<Eigen::Isometry3d> random;
     for (int i = 0; i < 300; ++i)
         random.push_back(randomPose(rng));
     // Paths: three motions across the clutter, steps of about 0.02 (a planner's motion checks).
     std::vector<Eigen::Isometry3d> path;
-    for (int i = 0; i < 3; ++i)
+    for (int i = 0; i < test::scaled(3); ++i)
     {
         const auto segment = line(randomPose(rng), randomPose(rng), 400);
         path.insert(path.end(), segment.begin(), segment.end());
@@ -190,6 +194,8 @@ TEST(SceneWarmStart, NeverCostsMoreThanColdOnUnrelatedPosesAndPaysAlongPaths)
         alternating.push_back(first[i]);
         alternating.push_back(second[i]);
     }
+    for (std::vector<Eigen::Isometry3d> *stream : {&random, &mixed, &alternating})
+        stream->resize(share(stream->size()));
 
     std::ostringstream notes;
     for (std::size_t capacity : {1u, 4u})

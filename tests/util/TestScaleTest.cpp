@@ -47,6 +47,7 @@ TEST(TestScale, FullCountsUnlessTheVariableSaysLess)
         const ScaleSetting unset(nullptr);
         EXPECT_EQ(meshgap::test::scale(), 1.0);
         EXPECT_EQ(meshgap::test::scaled(300), 300);
+        EXPECT_EQ(meshgap::test::scaledAtMost(300, 20), 300);  // the cap only under a smaller scale
         EXPECT_EQ(meshgap::test::stride(), 1);
     }
     {
@@ -55,6 +56,9 @@ TEST(TestScale, FullCountsUnlessTheVariableSaysLess)
         EXPECT_EQ(meshgap::test::scaled(3), 1);           // rounded up: never none
         EXPECT_EQ(meshgap::test::scaled(300, 100), 100);  // a test's own least
         EXPECT_EQ(meshgap::test::scaled(50, 100), 50);    // and never more than the full count
+        EXPECT_EQ(meshgap::test::scaledAtMost(300, 20), 20);
+        EXPECT_EQ(meshgap::test::scaledAtMost(300, 80), 60);     // a cap above the share changes nothing
+        EXPECT_EQ(meshgap::test::scaledAtMost(300, 20, 30), 30);  // nor below the test's own least
         EXPECT_EQ(meshgap::test::stride(), 5);
     }
     for (const char *bad : {"0", "-0.5", "1.5", "fifth", "0.2x", "nan"})
