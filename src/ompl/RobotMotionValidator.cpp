@@ -119,6 +119,31 @@ namespace meshgap
                 return true;
             }
 
+            /** \brief The whole motion as the first piece, every pair pending on it; no place kept yet. */
+            void start(std::size_t pairs)
+            {
+                pending.clear();
+                for (std::size_t k = 0; k < pairs; ++k)
+                    pending.push_back({k, 0});
+                pieces.assign(1, Piece{0.0, 1.0, 0, pairs, 0, 0, 1});
+                if (places.size() < 2)
+                    places.resize(2);
+                used = 2;
+                endsPlaced[0] = endsPlaced[1] = false;
+            }
+
+            /** \brief steps from q0 and q1; \e angles marks the numbers that are angles (their step along the
+                shorter arc, as OMPL's SO(2) interpolation turns them). */
+            void stepNumbers(const std::vector<unsigned char> &angles)
+            {
+                steps.resize(q0.size());
+                for (std::size_t v = 0; v < q0.size(); ++v)
+                {
+                    const double step = q1[v] - q0[v];
+                    steps[v] = angles[v] && std::abs(step) > M_PI ? step - std::copysign(2.0 * M_PI, step) : step;
+                }
+            }
+
             /** \brief need: the links of the pairs pending on piece \e p. */
             void markLinks(const RobotScene &scene, const Piece &p)
             {
@@ -170,23 +195,8 @@ namespace meshgap
         pairBends(w.motion, w.bends, w.stays);
         const SelfPairTable *table = scene_->selfPairTable();
         if (table)
-        {
-            w.steps.resize(w.q0.size());
-            for (std::size_t v = 0; v < w.q0.size(); ++v)
-            {
-                // An angle along the shorter arc, as OMPL's SO(2) interpolation turns it.
-                const double step = w.q1[v] - w.q0[v];
-                w.steps[v] = angles_[v] && std::abs(step) > M_PI ? step - std::copysign(2.0 * M_PI, step) : step;
-            }
-        }
-        w.pending.clear();
-        for (std::size_t k = 0; k < pairs; ++k)
-            w.pending.push_back({k, 0});
-        w.pieces.assign(1, Piece{0.0, 1.0, 0, pairs, 0, 0, 1});
-        if (w.places.size() < 2)
-            w.places.resize(2);
-        w.used = 2;
-        w.endsPlaced[0] = w.endsPlaced[1] = false;
+            w.stepNumbers(angles_);
+        w.start(pairs);
         const StatePool::Lease lease(states_);
         ompl::base::State *middle = lease.get();
         bool free = true;
