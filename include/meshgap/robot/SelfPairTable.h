@@ -17,7 +17,7 @@ namespace meshgap
         is a function of one or two state numbers (a base and the upper arm two joints up, a forearm and the wrist
         two joints down): a grid over those numbers' range whose cells are each proven free as a whole, once per
         robot. A state check of such a pair is then one look-up (apartAt()), and a piece of motion whose numbers
-        stay within proven cells needs no question about the pair (apartWithin()).
+        stay within proven cells needs no question about the pair (apartWithin(), apartAlong()).
 
         A cell is proven as a piece of motion is (RobotMotionValidator): the pair is more than a margin apart at
         the cell's centre (RobotScene::pairApart(), certified), the margin bounding how far either link moves
