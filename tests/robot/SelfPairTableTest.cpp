@@ -158,6 +158,17 @@ namespace meshgap
             }
         }
 
+        /** \brief " first-second fraction" per tabulated pair of \e scene: the fraction of its range proven apart. */
+        std::string provenFractions(const RobotScene &scene, const SelfPairTable &table)
+        {
+            std::ostringstream out;
+            for (std::size_t p = 0; p < table.numPairs(); ++p)
+                if (table.tabulated(p))
+                    out << " " << scene.links()[scene.selfPairs()[p].first].name << "-"
+                        << scene.links()[scene.selfPairs()[p].second].name << " " << table.provenFraction(p);
+            return out.str();
+        }
+
         /** \brief The scene's verdict with the table is the verdict of a scene without it, at random states (with
             \e bothSides, some colliding and some free). */
         void expectSameVerdicts(const RobotScene &with, const RobotScene &without, int states, bool bothSides = true)
@@ -191,12 +202,8 @@ namespace meshgap
         const SelfPairTable &table = *scene.selfPairTable();
         Seen seen;
         expectClaimsHold(scene, table, test::scaled(400, 100), seen);
-        std::ostringstream fractions;
-        for (std::size_t p = 0; p < table.numPairs(); ++p)
-            if (table.tabulated(p))
-                fractions << " " << table.provenFraction(p);
         test::Note() << seen.tabulated << " of " << table.numPairs() << " pairs tabulated (proven fractions"
-                     << fractions.str() << "), " << table.questions() << " questions; " << seen.claims << " of "
+                     << provenFractions(scene, table) << "), " << table.questions() << " questions; " << seen.claims << " of "
                      << seen.states << " states said apart (" << seen.colliding << " colliding), " << seen.nearContact
                      << " within 1e-7 of a contact; " << seen.boxClaims << " of " << seen.boxes << " boxes, "
                      << seen.segmentClaims << " of " << seen.segments << " segments";
@@ -263,13 +270,8 @@ namespace meshgap
         const SelfPairTable &table = *scene.selfPairTable();
         Seen seen;
         expectClaimsHold(scene, table, test::scaled(300, 40), seen);
-        std::ostringstream fractions;
-        for (std::size_t p = 0; p < table.numPairs(); ++p)
-            if (table.tabulated(p))
-                fractions << " " << scene.links()[scene.selfPairs()[p].first].name << "-"
-                          << scene.links()[scene.selfPairs()[p].second].name << " " << table.provenFraction(p);
         test::Note() << seen.tabulated << " of " << table.numPairs() << " pairs tabulated in " << seconds << " s, "
-                     << table.questions() << " questions:" << fractions.str() << "; " << seen.claims << " of "
+                     << table.questions() << " questions:" << provenFractions(scene, table) << "; " << seen.claims << " of "
                      << seen.states << " states said apart (" << seen.colliding << " colliding); " << seen.boxClaims
                      << " of " << seen.boxes << " boxes, " << seen.segmentClaims << " of " << seen.segments
                      << " segments";
