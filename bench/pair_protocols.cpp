@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "CliMain.h"
 #include "FclOracle.h"
 #include "meshgap/Exception.h"
 #include "meshgap/distance/ExactDistance.h"
@@ -164,13 +165,8 @@ namespace meshgap::bench
                 "tolerance", po::value(&tolerance)->default_value(1e-9),
                 "largest relative difference from FCL's distance where apart");
             po::variables_map vm;
-            po::store(po::parse_command_line(argc, argv, options), vm);
-            if (vm.count("help"))
-            {
-                std::cout << options << "\n";
+            if (!cli::parseCommandLine(argc, argv, options, vm))
                 return 0;
-            }
-            po::notify(vm);
             if (protocol == "coal" && (robot.empty() || world.empty() || !mesh.empty()))
                 throw Exception("--protocol coal", "takes --robot FILE and --world FILE");
             if (protocol == "trueform" && (mesh.empty() || !robot.empty() || !world.empty()))

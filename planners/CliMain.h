@@ -12,6 +12,7 @@
 #include <iostream>
 #include <ompl/util/Console.h>
 #include <string>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -89,6 +90,34 @@ namespace meshgap
             is checked; otherwise run the notifiers and set OMPL's log level: LOG_ERROR with --quiet, and where the
             options declare --verbose, LOG_INFO with it and LOG_WARN without. A flag declared by addRenamedOptions()
             throws meshgap::Exception naming the new spelling. */
+        /** \brief Whether \e value holds an unsigned integer, which boost::program_options reads from "-3" by
+            wrapping it round (to 4294967293) rather than refusing it. */
+        inline bool holdsUnsigned(const boost::any &value)
+        {
+            const std::type_info &t = value.type();
+            return t == typeid(unsigned short) || t == typeid(unsigned) || t == typeid(unsigned long) ||
+                   t == typeid(unsigned long long);
+        }
+
+        /** \brief Throws meshgap::Exception naming the flag when a count (an option of unsigned type) was given a
+            negative number in \e parsed. */
+        inline void refuseNegativeCounts(const boost::program_options::parsed_options &parsed,
+                                         const boost::program_options::variables_map &vm)
+        {
+            for (const auto &option : parsed.options)
+            {
+                if (option.string_key.empty() || !vm.count(option.string_key) ||
+                    !holdsUnsigned(vm[option.string_key].value()))
+                    continue;
+                for (const std::string &text : option.value)
+                {
+                    const auto first = text.find_first_not_of(" \t");
+                    if (first != std::string::npos && text[first] == '-')
+                        throw Exception("--" + option.string_key, quote(text) + " is not a non-negative integer");
+                }
+            }
+        }
+
         inline bool parseCommandLine(int argc, char **argv, const boost::program_options::options_description &options,
                                      boost::program_options::variables_map &vm,
                                      const boost::program_options::positional_options_description *positional = nullptr,
@@ -99,7 +128,8 @@ namespace meshgap
             parser.options(options);
             if (positional != nullptr)
                 parser.positional(*positional);
-            po::store(parser.run(), vm);
+            const po::parsed_options parsed = parser.run();
+            po::store(parsed, vm);
             if (vm.count("help"))
             {
                 std::cout << (visible != nullptr ? *visible : options) << "\n";
@@ -111,6 +141,7 @@ namespace meshgap
                 if (option != nullptr && option->description().rfind(RENAMED, 0) == 0)
                     throw Exception("--" + entry.first, option->description());
             }
+            refuseNegativeCounts(parsed, vm);
             po::notify(vm);
             if (options.find_nothrow("verbose", false) != nullptr)
                 ompl::msg::setLogLevel(vm.count("verbose") ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);

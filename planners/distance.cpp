@@ -205,6 +205,12 @@ namespace
         o.noDepth = vm.count("no-depth") > 0;
         o.json = vm.count("json") > 0;
         o.exact = vm.count("exact") > 0;
+        if (!(o.budgetMiB >= 0.0 && o.budgetMiB <= 1e9))  // NaN included; the bytes are a size_t
+        {
+            char found[32];
+            std::snprintf(found, sizeof found, "%g", o.budgetMiB);
+            throw Exception("--memory-budget", std::string(found) + " is not a size in MiB from 0 to 1e9");
+        }
         return true;
     }
 

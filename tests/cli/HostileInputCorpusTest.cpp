@@ -1,9 +1,9 @@
 // The hostile-input corpus (tests/resources/hostile): robot problems whose URDF urdfdom reads with a logged error and
 // drops a part of (a typo in an origin, a box of two numbers, an unknown shape, a mesh without a file, NaN), robots
 // without geometry, numbers beyond what double geometry answers, folders and devices named as files; and the hostile
-// command lines (a pose at 1e300, states outside the joint limits, a FIFO as --cfg, an infinite time limit). Each must
-// end in one line "error: ..." naming the file (and line) and the problem, exit status 1, nothing on stdout, no
-// signal, no hang. The valid input the same readers refused (the README's robot problem as written, a fixed robot, an
+// command lines (a pose at 1e300, states outside the joint limits, a FIFO as --cfg, an infinite time limit, a negative
+// count). Each must end in one line "error: ..." naming the file (and line) and the problem, exit status 1, nothing on
+// stdout, no signal, no hang. The valid input the same readers refused (the README's robot problem as written, a fixed robot, an
 // SRDF naming the payload) must be read, and the tools must say when their output contradicts their input.
 
 #include <gtest/gtest.h>
@@ -151,6 +151,23 @@ TEST(HostileInputCorpus, HostileCommandLinesGetOneErrorEach)
         {"meshgap_plan", arm + " --time 1e30", {"--time", "at most 1e6 seconds"}},
         {"meshgap_benchmark", "--cfg '" + HOSTILE + "/huge_time_limit.cfg' --planner rrtconnect --out " + logs,
          {"huge_time_limit.cfg", "[benchmark] time_limit", "at most 1e6 seconds"}},
+        // Negative counts, which the option parser would wrap round to some 4 billion, and sizes out of range.
+        {"meshgap_plan", arm + " --time 1 --seed -3", {"--seed", "'-3' is not a non-negative integer"}},
+        {"meshgap_plan", arm + " --time 1 --dense -1", {"--dense", "'-1' is not a non-negative integer"}},
+        {"meshgap_plan", arm + " --time 1 --optimize clearance --optimize-rounds -2",
+         {"--optimize-rounds", "'-2' is not a non-negative integer"}},
+        {"meshgap_benchmark", arm + " --planner rrtconnect --runs -1 --time 1 --out " + logs,
+         {"--runs", "'-1' is not a non-negative integer"}},
+        {"meshgap_benchmark", arm + " --planner rrtconnect --runs 1 --seed -1 --time 1 --out " + logs,
+         {"--seed", "'-1' is not a non-negative integer"}},
+        {"meshgap_report", arm + " --dense -1 --path '" + HOSTILE + "/valid_arm.path' --out " + logs + ".html",
+         {"--dense", "'-1' is not a non-negative integer"}},
+        {"meshgap_distance", "--seed -2 -a comb-GA-wl '" + cube + "' '" + cube + "'",
+         {"--seed", "'-2' is not a non-negative integer"}},
+        {"meshgap_distance", "--memory-budget -5 -a comb-GA-wl '" + cube + "' '" + cube + "'",
+         {"--memory-budget", "-5 is not a size in MiB"}},
+        {"meshgap_distance", "--memory-budget nan -a comb-GA-wl '" + cube + "' '" + cube + "'",
+         {"--memory-budget", "nan is not a size in MiB"}},
     };
     for (const auto &[executable, args, mentions] : lines)
         expectOneClearError(executable + " " + args, meshgap::test::runExecutable(executable, args, 120), mentions);
