@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "CliMain.h"
 #include "meshgap/Exception.h"
@@ -23,27 +24,34 @@ namespace meshgap::cli
         return "clearance";
     }
 
-    /** \brief Checks --optimize NAME and --optimize-time against each other and the clearance mode; throws
-        meshgap::Exception naming the option. */
-    inline void checkOptimizeOptions(const std::string &optimize, bool timeGiven, double seconds,
-                                     const std::string &mode)
+    /** \brief Checks --optimize NAME against the clearance \e mode, and its limits (--optimize-time, a number of
+        seconds; --optimize-rounds, at least 1) against it: each given without --optimize is refused. \e label
+        names an option as the caller spells it (a flag, or a Python keyword); throws meshgap::Exception naming it. */
+    template <typename Label>
+    void checkOptimizeOptions(const std::string &optimize, const std::string &mode, double seconds, bool timeGiven,
+                              unsigned rounds, bool roundsGiven, const Label &label)
     {
         if (!optimize.empty() && optimize != "clearance")
-            throw Exception("--optimize", "unknown optimiser " + quote(optimize) + "; valid: " + optimizerNames());
-        if (timeGiven && optimize.empty())
-            throw Exception("--optimize-time", "applies to --optimize only");
-        checkSeconds(seconds, "--optimize-time");
+            throw Exception(label("optimize"), "unknown optimiser " + quote(optimize) + "; valid: " + optimizerNames());
+        for (const auto &[name, given] :
+             {std::pair{"optimize-time", timeGiven}, std::pair{"optimize-rounds", roundsGiven}})
+            if (given && optimize.empty())
+                throw Exception(label(name), "applies to " + label("optimize") + " only");
+        checkSeconds(seconds, label("optimize-time"));
+        if (rounds < 1)
+            throw Exception(label("optimize-rounds"), "must be at least 1");
         if (!optimize.empty() && mode != "certified")
-            throw Exception("--optimize", "clearance needs --checker certified (it follows the exact clearance gradient)");
+            throw Exception(label("optimize"), "clearance needs " + label("checker") +
+                                                   " certified (it follows the exact clearance gradient)");
     }
 
-    /** \brief Optimise the setup's solution path in place for at most \e seconds; returns the summary lines
-        ("optimizer ...", "opt repair ..."), each key padded as meshgap_plan pads its summary. Motions of the
-        planner's path the certified validator refuses are repaired first (CertifiedPathRepair, within the same
-        time); if one cannot be, the path is left as it is, \e failed is set, the "optimizer" line says why and one
-        line "error: ..." naming the motion goes to stderr. */
+    /** \brief Optimise the setup's solution path in place for at most \e seconds and \e rounds; returns the
+        summary lines ("optimizer ...", "opt repair ..."), each key padded as meshgap_plan pads its summary. Motions
+        of the planner's path the certified validator refuses are repaired first (CertifiedPathRepair, within the
+        same time); if one cannot be, the path is left as it is, \e failed is set, the "optimizer" line says why and
+        one line "error: ..." naming the motion goes to stderr. */
     inline std::string optimizeSolution(ompl::geometric::SimpleSetup &setup, const ClearanceFieldPtr &checker,
-                                        double seconds, unsigned long seed, bool &failed)
+                                        double seconds, unsigned rounds, unsigned long seed, bool &failed)
     {
         std::ostringstream out;
         out.precision(6);
@@ -55,6 +63,7 @@ namespace meshgap::cli
         };
         ClearancePathOptimizer optimizer(setup.getSpaceInformation(), checker);
         optimizer.setTimeLimit(seconds);
+        optimizer.setMaxRounds(rounds);
         optimizer.setSeed(seed);
         failed = false;
         try

@@ -4,7 +4,8 @@
 //   meshgap_plan --cfg problem.cfg [--planner rrtconnect] [--time 10] [--objective NAME [--weight W]]
 //                [--checker certified|fast] [--motion discrete|clearance] [--seed N] [--out solution.path]
 //                [--clearance-csv clearance.csv] [--summary summary.txt] [--export-glb scene.glb [--export-states N]]
-//                [--report plan.html] [--optimize clearance [--optimize-time S]] [--sampler NAME]
+//                [--report plan.html] [--optimize clearance [--optimize-time S] [--optimize-rounds N]]
+//                [--sampler NAME]
 //
 // While it plans, one progress line a second goes to stderr (elapsed time, validity checks, the planner's best cost
 // when it reports one). Then it prints a summary (solved, exact or approximate, planning time, path length, cost, the

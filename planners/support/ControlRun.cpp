@@ -32,8 +32,8 @@ namespace meshgap
             /** \brief Options of geometric problems only: refused by name when given. */
             void refuseGeometricOptions(const PlanOptions &o)
             {
-                for (const char *name : {"objective", "weight", "optimize", "optimize-time", "sampler", "export-glb",
-                                         "export-states", "report", "clearance-csv", "dense"})
+                for (const char *name : {"objective", "weight", "optimize", "optimize-time", "optimize-rounds",
+                                         "sampler", "export-glb", "export-states", "report", "clearance-csv", "dense"})
                     if (o.isGiven(name))
                         throw Exception(o.label(name), "applies to geometric problems only (" + o.cfg +
                                                            " is a control problem)");

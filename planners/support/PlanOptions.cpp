@@ -68,6 +68,9 @@ namespace meshgap
                  "after planning, optimise the path: clearance (raise its minimum clearance up the exact gradient, "
                  "every motion certified; needs --checker certified)"},
                 {"optimize-time", 0, K::REAL, &O::optimizeTime, "time limit of --optimize in seconds (default 5)"},
+                {"optimize-rounds", 0, K::COUNT, &O::optimizeRounds,
+                 "at most this many rounds of --optimize (default 1000: in practice until it converges or its time "
+                 "ends)"},
                 {"sampler", 0, K::TEXT, &O::sampler,
                  "valid-state sampler of planners that use one (PRM, EST, ...; default: the cfg's sampler, else "
                  "uniform): " + joinNames(validStateSamplerNames())},
@@ -91,7 +94,8 @@ namespace meshgap
                 throw Exception(o.label("dense"), "must be at least 1");
             if (o.exportStates < 1)
                 throw Exception(o.label("export-states"), "must be at least 1");
-            checkOptimizeOptions(o.optimize, o.isGiven("optimize-time"), o.optimizeTime, o.checker);
+            checkOptimizeOptions(o.optimize, o.checker, o.optimizeTime, o.isGiven("optimize-time"), o.optimizeRounds,
+                                 o.isGiven("optimize-rounds"), [&o](const std::string &name) { return o.label(name); });
             if (o.isGiven("weight") && !(o.weight > 0.0 && std::isfinite(o.weight)))
                 throw Exception(o.label("weight"), "must be positive and finite");
         }

@@ -27,7 +27,7 @@ namespace meshgap
             std::vector<std::string> params;
             /** \brief NAME, VALUE parameters of the chosen planner (Python's params= dict). */
             std::vector<std::pair<std::string, std::string>> plannerParams;
-            unsigned dense = 4, exportStates = 8, seed = 1;
+            unsigned dense = 4, exportStates = 8, seed = 1, optimizeRounds = 1000;
             bool quiet = false;
             /** \brief --urdf, --srdf, --scene, --request: a robot problem in MoveIt's files instead of --cfg
                 (support/MoveItOptions.h; meshgap_plan's, not in the table). */

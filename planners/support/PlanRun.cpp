@@ -43,8 +43,8 @@ namespace meshgap
             {
                 p.before = std::make_unique<DenseClearance>(
                     denseClearance(p.setup->getSolutionPath(), *p.scene, o.dense, false));
-                summary.stream() << optimizeSolution(*p.setup, p.checks->field(), o.optimizeTime, o.seed,
-                                                     p.optimizeFailed);
+                summary.stream() << optimizeSolution(*p.setup, p.checks->field(), o.optimizeTime, o.optimizeRounds,
+                                                     o.seed, p.optimizeFailed);
                 p.checks->optimized(p, o, summary);
             }
         }  // namespace

@@ -41,7 +41,10 @@ TEST(PlanOptimizeCli, BadOptionsGiveOneErrorAndExitOne)
 {
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"--optimize length", "clearance"},
-        {"--optimize-time 2", "--optimize-time"},
+        {"--optimize-time 2", "--optimize-time: applies to --optimize only"},
+        {"--optimize-rounds 2", "--optimize-rounds: applies to --optimize only"},
+        {"--optimize clearance --optimize-rounds 0", "--optimize-rounds: must be at least 1"},
+        {"--optimize clearance --optimize-rounds -3", "--optimize-rounds"},
         {"--optimize clearance --optimize-time -1", "positive"},
         {"--optimize clearance --optimize-time nan", "positive"},
         {"--optimize clearance --checker fast", "--checker certified"},

@@ -91,6 +91,8 @@ def test_planar_problem(tmp_path):
     ({"checker": "both"}, None, r"^checker: 'both' is not certified or fast$"),
     ({"mode": "fast"}, None, r"^mode: renamed: use checker='certified' or checker='fast'$"),
     ({"checker": "fast", "motion": "clearance"}, None, r"^motion: clearance needs checker certified"),
+    ({"optimize_rounds": 3}, None, r"^optimize_rounds: applies to optimize only$"),
+    ({"optimize": "clearance", "checker": "fast"}, None, r"^optimize: clearance needs checker certified"),
 ])
 def test_bad_plan_arguments(kwargs, flag, message):
     with pytest.raises(ValueError, match=message) as raised:
