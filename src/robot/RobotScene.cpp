@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <map>
 
 #include "meshgap/Exception.h"
 
@@ -52,6 +53,9 @@ namespace meshgap
                                                   std::to_string(obstacles_.size()) + " obstacles");
             allowed[link][obstacle] = true;
         }
+        // One broad phase per distinct set of checked obstacles (one in all without an allowed collision matrix),
+        // shared by the links' scenes.
+        std::map<std::vector<bool>, std::size_t> sceneOf;
         for (std::size_t i = 0; i < links_.size(); ++i)
         {
             std::vector<BodyConstPtr> checked;
@@ -62,7 +66,9 @@ namespace meshgap
                     checked.push_back(obstacles_[o]);
                     linkObstacles_.back().push_back(o);
                 }
-            scenes_.push_back(std::make_shared<Scene>(links_[i].body, std::move(checked)));
+            const auto [same, isNew] = sceneOf.emplace(allowed[i], i);
+            scenes_.push_back(isNew ? std::make_shared<Scene>(links_[i].body, std::move(checked)) :
+                                      std::make_shared<Scene>(links_[i].body, *scenes_[same->second]));
         }
         buildVerdictBounds();
         for (const auto &[a, b] : selfPairs_)

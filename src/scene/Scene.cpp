@@ -285,6 +285,13 @@ namespace meshgap
         impl_ = std::make_shared<const Impl>(entries);
     }
 
+    Scene::Scene(BodyConstPtr robot, const Scene &others)
+        : robot_(std::move(robot)), obstacles_(others.obstacles_), id_(nextSceneId++), impl_(others.impl_)
+    {
+        if (!robot_)
+            throw Exception("Scene", "no robot body");
+    }
+
     ScenePtr Scene::fromMeshes(const Mesh &robot, const Mesh &world, const BodyOptions &options)
     {
         world.validate();

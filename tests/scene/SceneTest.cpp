@@ -620,6 +620,32 @@ TEST(Scene, ThreadsSharingASceneGiveTheSingleThreadedAnswers)
     }
 }
 
+TEST(Scene, ARobotSharingAnotherScenesObstaclesGetsTheBruteForceAnswers)
+{
+    // A second robot (a long slab, unlike the U) among the first scene's obstacles, its broad phase shared: at
+    // random poses, every obstacle's pair answer is the oracle's, through one warm start that alternates between
+    // the two scenes (each its own, by id).
+    const ScenePtr first = Scene::fromMeshes(uRobot(), scatteredWorld(), coarse());
+    const Scene second(Body::build(test::box(2.4, 0.3, 0.2, 2), coarse()), *first);
+    ASSERT_EQ(second.obstacles(), first->obstacles());
+    EXPECT_NE(second.id(), first->id());
+    SceneWarmStart warm;
+    std::size_t collisions = 0;
+    for (const Eigen::Isometry3d &X : randomPoses(11, 120))
+        for (const Scene *scene : std::initializer_list<const Scene *>{first.get(), &second})
+        {
+            const BruteForce oracle = bruteForce(*scene, X);
+            SceneResult r;
+            scene->distance(X, SceneRequest(), warm, r);
+            ASSERT_EQ(r.inCollision, oracle.inCollision);
+            EXPECT_EQ(scene->inCollision(X), oracle.inCollision);
+            EXPECT_EQ(r.distance, oracle.distance);
+            collisions += r.inCollision;
+        }
+    EXPECT_GT(collisions, 20u);
+    EXPECT_THROW(Scene(nullptr, *first), Exception);
+}
+
 TEST(Scene, EmptyWorldAndNullBodies)
 {
     const ScenePtr scene = std::make_shared<Scene>(Body::build(uRobot(), coarse()), std::vector<BodyConstPtr>());

@@ -137,10 +137,11 @@ namespace meshgap
     };
 
     /** \brief A robot (RobotModel) among obstacles (bodies fixed in the world frame): whole-robot collision and
-        distance. Each link is answered against the obstacles by a Scene of its own (its broad phase, an R-tree of
-        the obstacles' boxes, and its warm start); each self pair by the exact layer (refineExact(), inCollision())
-        after a bounding-sphere test, one exact warm start per pair. Immutable once built, shared between threads;
-        per-caller state lives in RobotWarmStart; no allocation once a caller has warmed up.
+        distance. Each link is answered against the obstacles by a Scene of its own (with its warm start) around
+        one broad phase, an R-tree of the obstacles' boxes, shared by every link that checks the same obstacles;
+        each self pair by the exact layer (refineExact(), inCollision()) after a bounding-sphere test, one exact warm
+        start per pair. Immutable once built, shared between threads; per-caller state lives in RobotWarmStart; no
+        allocation once a caller has warmed up.
 
         The collision verdict (inCollision(), pairCollides()) has a broad phase of its own, shared by every link:
         each link's BVH root box placed in the world once a state, against each obstacle's axis-aligned box, then

@@ -210,6 +210,9 @@ namespace meshgap
     public:
         /** \brief \e robot in its own frame; obstacles in the world frame. */
         Scene(BodyConstPtr robot, std::vector<BodyConstPtr> obstacles);
+        /** \brief \e robot among the obstacles of \e others, sharing their broad phase (built once for, say, every
+            link of a robot; it is immutable) rather than building a copy. A scene of its own (its own id()). */
+        Scene(BodyConstPtr robot, const Scene &others);
 
         /** \brief Build from a robot mesh and a world mesh, the world split into its connected parts
             (splitComponents()), one obstacle body each. A relative grid size (the default) is relative to each
