@@ -12,7 +12,8 @@
 #
 # --quick: small counts, a minute or two in all on 2 cores; without it the counts of the by-hand tables (an hour or so).
 # The shared data (../shared/data) is optional: without it the query table runs on maps/ alone and the load table on
-# the test meshes.
+# the test meshes, and the blocks that need its robots, MotionBenchMaker's problems or OMPL.app's cubicles (the Python
+# blocks) are left out, as is the Dask block where /usr/bin/python3 has no `distributed`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -103,6 +104,24 @@ if [ -f "$shared/mbm/ur5/problems.tar.bz2" ]; then
     suite="$suite --out \$(mktemp -d) 2>/dev/null"
     add mbm_suite bench/motionbenchmaker.md meshgap_benchmark "$suite" "$suite --limit 2"
 fi
+py="PYTHONPATH=$build/python /usr/bin/python3"
+if [ -f "$shared/omplapp/cubicles.cfg" ]; then
+    # The Python module's batch on cubicles' path against the C++ loop, and threads against processes.
+    add python_batch bench/python.md "meshgap_python meshgap_bench_path_loop" \
+        "$py bench/python_batch.py --build $build --data $shared/omplapp --rounds 9 --million --markdown" \
+        "$py bench/python_batch.py --build $build --data $shared/omplapp --rounds 3 --million --markdown"
+    pts="$py bench/python_thread_scaling.py --markdown --cfg $shared/omplapp/cubicles.cfg"
+    add python_thread_scaling bench/scaling.md meshgap_python \
+        "{ $pts --reps 5 --states 20000 --repeat 20 && $pts --reps 5 --states 4000 --repeat 2 --stream random; } | awk '!seen[\$0]++'" \
+        "{ $pts --reps 3 --states 5000 --repeat 10 && $pts --reps 3 --states 1000 --repeat 2 --stream random; } | awk '!seen[\$0]++'"
+    if /usr/bin/python3 -c 'import distributed' 2>/dev/null; then
+        dask="PYTHONPATH=$build/python nice -n 5 /usr/bin/python3 bench/dask_throughput.py"
+        dask="$dask --problems maps/hand_bowl/hand_bowl.cfg,$shared/omplapp/cubicles.cfg"
+        add dask bench/python.md meshgap_python "$dask" "$dask --poses 4000 --rounds 1 --chunks 100,1000"
+    fi
+fi
+add thread_scaling bench/scaling.md meshgap_bench_stress \
+    "bench/thread_scaling.sh --markdown $build 2 400000 5" "bench/thread_scaling.sh --markdown $build 2 100000 3"
 add scaling bench/scaling.md meshgap_bench_scaling \
     "$B/meshgap_bench_scaling" \
     "$B/meshgap_bench_scaling --max 16384 --poses 50 --fast-on-demand 3"
