@@ -120,6 +120,9 @@ if [ -f "$shared/omplapp/cubicles.cfg" ]; then
         add dask bench/python.md meshgap_python "$dask" "$dask --poses 4000 --rounds 1 --chunks 100,1000"
     fi
 fi
+fve="PYTHONPATH=$build/python /usr/bin/python3 bench/fast_vs_exact.py --markdown maps/{hand_bowl,twisted,slotted_wall}/*.cfg"
+[ -d "$shared/omplapp" ] && fve="$fve $shared/omplapp/{cubicles,Twistycool,Easy}.cfg"
+add fast_vs_exact bench/queries.md meshgap_python "$fve --poses 1000 --rounds 5" "$fve --poses 200 --rounds 1"
 add thread_scaling bench/scaling.md meshgap_bench_stress \
     "bench/thread_scaling.sh --markdown $build 2 400000 5" "bench/thread_scaling.sh --markdown $build 2 100000 3"
 add scaling bench/scaling.md meshgap_bench_scaling \
