@@ -128,6 +128,9 @@ add thread_scaling bench/scaling.md meshgap_bench_stress \
 add scaling bench/scaling.md meshgap_bench_scaling \
     "$B/meshgap_bench_scaling" \
     "$B/meshgap_bench_scaling --max 16384 --poses 50 --fast-on-demand 3"
+add scaling_twisted bench/scaling.md meshgap_bench_scaling \
+    "$B/meshgap_bench_scaling --map maps/twisted --max 16384 --poses 50 --fast-on-demand 10" \
+    "$B/meshgap_bench_scaling --map maps/twisted --max 4096 --poses 20 --fast-on-demand 3"
 add stress bench/scaling.md meshgap_bench_stress \
     "$B/meshgap_bench_stress --queries 1000000 --threads 2" \
     "$B/meshgap_bench_stress --queries 200000 --threads 2"
