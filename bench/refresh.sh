@@ -123,6 +123,14 @@ fi
 fve="PYTHONPATH=$build/python /usr/bin/python3 bench/fast_vs_exact.py --markdown maps/{hand_bowl,twisted,slotted_wall}/*.cfg"
 [ -d "$shared/omplapp" ] && fve="$fve $shared/omplapp/{cubicles,Twistycool,Easy}.cfg"
 add fast_vs_exact bench/queries.md meshgap_python "$fve --poses 1000 --rounds 5" "$fve --poses 200 --rounds 1"
+add mesh_distances bench/mesh_distances.md meshgap_bench_mesh_distances \
+    "$B/meshgap_bench_mesh_distances" "$B/meshgap_bench_mesh_distances --dense 13 26 --on-demand 13 26 52"
+# Robot planning over seeds, each path checked by FCL pair by pair and its motions certified anew (the maps' robots;
+# the optimiser's also the fanuc when ../shared/data/robots holds it).
+add robot_plan_seeds bench/robots.md "meshgap_plan meshgap_bench_robot_path_check" \
+    "bench/robot_plan_seeds.sh $build 10 20 1e-4" "bench/robot_plan_seeds.sh $build 3 10 1e-3"
+add robot_optimize_seeds bench/robots.md "meshgap_plan meshgap_bench_robot_path_check" \
+    "bench/robot_optimize_seeds.sh $build 10 60 1e-4" "bench/robot_optimize_seeds.sh $build 2 10 1e-3"
 add thread_scaling bench/scaling.md meshgap_bench_stress \
     "bench/thread_scaling.sh --markdown $build 2 400000 5" "bench/thread_scaling.sh --markdown $build 2 100000 3"
 add scaling bench/scaling.md meshgap_bench_scaling \
