@@ -131,6 +131,22 @@ add robot_plan_seeds bench/robots.md "meshgap_plan meshgap_bench_robot_path_chec
     "bench/robot_plan_seeds.sh $build 10 20 1e-4" "bench/robot_plan_seeds.sh $build 3 10 1e-3"
 add robot_optimize_seeds bench/robots.md "meshgap_plan meshgap_bench_robot_path_check" \
     "bench/robot_optimize_seeds.sh $build 10 60 1e-4" "bench/robot_optimize_seeds.sh $build 2 10 1e-3"
+if [ -d "$shared/omplapp" ]; then
+    # Planning: RRTConnect with each checker; the samplers on slotted_wall; RRT* against RRTConnect on the maps; the
+    # clearance optimiser. Each run's .log files go to a folder of its own under /tmp.
+    add rrtconnect_checkers bench/planning.md meshgap_benchmark \
+        "RUNS=10 TIME=10 CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)" \
+        "RUNS=3 TIME=10 CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)"
+    add sampler_slotted_wall bench/planning.md meshgap_benchmark \
+        "PLANNER=biest bench/sampler_table.sh $build \$(mktemp -d)" \
+        "PLANNER=biest RUNS=1 TIME=5 bench/sampler_table.sh $build \$(mktemp -d)"
+    add clearance_maps bench/planning.md meshgap_benchmark \
+        "PART=clearance bench/clearance_table.sh $build \$(mktemp -d)" \
+        "PART=clearance RUNS=2 TIME=5 bench/clearance_table.sh $build \$(mktemp -d)"
+    add optimizer bench/planning.md meshgap_benchmark \
+        "bench/optimizer_table.sh $build \$(mktemp -d)" \
+        "RUNS=2 TIME_MAPS=5 TIME_PROBLEMS=3 TWISTY=1 TIME_TWISTY=20 bench/optimizer_table.sh $build \$(mktemp -d)"
+fi
 add thread_scaling bench/scaling.md meshgap_bench_stress \
     "bench/thread_scaling.sh --markdown $build 2 400000 5" "bench/thread_scaling.sh --markdown $build 2 100000 3"
 add scaling bench/scaling.md meshgap_bench_scaling \
