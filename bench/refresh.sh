@@ -137,6 +137,9 @@ if [ -d "$shared/omplapp" ]; then
     add rrtconnect_checkers bench/planning.md meshgap_benchmark \
         "RUNS=10 TIME=10 CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)" \
         "RUNS=3 TIME=10 CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)"
+    add rrtstar_checkers bench/planning.md meshgap_benchmark \
+        "RUNS=3 TIME=5 PLANNERS=rrtstar ARGS='--objective max_min_clearance' CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)" \
+        "RUNS=1 TIME=5 PLANNERS=rrtstar ARGS='--objective max_min_clearance' CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)"
     add sampler_slotted_wall bench/planning.md meshgap_benchmark \
         "PLANNER=biest bench/sampler_table.sh $build \$(mktemp -d)" \
         "PLANNER=biest RUNS=1 TIME=5 bench/sampler_table.sh $build \$(mktemp -d)"
