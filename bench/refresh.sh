@@ -129,6 +129,9 @@ add mesh_distances bench/mesh_distances.md meshgap_bench_mesh_distances \
 # the optimiser's also the fanuc when ../shared/data/robots holds it).
 add robot_plan_seeds bench/robots.md "meshgap_plan meshgap_bench_robot_path_check" \
     "bench/robot_plan_seeds.sh $build 10 20 1e-4" "bench/robot_plan_seeds.sh $build 3 10 1e-3"
+add robot_checkers bench/robots.md meshgap_benchmark \
+    "RUNS=10 TIME=10 CHECKERS=certified,certified-search,discrete,fcl PROBLEMS=arm_fixture bench/run_planning_benchmark.sh $build \$(mktemp -d)" \
+    "RUNS=3 TIME=10 CHECKERS=certified,certified-search,discrete,fcl PROBLEMS=arm_fixture bench/run_planning_benchmark.sh $build \$(mktemp -d)"
 add robot_optimize_seeds bench/robots.md "meshgap_plan meshgap_bench_robot_path_check" \
     "bench/robot_optimize_seeds.sh $build 10 60 1e-4" "bench/robot_optimize_seeds.sh $build 2 10 1e-3"
 if [ -d "$shared/omplapp" ]; then
