@@ -10,7 +10,8 @@
 #   bench/refresh.sh --dry-run    every block written from made-up output into copies of the pages, then checked
 #                                 (no build, no benchmark run: what the ctest entry runs)
 #
-# --quick: small counts, a minute or two in all on 2 cores; without it the counts of the by-hand tables (an hour or so).
+# --quick: small counts, about a quarter of an hour in all on 2 cores; without it the counts of the by-hand tables
+# (two hours or so: the planning, optimiser and MotionBenchMaker blocks take most of it).
 # The shared data (../shared/data) is optional: without it the query table runs on maps/ alone and the load table on
 # the test meshes, and the blocks that need its robots, MotionBenchMaker's problems or OMPL.app's cubicles (the Python
 # blocks) are left out, as is the Dask block where /usr/bin/python3 has no `distributed`.
@@ -26,7 +27,7 @@ while [ $# -gt 0 ]; do
         --no-build) nobuild=1 ;;
         --dry-run) dry=1 ;;
         --list) list=1 ;;
-        -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "bench/refresh.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift
