@@ -18,7 +18,8 @@
 # parameters, space-separated, default none: OMPL's own; RRTSTAR_PARAMS=use_k_nearest=0 takes the neighbours within
 # RRT*'s range instead of OMPL's k nearest, whose k in SE(3), 1.1 * 2^7 e (1 + 1/6) log n = 446 log n, makes every
 # state of a tree of a few thousand a neighbour of each new one). A problem's old .log files in OUT_DIR are removed
-# before it runs; the tables cover every .log in OUT_DIR. The .log files load into Planner Arena:
+# before it runs; the tables cover every .log in OUT_DIR. The benchmarks' own output goes to stderr, so stdout holds
+# the tables alone. The .log files load into Planner Arena:
 # ompl_benchmark_statistics OUT_DIR/*/*.log -d results.db
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -49,11 +50,11 @@ bench() {
     shift
     mkdir -p "$dir"
     if [ "$jobs" = 1 ]; then
-        nice "$benchmark" "$@" --seed "$seed" --out "$dir"
+        nice "$benchmark" "$@" --seed "$seed" --out "$dir" >&2
     else
-        nice "$benchmark" "$@" --seed "$seed" --out "$dir" --shard 1/2 &
+        nice "$benchmark" "$@" --seed "$seed" --out "$dir" --shard 1/2 >&2 &
         local first=$!
-        nice "$benchmark" "$@" --seed "$seed" --out "$dir" --shard 2/2
+        nice "$benchmark" "$@" --seed "$seed" --out "$dir" --shard 2/2 >&2
         wait "$first"
     fi
 }

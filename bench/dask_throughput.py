@@ -144,8 +144,12 @@ def main():
             client.close()
             c.close()
     print("load average after: %.2f %.2f %.2f" % os.getloadavg())
-    print("\nempty task round trip %.2f ms (2 workers); empty tasks per second: %.0f through 1 worker, %.0f through 2\n"
-          % (task_trip * 1e3, tasks_per_second[1], tasks_per_second[2]))
+    print("\nThe engine's own costs:\n")
+    print("| empty task round trip (2 workers) | empty tasks per second, 1 worker | 2 workers |")
+    print("|---:|---:|---:|")
+    print("| %.2f ms | %.0f /s | %.0f /s |\n" % (task_trip * 1e3, tasks_per_second[1], tasks_per_second[2]))
+    print("Cells: poses per second; in bold, Dask against the batch with as many threads as worker processes "
+          "(1 worker: threads=1; 2 workers: threads=2), and threads=2 against threads=1.\n")
     print("| problem | scene build | scene build on the workers (slowest), 1 / 2 workers | batch threads=1 | "
           "batch threads=2 | " + " | ".join("Dask %s worker%s, chunk %d" % (w, "s" if w > 1 else "", c)
                                            for w in (1, 2) for c in args.chunks) + " |")
@@ -165,8 +169,7 @@ def main():
             for workers in (8, 64, 512):
                 row.append(project(per_pose, chunk_cost, tasks_per_second[2] / tasks[chunk], chunk, workers))
             projections.append(row)
-    print("\nCells: poses per second; in bold, Dask against the batch with as many threads as worker processes "
-          "(1 worker: threads=1; 2 workers: threads=2), and threads=2 against threads=1.\n")
+    print("\nProjection to more workers (poses per second, and what limits it; the client's link assumed 1 Gbit/s):\n")
     print("| problem | chunk | per pose (CPU) | per chunk (CPU) | tasks per chunk | engine per chunk (1 worker) | "
           "8 workers | 64 workers | 512 workers |")
     print("|---|---:|---:|---:|---:|---:|---|---|---|")

@@ -8,7 +8,8 @@ node search), and the rounds time both modes on the whole stream, interleaved, t
     PYTHONPATH=build/python /usr/bin/python3 bench/fast_vs_exact.py [--poses 200] [--rounds 3] [CFG ...]
 
 (default: the maps and the OMPL.app problems found in ../shared/data/omplapp). Prints one row per problem and stream:
-median seconds per pose of each mode, their ratio fast/exact, and the first calls' times.
+median seconds per pose of each mode, their ratio fast/exact, and the first calls' times; with --markdown, as a
+Markdown table (the form bench/refresh.sh writes into bench/queries.md).
 """
 import argparse
 import os
@@ -45,9 +46,18 @@ def main():
     parser.add_argument("cfg", nargs="*")
     parser.add_argument("--poses", type=int, default=200)
     parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--markdown", action="store_true", help="a Markdown table")
     args = parser.parse_args()
-    print("%-16s %-7s %12s %12s %9s %12s %12s" % ("problem", "stream", "exact s/pose", "fast s/pose", "fast/exact",
-                                                  "first exact", "first fast"))
+    if args.markdown:
+        row = "| %s | %s | %.3g | %.3g | %.2f | %.3g | %.3g |"
+        print("Fast mode against the exact query, %d poses a stream, medians of %d rounds:\n" % (args.poses, args.rounds))
+        print("| problem | stream | exact s/pose | fast s/pose | fast/exact | first exact (20 poses, s) | "
+              "first fast (20 poses, s) |")
+        print("|---|---|---:|---:|---:|---:|---:|")
+    else:
+        row = "%-16s %-7s %12.3g %12.3g %9.2f %12.3g %12.3g"
+        print("%-16s %-7s %12s %12s %9s %12s %12s" % ("problem", "stream", "exact s/pose", "fast s/pose", "fast/exact",
+                                                      "first exact", "first fast"))
     for cfg in [os.path.normpath(c) for c in (args.cfg or DEFAULT) if os.path.exists(c)]:
         name = os.path.splitext(os.path.basename(cfg))[0]
         box = volume(cfg)
@@ -61,8 +71,7 @@ def main():
                 for exact in (True, False):
                     times[exact].append(timed(scene, poses, exact) / len(poses))
             e, f = statistics.median(times[True]), statistics.median(times[False])
-            print("%-16s %-7s %12.3g %12.3g %9.2f %12.3g %12.3g" % (name, stream, e, f, f / e, first[True],
-                                                                     first[False]), flush=True)
+            print(row % (name, stream, e, f, f / e, first[True], first[False]), flush=True)
 
 
 if __name__ == "__main__":

@@ -68,7 +68,7 @@ namespace
         if (!meshgap::cli::parseCommandLine(argc, argv, desc, vm))
             return 0;
 
-        std::cout << "## Dense all-pairs table (D double + P uint32)\n\n"
+        std::cout << "Dense all-pairs table (D double + P uint32):\n\n"
                   << "| mesh | nodes | edges | build runs | build time (s, median) | table bytes | table MiB | "
                      "peak RSS MiB |\n"
                   << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -94,7 +94,7 @@ namespace
             std::fflush(stdout);
         }
 
-        std::cout << "\n## On-demand queries (bounded Dijkstra, per-thread workspace)\n\n"
+        std::cout << "\nOn-demand queries (bounded Dijkstra, per-thread workspace):\n\n"
                   << "| mesh | nodes | distance to a neighbour (us/query) | distance to a node 3 edges away "
                      "(us/query) | nodesWithin r = 3 edges (us/query, mean nodes) |\n"
                   << "|---|---:|---:|---:|---:|\n";

@@ -10,6 +10,7 @@
 # Easy, TIME_PROBLEMS s, default 5), TWISTY (Twistycool runs, default 3, TIME_TWISTY s, default 60; 0 skips it),
 # BASELINES (1: also RRT* max-min and RRTConnect on PROBLEMS and Twistycool in the same run; default 1). The maps'
 # baselines are clearance_table.sh's (bench/planning.md). Paths are not simplified (--no-simplify): the planners' own.
+# The benchmarks' own output goes to stderr, so stdout holds the table alone.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${1:-$here/../build}"
@@ -33,7 +34,7 @@ bench() {
     shift 4
     mkdir -p "$dir"
     nice "$benchmark" --cfg "$(cfg_of "$problem")" --checker certified-cmv --runs "$n" --time "$time" \
-        --seed "$seed" --no-simplify --out "$dir" "$@"
+        --seed "$seed" --no-simplify --out "$dir" "$@" >&2
 }
 
 started=$SECONDS
@@ -53,7 +54,7 @@ if [ "$twisty" != 0 ]; then
     if [ "$baselines" = 1 ]; then
         mkdir -p "$out/length.simplified"
         nice "$benchmark" --cfg "$(cfg_of Twistycool)" --checker certified-cmv --runs "$twisty" \
-            --time "${TIME_TWISTY:-60}" --seed "$seed" --out "$out/length.simplified" --planner rrtconnect
+            --time "${TIME_TWISTY:-60}" --seed "$seed" --out "$out/length.simplified" --planner rrtconnect >&2
     fi
 fi
 echo "wall time: $((SECONDS - started)) s (RUNS=$runs SEED=$seed)" >&2

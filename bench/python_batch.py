@@ -9,6 +9,10 @@ interpolates), then in interleaved rounds so machine load hits both alike:
 then 3. resident memory (VmRSS) over 10^6 queries (100 batches of the 10,000 poses).
 
     PYTHONPATH=build/python /usr/bin/python3 bench/python_batch.py [--build build] [--rounds 5] [--million]
+        [--data ../shared/data/omplapp] [--markdown]
+
+--markdown prints the medians as a Markdown table (the form bench/refresh.sh writes into bench/python.md; the rounds'
+lines are left out).
 """
 import argparse
 import os
@@ -63,10 +67,13 @@ def main():
     parser.add_argument("--rounds", type=int, default=5)
     parser.add_argument("--states", type=int, default=10000)
     parser.add_argument("--million", action="store_true", help="also 10^6 queries with VmRSS after each batch")
+    parser.add_argument("--data", default=DATA, help="the folder of OMPL.app's cubicles.cfg and cubicles.path")
+    parser.add_argument("--markdown", action="store_true", help="the medians as a Markdown table")
     args = parser.parse_args()
-    cfg = os.path.join(DATA, "cubicles.cfg")
+    say = (lambda *a: None) if args.markdown else print
+    cfg = os.path.join(args.data, "cubicles.cfg")
     scene = meshgap.Scene.from_cfg(cfg)
-    poses = interpolate(np.loadtxt(os.path.join(DATA, "cubicles.path")), args.states)
+    poses = interpolate(np.loadtxt(os.path.join(args.data, "cubicles.path")), args.states)
     loop = os.path.join(args.build, "bench", "meshgap_bench_path_loop")
     with tempfile.NamedTemporaryFile("w", suffix=".path", delete=False) as f:
         for p in poses:
@@ -94,30 +101,47 @@ def main():
         caller = time.thread_time() - own
         busiest.append(max(caller, two_cpu[-1] - caller))
         assert all(np.array_equal(result[k], two[k]) for k in result)
-        print("round %d: wall python %.2f us/query, C++ loop %.2f; CPU python %.2f, C++ %.2f; threads=1 %.3f s, "
+        say("round %d: wall python %.2f us/query, C++ loop %.2f; CPU python %.2f, C++ %.2f; threads=1 %.3f s, "
               "threads=2 %.3f s wall; load %.1f" % (r + 1, python_us[-1], cpp_us[-1], one_cpu[-1] / len(poses) * 1e6,
                                                    cpp_cpu_us[-1], one, two_s[-1], os.getloadavg()[0]))
     os.unlink(poses_file)
-    print("poses %d, certified %d, in collision %d, min distance %.6g" %
+    say("poses %d, certified %d, in collision %d, min distance %.6g" %
           (len(poses), result["certified"].sum(), result["in_collision"].sum(), result["distance"].min()))
     mp, mc = statistics.median(python_us), statistics.median(cpp_us)
-    print("median wall per query: python %.2f us, C++ %.2f us, ratio %.3f" % (mp, mc, mp / mc))
+    say("median wall per query: python %.2f us, C++ %.2f us, ratio %.3f" % (mp, mc, mp / mc))
     pc, cc = statistics.median(one_cpu) / len(poses) * 1e6, statistics.median(cpp_cpu_us)
-    print("median CPU per query: python %.2f us, C++ %.2f us, ratio %.3f" % (pc, cc, pc / cc))
+    say("median CPU per query: python %.2f us, C++ %.2f us, ratio %.3f" % (pc, cc, pc / cc))
     m1, m2 = statistics.median(one_s), statistics.median(two_s)
-    print("median wall: threads=1 %.3f s, threads=2 %.3f s, ratio %.3f" % (m1, m2, m2 / m1))
-    print("median CPU (both threads): threads=1 %.3f s, threads=2 %.3f s, ratio %.3f"
+    say("median wall: threads=1 %.3f s, threads=2 %.3f s, ratio %.3f" % (m1, m2, m2 / m1))
+    say("median CPU (both threads): threads=1 %.3f s, threads=2 %.3f s, ratio %.3f"
           % (statistics.median(one_cpu), statistics.median(two_cpu),
              statistics.median(two_cpu) / statistics.median(one_cpu)))
-    print("median CPU of the busier thread with threads=2: %.3f s, %.3f of threads=1's CPU time"
+    say("median CPU of the busier thread with threads=2: %.3f s, %.3f of threads=1's CPU time"
           % (statistics.median(busiest), statistics.median(busiest) / statistics.median(one_cpu)))
+    rss = []
     if args.million:
         rss = [rss_mib()]
         for b in range(100):
             scene.distance(poses, threads=1)
             rss.append(rss_mib())
-        print("VmRSS MiB: before %.1f, after 1 batch %.1f, after 10 %.1f, after 50 %.1f, after 100 (10^6 queries) %.1f"
+        say("VmRSS MiB: before %.1f, after 1 batch %.1f, after 10 %.1f, after 50 %.1f, after 100 (10^6 queries) %.1f"
               % (rss[0], rss[1], rss[10], rss[50], rss[100]))
+
+    if args.markdown:
+        one_cpu_median = statistics.median(one_cpu)
+        print("The module's batch against the C++ loop over %d poses of cubicles' path (%d certified, %d colliding), "
+              "and threads=2 against threads=1; medians of %d round(s):\n"
+              % (len(poses), result["certified"].sum(), result["in_collision"].sum(), args.rounds))
+        print("| | median |")
+        print("|---|---:|")
+        print("| Python batch / C++ loop, per query, CPU time | **%.2f** (%.2f / %.2f µs) |" % (pc / cc, pc, cc))
+        print("| Python batch / C++ loop, per query, wall time | %.2f (%.2f / %.2f µs) |" % (mp / mc, mp, mc))
+        print("| threads=2 / threads=1, wall time | **%.2f** (%.3f / %.3f s) |" % (m2 / m1, m2, m1))
+        print("| busier thread / one-thread CPU time | %.2f |" % (statistics.median(busiest) / one_cpu_median))
+        if rss:
+            print("| VmRSS before the first batch and after 1, 10, 50, 100 batches (%s queries) | %s MiB |"
+                  % ("10^6" if len(poses) == 10000 else "{:,}".format(100 * len(poses)),
+                     " / ".join("%.1f" % rss[k] for k in (0, 1, 10, 50, 100))))
 
 
 if __name__ == "__main__":

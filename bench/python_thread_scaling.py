@@ -8,7 +8,10 @@ Streams: "path" (OMPL.app cubicles' .path interpolated to --states poses, warm c
 warm start across the blocks it takes) or "random" (uniform poses in the cfg's volume, random rotations, fixed seed).
 
     PYTHONPATH=build/python /usr/bin/python3 bench/python_thread_scaling.py [--threads 2] [--states 20000]
-        [--reps 5] [--repeat 10] [--stream path|random] [--cfg ../shared/data/omplapp/cubicles.cfg]
+        [--reps 5] [--repeat 10] [--stream path|random] [--cfg ../shared/data/omplapp/cubicles.cfg] [--markdown]
+
+--markdown prints the medians as one Markdown table row, under its header (the form bench/refresh.sh writes into
+bench/scaling.md; the runs' lines are left out).
 """
 import argparse
 import json
@@ -85,6 +88,7 @@ def main():
     parser.add_argument("--repeat", type=int, default=10, help="batches each process answers in a run")
     parser.add_argument("--stream", choices=["path", "random"], default="path")
     parser.add_argument("--cfg", default=os.path.join(DATA, "cubicles.cfg"))
+    parser.add_argument("--markdown", action="store_true", help="the medians as a Markdown table")
     parser.add_argument("--child", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--first", type=int, default=0, help=argparse.SUPPRESS)
     parser.add_argument("--last", type=int, default=0, help=argparse.SUPPRESS)
@@ -99,9 +103,18 @@ def main():
         separate, separate_cpu = run(args, args.threads, 1)
         ratios.append(threaded / separate)
         cpu_ratios.append(threaded_cpu / separate_cpu)
-        print("run %d: %d threads %.0f poses/s (CPU %.2f s), %d processes %.0f poses/s (CPU %.2f s); load %.1f"
-              % (r + 1, args.threads, threaded, threaded_cpu, args.threads, separate, separate_cpu,
-                 os.getloadavg()[0]), flush=True)
+        if not args.markdown:
+            print("run %d: %d threads %.0f poses/s (CPU %.2f s), %d processes %.0f poses/s (CPU %.2f s); load %.1f"
+                  % (r + 1, args.threads, threaded, threaded_cpu, args.threads, separate, separate_cpu,
+                     os.getloadavg()[0]), flush=True)
+    if args.markdown:
+        print("Python batch, threads against processes (medians of the runs):\n")
+        print("| stream | threads | poses x batches | runs | threads / processes, throughput | CPU time |")
+        print("|---|---:|---:|---:|---:|---:|")
+        print("| %s | %d | %d x %d | %d | **%.2f** | %.2f |" % (
+            args.stream, args.threads, args.states, args.repeat, args.reps, statistics.median(ratios),
+            statistics.median(cpu_ratios)))
+        return
     print("median throughput, threads / processes: %.2f; CPU time, threads / processes: %.2f"
           % (statistics.median(ratios), statistics.median(cpu_ratios)))
 

@@ -10,9 +10,11 @@
 #   bench/refresh.sh --dry-run    every block written from made-up output into copies of the pages, then checked
 #                                 (no build, no benchmark run: what the ctest entry runs)
 #
-# --quick: small counts, a minute or two in all on 2 cores; without it the counts of the by-hand tables (an hour or so).
+# --quick: small counts, about a quarter of an hour in all on 2 cores; without it the counts of the by-hand tables
+# (two hours or so: the planning, optimiser and MotionBenchMaker blocks take most of it).
 # The shared data (../shared/data) is optional: without it the query table runs on maps/ alone and the load table on
-# the test meshes.
+# the test meshes, and the blocks that need its robots, MotionBenchMaker's problems or OMPL.app's cubicles (the Python
+# blocks) are left out, as is the Dask block where /usr/bin/python3 has no `distributed`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -25,7 +27,7 @@ while [ $# -gt 0 ]; do
         --no-build) nobuild=1 ;;
         --dry-run) dry=1 ;;
         --list) list=1 ;;
-        -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "bench/refresh.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift
@@ -103,9 +105,63 @@ if [ -f "$shared/mbm/ur5/problems.tar.bz2" ]; then
     suite="$suite --out \$(mktemp -d) 2>/dev/null"
     add mbm_suite bench/motionbenchmaker.md meshgap_benchmark "$suite" "$suite --limit 2"
 fi
+py="PYTHONPATH=$build/python /usr/bin/python3"
+if [ -f "$shared/omplapp/cubicles.cfg" ]; then
+    # The Python module's batch on cubicles' path against the C++ loop, and threads against processes.
+    add python_batch bench/python.md "meshgap_python meshgap_bench_path_loop" \
+        "$py bench/python_batch.py --build $build --data $shared/omplapp --rounds 9 --million --markdown" \
+        "$py bench/python_batch.py --build $build --data $shared/omplapp --rounds 3 --million --markdown"
+    pts="$py bench/python_thread_scaling.py --markdown --cfg $shared/omplapp/cubicles.cfg"
+    add python_thread_scaling bench/scaling.md meshgap_python \
+        "{ $pts --reps 5 --states 20000 --repeat 20 && $pts --reps 5 --states 4000 --repeat 2 --stream random; } | awk '!seen[\$0]++'" \
+        "{ $pts --reps 3 --states 5000 --repeat 10 && $pts --reps 3 --states 1000 --repeat 2 --stream random; } | awk '!seen[\$0]++'"
+    if /usr/bin/python3 -c 'import distributed' 2>/dev/null; then
+        dask="PYTHONPATH=$build/python nice -n 5 /usr/bin/python3 bench/dask_throughput.py"
+        dask="$dask --problems maps/hand_bowl/hand_bowl.cfg,$shared/omplapp/cubicles.cfg"
+        add dask bench/python.md meshgap_python "$dask" "$dask --poses 4000 --rounds 1 --chunks 100,1000"
+    fi
+fi
+fve="PYTHONPATH=$build/python /usr/bin/python3 bench/fast_vs_exact.py --markdown maps/{hand_bowl,twisted,slotted_wall}/*.cfg"
+[ -d "$shared/omplapp" ] && fve="$fve $shared/omplapp/{cubicles,Twistycool,Easy}.cfg"
+add fast_vs_exact bench/queries.md meshgap_python "$fve --poses 1000 --rounds 5" "$fve --poses 200 --rounds 1"
+add mesh_distances bench/mesh_distances.md meshgap_bench_mesh_distances \
+    "$B/meshgap_bench_mesh_distances" "$B/meshgap_bench_mesh_distances --dense 13 26 --on-demand 13 26 52"
+# Robot planning over seeds, each path checked by FCL pair by pair and its motions certified anew (the maps' robots;
+# the optimiser's also the fanuc when ../shared/data/robots holds it).
+add robot_plan_seeds bench/robots.md "meshgap_plan meshgap_bench_robot_path_check" \
+    "bench/robot_plan_seeds.sh $build 10 20 1e-4" "bench/robot_plan_seeds.sh $build 3 10 1e-3"
+add robot_checkers bench/robots.md meshgap_benchmark \
+    "RUNS=10 TIME=10 CHECKERS=certified,certified-search,discrete,fcl PROBLEMS=arm_fixture bench/run_planning_benchmark.sh $build \$(mktemp -d)" \
+    "RUNS=3 TIME=10 CHECKERS=certified,certified-search,discrete,fcl PROBLEMS=arm_fixture bench/run_planning_benchmark.sh $build \$(mktemp -d)"
+add robot_optimize_seeds bench/robots.md "meshgap_plan meshgap_bench_robot_path_check" \
+    "bench/robot_optimize_seeds.sh $build 10 60 1e-4" "bench/robot_optimize_seeds.sh $build 2 10 1e-3"
+if [ -d "$shared/omplapp" ]; then
+    # Planning: RRTConnect with each checker; the samplers on slotted_wall; RRT* against RRTConnect on the maps; the
+    # clearance optimiser. Each run's .log files go to a folder of its own under /tmp.
+    add rrtconnect_checkers bench/planning.md meshgap_benchmark \
+        "RUNS=10 TIME=10 CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)" \
+        "RUNS=3 TIME=10 CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)"
+    add rrtstar_checkers bench/planning.md meshgap_benchmark \
+        "RUNS=3 TIME=5 PLANNERS=rrtstar ARGS='--objective max_min_clearance' CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)" \
+        "RUNS=1 TIME=5 PLANNERS=rrtstar ARGS='--objective max_min_clearance' CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)"
+    add sampler_slotted_wall bench/planning.md meshgap_benchmark \
+        "PLANNER=biest bench/sampler_table.sh $build \$(mktemp -d)" \
+        "PLANNER=biest RUNS=1 TIME=5 bench/sampler_table.sh $build \$(mktemp -d)"
+    add clearance_maps bench/planning.md meshgap_benchmark \
+        "PART=clearance bench/clearance_table.sh $build \$(mktemp -d)" \
+        "PART=clearance RUNS=2 TIME=5 bench/clearance_table.sh $build \$(mktemp -d)"
+    add optimizer bench/planning.md meshgap_benchmark \
+        "bench/optimizer_table.sh $build \$(mktemp -d)" \
+        "RUNS=2 TIME_MAPS=5 TIME_PROBLEMS=3 TWISTY=1 TIME_TWISTY=20 bench/optimizer_table.sh $build \$(mktemp -d)"
+fi
+add thread_scaling bench/scaling.md meshgap_bench_stress \
+    "bench/thread_scaling.sh --markdown $build 2 400000 5" "bench/thread_scaling.sh --markdown $build 2 100000 3"
 add scaling bench/scaling.md meshgap_bench_scaling \
     "$B/meshgap_bench_scaling" \
     "$B/meshgap_bench_scaling --max 16384 --poses 50 --fast-on-demand 3"
+add scaling_twisted bench/scaling.md meshgap_bench_scaling \
+    "$B/meshgap_bench_scaling --map maps/twisted --max 16384 --poses 50 --fast-on-demand 10" \
+    "$B/meshgap_bench_scaling --map maps/twisted --max 4096 --poses 20 --fast-on-demand 3"
 add stress bench/scaling.md meshgap_bench_stress \
     "$B/meshgap_bench_stress --queries 1000000 --threads 2" \
     "$B/meshgap_bench_stress --queries 200000 --threads 2"

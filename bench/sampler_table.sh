@@ -7,7 +7,8 @@
 #
 # Settings (environment): PROBLEMS (default "slotted_wall"; maps/ or ../shared/data/omplapp names, or paths of
 # .cfg files), RUNS (3), TIME (10 s a run), SEED (1), PLANNER (prm), SAMPLERS (all eight),
-# SHARDS (1: the grid in that many processes at once; shard i seeds with SEED + i - 1).
+# SHARDS (1: the grid in that many processes at once; shard i seeds with SEED + i - 1). The benchmarks' own output
+# goes to stderr, so stdout holds the table alone.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${1:-$here/../build}"
@@ -26,7 +27,7 @@ for problem in ${PROBLEMS:-slotted_wall}; do
     shards="${SHARDS:-1}"
     for ((i = 1; i <= shards; ++i)); do
         nice "$benchmark" --cfg "$cfg" --planner "${PLANNER:-prm}" --checker certified --sampler "$samplers" \
-            --runs "${RUNS:-3}" --time "${TIME:-10}" --seed "${SEED:-1}" --shard "$i/$shards" --out "$out" &
+            --runs "${RUNS:-3}" --time "${TIME:-10}" --seed "${SEED:-1}" --shard "$i/$shards" --out "$out" >&2 &
     done
     wait
 done
