@@ -317,7 +317,7 @@ namespace
         p.pathNote = source.path.filename().string() + " then goal";
         LoadReport report;
         loadRobotMesh(p.config.robot, p.config.planar, &report);
-        Eigen::Vector3d c = report.omplAppCenter;
+        Eigen::Vector3d c = report.omplAppCenter.value();
         if (p.config.planar)
             c.z() = 0.0;
         for (Eigen::Isometry3d X : readPoses(source.path.string()))

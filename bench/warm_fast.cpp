@@ -173,7 +173,7 @@ static int run(int argc, char **argv)
             loadRobotMesh(p.config.robot, &report);
             for (Eigen::Isometry3d X : readPoses(poses.string()))
             {
-                X.translate(report.omplAppCenter);
+                X.translate(report.omplAppCenter.value());
                 p.path.push_back(X);
             }
             if (p.config.goal)

@@ -346,8 +346,8 @@ namespace meshgap
             }
         }
 
-        /** \brief The bytes after the first as a file with extension obj, stl or ply (chosen by the first byte)
-            through loadMesh() (assimp, then our welding and cleaning). */
+        /** \brief The bytes after the first as a file with extension obj, stl or ply (chosen by the first byte, as is
+            whether OMPL.app's centre is asked for) through loadMesh() (assimp, then our welding and cleaning). */
         inline Outcome loader(const std::uint8_t *data, std::size_t size)
         {
             QuietLog quiet;
@@ -358,8 +358,12 @@ namespace meshgap
             try
             {
                 LoadReport report;
-                const Mesh m = loadMesh(path, &report);
+                LoadOptions options;
+                options.omplAppCenter = size > 0 && (data[0] / 3) % 2 == 1;
+                const Mesh m = loadMesh(path, &report, options);
                 m.validate();
+                check(report.omplAppCenter.has_value() == options.omplAppCenter,
+                      "loadMesh: the centre is there exactly when asked for");
                 checkCleanMesh(m, "loadMesh");
                 check(!m.triangles.empty(), "loadMesh: returned no triangles");
                 check(report.clean.degenerate + report.clean.duplicates + m.triangles.size() == report.rawTriangles,

@@ -114,8 +114,10 @@ namespace meshgap
                 // state that puts B where its pose X does is X * translate(c), read from the file just written with
                 // meshgap's own loader.
                 LoadReport robotReport;
-                loadMesh((directory / (s.name + "_b.obj")).string(), &robotReport);
-                const Eigen::Isometry3d toState = pose(robotReport.omplAppCenter);
+                LoadOptions centre;
+                centre.omplAppCenter = true;
+                loadMesh((directory / (s.name + "_b.obj")).string(), &robotReport, centre);
+                const Eigen::Isometry3d toState = pose(robotReport.omplAppCenter.value());
                 writeState(cfg, "start", start * toState);
                 writeState(cfg, "goal", s.goal * toState);
                 const char *axes = "xyz";

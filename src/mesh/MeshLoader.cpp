@@ -124,7 +124,7 @@ namespace meshgap
                       name.c_str(), edges.boundaryEdges, edges.nonManifoldEdges);
     }
 
-    Mesh loadMesh(const std::string &path, LoadReport *reportOut)
+    Mesh loadMesh(const std::string &path, LoadReport *reportOut, const LoadOptions &options)
     {
         namespace fs = std::filesystem;
         std::error_code ec;
@@ -137,9 +137,13 @@ namespace meshgap
         Assimp::Importer importer;
         // OMPL.app's post-processing, plus assimp's own validation, which runs first: without it a face index out of
         // range (a corrupt binary PLY, say) reaches the other steps and crashes inside assimp. It only checks.
-        const unsigned int flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate |
-                                   aiProcess_JoinIdenticalVertices | aiProcess_SortByPType | aiProcess_OptimizeGraph |
-                                   aiProcess_GenNormals;
+        // GenNormals gives each corner its face's normal and JoinIdenticalVertices joins equal (position, normal)
+        // pairs: they change only which copies of a position assimp returns, which the weld below makes one anyway,
+        // but OMPL.app's centre is the mean of those copies, so they run only when it is asked for.
+        unsigned int flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_SortByPType |
+                             aiProcess_OptimizeGraph;
+        if (options.omplAppCenter)
+            flags |= aiProcess_JoinIdenticalVertices | aiProcess_GenNormals;
         const aiScene *scene = importer.ReadFile(path, flags);
         if (scene == nullptr)
         {
@@ -168,7 +172,7 @@ namespace meshgap
         const std::string where = excerpt(path);
         Collector collector{scene, where, mesh, report};
         collector.visit(scene->mRootNode, aiMatrix4x4());
-        if (report.rawVertices > 0)
+        if (options.omplAppCenter && report.rawVertices > 0)
         {
             aiVector3D c = collector.centerSum;
             c /= static_cast<float>(report.rawVertices);

@@ -10,10 +10,12 @@ namespace meshgap
         Mesh centred(const std::string &path, LoadReport *reportOut, bool shiftZ)
         {
             LoadReport report;
-            Mesh mesh = loadMesh(path, &report);
-            const float cx = static_cast<float>(report.omplAppCenter.x()),
-                        cy = static_cast<float>(report.omplAppCenter.y()),
-                        cz = shiftZ ? static_cast<float>(report.omplAppCenter.z()) : 0.0f;
+            LoadOptions options;
+            options.omplAppCenter = true;
+            Mesh mesh = loadMesh(path, &report, options);
+            const Eigen::Vector3d &c = report.omplAppCenter.value();
+            const float cx = static_cast<float>(c.x()), cy = static_cast<float>(c.y()),
+                        cz = shiftZ ? static_cast<float>(c.z()) : 0.0f;
             for (Eigen::Vector3d &v : mesh.vertices)
                 v = Eigen::Vector3d(static_cast<float>(v.x()) - cx, static_cast<float>(v.y()) - cy,
                                     shiftZ ? static_cast<double>(static_cast<float>(v.z()) - cz) : v.z());

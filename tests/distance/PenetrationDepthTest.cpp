@@ -458,7 +458,7 @@ TEST(PenetrationDepth, WarmStartGivesTheColdEstimateAlongCollidingMotions)
     ASSERT_EQ(scene->obstacles().size(), 1u);
     std::vector<Eigen::Isometry3d> path;
     for (Eigen::Isometry3d X : readPoses((dir / "slotted_wall.poses").string()))
-        path.push_back(X.translate(report.omplAppCenter));
+        path.push_back(X.translate(report.omplAppCenter.value()));
     ASSERT_TRUE(config.goal);
     path.push_back(*config.goal);
     std::vector<Eigen::Isometry3d> states;

@@ -1,14 +1,17 @@
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <vector>
 #include <unistd.h>
 
 #include "meshgap/Exception.h"
 #include "meshgap/mesh/MeshLoader.h"
 
 using namespace meshgap;
+namespace fs = std::filesystem;
 
 namespace
 {
@@ -17,14 +20,17 @@ namespace
     void expectUnitCube(const std::string &file)
     {
         LoadReport report;
-        const Mesh m = loadMesh(RES + "/" + file, &report);
+        LoadOptions centre;
+        centre.omplAppCenter = true;
+        const Mesh m = loadMesh(RES + "/" + file, &report, centre);
         EXPECT_EQ(m.vertices.size(), 8u) << file;
         EXPECT_EQ(m.triangles.size(), 12u) << file;
         EXPECT_EQ(report.components, 1u) << file;
         EXPECT_EQ(countComponents(m), 1u) << file;
         EXPECT_EQ(m.bounds().min(), Eigen::Vector3d(0, 0, 0)) << file;
         EXPECT_EQ(m.bounds().max(), Eigen::Vector3d(1, 1, 1)) << file;
-        EXPECT_TRUE(report.omplAppCenter.isApprox(Eigen::Vector3d(0.5, 0.5, 0.5), 1e-6)) << file;
+        ASSERT_TRUE(report.omplAppCenter) << file;
+        EXPECT_TRUE(report.omplAppCenter->isApprox(Eigen::Vector3d(0.5, 0.5, 0.5), 1e-6)) << file;
         // Outward winding survives: positive enclosed volume of 1.
         double volume = 0.0;
         for (const Triangle &t : m.triangles)
@@ -39,6 +45,49 @@ TEST(MeshLoader, EveryFormatGivesTheWeldedCube)
     expectUnitCube("cube_ascii.stl");   // a vertex per facet corner: welded
     expectUnitCube("cube_binary.stl");
     expectUnitCube("cube.ply");
+}
+
+TEST(MeshLoader, OmplAppsNormalsStepChangesOnlyTheCentre)
+{
+    // Without LoadOptions::omplAppCenter assimp skips GenNormals and JoinIdenticalVertices and the weld joins the
+    // copies alone: every mesh file of the tests, maps/ and (when present) ../shared/data must load to the same
+    // vertices, in the same order, the same triangles and the same report counts either way.
+    std::vector<fs::path> files;
+    for (const fs::path &root : {fs::path(RES), fs::path(MESHGAP_SOURCE_DIR) / "maps",
+                                 fs::path(MESHGAP_SHARED_DATA_DIR)})
+    {
+        if (!fs::exists(root))
+            continue;
+        for (const auto &entry : fs::recursive_directory_iterator(root))
+        {
+            std::string ext = entry.path().extension().string();
+            for (char &c : ext)
+                c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+            const bool bad = entry.path().parent_path().filename() == "bad";
+            if (entry.is_regular_file() && !bad && (ext == ".obj" || ext == ".stl" || ext == ".dae" || ext == ".ply"))
+                files.push_back(entry.path());
+        }
+    }
+    ASSERT_GE(files.size(), 10u);
+    LoadOptions centre;
+    centre.omplAppCenter = true;
+    for (const fs::path &file : files)
+    {
+        LoadReport plain, omplApp;
+        const Mesh a = loadMesh(file.string(), &plain), b = loadMesh(file.string(), &omplApp, centre);
+        EXPECT_FALSE(plain.omplAppCenter) << file;
+        EXPECT_TRUE(omplApp.omplAppCenter) << file;
+        EXPECT_EQ(a.vertices, b.vertices) << file;
+        EXPECT_EQ(a.triangles, b.triangles) << file;
+        EXPECT_EQ(plain.rawTriangles, omplApp.rawTriangles) << file;
+        EXPECT_EQ(plain.skippedPrimitives, omplApp.skippedPrimitives) << file;
+        EXPECT_EQ(plain.clean.degenerate, omplApp.clean.degenerate) << file;
+        EXPECT_EQ(plain.clean.duplicates, omplApp.clean.duplicates) << file;
+        EXPECT_EQ(plain.components, omplApp.components) << file;
+        EXPECT_EQ(plain.edges.boundaryEdges, omplApp.edges.boundaryEdges) << file;
+        EXPECT_EQ(plain.edges.nonManifoldEdges, omplApp.edges.nonManifoldEdges) << file;
+        EXPECT_GE(plain.rawVertices, omplApp.rawVertices) << file;  // the copies the join step merged
+    }
 }
 
 TEST(MeshLoader, ColladaNodeTransformAndUpAxisAreApplied)

@@ -46,9 +46,12 @@ namespace
                                    "[planner]\nrrtconnect=\n";
             // The robot as OMPL.app's 2D problems place it, built here: shifted by its centre's x and y only.
             LoadReport report;
-            Mesh robot = loadMesh((dir_ / "bar.obj").string(), &report);
+            LoadOptions centre;
+            centre.omplAppCenter = true;
+            Mesh robot = loadMesh((dir_ / "bar.obj").string(), &report, centre);
+            const Eigen::Vector3d c = report.omplAppCenter.value();
             for (Eigen::Vector3d &v : robot.vertices)
-                v -= Eigen::Vector3d(report.omplAppCenter.x(), report.omplAppCenter.y(), 0.0);
+                v -= Eigen::Vector3d(c.x(), c.y(), 0.0);
             fclWorld_ = test::fclModel(world_);
             fclRobot_ = test::fclModel(robot);
         }
