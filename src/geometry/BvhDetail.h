@@ -135,13 +135,22 @@ namespace meshgap
                                  double enough = std::numeric_limits<double>::infinity())
         {
             const PlacedNode &placed = X.place(b);
-            const Eigen::Vector3d offset = placed.center - a.center;  // P may point to it: it must outlive P
-            const BoxPair P(a, placed, offset);
-            const double pad = 1e-12 * (P.T->cwiseAbs().sum() + a.half.sum() + b.half.sum());
-            const double bound = boxbound::gapAlongNearest(a.half, b.half, *P.C, *P.T, pad);
-            if (bound > enough)
-                return bound;
-            return std::max(bound, boxbound::gapOnFacesOfB(a.half, b.half, *P.C, *P.T, pad));
+            const Eigen::Vector3d offset = placed.center - a.center;
+            return boxbound::pairBound({&a.half, &b.half, a.aligned ? nullptr : &a.axes, &placed.axes, &offset},
+                                       enough);
+        }
+
+        /** \brief lowerBound() of the node pairs (a0, b0) and (a1, b1) at once (boxbound::pairBounds(): both in the
+            lanes of one vector register): \e out[k] is pair \e k's. */
+        inline void lowerBounds(const TriangleBvh::Node &a0, const TriangleBvh::Node &b0, const TriangleBvh::Node &a1,
+                                const TriangleBvh::Node &b1, const RelativePose &X, double enough, double out[2])
+        {
+            const PlacedNode &placed0 = X.place(b0);
+            const PlacedNode &placed1 = X.place(b1);  // another cache entry (or the same node): placed0 stays valid
+            const Eigen::Vector3d offset0 = placed0.center - a0.center, offset1 = placed1.center - a1.center;
+            boxbound::pairBounds({&a0.half, &b0.half, a0.aligned ? nullptr : &a0.axes, &placed0.axes, &offset0},
+                                 {&a1.half, &b1.half, a1.aligned ? nullptr : &a1.axes, &placed1.axes, &offset1}, enough,
+                                 out);
         }
 
         /** \brief The gap between triangles p and q along unit axis \e n, either way round, and that axis pointing

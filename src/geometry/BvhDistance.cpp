@@ -14,6 +14,7 @@ namespace meshgap
 {
     using bvh::afterUse;
     using bvh::lowerBound;
+    using bvh::lowerBounds;
     using bvh::PairEntry;
     using bvh::RelativePose;
     using bvh::Separation;
@@ -336,16 +337,17 @@ namespace meshgap
                 }
                 // A child above the best so far is pruned whatever its exact bound: stop computing it there. The
                 // children sorted by bound, the greatest first (pushed first: the nearest ends on top).
+                // Two pairs at a time (lowerBounds(): one vector register's two lanes).
                 std::array<double, 4> bounds;
-                for (std::size_t k = 0; k < count; ++k)
-                {
-                    bounds[k] = lowerBound(a_.nodes()[children[k].a], b_.nodes()[children[k].b], X_, exitAbove());
+                for (std::size_t k = 0; k < count; k += 2)
+                    lowerBounds(a_.nodes()[children[k].a], b_.nodes()[children[k].b], a_.nodes()[children[k + 1].a],
+                                b_.nodes()[children[k + 1].b], X_, exitAbove(), &bounds[k]);
+                for (std::size_t k = 1; k < count; ++k)
                     for (std::size_t m = k; m > 0 && bounds[m - 1] < bounds[m]; --m)
                     {
                         std::swap(bounds[m - 1], bounds[m]);
                         std::swap(children[m - 1], children[m]);
                     }
-                }
                 result_.boxTests += count;
                 for (std::size_t k = 0; k < count; ++k)
                 {
