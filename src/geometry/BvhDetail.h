@@ -141,16 +141,18 @@ namespace meshgap
         }
 
         /** \brief lowerBound() of the node pairs (a0, b0) and (a1, b1) at once (boxbound::pairBounds(): both in the
-            lanes of one vector register): \e out[k] is pair \e k's. */
+            lanes of one vector register): \e out[k] is pair \e k's; with FACES false, the gap along the nearest
+            direction alone (a lower bound all the same). */
+        template <bool FACES = true>
         inline void lowerBounds(const TriangleBvh::Node &a0, const TriangleBvh::Node &b0, const TriangleBvh::Node &a1,
                                 const TriangleBvh::Node &b1, const RelativePose &X, double enough, double out[2])
         {
             const PlacedNode &placed0 = X.place(b0);
             const PlacedNode &placed1 = X.place(b1);  // another cache entry (or the same node): placed0 stays valid
             const Eigen::Vector3d offset0 = placed0.center - a0.center, offset1 = placed1.center - a1.center;
-            boxbound::pairBounds({&a0.half, &b0.half, a0.aligned ? nullptr : &a0.axes, &placed0.axes, &offset0},
-                                 {&a1.half, &b1.half, a1.aligned ? nullptr : &a1.axes, &placed1.axes, &offset1}, enough,
-                                 out);
+            boxbound::pairBounds<FACES>(
+                {&a0.half, &b0.half, a0.aligned ? nullptr : &a0.axes, &placed0.axes, &offset0},
+                {&a1.half, &b1.half, a1.aligned ? nullptr : &a1.axes, &placed1.axes, &offset1}, enough, out);
         }
 
         /** \brief The gap between triangles p and q along unit axis \e n, either way round, and that axis pointing

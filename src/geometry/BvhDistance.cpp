@@ -337,11 +337,16 @@ namespace meshgap
                 }
                 // A child above the best so far is pruned whatever its exact bound: stop computing it there. The
                 // children sorted by bound, the greatest first (pushed first: the nearest ends on top).
-                // Two pairs at a time (lowerBounds(): one vector register's two lanes).
+                // Two pairs at a time (lowerBounds(): one vector register's two lanes). Without a front to keep, by
+                // the gap along the nearest direction alone: the gap on B's faces, worked out for both lanes when
+                // either is not pruned, cost more than the pairs it pruned (bench/queries.md, "Box-pair bounds two at
+                // a time"). A front keeps both, as before: its entries' bounds are reused at later poses.
+                // (Called through a pointer: two calls here made the traversal's loop too long to inline its pushes.)
+                const auto boundTwo = record_ ? &lowerBounds<true> : &lowerBounds<false>;
                 std::array<double, 4> bounds;
                 for (std::size_t k = 0; k < count; k += 2)
-                    lowerBounds(a_.nodes()[children[k].a], b_.nodes()[children[k].b], a_.nodes()[children[k + 1].a],
-                                b_.nodes()[children[k + 1].b], X_, exitAbove(), &bounds[k]);
+                    boundTwo(a_.nodes()[children[k].a], b_.nodes()[children[k].b], a_.nodes()[children[k + 1].a],
+                             b_.nodes()[children[k + 1].b], X_, exitAbove(), &bounds[k]);
                 for (std::size_t k = 1; k < count; ++k)
                     for (std::size_t m = k; m > 0 && bounds[m - 1] < bounds[m]; --m)
                     {

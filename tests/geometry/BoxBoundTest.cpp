@@ -122,7 +122,7 @@ TEST(BoxBound, NeverAboveTheDistanceOfTwoBoxesFlatOrNot)
 TEST(BoxBound, TwoPairsAtOnceGiveEachPairsOwnBound)
 {
     // pairBounds() (both pairs in one vector register where SSE2 is there) against pairBound() on each pair: the same
-    // value, bit for bit, whether both pairs are pruned at the nearest direction, one, or neither; given B seen from A
+    // value, bit for bit (with B's faces or without), whether both pairs are pruned at the nearest direction, one, or neither; given B seen from A
     // (C, T) or as the traversals hold the nodes (A's axes or none, B's placed axes, the centres' offset), with A
     // aligned in both pairs, one or neither; and never above a real point pair's distance. Flat boxes, overlapping
     // and concentric ones.
@@ -164,13 +164,16 @@ TEST(BoxBound, TwoPairsAtOnceGiveEachPairsOwnBound)
         boxbound::NodePairView held[2];
         for (int k = 0; k < 2; ++k)
             held[k] = {&c[k].ha, &c[k].hb, c[k].aligned ? nullptr : &c[k].axesA, &c[k].axesB, &c[k].offset};
-        double fromSeen[2], fromHeld[2];
+        double fromSeen[2], fromHeld[2], nearest[2];
         boxbound::pairBounds(seen[0], seen[1], enough, fromSeen);
         boxbound::pairBounds(held[0], held[1], enough, fromHeld);
+        boxbound::pairBounds<false>(held[0], held[1], enough, nearest);  // the nearest direction's gap alone
         for (int k = 0; k < 2; ++k)
         {
             ASSERT_EQ(fromSeen[k], boxbound::pairBound(seen[k], enough)) << "trial " << trial << ", pair " << k;
             ASSERT_EQ(fromHeld[k], boxbound::pairBound(held[k], enough)) << "trial " << trial << ", pair " << k;
+            ASSERT_EQ(nearest[k], boxbound::pairBound<false>(held[k], enough)) << "trial " << trial << ", pair " << k;
+            ASSERT_LE(nearest[k], fromHeld[k]) << "trial " << trial << ", pair " << k;
             const double distance = nearPairDistance(c[k].ha, c[k].hb, c[k].C, c[k].T) + 1e-12;
             ASSERT_LE(fromSeen[k], distance) << "trial " << trial << ", pair " << k;
             ASSERT_LE(fromHeld[k], distance) << "trial " << trial << ", pair " << k;

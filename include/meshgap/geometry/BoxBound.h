@@ -153,8 +153,9 @@ namespace meshgap
             /** \brief The bound of the box pair(s) in the lanes (C[i][j] = C(i, j)), padded for roundoff by 1e-12
                 of the sum of |T|, ha and hb: the gap along the nearest direction (gapAlongNearest()) and, unless that
                 is above \e enough in every lane, the better of it and the gap on B's faces (gapOnFacesOfB(), |C|
-                padded), the latter kept only in the lanes where the former is not above \e enough. */
-            template <typename L>
+                padded), the latter kept only in the lanes where the former is not above \e enough. Without FACES,
+                the gap along the nearest direction alone. */
+            template <bool FACES, typename L>
             MESHGAP_BOX_BOUND_INLINE L bound(const L *ha, const L *hb, const L (*C)[3], const L *T, double enough)
             {
                 const L zero = all(0.0, T[0]);
@@ -187,7 +188,7 @@ namespace meshgap
                 const L nearest =
                     select(greater(length, zero), gap, all(-std::numeric_limits<double>::infinity(), zero));
                 const auto pruned = greater(nearest, all(enough, zero));
-                if (every(pruned))
+                if (!FACES || every(pruned))
                     return nearest;
                 // The gaps g_j on B's face axes: the norm of the positive ones, or the largest when none is.
                 L g[3], positive[3];
@@ -209,6 +210,7 @@ namespace meshgap
 
         /** \brief The traversals' bound on one box pair (lanes::bound()): a lower bound on the boxes' distance; once
             the nearest direction's gap is above \e enough, that gap alone. */
+        template <bool FACES = true>
         MESHGAP_BOX_BOUND_INLINE double pairBound(const BoxPairView &p, double enough)
         {
             double ha[3], hb[3], T[3], C[3][3];
@@ -220,11 +222,12 @@ namespace meshgap
                 for (int j = 0; j < 3; ++j)
                     C[i][j] = (*p.C)(i, j);
             }
-            return lanes::bound(ha, hb, C, T, enough);
+            return lanes::bound<FACES>(ha, hb, C, T, enough);
         }
 
         /** \brief pairBound() of two box pairs at once (both in one SSE2 register where there is one): \e out[k] is
             pair \e k's, the same bit for bit. */
+        template <bool FACES = true>
         MESHGAP_BOX_BOUND_INLINE void pairBounds(const BoxPairView &p0, const BoxPairView &p1, double enough,
                                                  double out[2])
         {
@@ -239,17 +242,18 @@ namespace meshgap
                 for (int j = 0; j < 3; ++j)
                     C[i][j] = _mm_set_pd((*p1.C)(i, j), (*p0.C)(i, j));
             }
-            const V bound = lanes::bound(ha, hb, C, T, enough);
+            const V bound = lanes::bound<FACES>(ha, hb, C, T, enough);
             _mm_storel_pd(&out[0], bound);
             _mm_storeh_pd(&out[1], bound);
 #else
-            out[0] = pairBound(p0, enough);
-            out[1] = pairBound(p1, enough);
+            out[0] = pairBound<FACES>(p0, enough);
+            out[1] = pairBound<FACES>(p1, enough);
 #endif
         }
 
         /** \brief pairBound() of a box pair as the traversals hold it (NodePairView: C and T worked out here, in the
             lanes' order of operations). */
+        template <bool FACES = true>
         MESHGAP_BOX_BOUND_INLINE double pairBound(const NodePairView &p, double enough)
         {
             double ha[3], hb[3], T[3], C[3][3];
@@ -279,12 +283,13 @@ namespace meshgap
                 }
                 lanes::relative(A, P, offset, C, T);
             }
-            return lanes::bound(ha, hb, C, T, enough);
+            return lanes::bound<FACES>(ha, hb, C, T, enough);
         }
 
         /** \brief pairBound() of two box pairs as the traversals hold them, at once (both in one SSE2 register where
             there is one): \e out[k] is pair \e k's, the same bit for bit. C and T are worked out in the lanes too,
             with the identity for an aligned A (which gives C and T exactly as they are). */
+        template <bool FACES = true>
         MESHGAP_BOX_BOUND_INLINE void pairBounds(const NodePairView &p0, const NodePairView &p1, double enough,
                                                  double out[2])
         {
@@ -319,12 +324,12 @@ namespace meshgap
                 }
                 lanes::relative(A, P, offset, C, T);
             }
-            const V bound = lanes::bound(ha, hb, C, T, enough);
+            const V bound = lanes::bound<FACES>(ha, hb, C, T, enough);
             _mm_storel_pd(&out[0], bound);
             _mm_storeh_pd(&out[1], bound);
 #else
-            out[0] = pairBound(p0, enough);
-            out[1] = pairBound(p1, enough);
+            out[0] = pairBound<FACES>(p0, enough);
+            out[1] = pairBound<FACES>(p1, enough);
 #endif
         }
     }  // namespace boxbound
