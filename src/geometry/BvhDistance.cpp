@@ -241,16 +241,17 @@ namespace meshgap
             double leaves(const TriangleBvh::Node &na, const TriangleBvh::Node &nb, double boxBound,
                           Eigen::Vector3d &axis)
             {
-                const Mesh &ma = a_.mesh(), &mb = b_.mesh();
+                const Mesh &ma = a_.mesh();
                 double least = std::numeric_limits<double>::infinity();
                 axis.setZero();
-                Eigen::Vector3d pb[3], onA, onB;
+                Eigen::Vector3d onA, onB;
                 for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
                 {
                     const std::uint32_t tb = b_.order()[j];
-                    for (int k = 0; k < 3; ++k)
-                        pb[k] = X_.R * mb.vertices[mb.triangles[tb][k]] + X_.t;
-                    const Eigen::Vector3d normalB = X_.R * b_.normals()[tb];
+                    // B's triangle placed once per query (it meets many of A's leaves).
+                    const std::array<Eigen::Vector3d, 4> &placed = X_.placeTriangle(b_, tb);
+                    const Eigen::Vector3d *pb = placed.data();
+                    const Eigen::Vector3d &normalB = placed[3];
                     for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
                     {
                         const std::uint32_t ta = a_.order()[i];
