@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -33,6 +34,9 @@ namespace meshgap
         {
             std::vector<PlacedNode> placed;
             std::vector<std::uint32_t> stamps;
+            /** \brief B's triangles placed likewise (the distance traversal's leaves): corners, then the normal. */
+            std::vector<std::array<Eigen::Vector3d, 4>> corners;
+            std::vector<std::uint32_t> cornerStamps;
             std::uint32_t stamp{0};
 
             static PlacementCache &ofThisThread()
@@ -40,17 +44,23 @@ namespace meshgap
                 thread_local PlacementCache cache;
                 return cache;
             }
-            /** \brief A new query over \e nodes nodes of B: its stamp. */
-            std::uint32_t begin(std::size_t nodes)
+            /** \brief A new query over \e nodes nodes and \e triangles triangles of B: its stamp. */
+            std::uint32_t begin(std::size_t nodes, std::size_t triangles)
             {
                 if (stamps.size() < nodes)
                 {
                     stamps.resize(nodes, 0u);
                     placed.resize(nodes);
                 }
+                if (cornerStamps.size() < triangles)
+                {
+                    cornerStamps.resize(triangles, 0u);
+                    corners.resize(triangles);
+                }
                 if (++stamp == 0)  // wrapped around: no entry may look current
                 {
                     std::fill(stamps.begin(), stamps.end(), 0u);
+                    std::fill(cornerStamps.begin(), cornerStamps.end(), 0u);
                     stamp = 1;
                 }
                 return stamp;
@@ -69,7 +79,7 @@ namespace meshgap
                   t(X.translation()),
                   nodes_(b.nodes().data()),
                   cache_(PlacementCache::ofThisThread()),
-                  stamp_(cache_.begin(b.nodes().size()))
+                  stamp_(cache_.begin(b.nodes().size(), b.mesh().triangles.size()))
             {
             }
             RelativePose(const RelativePose &) = delete;
@@ -88,6 +98,22 @@ namespace meshgap
                         p.axes = R;
                     else
                         p.axes.noalias() = R * n.axes;
+                }
+                return p;
+            }
+
+            /** \brief Triangle \e triangle of B (\e tree's) placed in A's frame: its three corners (R v + t) and its
+                unit normal (R n), worked out at its first use in the query. */
+            const std::array<Eigen::Vector3d, 4> &placeTriangle(const TriangleBvh &tree, std::uint32_t triangle) const
+            {
+                std::array<Eigen::Vector3d, 4> &p = cache_.corners[triangle];
+                if (cache_.cornerStamps[triangle] != stamp_)
+                {
+                    cache_.cornerStamps[triangle] = stamp_;
+                    const Mesh &m = tree.mesh();
+                    for (int k = 0; k < 3; ++k)
+                        p[k] = R * m.vertices[m.triangles[triangle][k]] + t;
+                    p[3] = R * tree.normals()[triangle];
                 }
                 return p;
             }
@@ -135,13 +161,24 @@ namespace meshgap
                                  double enough = std::numeric_limits<double>::infinity())
         {
             const PlacedNode &placed = X.place(b);
-            const Eigen::Vector3d offset = placed.center - a.center;  // P may point to it: it must outlive P
-            const BoxPair P(a, placed, offset);
-            const double pad = 1e-12 * (P.T->cwiseAbs().sum() + a.half.sum() + b.half.sum());
-            const double bound = boxbound::gapAlongNearest(a.half, b.half, *P.C, *P.T, pad);
-            if (bound > enough)
-                return bound;
-            return std::max(bound, boxbound::gapOnFacesOfB(a.half, b.half, *P.C, *P.T, pad));
+            const Eigen::Vector3d offset = placed.center - a.center;
+            return boxbound::pairBound({&a.half, &b.half, a.aligned ? nullptr : &a.axes, &placed.axes, &offset},
+                                       enough);
+        }
+
+        /** \brief lowerBound() of the node pairs (a0, b0) and (a1, b1) at once (boxbound::pairBounds(): both in the
+            lanes of one vector register): \e out[k] is pair \e k's; with FACES false, the gap along the nearest
+            direction alone (a lower bound all the same). */
+        template <bool FACES = true>
+        inline void lowerBounds(const TriangleBvh::Node &a0, const TriangleBvh::Node &b0, const TriangleBvh::Node &a1,
+                                const TriangleBvh::Node &b1, const RelativePose &X, double enough, double out[2])
+        {
+            const PlacedNode &placed0 = X.place(b0);
+            const PlacedNode &placed1 = X.place(b1);  // another cache entry (or the same node): placed0 stays valid
+            const Eigen::Vector3d offset0 = placed0.center - a0.center, offset1 = placed1.center - a1.center;
+            boxbound::pairBounds<FACES>(
+                {&a0.half, &b0.half, a0.aligned ? nullptr : &a0.axes, &placed0.axes, &offset0},
+                {&a1.half, &b1.half, a1.aligned ? nullptr : &a1.axes, &placed1.axes, &offset1}, enough, out);
         }
 
         /** \brief The gap between triangles p and q along unit axis \e n, either way round, and that axis pointing

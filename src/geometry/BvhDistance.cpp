@@ -14,6 +14,7 @@ namespace meshgap
 {
     using bvh::afterUse;
     using bvh::lowerBound;
+    using bvh::lowerBounds;
     using bvh::PairEntry;
     using bvh::RelativePose;
     using bvh::Separation;
@@ -240,16 +241,17 @@ namespace meshgap
             double leaves(const TriangleBvh::Node &na, const TriangleBvh::Node &nb, double boxBound,
                           Eigen::Vector3d &axis)
             {
-                const Mesh &ma = a_.mesh(), &mb = b_.mesh();
+                const Mesh &ma = a_.mesh();
                 double least = std::numeric_limits<double>::infinity();
                 axis.setZero();
-                Eigen::Vector3d pb[3], onA, onB;
+                Eigen::Vector3d onA, onB;
                 for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
                 {
                     const std::uint32_t tb = b_.order()[j];
-                    for (int k = 0; k < 3; ++k)
-                        pb[k] = X_.R * mb.vertices[mb.triangles[tb][k]] + X_.t;
-                    const Eigen::Vector3d normalB = X_.R * b_.normals()[tb];
+                    // B's triangle placed once per query (it meets many of A's leaves).
+                    const std::array<Eigen::Vector3d, 4> &placed = X_.placeTriangle(b_, tb);
+                    const Eigen::Vector3d *pb = placed.data();
+                    const Eigen::Vector3d &normalB = placed[3];
                     for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
                     {
                         const std::uint32_t ta = a_.order()[i];
@@ -336,16 +338,22 @@ namespace meshgap
                 }
                 // A child above the best so far is pruned whatever its exact bound: stop computing it there. The
                 // children sorted by bound, the greatest first (pushed first: the nearest ends on top).
+                // Two pairs at a time (lowerBounds(): one vector register's two lanes). Without a front to keep, by
+                // the gap along the nearest direction alone: the gap on B's faces, worked out for both lanes when
+                // either is not pruned, cost more than the pairs it pruned (bench/queries.md, "Box-pair bounds two at
+                // a time"). A front keeps both, as before: its entries' bounds are reused at later poses.
+                // (Called through a pointer: two calls here made the traversal's loop too long to inline its pushes.)
+                const auto boundTwo = record_ ? &lowerBounds<true> : &lowerBounds<false>;
                 std::array<double, 4> bounds;
-                for (std::size_t k = 0; k < count; ++k)
-                {
-                    bounds[k] = lowerBound(a_.nodes()[children[k].a], b_.nodes()[children[k].b], X_, exitAbove());
+                for (std::size_t k = 0; k < count; k += 2)
+                    boundTwo(a_.nodes()[children[k].a], b_.nodes()[children[k].b], a_.nodes()[children[k + 1].a],
+                             b_.nodes()[children[k + 1].b], X_, exitAbove(), &bounds[k]);
+                for (std::size_t k = 1; k < count; ++k)
                     for (std::size_t m = k; m > 0 && bounds[m - 1] < bounds[m]; --m)
                     {
                         std::swap(bounds[m - 1], bounds[m]);
                         std::swap(children[m - 1], children[m]);
                     }
-                }
                 result_.boxTests += count;
                 for (std::size_t k = 0; k < count; ++k)
                 {

@@ -119,6 +119,76 @@ TEST(BoxBound, NeverAboveTheDistanceOfTwoBoxesFlatOrNot)
     EXPECT_GT(tight, 0.7 * apart) << tight << " of " << apart;
 }
 
+TEST(BoxBound, TwoPairsAtOnceGiveEachPairsOwnBound)
+{
+    // pairBounds() (both pairs in one vector register where SSE2 is there) against pairBound() on each pair: the same
+    // value, bit for bit (with B's faces or without), whether both pairs are pruned at the nearest direction, one, or neither; given B seen from A
+    // (C, T) or as the traversals hold the nodes (A's axes or none, B's placed axes, the centres' offset), with A
+    // aligned in both pairs, one or neither; and never above a real point pair's distance. Flat boxes, overlapping
+    // and concentric ones.
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const double INF = std::numeric_limits<double>::infinity();
+    struct Case
+    {
+        Eigen::Vector3d ha, hb, offset, T;
+        Eigen::Matrix3d axesA, axesB, C;
+        bool aligned;
+    };
+    auto draw = [&](int trial)
+    {
+        Case c;
+        c.ha = Eigen::Vector3d(0.01 + u(rng), 0.01 + u(rng), 0.01 + u(rng));
+        c.hb = Eigen::Vector3d(0.01 + u(rng), 0.01 + u(rng), 0.01 + u(rng));
+        if (trial % 3 == 0)
+        {
+            c.ha[trial % 2] = 1e-6;
+            c.hb[(trial / 2) % 3] = 0.0;
+        }
+        c.aligned = trial % 5 < 2;
+        c.axesA = c.aligned ? Eigen::Matrix3d::Identity() : randomRotation(rng);
+        c.axesB = trial % 5 == 0 ? Eigen::Matrix3d::Identity() : randomRotation(rng);
+        c.offset = trial % 7 == 0 ? Eigen::Vector3d::Zero()
+                                  : Eigen::Vector3d(4.0 * (u(rng) - 0.5), 4.0 * (u(rng) - 0.5), 4.0 * (u(rng) - 0.5));
+        c.C = c.axesA.transpose() * c.axesB;
+        c.T = c.axesA.transpose() * c.offset;
+        return c;
+    };
+    int both = 0, one = 0, neither = 0, touching = 0;
+    for (int trial = 0; trial < 20000; ++trial)
+    {
+        const Case c[2] = {draw(trial), draw(trial / 2 + 1)};
+        const double enough = trial % 4 == 0 ? INF : trial % 4 == 1 ? -INF : 2.0 * u(rng) - 0.5;
+        const boxbound::BoxPairView seen[2] = {{&c[0].ha, &c[0].hb, &c[0].C, &c[0].T},
+                                                {&c[1].ha, &c[1].hb, &c[1].C, &c[1].T}};
+        boxbound::NodePairView held[2];
+        for (int k = 0; k < 2; ++k)
+            held[k] = {&c[k].ha, &c[k].hb, c[k].aligned ? nullptr : &c[k].axesA, &c[k].axesB, &c[k].offset};
+        double fromSeen[2], fromHeld[2], nearest[2];
+        boxbound::pairBounds(seen[0], seen[1], enough, fromSeen);
+        boxbound::pairBounds(held[0], held[1], enough, fromHeld);
+        boxbound::pairBounds<false>(held[0], held[1], enough, nearest);  // the nearest direction's gap alone
+        for (int k = 0; k < 2; ++k)
+        {
+            ASSERT_EQ(fromSeen[k], boxbound::pairBound(seen[k], enough)) << "trial " << trial << ", pair " << k;
+            ASSERT_EQ(fromHeld[k], boxbound::pairBound(held[k], enough)) << "trial " << trial << ", pair " << k;
+            ASSERT_EQ(nearest[k], boxbound::pairBound<false>(held[k], enough)) << "trial " << trial << ", pair " << k;
+            ASSERT_LE(nearest[k], fromHeld[k]) << "trial " << trial << ", pair " << k;
+            const double distance = nearPairDistance(c[k].ha, c[k].hb, c[k].C, c[k].T) + 1e-12;
+            ASSERT_LE(fromSeen[k], distance) << "trial " << trial << ", pair " << k;
+            ASSERT_LE(fromHeld[k], distance) << "trial " << trial << ", pair " << k;
+            touching += fromHeld[k] <= 0.0;
+        }
+        const int pruned = (fromHeld[0] > enough) + (fromHeld[1] > enough);
+        (pruned == 2 ? both : pruned == 1 ? one : neither) += 1;
+    }
+    // Every branch taken many times.
+    EXPECT_GT(both, 1000);
+    EXPECT_GT(one, 1000);
+    EXPECT_GT(neither, 1000);
+    EXPECT_GT(touching, 1000);
+}
+
 TEST(BoxBound, ExactAcrossAFaceAnEdgeOrACorner)
 {
     const Eigen::Vector3d h(1.0, 0.5, 0.25);

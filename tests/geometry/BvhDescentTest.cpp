@@ -112,7 +112,8 @@ TEST(BvhDescent, BruteForcePairColdAndWarmOnPlatesAndASphere)
 TEST(BvhDescent, FewerBoxPairsThanOneNodeAtATime)
 {
     // Fixed meshes and poses: the count is a function of them. Splitting the node of larger sphere one at a time
-    // bounded 19,772 box pairs here; both nodes at once while best first, 18,534.
+    // bounded 20,784 box pairs here; both nodes at once while best first, 19,578 (children bounded along the nearest
+    // direction alone; with B's faces too, 19,772 and 18,534).
     const Mesh ma = test::merged(plates(11), test::icosphere(0.3, 2));
     const Mesh mb = test::merged(plates(12), test::transformed(test::box(0.2, 0.5, 0.1, 4), test::randomPose(5, 0.5)));
     const TriangleBvh a(ma), b(mb);
@@ -123,5 +124,5 @@ TEST(BvhDescent, FewerBoxPairsThanOneNodeAtATime)
         bvhDistance(a, b, test::randomPose(7000 + pose, 2.0), std::numeric_limits<double>::infinity(), 0.0, r);
         boxTests += r.boxTests;
     }
-    EXPECT_LT(boxTests, 19200u) << "box pairs bounded over 40 poses (one node at a time: 19,772)";
+    EXPECT_LT(boxTests, 20200u) << "box pairs bounded over 40 poses (one node at a time: 20,784)";
 }
