@@ -52,9 +52,9 @@ namespace meshgap
                 return true;
             // The ball of one box's least half extent about its centre (within that box) reaching the other box: they
             // overlap, no cross axis can separate them.
-            const double ra = a.half.minCoeff(), rb = b.half.minCoeff();
-            if ((absT - a.half).cwiseMax(0.0).squaredNorm() <= rb * rb ||
-                (absU - b.half).cwiseMax(0.0).squaredNorm() <= ra * ra)
+            const double ballA = a.half.minCoeff(), ballB = b.half.minCoeff();
+            if ((absT - a.half).cwiseMax(0.0).squaredNorm() <= ballB * ballB ||
+                (absU - b.half).cwiseMax(0.0).squaredNorm() <= ballA * ballA)
                 return false;
             const Eigen::Vector3d &ea = a.half, &eb = b.half;
             for (int i = 0; i < 3; ++i)
