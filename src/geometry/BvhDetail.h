@@ -149,8 +149,8 @@ namespace meshgap
         };
 
         /** \brief Lower bound on the distance between anything in box \e a and anything in box \e b (B's frame),
-            from the gap along the direction between the boxes' nearest points (boxbound::gapAlongNearest()), then
-            the gaps on b's face axes (boxbound::gapOnFacesOfB()); <= 0 means the boxes may touch. Once the first
+            from the gap along the direction between the boxes' nearest points, then the gaps on b's face axes
+            (boxbound::pairBound(), the namespace's two directions); <= 0 means the boxes may touch. Once the first
             exceeds \e enough (the caller prunes above it) it is returned: still a lower bound, just not the better of
             the two. The order by how often each prunes where the caller prunes (the nearest direction alone prunes
             94-99.6 % of the pairs the tests prune, on flat CAD parts and on twisted's slender slanted triangles

@@ -83,6 +83,16 @@ namespace
         }
         return out;
     }
+    /** \brief The traversals' bound (boxbound::pairBound()) on B seen from A (C, T): an aligned A, B's axes C and
+        its centre's offset T, as the traversals hold an aligned pair. With \e faces false, the nearest direction's
+        gap alone; \e enough as the traversals pass it (infinity: both directions). */
+    double boundOf(const Eigen::Vector3d &ha, const Eigen::Vector3d &hb, const Eigen::Matrix3d &C,
+                   const Eigen::Vector3d &T, bool faces = true)
+    {
+        const boxbound::NodePairView p{&ha, &hb, nullptr, &C, &T};
+        const double enough = std::numeric_limits<double>::infinity();
+        return faces ? boxbound::pairBound<true>(p, enough) : boxbound::pairBound<false>(p, enough);
+    }
 }  // namespace
 
 TEST(BoxBound, NeverAboveTheDistanceOfTwoBoxesFlatOrNot)
@@ -101,7 +111,7 @@ TEST(BoxBound, NeverAboveTheDistanceOfTwoBoxesFlatOrNot)
         }
         const Eigen::Matrix3d C = trial % 5 == 0 ? Eigen::Matrix3d::Identity() : randomRotation(rng);
         const Eigen::Vector3d T = 4.0 * Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
-        const double bound = boxbound::gapAlongNearest(ha, hb, C, T, 0.0);
+        const double bound = boundOf(ha, hb, C, T, false);
         const double distance = nearPairDistance(ha, hb, C, T);
         ASSERT_LE(bound, distance + 1e-12) << "trial " << trial << ": the bound is above a real point pair's distance";
         if (distance > 1e-3)
@@ -109,10 +119,10 @@ TEST(BoxBound, NeverAboveTheDistanceOfTwoBoxesFlatOrNot)
             ++apart;
             tight += bound > 0.99 * distance;
         }
-        ASSERT_LE(boxbound::gapOnFacesOfB(ha, hb, C, T, 0.0), distance + 1e-12) << "trial " << trial;
-        // Any direction gives a lower bound: the face axes of A, for instance.
-        for (int i = 0; i < 3; ++i)
-            ASSERT_LE(boxbound::gapAlong(Eigen::Vector3d::Unit(i), ha, hb, C, T, 0.0), distance + 1e-12);
+        // B's faces too: the better of the two, still below.
+        const double both = boundOf(ha, hb, C, T);
+        ASSERT_LE(both, distance + 1e-12) << "trial " << trial;
+        ASSERT_GE(both, bound) << "trial " << trial;
     }
     // The bound is meant to prune: within 1 % of the distance on most separated pairs.
     EXPECT_GT(apart, 10000);
@@ -122,8 +132,8 @@ TEST(BoxBound, NeverAboveTheDistanceOfTwoBoxesFlatOrNot)
 TEST(BoxBound, TwoPairsAtOnceGiveEachPairsOwnBound)
 {
     // pairBounds() (both pairs in one vector register where SSE2 is there) against pairBound() on each pair: the same
-    // value, bit for bit (with B's faces or without), whether both pairs are pruned at the nearest direction, one, or neither; given B seen from A
-    // (C, T) or as the traversals hold the nodes (A's axes or none, B's placed axes, the centres' offset), with A
+    // value, bit for bit (with B's faces or without), whether both pairs are pruned at the nearest direction, one, or
+    // neither; the nodes as the traversals hold them (A's axes or none, B's placed axes, the centres' offset), with A
     // aligned in both pairs, one or neither; and never above a real point pair's distance. Flat boxes, overlapping
     // and concentric ones.
     std::mt19937 rng(23);
@@ -159,23 +169,18 @@ TEST(BoxBound, TwoPairsAtOnceGiveEachPairsOwnBound)
     {
         const Case c[2] = {draw(trial), draw(trial / 2 + 1)};
         const double enough = trial % 4 == 0 ? INF : trial % 4 == 1 ? -INF : 2.0 * u(rng) - 0.5;
-        const boxbound::BoxPairView seen[2] = {{&c[0].ha, &c[0].hb, &c[0].C, &c[0].T},
-                                                {&c[1].ha, &c[1].hb, &c[1].C, &c[1].T}};
         boxbound::NodePairView held[2];
         for (int k = 0; k < 2; ++k)
             held[k] = {&c[k].ha, &c[k].hb, c[k].aligned ? nullptr : &c[k].axesA, &c[k].axesB, &c[k].offset};
-        double fromSeen[2], fromHeld[2], nearest[2];
-        boxbound::pairBounds(seen[0], seen[1], enough, fromSeen);
+        double fromHeld[2], nearest[2];
         boxbound::pairBounds(held[0], held[1], enough, fromHeld);
         boxbound::pairBounds<false>(held[0], held[1], enough, nearest);  // the nearest direction's gap alone
         for (int k = 0; k < 2; ++k)
         {
-            ASSERT_EQ(fromSeen[k], boxbound::pairBound(seen[k], enough)) << "trial " << trial << ", pair " << k;
             ASSERT_EQ(fromHeld[k], boxbound::pairBound(held[k], enough)) << "trial " << trial << ", pair " << k;
             ASSERT_EQ(nearest[k], boxbound::pairBound<false>(held[k], enough)) << "trial " << trial << ", pair " << k;
             ASSERT_LE(nearest[k], fromHeld[k]) << "trial " << trial << ", pair " << k;
             const double distance = nearPairDistance(c[k].ha, c[k].hb, c[k].C, c[k].T) + 1e-12;
-            ASSERT_LE(fromSeen[k], distance) << "trial " << trial << ", pair " << k;
             ASSERT_LE(fromHeld[k], distance) << "trial " << trial << ", pair " << k;
             touching += fromHeld[k] <= 0.0;
         }
@@ -192,19 +197,19 @@ TEST(BoxBound, TwoPairsAtOnceGiveEachPairsOwnBound)
 TEST(BoxBound, ExactAcrossAFaceAnEdgeOrACorner)
 {
     const Eigen::Vector3d h(1.0, 0.5, 0.25);
+    // The nearest direction's gap alone (B's faces would not tell these apart), exact to its roundoff pad (1e-12
+    // of the boxes' sizes and offset, a few 1e-12 here).
+    const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
     // Face to face, shifted sideways.
-    EXPECT_NEAR(boxbound::gapAlongNearest(h, h, Eigen::Matrix3d::Identity(), Eigen::Vector3d(3.0, 0.4, -0.1), 0.0), 1.0,
-                1e-15);
+    EXPECT_NEAR(boundOf(h, h, I, Eigen::Vector3d(3.0, 0.4, -0.1), false), 1.0, 1e-11);
     // Corner to corner along the diagonal: the face axes alone give 0.5 at most.
-    EXPECT_NEAR(boxbound::gapAlongNearest(h, h, Eigen::Matrix3d::Identity(), Eigen::Vector3d(2.5, 1.5, 1.0), 0.0),
-                std::sqrt(0.25 + 0.25 + 0.25), 1e-15);
+    EXPECT_NEAR(boundOf(h, h, I, Eigen::Vector3d(2.5, 1.5, 1.0), false), std::sqrt(0.25 + 0.25 + 0.25), 1e-11);
     // B turned 45 degrees about z: its edge faces A's face.
     const Eigen::Matrix3d C = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     const Eigen::Vector3d hb(0.5, 0.5, 0.25);
-    EXPECT_NEAR(boxbound::gapAlongNearest(h, hb, C, Eigen::Vector3d(3.0, 0.0, 0.0), 0.0), 2.0 - 0.5 * std::sqrt(2.0),
-                1e-12);
+    EXPECT_NEAR(boundOf(h, hb, C, Eigen::Vector3d(3.0, 0.0, 0.0), false), 2.0 - 0.5 * std::sqrt(2.0), 1e-11);
     // Overlapping boxes: no bound.
-    EXPECT_LE(boxbound::gapAlongNearest(h, hb, C, Eigen::Vector3d(1.2, 0.0, 0.0), 0.0), 0.0);
+    EXPECT_LE(boundOf(h, hb, C, Eigen::Vector3d(1.2, 0.0, 0.0)), 0.0);
 }
 
 TEST(BoxBound, EveryNodePairOfTwoTreesBoundsItsTriangles)
@@ -238,11 +243,12 @@ TEST(BoxBound, EveryNodePairOfTwoTreesBoundsItsTriangles)
                 for (std::uint32_t nb = 0; nb < b.nodes().size(); nb += 2)
                 {
                     const TriangleBvh::Node &A = a.nodes()[na], &B = b.nodes()[nb];
-                    const Eigen::Matrix3d C = A.axes.transpose() * X.linear() * B.axes;
-                    const Eigen::Vector3d T = A.axes.transpose() * (X * B.center - A.center);
-                    const double pad = 1e-12 * (T.norm() + A.half.sum() + B.half.sum());
-                    const double bound = std::max(boxbound::gapAlongNearest(A.half, B.half, C, T, pad),
-                                                  boxbound::gapOnFacesOfB(A.half, B.half, C, T, pad));
+                    // As the traversals hold the pair: A's axes (none when aligned), B's placed, the offset.
+                    const Eigen::Matrix3d placedAxes = X.linear() * B.axes;
+                    const Eigen::Vector3d offset = X * B.center - A.center;
+                    const double bound = boxbound::pairBound<true>(
+                        {&A.half, &B.half, A.aligned ? nullptr : &A.axes, &placedAxes, &offset},
+                        std::numeric_limits<double>::infinity());
                     std::vector<std::uint32_t> ta, tb;
                     trianglesUnder(a, na, ta);
                     trianglesUnder(b, nb, tb);

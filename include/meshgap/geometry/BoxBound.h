@@ -21,58 +21,20 @@ namespace meshgap
 {
     /** \brief Lower bounds on the distance between two oriented boxes, seen from box A: A = {x : |x_i| <= ha_i} in
         its own frame, B = {T + C y : |y_j| <= hb_j} (C the rotation from B's box axes to A's, T B's centre). Every
-        bound here is the gap of the two boxes' projections on some unit direction, which no pair of points of the
-        boxes can beat: a lower bound whatever the direction, exact when the direction is the one between the boxes' nearest points. The three face axes of either box are such
-        directions, and the direction between the nearest points found below prunes where they do not (boxes apart
-        across an edge or a corner, or slanted to each other, as the thin boxes of flat CAD parts are). */
+        bound here is the gap of the two boxes' projections on some unit direction n, n.T - sum_j |(C^T n)_j| hb_j -
+        sum_i |n_i| ha_i, which no pair of points of the boxes can beat: a lower bound whatever the direction, exact
+        when it is the direction between the boxes' nearest points. Two directions are used (lanes::bound()):
+        - the direction between two points found by alternating projection (B's centre clamped into A, that point
+          clamped into B, that one into A: near the boxes' nearest pair when they are apart, and exactly it when a
+          face of one faces the other's); no bound (-infinity) when the points meet (the boxes may overlap);
+        - B's three face axes: a point pair's offset has a component of at least g_j along each axis where the gap
+          g_j > 0, so its length is at least the norm of the positive gaps (the largest gap, <= 0, when the
+          projections overlap on all three; |C| padded by 1e-12 so that nearly parallel axes never make a gap too
+          large).
+        The second prunes where the first does not (boxes apart across an edge or a corner, or slanted to each other,
+        as the thin boxes of flat CAD parts are). */
     namespace boxbound
     {
-        /** \brief The gap of the boxes' projections on the unit direction \e n (from A towards B; any sign): B's
-            least projection minus A's greatest, less \e pad (the caller's allowance for roundoff). */
-        inline double gapAlong(const Eigen::Vector3d &n, const Eigen::Vector3d &ha, const Eigen::Vector3d &hb,
-                               const Eigen::Matrix3d &C, const Eigen::Vector3d &T, double pad)
-        {
-            return n.dot(T) - (C.transpose() * n).cwiseAbs().dot(hb) - n.cwiseAbs().dot(ha) - pad;
-        }
-
-        /** \brief The bound given by the gaps g_j of the boxes' projections on B's three face axes, less \e pad (|C|
-            padded so that nearly parallel axes never make a gap too large): a point pair's offset has a component of
-            at least g_j along each axis where g_j > 0, so its length is at least the norm of the positive gaps; the
-            largest gap (<= 0) when the projections overlap on all three. */
-        MESHGAP_BOX_BOUND_INLINE double gapOnFacesOfB(const Eigen::Vector3d &ha, const Eigen::Vector3d &hb,
-                                                      const Eigen::Matrix3d &C, const Eigen::Vector3d &T, double pad)
-        {
-            const Eigen::Matrix3d absC = C.cwiseAbs().array() + 1e-12;
-            const Eigen::Vector3d g = (C.transpose() * T).cwiseAbs() - absC.transpose() * ha - hb;
-            const double largest = g.maxCoeff() - pad;
-            return largest > 0.0 ? g.cwiseMax(0.0).norm() - 2.0 * pad : largest;  // 2 pad > sqrt(3) pad
-        }
-
-        /** \brief The gap of the boxes along the direction between two points found by alternating projection
-            (B's centre clamped into A, that point clamped into B, that one into A: near the boxes' nearest pair when
-            they are apart, and exactly it when a face of one faces the other's): a lower bound on their distance.
-            -infinity when the points meet (the boxes may overlap: no bound). \e pad as for gapAlong(). */
-        MESHGAP_BOX_BOUND_INLINE double gapAlongNearest(const Eigen::Vector3d &ha, const Eigen::Vector3d &hb,
-                                                        const Eigen::Matrix3d &C, const Eigen::Vector3d &T, double pad)
-        {
-            const Eigen::Vector3d p0 = T.cwiseMax(-ha).cwiseMin(ha);
-            const Eigen::Vector3d y = (C.transpose() * (p0 - T)).cwiseMax(-hb).cwiseMin(hb);
-            const Eigen::Vector3d q = T + C * y;
-            const Eigen::Vector3d d = q - q.cwiseMax(-ha).cwiseMin(ha);
-            const double length = d.norm();
-            if (!(length > 0.0))
-                return -std::numeric_limits<double>::infinity();
-            return gapAlong(d / length, ha, hb, C, T, pad);
-        }
-
-        /** \brief One box pair as the traversals see it (A's half extents, B's, and B seen from A: see above). */
-        struct BoxPairView
-        {
-            const Eigen::Vector3d *ha, *hb;
-            const Eigen::Matrix3d *C;
-            const Eigen::Vector3d *T;
-        };
-
         /** \brief One box pair as the traversals hold it, before B is seen from A: A's half extents and box axes
             (nullptr: aligned with A's body frame), B's half extents and its box axes and centre offset (B's centre
             minus A's) placed in A's body frame. Then C = axesA^T axesB and T = axesA^T offset. */
@@ -151,8 +113,8 @@ namespace meshgap
             }
 
             /** \brief The bound of the box pair(s) in the lanes (C[i][j] = C(i, j)), padded for roundoff by 1e-12
-                of the sum of |T|, ha and hb: the gap along the nearest direction (gapAlongNearest()) and, unless that
-                is above \e enough in every lane, the better of it and the gap on B's faces (gapOnFacesOfB(), |C|
+                of the sum of |T|, ha and hb: the gap along the nearest direction (the first of the namespace's two) and,
+                unless that is above \e enough in every lane, the better of it and the gap on B's faces (|C|
                 padded), the latter kept only in the lanes where the former is not above \e enough. Without FACES,
                 the gap along the nearest direction alone. */
             template <bool FACES, typename L>
@@ -207,49 +169,6 @@ namespace meshgap
                 return select(pruned, nearest, max(nearest, faces));
             }
         }  // namespace lanes
-
-        /** \brief The traversals' bound on one box pair (lanes::bound()): a lower bound on the boxes' distance; once
-            the nearest direction's gap is above \e enough, that gap alone. */
-        template <bool FACES = true>
-        MESHGAP_BOX_BOUND_INLINE double pairBound(const BoxPairView &p, double enough)
-        {
-            double ha[3], hb[3], T[3], C[3][3];
-            for (int i = 0; i < 3; ++i)
-            {
-                ha[i] = (*p.ha)[i];
-                hb[i] = (*p.hb)[i];
-                T[i] = (*p.T)[i];
-                for (int j = 0; j < 3; ++j)
-                    C[i][j] = (*p.C)(i, j);
-            }
-            return lanes::bound<FACES>(ha, hb, C, T, enough);
-        }
-
-        /** \brief pairBound() of two box pairs at once (both in one SSE2 register where there is one): \e out[k] is
-            pair \e k's, the same bit for bit. */
-        template <bool FACES = true>
-        MESHGAP_BOX_BOUND_INLINE void pairBounds(const BoxPairView &p0, const BoxPairView &p1, double enough,
-                                                 double out[2])
-        {
-#if defined(__SSE2__)
-            using lanes::V;
-            V ha[3], hb[3], T[3], C[3][3];
-            for (int i = 0; i < 3; ++i)
-            {
-                ha[i] = _mm_set_pd((*p1.ha)[i], (*p0.ha)[i]);
-                hb[i] = _mm_set_pd((*p1.hb)[i], (*p0.hb)[i]);
-                T[i] = _mm_set_pd((*p1.T)[i], (*p0.T)[i]);
-                for (int j = 0; j < 3; ++j)
-                    C[i][j] = _mm_set_pd((*p1.C)(i, j), (*p0.C)(i, j));
-            }
-            const V bound = lanes::bound<FACES>(ha, hb, C, T, enough);
-            _mm_storel_pd(&out[0], bound);
-            _mm_storeh_pd(&out[1], bound);
-#else
-            out[0] = pairBound<FACES>(p0, enough);
-            out[1] = pairBound<FACES>(p1, enough);
-#endif
-        }
 
         /** \brief pairBound() of a box pair as the traversals hold it (NodePairView: C and T worked out here, in the
             lanes' order of operations). */
