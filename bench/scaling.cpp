@@ -248,6 +248,9 @@ static int run(int argc, char **argv)
     po::variables_map vm;
     if (!meshgap::cli::parseCommandLine(argc, argv, cli, vm))
         return 0;
+    for (const auto &[flag, count] : {std::pair{"--poses", numPoses}, std::pair{"--fast-on-demand", fastOnDemand}})
+        if (count < 1)
+            throw meshgap::Exception(flag, "must be at least 1 (each column's median needs a query)");
     ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
     const bool trace = vm.count("trace-alloc") > 0;
     if (trace)
