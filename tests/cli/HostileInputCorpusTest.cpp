@@ -3,8 +3,8 @@
 // without geometry, numbers beyond what double geometry answers, folders and devices named as files; and the hostile
 // command lines (a pose at 1e300, states outside the joint limits, a FIFO as --cfg, an infinite time limit, a negative
 // count). Each must end in one line "error: ..." naming the file (and line) and the problem, exit status 1, nothing on
-// stdout, no signal, no hang. The valid input the same readers refused (the README's robot problem as written, a fixed robot, an
-// SRDF naming the payload) must be read, and the tools must say when their output contradicts their input.
+// stdout, no signal, no hang. The valid input the same readers refused (the README's robot problem as written, a fixed
+// robot, an SRDF naming the payload) must be read, and the tools must say when their output contradicts their input.
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>

@@ -113,8 +113,8 @@ namespace meshgap
             }
 
             /** \brief The bound of the box pair(s) in the lanes (C[i][j] = C(i, j)), padded for roundoff by 1e-12
-                of the sum of |T|, ha and hb: the gap along the nearest direction (the first of the namespace's two) and,
-                unless that is above \e enough in every lane, the better of it and the gap on B's faces (|C|
+                of the sum of |T|, ha and hb: the gap along the nearest direction (the first of the namespace's two)
+                and, unless that is above \e enough in every lane, the better of it and the gap on B's faces (|C|
                 padded), the latter kept only in the lanes where the former is not above \e enough. Without FACES,
                 the gap along the nearest direction alone. */
             template <bool FACES, typename L>

@@ -42,15 +42,16 @@ namespace meshgap
     /** \brief Load a triangle mesh (OBJ, STL ASCII/binary, PLY, COLLADA and anything else assimp reads).
 
         The file is imported with OMPL.app's post-processing (Triangulate, SortByPType, OptimizeGraph; and
-        JoinIdenticalVertices and GenNormals when \e options ask for OMPL.app's centre) and default importer
-        settings, so COLLADA's up-axis rotation applies and vertex positions are bit-for-bit those OMPL.app uses. Every node transform is applied (in assimp's single precision
-        arithmetic, as OMPL.app does) and all sub-meshes are merged; only three-index faces are kept. Then vertices
-        at identical positions are welded regardless of normals or texture coordinates (so flat-shaded files that
-        repeat each vertex per face stay one connected surface), and degenerate and duplicated triangles are
-        dropped (counted in the report, with a warning). A surface that is not closed (boundary edges, used by one
-        triangle, or non-manifold edges, used by three or more) is loaded as it is, with one warning naming the
-        file and both counts (LoadReport::edges; once per process, warnIfNotClosed()): it has no inside, so nothing
-        is found to lie inside it (no containment, no penetration depth into it; README.md, "Open meshes").
+        JoinIdenticalVertices and GenNormals when \e options ask for OMPL.app's centre) and default importer settings,
+        so COLLADA's up-axis rotation applies and vertex positions are bit-for-bit those OMPL.app uses. Every node
+        transform is applied (in assimp's single precision arithmetic, as OMPL.app does) and all sub-meshes are merged;
+        only three-index faces are kept. Then vertices at identical positions are welded regardless of normals or
+        texture coordinates (so flat-shaded files that repeat each vertex per face stay one connected surface), and
+        degenerate and duplicated triangles are dropped (counted in the report, with a warning). A surface that is not
+        closed (boundary edges, used by one triangle, or non-manifold edges, used by three or more) is loaded as it is,
+        with one warning naming the file and both counts (LoadReport::edges; once per process, warnIfNotClosed()): it
+        has no inside, so nothing is found to lie inside it (no containment, no penetration depth into it; README.md,
+        "Open meshes").
 
         Throws meshgap::Exception naming \e path for: a missing or unreadable file, a file assimp cannot parse,
         no triangles, a NaN or infinite coordinate, an index out of range. */
