@@ -130,20 +130,20 @@ add mesh_distances bench/mesh_distances.md meshgap_bench_mesh_distances \
 # the optimiser's also the fanuc when ../shared/data/robots holds it).
 add robot_plan_seeds bench/robots.md "meshgap_plan meshgap_bench_robot_path_check" \
     "bench/robot_plan_seeds.sh $build 10 20 1e-4" "bench/robot_plan_seeds.sh $build 3 10 1e-3"
-add robot_checkers bench/robots.md meshgap_benchmark \
-    "RUNS=10 TIME=10 CHECKERS=certified,certified-search,discrete,fcl PROBLEMS=arm_fixture bench/run_planning_benchmark.sh $build \$(mktemp -d)" \
-    "RUNS=3 TIME=10 CHECKERS=certified,certified-search,discrete,fcl PROBLEMS=arm_fixture bench/run_planning_benchmark.sh $build \$(mktemp -d)"
+# bench/run_planning_benchmark.sh as a block: NAME PAGE, the runs in full and in --quick, then its settings.
+planning() {
+    local run="bench/run_planning_benchmark.sh $build \$(mktemp -d)"
+    add "$1" "$2" meshgap_benchmark "RUNS=$3 $5 $run" "RUNS=$4 $5 $run"
+}
+planning robot_checkers bench/robots.md 10 3 "TIME=10 CHECKERS=certified,certified-search,discrete,fcl PROBLEMS=arm_fixture"
 add robot_optimize_seeds bench/robots.md "meshgap_plan meshgap_bench_robot_path_check" \
     "bench/robot_optimize_seeds.sh $build 10 60 1e-4" "bench/robot_optimize_seeds.sh $build 2 10 1e-3"
 if [ -d "$shared/omplapp" ]; then
     # Planning: RRTConnect with each checker; the samplers on slotted_wall; RRT* against RRTConnect on the maps; the
     # clearance optimiser. Each run's .log files go to a folder of its own under /tmp.
-    add rrtconnect_checkers bench/planning.md meshgap_benchmark \
-        "RUNS=10 TIME=10 CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)" \
-        "RUNS=3 TIME=10 CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)"
-    add rrtstar_checkers bench/planning.md meshgap_benchmark \
-        "RUNS=3 TIME=5 PLANNERS=rrtstar ARGS='--objective max_min_clearance' CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)" \
-        "RUNS=1 TIME=5 PLANNERS=rrtstar ARGS='--objective max_min_clearance' CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture' bench/run_planning_benchmark.sh $build \$(mktemp -d)"
+    each="CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture'"
+    planning rrtconnect_checkers bench/planning.md 10 3 "TIME=10 $each"
+    planning rrtstar_checkers bench/planning.md 3 1 "TIME=5 PLANNERS=rrtstar ARGS='--objective max_min_clearance' $each"
     add sampler_slotted_wall bench/planning.md meshgap_benchmark \
         "PLANNER=biest bench/sampler_table.sh $build \$(mktemp -d)" \
         "PLANNER=biest RUNS=1 TIME=5 bench/sampler_table.sh $build \$(mktemp -d)"
