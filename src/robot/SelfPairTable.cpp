@@ -266,21 +266,6 @@ namespace meshgap
         return provenOver(g, from, from);
     }
 
-    bool SelfPairTable::apartWithin(std::size_t p, const double *middle, const double *reach) const
-    {
-        const Grid &g = pairs_[p];
-        if (g.dims == 0)
-            return false;
-        double from[2] = {0.0, 0.0}, to[2] = {0.0, 0.0};
-        for (int d = 0; d < g.dims; ++d)
-        {
-            const std::size_t v = g.numbers[d];
-            from[d] = middle[v] - reach[v];
-            to[d] = middle[v] + reach[v];
-        }
-        return provenOver(g, from, to);
-    }
-
     bool SelfPairTable::provenAlong(const Grid &g, const double middle[2], const double step[2], double half,
                                     unsigned int splits)
     {

@@ -61,8 +61,9 @@ namespace meshgap
         /** \brief For every tabulated pair of \e scene (with \e table): at random states, where the table says
             apart, the exact distance is positive; where the pair collides, the table does not say apart; between a
             claimed state and a colliding one, bisected to 1e-7 of each other, the claim still holds where the
-            table makes it. Then random boxes of numbers (apartWithin()): where claimed, every sampled state in the
-            box, corners included, is free. */
+            table makes it. Then random boxes of numbers (apartAlong() with no split: the box around a segment from
+            one corner to the opposite one): where claimed, every sampled state in the box, corners included, is
+            free. */
         void expectClaimsHold(const RobotScene &scene, const SelfPairTable &table, int states, Seen &seen)
         {
             const RobotModel &robot = scene.robot();
@@ -137,7 +138,7 @@ namespace meshgap
                     for (double &r : reach)
                         r = std::uniform_real_distribution<double>(0.0, 0.3)(rng);
                     ++seen.boxes;
-                    if (!table.apartWithin(p, middle.data(), reach.data()))
+                    if (!table.apartAlong(p, middle.data(), reach.data(), 1.0, 0))
                         continue;
                     ++seen.boxClaims;
                     for (int k = 0; k < 24; ++k)

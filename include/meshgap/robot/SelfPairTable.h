@@ -17,7 +17,7 @@ namespace meshgap
         is a function of one or two state numbers (a base and the upper arm two joints up, a forearm and the wrist
         two joints down): a grid over those numbers' range whose cells are each proven free as a whole, once per
         robot. A state check of such a pair is then one look-up (apartAt()), and a piece of motion whose numbers
-        stay within proven cells needs no question about the pair (apartWithin(), apartAlong()).
+        stay within proven cells needs no question about the pair (apartAlong()).
 
         A cell is proven as a piece of motion is (RobotMotionValidator): the pair is more than a margin apart at
         the cell's centre (RobotScene::pairApart(), certified), the margin bounding how far either link moves
@@ -55,13 +55,10 @@ namespace meshgap
         /** \brief True when self pair \e p is proven apart at \e state (a state of the robot, its numbers;
             false: no claim). */
         bool apartAt(std::size_t p, const double *state) const;
-        /** \brief True when self pair \e p is proven apart at every state whose numbers lie within \e reach[v] of
-            \e middle[v] (both indexed by state number; an angle's reach along the circle). */
-        bool apartWithin(std::size_t p, const double *middle, const double *reach) const;
-
         /** \brief True when self pair \e p is proven apart at every state middle + t step, |t| <= \e half (both
-            indexed by state number; an angle's step along the circle, signed): the box around the segment
-            (apartWithin()), or else each half of the segment in the same way, at most \e splits times deep. */
+            indexed by state number; an angle's step along the circle, signed): the box around the segment (with
+            \e splits 0, that box alone), or else each half of the segment in the same way, at most \e splits times
+            deep. */
         bool apartAlong(std::size_t p, const double *middle, const double *step, double half,
                         unsigned int splits) const;
         /** \brief The fraction of self pair \e p's range proven apart (0 for a pair not tabulated). */
