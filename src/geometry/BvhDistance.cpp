@@ -169,8 +169,9 @@ namespace meshgap
             {
                 // Without a bound to prune with yet (no seed: a cold query), best first until the first pair of
                 // leaves is tested (the open pair of least bound next: that first exact distance then comes from
-                // near the minimum, wherever it is among many parts, and prunes well); depth first, nearer child
-                // first, from there on and whenever a bound is known (no heap to keep: cheaper per pair).
+                // near the minimum, wherever it is among many parts, and prunes well) or the heap outgrows
+                // BEST_FIRST_OPEN_LIMIT; depth first, nearer child first, from there on and whenever a bound is known
+                // (no heap to keep: cheaper per pair).
                 open_.push_back({startBound, startBound, start});
                 bestFirst_ = !(enough() < std::numeric_limits<double>::infinity());
                 while (!open_.empty())
@@ -199,19 +200,31 @@ namespace meshgap
                         const double least = leaves(na, nb, bound, axis);
                         keep(e, least, axis);
                         if (bestFirst_)
-                        {
-                            // Depth first from here: the open pairs as a stack, the least bound on top.
-                            std::sort(open_.begin(), open_.end(),
-                                      [](const Open &x, const Open &y) { return x.bound > y.bound; });
-                            bestFirst_ = false;
-                        }
+                            goDepthFirst();
                         continue;
                     }
                     descend(e, na, nb);
+                    if (bestFirst_ && open_.size() > BEST_FIRST_OPEN_LIMIT)
+                        goDepthFirst();
                 }
             }
 
         private:
+            /** \brief The most open pairs a best-first search keeps in its heap (96 KiB of them: within a core's
+                second-level cache). Between finely meshed bodies near each other (a part refined to 20k triangles,
+                bench/scaling.md) the heap grew to 190,000 pairs before its first pair of leaves: the heap's pushes and
+                pops, and the sort that turns it into a stack, then missed the caches on every step, and a cold query
+                cost five times the depth-first search it gives way to here. The field and protocol pairs stay below
+                the limit but for a few queries (bench/queries.md). */
+            static constexpr std::size_t BEST_FIRST_OPEN_LIMIT = 4096;
+
+            /** \brief Depth first from here on: the open pairs as a stack, the least bound on top. */
+            void goDepthFirst()
+            {
+                std::sort(open_.begin(), open_.end(), [](const Open &x, const Open &y) { return x.bound > y.bound; });
+                bestFirst_ = false;
+            }
+
             /** \brief The triangle pair (ta, tb) at exact distance \e d (witnesses \e onA, \e onB) becomes the best
                 if it is closer by more than the slack, or ties within it and ranks first (the canonical tie rule);
                 returns whether it did. */

@@ -1,8 +1,9 @@
 // The distance traversal's descent (BvhDistance.cpp): both nodes of a pair of inner nodes of like size split at once
 // while the search is best first (no bound yet), the node of larger sphere alone otherwise. The answer must stay the
 // brute-force minimum with the canonical pair (the smallest triangle pair among those tied within the rounding
-// slack), cold and warm alike, on flat slanted plates and on a round body; and the descent must bound fewer box pairs
-// than splitting one node at a time did on the same fixed poses (a count, not a time).
+// slack), cold and warm alike, on flat slanted plates and on a round body, and when a cold search leaves best first for
+// depth first because its heap outgrew its limit; and the descent must bound fewer box pairs than splitting one node at
+// a time did on the same fixed poses (a count, not a time).
 
 #include <gtest/gtest.h>
 
@@ -125,4 +126,24 @@ TEST(BvhDescent, FewerBoxPairsThanOneNodeAtATime)
         boxTests += r.boxTests;
     }
     EXPECT_LT(boxTests, 20200u) << "box pairs bounded over 40 poses (one node at a time: 20,784)";
+}
+
+TEST(BvhDescent, BruteForcePairWhenTheBestFirstHeapOutgrowsItsLimit)
+{
+    // A finely meshed sphere inside another a little larger: the boxes of the two surfaces' curved patches overlap
+    // down to small patches though the triangles are apart, so a best-first search's heap (the overlapping pairs first)
+    // outgrows its limit before its first pair of leaves, and the search goes on depth first from the sorted heap.
+    // The answer must be the brute-force minimum with the canonical pair all the same.
+    const Mesh ma = test::icosphere(1.0, 3), mb = test::icosphere(0.96, 3);
+    const TriangleBvh a(ma), b(mb);
+    for (std::uint32_t pose = 0; pose < static_cast<std::uint32_t>(test::scaled(3)); ++pose)
+    {
+        Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+        X.linear() = Eigen::AngleAxisd(0.3 * pose + 0.1, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+        X.translation() = Eigen::Vector3d(0.004 * pose, -0.003, 0.002);
+        const Brute brute = bruteForce(ma, mb, X);
+        BvhDistanceResult r;
+        bvhDistance(a, b, X, std::numeric_limits<double>::infinity(), -1.0, r);
+        expectCanonical(r, brute, ma, mb, 1e-12, "pose " + std::to_string(pose));
+    }
 }
