@@ -3,7 +3,8 @@
 # `<!-- refresh:NAME -->` ... `<!-- /refresh:NAME -->` markers, each stamped with the commit (`dirty` if the tree has
 # uncommitted changes), the date, the machine's load and the command. Builds only the bench targets it runs
 # (`cmake --build BUILD --target ...`). The other tables of bench/ are measurements by hand, each with its commit
-# (bench/README.md lists both kinds).
+# (bench/README.md lists both kinds). Last, bench/README.md's list of the commits each page names is rewritten from
+# the pages (refresh_tables.py commits).
 #
 #   bench/refresh.sh [--quick] [--build DIR] [--only NAME[,NAME...]] [--no-build]
 #   bench/refresh.sh --list       the blocks: NAME PAGE
@@ -233,3 +234,5 @@ for b in "${chosen[@]}"; do
     stamp="$stamp load $before at the start, $after at the end (1-minute average, $(nproc) cores)."
     python3 bench/refresh_tables.py write "$page" "$name" "$out" --stamp "$stamp" --command "${cmd//$root\//}"
 done
+# The index's list of the commits each page names, the stamps just written included.
+python3 bench/refresh_tables.py commits bench/README.md $(ls bench/*.md | grep -v '^bench/README.md$')

@@ -5,15 +5,19 @@ A page holds each regenerated block between `<!-- refresh:NAME -->` and `<!-- /r
 its own). `write` replaces what lies between one pair with a stamp (commit, date, load, command) and the tables of a
 benchmark's output: every Markdown table, with the line of text just above it as its caption, and CSV output (a
 header line and rows of numbers) as one table. `check` fails on unbalanced, nested, repeated or misnamed markers.
-`selftest` runs both on made-up pages (the ctest entries run it and `check` on the real pages).
+`commits` rewrites the index's list of the commits each page names (the lines after "The commits named on each
+page:" in bench/README.md) from the pages themselves: every 7-digit hexadecimal word that git knows as a commit.
+`selftest` runs them on made-up pages (the ctest entries run it and `check` on the real pages).
 
     refresh_tables.py write PAGE NAME OUTPUT --stamp TEXT --command TEXT
     refresh_tables.py check PAGE... [--expect NAME...]
+    refresh_tables.py commits INDEX PAGE...
     refresh_tables.py selftest
 """
 import argparse
 import os
 import re
+import subprocess
 import sys
 import tempfile
 
@@ -104,6 +108,51 @@ def write(page, name, output, stamp, command):
     return len(got)
 
 
+COMMIT_WORD = re.compile(r'\b[0-9a-f]{7}\b')
+INDEX_HEAD = 'The commits named on each page:'
+
+
+def known_commits(words):
+    """The words git resolves to a commit of this repository (one git call for all)."""
+    words = sorted(words)
+    if not words:
+        return set()
+    out = subprocess.run(['git', 'cat-file', '--batch-check'], input=''.join(w + '^{commit}\n' for w in words),
+                         capture_output=True, text=True, check=True).stdout.splitlines()
+    return {w for w, line in zip(words, out) if not line.endswith('missing') and ' commit ' in line}
+
+
+def commits(index, pages, resolve=known_commits):
+    """Rewrite index's list of the commits each page names; returns the number of pages listed."""
+    named = {}
+    for page in pages:
+        with open(page) as f:
+            named[page] = set(COMMIT_WORD.findall(f.read()))
+    real = resolve(set().union(*named.values()))
+    with open(index) as f:
+        lines = f.readlines()
+    try:
+        head = lines.index(INDEX_HEAD + '\n')
+    except ValueError:
+        raise MarkerError('%s: no line "%s"' % (index, INDEX_HEAD))
+    start = head + 2  # after the heading's blank line
+    end = start
+    while end < len(lines) and lines[end].startswith('* '):
+        end += 1
+    listed = []
+    for page in pages:
+        found = sorted(named[page] & real)
+        if found:
+            name = os.path.splitext(os.path.basename(page))[0]
+            listed.append('* [%s](%s.md): %s\n' % (name, name, ', '.join(found)))
+    lines[start:end] = listed
+    tmp = index + '.tmp'
+    with open(tmp, 'w') as f:
+        f.writelines(lines)
+    os.replace(tmp, index)
+    return len(listed)
+
+
 def selftest():
     """write on a made-up page, then check: a replaced block, the others untouched; and each kind of bad marker."""
     with tempfile.TemporaryDirectory() as d:
@@ -134,7 +183,19 @@ def selftest():
             raise AssertionError('an output without a table was written')
         except ValueError:
             pass
-    print('selftest: write and check behave')
+        # commits: words that are commits listed per page, sorted; other words and stale entries not.
+        index = os.path.join(d, 'README.md')
+        with open(index, 'w') as f:
+            f.write('# i\n\n%s\n\n* [old](old.md): 0000abc\n\nafter\n' % INDEX_HEAD)
+        other = os.path.join(d, 'other.md')
+        with open(other, 'w') as f:
+            f.write('at b7ee66b and 0141c74, 1182550 pairs, deadbee (not one), 0141c74 again, 1026127, 0141c745\n')
+        with open(page, 'w') as f:
+            f.write('nothing named\n')
+        assert commits(index, [other, page], lambda words: words - {'deadbee', '1182550'}) == 1
+        text = open(index).read()
+        assert '* [other](other.md): 0141c74, 1026127, b7ee66b\n\nafter' in text and 'old' not in text, text
+    print('selftest: write, check and commits behave')
 
 
 def main():
@@ -149,6 +210,9 @@ def main():
     c = sub.add_parser('check')
     c.add_argument('pages', nargs='+')
     c.add_argument('--expect', nargs='*', default=[], help='block names that must exist (NAME or PAGE:NAME)')
+    m = sub.add_parser('commits')
+    m.add_argument('index')
+    m.add_argument('pages', nargs='+')
     sub.add_parser('selftest')
     a = p.parse_args()
     try:
@@ -167,9 +231,11 @@ def main():
             if missing:
                 raise MarkerError('blocks missing: ' + ', '.join(missing))
             print('%d page(s), %d block(s), markers balanced' % (len(a.pages), len(names)))
+        elif a.what == 'commits':
+            print('%s: commits of %d page(s) listed' % (a.index, commits(a.index, a.pages)))
         else:
             selftest()
-    except (MarkerError, ValueError, OSError) as e:
+    except (MarkerError, ValueError, OSError, subprocess.CalledProcessError) as e:
         print('refresh_tables.py: %s' % e, file=sys.stderr)
         return 1
     return 0
