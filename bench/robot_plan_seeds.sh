@@ -5,12 +5,13 @@
 # (e.g. PLAN_ARGS="--motion discrete").
 #
 #   bench/robot_plan_seeds.sh [BUILD (build)] [SEEDS (10)] [TIME (20)] [STEP (1e-4)] CFG...
-#   (default CFGs: maps/arm_fixture, maps/swap_se3, maps/swap_se2)
+#   (default CFGs: maps/arm_fixture, its floating-base variant, maps/swap_se3, maps/swap_se2)
 set -u
 build=${1:-build}; seeds=${2:-10}; time=${3:-20}; step=${4:-1e-4}
 shift 4 2>/dev/null || shift $#
 root=$(cd "$(dirname "$0")/.." && pwd)
-[ $# -gt 0 ] || set -- "$root/maps/arm_fixture/arm_fixture.cfg" "$root/maps/swap_se3/swap_se3.cfg" \
+[ $# -gt 0 ] || set -- "$root/maps/arm_fixture/arm_fixture.cfg" "$root/maps/arm_fixture/arm_fixture_floating.cfg" \
+                        "$root/maps/swap_se3/swap_se3.cfg" \
                         "$root/maps/swap_se2/swap_se2.cfg"
 out=$(mktemp -d)
 echo "| problem | seed | solved | planning time (s) | FCL-checked states | FCL colliding | motions certified | min exact clearance |"

@@ -127,6 +127,16 @@ namespace meshgap
                       "start.joints = 0 -0.5 2 0.07\ngoal.joints = 0 0 0 0\n\n"
                       "[benchmark]\ntime_limit = 10\nmem_limit = 1000\nrun_count = 10\n");
             checkProblem(directory / "arm_fixture.cfg");
+            // The same arm on a floating base (seven numbers first: x y z qx qy qz qw), free within a box 0.6 by 0.6
+            // by 0.4 around the origin; the goal shifts the base 0.1 along x.
+            writeText(directory / "arm_fixture_floating.cfg",
+                      "[problem]\nname = arm_fixture_floating\nrobot.urdf = arm4.urdf\nworld = arm_fixture_world.obj\n"
+                      "attach = arm_fixture_payload.obj tool 0 0 0 0 0 0 1\n"
+                      "start.joints = 0 0 0 0 0 0 1 0 -0.5 2 0.07\ngoal.joints = 0.1 0 0 0 0 0 1 0 0 0 0\n"
+                      "volume.min.x = -0.3\nvolume.min.y = -0.3\nvolume.min.z = -0.2\n"
+                      "volume.max.x = 0.3\nvolume.max.y = 0.3\nvolume.max.z = 0.2\n\n"
+                      "[benchmark]\ntime_limit = 10\nmem_limit = 1000\nrun_count = 10\n");
+            checkProblem(directory / "arm_fixture_floating.cfg");
         }
 
         namespace
