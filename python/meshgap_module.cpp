@@ -287,13 +287,13 @@ namespace
             distanceBatch(*self.scene, poses, request, warm, t, results);
         }
         const py::ssize_t n = static_cast<py::ssize_t>(results.size());
-        py::array_t<double> distance(n), onRobot({n, py::ssize_t(3)}), onObstacle({n, py::ssize_t(3)}),
+        py::array_t<double> distance(n), onA({n, py::ssize_t(3)}), onB({n, py::ssize_t(3)}),
             depth(n);
         py::array_t<std::int64_t> obstacle(n);
         py::array_t<bool> inCollision(n), certified(n), openBody(n);
         auto d = distance.mutable_unchecked<1>();
-        auto r = onRobot.mutable_unchecked<2>();
-        auto o = onObstacle.mutable_unchecked<2>();
+        auto r = onA.mutable_unchecked<2>();
+        auto o = onB.mutable_unchecked<2>();
         auto ob = obstacle.mutable_unchecked<1>();
         auto c = inCollision.mutable_unchecked<1>();
         auto cert = certified.mutable_unchecked<1>();
@@ -304,8 +304,8 @@ namespace
             d(i) = s.distance;
             for (int k = 0; k < 3; ++k)
             {
-                r(i, k) = s.onRobot[k];
-                o(i, k) = s.onObstacle[k];
+                r(i, k) = s.onA[k];
+                o(i, k) = s.onB[k];
             }
             ob(i) = static_cast<std::int64_t>(s.obstacle);
             c(i) = s.inCollision;
@@ -314,8 +314,8 @@ namespace
         }
         py::dict out;
         out["distance"] = distance;
-        out["on_robot"] = onRobot;
-        out["on_obstacle"] = onObstacle;
+        out["on_robot"] = onA;
+        out["on_obstacle"] = onB;
         out["obstacle"] = obstacle;
         out["in_collision"] = inCollision;
         out["certified"] = certified;

@@ -181,8 +181,8 @@ namespace meshgap
         best.selfPair = false;
         best.link = i;
         best.other = obstacle;
-        best.onLink = s.onRobot;
-        best.onOther = s.onObstacle;
+        best.onLink = s.onA;
+        best.onOther = s.onB;
         best.inCollision = s.inCollision;
         best.penetrationDepth = s.penetrationDepth;
         best.distance = s.distance;
