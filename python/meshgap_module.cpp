@@ -972,7 +972,7 @@ namespace
     {
         const py::ssize_t n = py::ssize_t(results.size()), links = py::ssize_t(self.scene->links().size());
         const py::ssize_t self_ = py::ssize_t(self.scene->selfPairs().size());
-        py::array_t<double> distance(n), onLink({n, py::ssize_t(3)}), onOther({n, py::ssize_t(3)});
+        py::array_t<double> distance(n), onA({n, py::ssize_t(3)}), onB({n, py::ssize_t(3)});
         py::array_t<double> clearance({n, links}), linkObstacles({n, links}), selfPairs({n, self_});
         py::array_t<std::int64_t> link(n), obstacle(n), otherLink(n);
         py::array_t<bool> selfPair(n), inCollision(n), certified(n);
@@ -989,8 +989,8 @@ namespace
             certified.mutable_at(i) = r.certified;
             for (py::ssize_t k = 0; k < 3; ++k)
             {
-                onLink.mutable_at(i, k) = r.onLink[k];
-                onOther.mutable_at(i, k) = r.onOther[k];
+                onA.mutable_at(i, k) = r.onA[k];
+                onB.mutable_at(i, k) = r.onB[k];
             }
             for (py::ssize_t k = 0; everyPair && k < links; ++k)
             {
@@ -1008,8 +1008,8 @@ namespace
         out["link"] = link;
         out["obstacle"] = obstacle;
         out["other_link"] = otherLink;
-        out["on_link"] = onLink;
-        out["on_other"] = onOther;
+        out["on_link"] = onA;
+        out["on_other"] = onB;
         if (everyPair)
         {
             out["link_clearance"] = clearance;

@@ -19,8 +19,8 @@ namespace meshgap
             result.distance = std::numeric_limits<double>::infinity();
             result.selfPair = false;
             result.link = result.other = 0;
-            result.onLink.setZero();
-            result.onOther.setZero();
+            result.onA.setZero();
+            result.onB.setZero();
             result.inCollision = false;
             result.penetrationDepth = 0.0;
             result.certified = false;
@@ -181,8 +181,8 @@ namespace meshgap
         best.selfPair = false;
         best.link = i;
         best.other = obstacle;
-        best.onLink = s.onA;
-        best.onOther = s.onB;
+        best.onA = s.onA;
+        best.onB = s.onB;
         best.inCollision = s.inCollision;
         best.penetrationDepth = s.penetrationDepth;
         best.distance = s.distance;
@@ -219,8 +219,8 @@ namespace meshgap
         best.selfPair = true;
         best.link = a;
         best.other = b;
-        best.onLink = warm.poses[a] * r.onA;  // refineExact's witnesses are in a's frame
-        best.onOther = warm.poses[a] * r.onB;
+        best.onA = warm.poses[a] * r.onA;  // refineExact's witnesses are in a's frame
+        best.onB = warm.poses[a] * r.onB;
         best.inCollision = r.inCollision;
         best.penetrationDepth = r.penetrationDepth;
         best.distance = r.distance;

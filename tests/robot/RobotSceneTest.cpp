@@ -256,8 +256,8 @@ namespace meshgap
                 robotScene.distance(state.data(), state.size(), RobotRequest(), robotWarm, got);
                 ASSERT_EQ(got.distance, expected.distance) << n;
                 EXPECT_EQ(got.other, expected.obstacle);
-                EXPECT_EQ(got.onLink, expected.onA);
-                EXPECT_EQ(got.onOther, expected.onB);
+                EXPECT_EQ(got.onA, expected.onA);
+                EXPECT_EQ(got.onB, expected.onB);
                 EXPECT_EQ(got.inCollision, expected.inCollision);
                 EXPECT_EQ(got.certified, expected.certified);
                 EXPECT_EQ(got.linkClearance[0], expected.distance);

@@ -61,8 +61,9 @@ namespace meshgap
             against link \e other (selfPair true, link < other). Indices in RobotScene::links(), obstacles(). */
         bool selfPair{false};
         std::size_t link{0}, other{0};
-        Eigen::Vector3d onLink{Eigen::Vector3d::Zero()};   ///< witness points, world frame
-        Eigen::Vector3d onOther{Eigen::Vector3d::Zero()};
+        /** \brief Witness points, world frame: on the link \e link (A) and on what it is measured against (B: the
+            obstacle, or the link \e other), as DistanceResult names them. */
+        Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};
         bool inCollision{false};
         double penetrationDepth{0.0};  ///< in collision: the depth estimate behind distance (>= 0)
         bool certified{false};         ///< every pair completed (or a collision, proven)
