@@ -314,8 +314,8 @@ namespace
         }
         py::dict out;
         out["distance"] = distance;
-        out["on_robot"] = onA;
-        out["on_obstacle"] = onB;
+        out["on_a"] = onA;
+        out["on_b"] = onB;
         out["obstacle"] = obstacle;
         out["in_collision"] = inCollision;
         out["certified"] = certified;
@@ -1008,8 +1008,8 @@ namespace
         out["link"] = link;
         out["obstacle"] = obstacle;
         out["other_link"] = otherLink;
-        out["on_link"] = onA;
-        out["on_other"] = onB;
+        out["on_a"] = onA;
+        out["on_b"] = onB;
         if (everyPair)
         {
             out["link_clearance"] = clearance;
@@ -1158,7 +1158,8 @@ namespace
                  "float64 array, exact and certified. Returns a dict of arrays: distance (N,), in_collision (N,), "
                  "certified (N,); the pair that attains it: self_pair (N,) (two links, else a link against an "
                  "obstacle), link (N,) (index in link_names), obstacle (N,) (-1 for a self pair), other_link (N,) "
-                 "(-1 for an obstacle); on_link and on_other (N, 3) witness points (world frame); and with "
+                 "(-1 for an obstacle); on_a and on_b (N, 3) witness points (world frame) on the link and on the obstacle "
+                 "or other link; and with "
                  "every_pair (default): link_clearance (N, links) (each link's distance from everything it is "
                  "checked against), link_obstacle_distance (N, links) (each link against the obstacles) and "
                  "self_pair_distance (N, len(self_pairs)). every_pair=False: the minimum alone, cheaper (pairs "
@@ -1264,8 +1265,8 @@ PYBIND11_MODULE(_meshgap, m)
         .def("distance", &distance, py::arg("poses"), py::kw_only(), py::arg("exact") = true,
              py::arg("warm") = true, py::arg("threads") = 1, py::arg("depth") = true,
              "Minimum distance at every pose of an (N, 7) (x y z qx qy qz qw) or (N, 3) (x y theta) float64 array. "
-             "Returns a dict of arrays: distance (N,) (signed: negative in collision), on_robot and on_obstacle "
-             "(N, 3) witness points (world frame), obstacle (N,), in_collision (N,), certified (N,), open_body (N,) "
+             "Returns a dict of arrays: distance (N,) (signed: negative in collision), on_a and on_b (N, 3) "
+             "witness points (world frame) on the robot and on the obstacle, obstacle (N,), in_collision (N,), certified (N,), open_body (N,) "
              "(the robot or that obstacle is not a closed surface: it has no inside, so nothing counts as inside "
              "it; see open_obstacles). exact: the "
              "certified surface distance. exact=False (fast mode) is never dearer than the exact query: the paper's "
