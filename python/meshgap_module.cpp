@@ -1266,7 +1266,8 @@ PYBIND11_MODULE(_meshgap, m)
              py::arg("warm") = true, py::arg("threads") = 1, py::arg("depth") = true,
              "Minimum distance at every pose of an (N, 7) (x y z qx qy qz qw) or (N, 3) (x y theta) float64 array. "
              "Returns a dict of arrays: distance (N,) (signed: negative in collision), on_a and on_b (N, 3) "
-             "witness points (world frame) on the robot and on the obstacle, obstacle (N,), in_collision (N,), certified (N,), open_body (N,) "
+             "witness points (world frame) on the robot and on the obstacle, obstacle (N,), in_collision (N,), "
+             "certified (N,), open_body (N,) "
              "(the robot or that obstacle is not a closed surface: it has no inside, so nothing counts as inside "
              "it; see open_obstacles). exact: the "
              "certified surface distance. exact=False (fast mode) is never dearer than the exact query: the paper's "

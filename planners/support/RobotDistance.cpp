@@ -93,7 +93,7 @@ namespace meshgap
                   << ", \"link\": " << jsonString(scene.links()[r.link].name) << ", \"other_link\": "
                   << (r.selfPair ? jsonString(scene.links()[r.other].name) : "null")
                   << ", \"obstacle\": " << (r.selfPair ? std::string("null") : std::to_string(r.other));
-                for (const auto &[key, v] : {std::pair{"witness_link", &r.onA}, {"witness_other", &r.onB}})
+                for (const auto &[key, v] : {std::pair{"witness_a", &r.onA}, {"witness_b", &r.onB}})
                     o << ", \"" << key << "\": [" << jsonNumber(v->x()) << ", " << jsonNumber(v->y()) << ", "
                       << jsonNumber(v->z()) << "]";
                 o << ", \"pairs_checked\": " << r.pairsChecked << ", \"time_us\": " << jsonNumber(micros)

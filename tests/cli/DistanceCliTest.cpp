@@ -282,7 +282,7 @@ TEST(DistanceCli, CfgPosesGiveTheSceneAnswerWarmOrCold)
                 << " " << q.y() << " " << q.z() << " " << q.w() << "\n";
         }
     }
-    const std::string header = "index,distance,in_collision,certified,link,other_link,obstacle,witness_link_x,";
+    const std::string header = "index,distance,in_collision,certified,link,other_link,obstacle,witness_a_x,";
     const CliRun warm = run("--cfg " + cfg.string() + " --poses " + file + " -q");
     const CliRun cold = run("--cfg " + cfg.string() + " --poses " + file + " --cold -q");
     const CliRun json = run("--cfg " + cfg.string() + " --poses " + file + " --json -q");

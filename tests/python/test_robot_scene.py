@@ -356,7 +356,7 @@ def test_batch_equals_meshgap_distance_cli(files, tmp_path):
         assert row["link"] == scene.link_names[r["link"][i]]
         assert row["other_link"] == (scene.link_names[r["other_link"][i]] if r["self_pair"][i] else "")
         assert row["obstacle"] == ("" if r["self_pair"][i] else str(r["obstacle"][i]))
-        for side, key in (("link", "on_a"), ("other", "on_b")):
+        for side, key in (("a", "on_a"), ("b", "on_b")):
             np.testing.assert_allclose([float(row["witness_%s_%s" % (side, c)]) for c in "xyz"], r[key][i],
                                        rtol=1e-9, atol=1e-12)
         np.testing.assert_allclose([float(row["clearance_" + n]) for n in scene.link_names], r["link_clearance"][i],
