@@ -165,10 +165,12 @@ namespace meshgap
     bool RobotScene::answerLink(std::size_t i, const RobotRequest &request, double bound, RobotWarmStart &warm,
                                 RobotPairAnswer &answer, RobotResult &best, bool &complete) const
     {
+        // The fields RobotRequest passes on (its seed, start, maxEvaluations, recordHistory and maxTests are ignored).
         SceneRequest sceneRequest;
         sceneRequest.stopBelow = request.stopBelow;
         sceneRequest.upperBound = bound;
         sceneRequest.computeDepth = request.computeDepth;
+        sceneRequest.outerBoundFirst = request.outerBoundFirst;
         SceneResult s;
         scenes_[i]->distance(warm.poses[i], sceneRequest, warm.links[i], s);
         best.pairsChecked += s.pairsChecked > 0 ? 1 : 0;
@@ -199,10 +201,11 @@ namespace meshgap
             answer = {gap, RobotPairAnswer::Status::AT_LEAST, 0};
             return false;
         }
-        DistanceRequest pairRequest;
+        DistanceRequest pairRequest;  // as answerLink() passes them on
         pairRequest.stopBelow = request.stopBelow;
         pairRequest.upperBound = bound;
         pairRequest.computeDepth = request.computeDepth;
+        pairRequest.outerBoundFirst = request.outerBoundFirst;
         DistanceResult r;
         refineExact(*links_[a].body, *links_[b].body, warm.poses[a].inverse() * warm.poses[b], r, pairRequest,
                     &warm.self[p]);

@@ -18,7 +18,8 @@ namespace meshgap
     };
 
     /** \brief What one query should do. The pose is not part of it: solvers take X_AB, the pose of body B in body
-        A's frame (the paper's eq. 4: only B's nodes are transformed). */
+        A's frame (the paper's eq. 4: only B's nodes are transformed). Every query's request extends it (SceneRequest,
+        RobotRequest), each saying how its fields apply there. */
     struct DistanceRequest
     {
         /** \brief Seed of the query's random numbers: the same seed gives the same result, bit for bit. */

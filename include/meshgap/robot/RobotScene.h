@@ -16,21 +16,23 @@ namespace meshgap
 {
     MESHGAP_CLASS_FORWARD(RobotScene);
 
-    /** \brief What one whole-robot query should do (exact, certified answers). */
-    struct RobotRequest
+    /** \brief What one whole-robot query should do (exact, certified answers): a DistanceRequest, as SceneRequest
+        is, whose fields mean for the whole robot what they mean for one pair, and which pairs to answer.
+        - stopBelow: the query stops at the first pair at or below it (the answer then an upper bound, not
+          certified, and a collision without depth).
+        - upperBound: pairs at or above it are pruned; when none is below, RobotResult::atLeast says so. Must be
+          positive (else meshgap::Exception).
+        - computeDepth: in collision, each colliding pair's penetration depth (false: the verdict alone, a
+          colliding pair's distance CONTACT_DISTANCE).
+        - outerBoundFirst: asked of every pair (a link against the obstacles of its scene, a self pair), each
+          bounded by upperBound or, without everyPair, by the best distance so far.
+        - Ignored: seed, start, maxEvaluations and recordHistory (node-level: the whole-robot query is exact), and
+          maxTests (every pair is answered to the end; RobotScene::pairApart() takes a budget). */
+    struct RobotRequest : DistanceRequest
     {
-        /** \brief Stop as soon as a pair at or below this is known (a validity check needs no more): the answer
-            is then an upper bound, not certified, and a collision gets no depth. Negative: never stop early. */
-        double stopBelow{-1.0};
-        /** \brief Only a distance below this matters: pairs at or above it are pruned; when none is below, the
-            answer says so (RobotResult::atLeast). Must be positive. */
-        double upperBound{std::numeric_limits<double>::infinity()};
         /** \brief Answer every pair exactly (the clearance of every link and every pair, RobotResult::pairs),
             rather than pruning each pair at the best distance found so far (cheaper; the minimum is the same). */
         bool everyPair{false};
-        /** \brief In collision, estimate the penetration depth (the distance then minus it); false: the verdict
-            alone, the distance of a colliding pair CONTACT_DISTANCE (as DistanceRequest::computeDepth). */
-        bool computeDepth{true};
         /** \brief Check link against link (the pairs RobotModel::selfPairs() gives), not only against the world. */
         bool selfCollision{true};
     };
