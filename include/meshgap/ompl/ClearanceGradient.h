@@ -35,7 +35,8 @@ namespace meshgap
        - in collision with a depth (Penetration::DEEPEST_NODE): the signed distance is minus the depth of the
          deepest node, which onA - onB pushes out when reversed (README "Penetration depth"); the same formula
          with n = (onB - onA) / |...| and p = onA (either the robot's node inside the obstacle or the point of the
-         robot's surface nearest the obstacle's node) is the derivative of that signed distance. Other collisions have no depth (CONTACT_DISTANCE): gradient 0, hasDirection false.
+         robot's surface nearest the obstacle's node) is the derivative of that signed distance. Other collisions
+         have no depth (CONTACT_DISTANCE): gradient 0, hasDirection false.
        - ties: every other obstacle whose exact distance is within the tie tolerance of the minimum (refineExact()
          bounded by minimum + tolerance, so far obstacles cost a box test) contributes its own pair's gradient
          g_i, up to 8 pairs, the closest kept. The clearance is then the minimum of the pairs' smooth distances,

@@ -172,7 +172,7 @@ namespace meshgap
     {
         /** \brief Minimum over all robot/obstacle pairs; negative in collision (a signed distance). */
         double distance{std::numeric_limits<double>::infinity()};
-        std::size_t obstacle{0};                           ///< which obstacle is closest
+        std::size_t obstacle{0};  ///< which obstacle is closest
         /** \brief Witness points, world frame: on the robot (A) and on the obstacle (B), as DistanceResult names
             them. */
         Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};
