@@ -287,13 +287,13 @@ namespace
             distanceBatch(*self.scene, poses, request, warm, t, results);
         }
         const py::ssize_t n = static_cast<py::ssize_t>(results.size());
-        py::array_t<double> distance(n), onRobot({n, py::ssize_t(3)}), onObstacle({n, py::ssize_t(3)}),
+        py::array_t<double> distance(n), onA({n, py::ssize_t(3)}), onB({n, py::ssize_t(3)}),
             depth(n);
         py::array_t<std::int64_t> obstacle(n);
         py::array_t<bool> inCollision(n), certified(n), openBody(n);
         auto d = distance.mutable_unchecked<1>();
-        auto r = onRobot.mutable_unchecked<2>();
-        auto o = onObstacle.mutable_unchecked<2>();
+        auto r = onA.mutable_unchecked<2>();
+        auto o = onB.mutable_unchecked<2>();
         auto ob = obstacle.mutable_unchecked<1>();
         auto c = inCollision.mutable_unchecked<1>();
         auto cert = certified.mutable_unchecked<1>();
@@ -304,8 +304,8 @@ namespace
             d(i) = s.distance;
             for (int k = 0; k < 3; ++k)
             {
-                r(i, k) = s.onRobot[k];
-                o(i, k) = s.onObstacle[k];
+                r(i, k) = s.onA[k];
+                o(i, k) = s.onB[k];
             }
             ob(i) = static_cast<std::int64_t>(s.obstacle);
             c(i) = s.inCollision;
@@ -314,8 +314,8 @@ namespace
         }
         py::dict out;
         out["distance"] = distance;
-        out["on_robot"] = onRobot;
-        out["on_obstacle"] = onObstacle;
+        out["on_a"] = onA;
+        out["on_b"] = onB;
         out["obstacle"] = obstacle;
         out["in_collision"] = inCollision;
         out["certified"] = certified;
@@ -972,7 +972,7 @@ namespace
     {
         const py::ssize_t n = py::ssize_t(results.size()), links = py::ssize_t(self.scene->links().size());
         const py::ssize_t self_ = py::ssize_t(self.scene->selfPairs().size());
-        py::array_t<double> distance(n), onLink({n, py::ssize_t(3)}), onOther({n, py::ssize_t(3)});
+        py::array_t<double> distance(n), onA({n, py::ssize_t(3)}), onB({n, py::ssize_t(3)});
         py::array_t<double> clearance({n, links}), linkObstacles({n, links}), selfPairs({n, self_});
         py::array_t<std::int64_t> link(n), obstacle(n), otherLink(n);
         py::array_t<bool> selfPair(n), inCollision(n), certified(n);
@@ -989,8 +989,8 @@ namespace
             certified.mutable_at(i) = r.certified;
             for (py::ssize_t k = 0; k < 3; ++k)
             {
-                onLink.mutable_at(i, k) = r.onLink[k];
-                onOther.mutable_at(i, k) = r.onOther[k];
+                onA.mutable_at(i, k) = r.onA[k];
+                onB.mutable_at(i, k) = r.onB[k];
             }
             for (py::ssize_t k = 0; everyPair && k < links; ++k)
             {
@@ -1008,8 +1008,8 @@ namespace
         out["link"] = link;
         out["obstacle"] = obstacle;
         out["other_link"] = otherLink;
-        out["on_link"] = onLink;
-        out["on_other"] = onOther;
+        out["on_a"] = onA;
+        out["on_b"] = onB;
         if (everyPair)
         {
             out["link_clearance"] = clearance;
@@ -1158,7 +1158,8 @@ namespace
                  "float64 array, exact and certified. Returns a dict of arrays: distance (N,), in_collision (N,), "
                  "certified (N,); the pair that attains it: self_pair (N,) (two links, else a link against an "
                  "obstacle), link (N,) (index in link_names), obstacle (N,) (-1 for a self pair), other_link (N,) "
-                 "(-1 for an obstacle); on_link and on_other (N, 3) witness points (world frame); and with "
+                 "(-1 for an obstacle); on_a and on_b (N, 3) witness points (world frame), on the link and on the "
+                 "obstacle or other link; and with "
                  "every_pair (default): link_clearance (N, links) (each link's distance from everything it is "
                  "checked against), link_obstacle_distance (N, links) (each link against the obstacles) and "
                  "self_pair_distance (N, len(self_pairs)). every_pair=False: the minimum alone, cheaper (pairs "
@@ -1264,8 +1265,9 @@ PYBIND11_MODULE(_meshgap, m)
         .def("distance", &distance, py::arg("poses"), py::kw_only(), py::arg("exact") = true,
              py::arg("warm") = true, py::arg("threads") = 1, py::arg("depth") = true,
              "Minimum distance at every pose of an (N, 7) (x y z qx qy qz qw) or (N, 3) (x y theta) float64 array. "
-             "Returns a dict of arrays: distance (N,) (signed: negative in collision), on_robot and on_obstacle "
-             "(N, 3) witness points (world frame), obstacle (N,), in_collision (N,), certified (N,), open_body (N,) "
+             "Returns a dict of arrays: distance (N,) (signed: negative in collision), on_a and on_b (N, 3) "
+             "witness points (world frame) on the robot and on the obstacle, obstacle (N,), in_collision (N,), "
+             "certified (N,), open_body (N,) "
              "(the robot or that obstacle is not a closed surface: it has no inside, so nothing counts as inside "
              "it; see open_obstacles). exact: the "
              "certified surface distance. exact=False (fast mode) is never dearer than the exact query: the paper's "

@@ -170,7 +170,7 @@ namespace meshgap
                      << (r.selfPair ? "link " + quote(scene.links()[r.other].name) :
                                       "obstacle " + std::to_string(r.other) + " of " +
                                           std::to_string(scene.obstacles().size()))
-                     << " near (" << r.onOther.x() << ", " << r.onOther.y() << ", " << r.onOther.z() << ")";
+                     << " near (" << r.onB.x() << ", " << r.onB.y() << ", " << r.onB.z() << ")";
                 if (r.distance < -1e-12)
                     text << ": signed distance " << r.distance << " (penetration depth " << -r.distance << ")";
                 else

@@ -38,8 +38,8 @@ namespace meshgap
             d.arcLength.push_back(s);
             d.clearance.push_back(r.distance);
             d.inCollision.push_back(r.inCollision);
-            d.onRobot.push_back(r.onLink);
-            d.onObstacle.push_back(r.onOther);
+            d.onA.push_back(r.onA);
+            d.onB.push_back(r.onB);
             d.collisions += r.inCollision;
             if (i == 0 || r.distance < d.minClearance)
             {

@@ -22,7 +22,9 @@ namespace meshgap
         ompl::geometric::PathGeometric path;  ///< the dense path
         std::vector<double> arcLength, clearance;
         std::vector<char> inCollision;
-        std::vector<Eigen::Vector3d> onRobot, onObstacle;  ///< witness points at each dense state (link, other)
+        /** \brief Witness points at each dense state: on the link (A) and on what it is measured against (B), as
+            RobotResult names them. */
+        std::vector<Eigen::Vector3d> onA, onB;
         /** \brief Every link's pose at every dense state (state-major: state k's link i at k * links + i). */
         std::vector<Eigen::Isometry3d> linkPoses;
         /** \brief Every link's clearance at every dense state (the order of linkPoses); with everyLink only. */

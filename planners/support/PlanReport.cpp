@@ -212,8 +212,8 @@ namespace meshgap
         r.arcLength = dense.arcLength;
         r.clearance = dense.clearance;
         r.inCollision = dense.inCollision;
-        r.onRobot = dense.onRobot;
-        r.onObstacle = dense.onObstacle;
+        r.onA = dense.onA;
+        r.onB = dense.onB;
         addClearanceRows(r, dense.argmin, dense.collisions, summary);
         finish(scene, std::move(summary), r);
         return r;
@@ -296,7 +296,7 @@ namespace meshgap
             const std::size_t links = std::max<std::size_t>(1, data.linkNames.size()), n = data.poses.size() / links;
             const bool perLink = data.linkNames.size() > 1;
             const bool hasPath = data.clearance.size() == n && n > 0;
-            std::vector<double> poses, onRobot, onObstacle;
+            std::vector<double> poses, onA, onB;
             for (const Eigen::Isometry3d &X : data.poses)
             {
                 const Eigen::Quaterniond q(X.linear());
@@ -327,14 +327,14 @@ namespace meshgap
                         argmin = i;
                     for (int k = 0; k < 3; ++k)
                     {
-                        onRobot.push_back(data.onRobot[i][k]);
-                        onObstacle.push_back(data.onObstacle[i][k]);
+                        onA.push_back(data.onA[i][k]);
+                        onB.push_back(data.onB[i][k]);
                     }
                 }
                 std::vector<unsigned char> collide(data.inCollision.begin(), data.inCollision.end());
                 json << ", \"arcLength\": \"" << floats(data.arcLength) << "\", \"clearance\": \""
                      << floats(data.clearance) << "\", \"inCollision\": \"" << base64(collide.data(), collide.size())
-                     << "\", \"onRobot\": \"" << floats(onRobot) << "\", \"onObstacle\": \"" << floats(onObstacle)
+                     << "\", \"onA\": \"" << floats(onA) << "\", \"onB\": \"" << floats(onB)
                      << "\", \"argmin\": " << argmin << ", \"minClearance\": " << jsonNumber(data.clearance[argmin]);
             }
             else

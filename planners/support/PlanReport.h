@@ -28,7 +28,7 @@ namespace meshgap
         std::vector<Eigen::Isometry3d> poses;
         std::vector<double> arcLength, clearance;  ///< empty without a path
         std::vector<char> inCollision;
-        std::vector<Eigen::Vector3d> onRobot, onObstacle;  ///< the witnesses on the link and on the other body
+        std::vector<Eigen::Vector3d> onA, onB;  ///< the witnesses on the link (A) and on the other body (B)
         /** \brief Each link's clearance at every state (the order of poses); empty without a path. */
         std::vector<double> linkClearance;
     };

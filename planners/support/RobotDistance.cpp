@@ -25,7 +25,7 @@ namespace meshgap
                     << (r.certified ? "exact, certified" : "not certified") << ")"
                     << (r.inCollision ? ", IN COLLISION" : "") << "\n";
                 out << "  closest pair   " << pairText(scene, r) << "\n";
-                out << "  witnesses      (" << r.onLink.transpose() << ") on the link, (" << r.onOther.transpose()
+                out << "  witnesses      (" << r.onA.transpose() << ") on the link, (" << r.onB.transpose()
                     << ") on the other\n";
                 for (std::size_t i = 0; i < scene.links().size(); ++i)
                 {
@@ -93,7 +93,7 @@ namespace meshgap
                   << ", \"link\": " << jsonString(scene.links()[r.link].name) << ", \"other_link\": "
                   << (r.selfPair ? jsonString(scene.links()[r.other].name) : "null")
                   << ", \"obstacle\": " << (r.selfPair ? std::string("null") : std::to_string(r.other));
-                for (const auto &[key, v] : {std::pair{"witness_link", &r.onLink}, {"witness_other", &r.onOther}})
+                for (const auto &[key, v] : {std::pair{"witness_a", &r.onA}, {"witness_b", &r.onB}})
                     o << ", \"" << key << "\": [" << jsonNumber(v->x()) << ", " << jsonNumber(v->y()) << ", "
                       << jsonNumber(v->z()) << "]";
                 o << ", \"pairs_checked\": " << r.pairsChecked << ", \"time_us\": " << jsonNumber(micros)
@@ -142,7 +142,7 @@ namespace meshgap
                     << csvField(scene.links()[r.link].name) << ","
                     << (r.selfPair ? csvField(scene.links()[r.other].name) : std::string()) << ","
                     << (r.selfPair ? std::string() : std::to_string(r.other));
-                for (const Eigen::Vector3d *v : {&r.onLink, &r.onOther})
+                for (const Eigen::Vector3d *v : {&r.onA, &r.onB})
                     for (int k = 0; k < 3; ++k)
                         put((*v)[k]);
                 for (double c : r.linkClearance)

@@ -16,11 +16,12 @@ namespace meshgap
         /** \brief The first columns of meshgap_distance --poses on a robot problem, one row per state (index from
             0): the whole robot's exact signed clearance, whether it is in collision, whether certified, the pair
             that attains it (link, and other_link for two links or obstacle, the obstacle's index, for a link
-            against the world; the other one empty), its witness points (world frame); then clearance_LINK, each
-            link's clearance, in the order of the robot's links. */
+            against the world; the other one empty), its witness points (world frame: witness_a on the link,
+            witness_b on the other link or the obstacle, RobotResult::onA and onB); then clearance_LINK, each link's
+            clearance, in the order of the robot's links. */
         inline constexpr const char *ROBOT_CSV_COLUMNS =
-            "index,distance,in_collision,certified,link,other_link,obstacle,witness_link_x,witness_link_y,"
-            "witness_link_z,witness_other_x,witness_other_y,witness_other_z";
+            "index,distance,in_collision,certified,link,other_link,obstacle,witness_a_x,witness_a_y,witness_a_z,"
+            "witness_b_x,witness_b_y,witness_b_z";
 
         /** \brief How meshgap_distance answers a problem (robotDistance()). */
         struct RobotDistanceOptions

@@ -54,7 +54,7 @@ namespace meshgap
             for (Eigen::Vector3d &p : placed.mesh.vertices)
                 p = X * p;
             parts.push_back(std::move(placed));
-            parts.push_back({"clearance " + std::to_string(k), segmentBox(r.onRobot, r.onObstacle, width),
+            parts.push_back({"clearance " + std::to_string(k), segmentBox(r.onA, r.onB, width),
                              r.inCollision ? options.collisionColor : options.segmentColor});
             if (results)
                 results->push_back(r);
@@ -89,7 +89,7 @@ namespace meshgap
                     p = poses[i] * p;
                 parts.push_back(std::move(placed));
             }
-            parts.push_back({"clearance " + std::to_string(k), segmentBox(r.onLink, r.onOther, width),
+            parts.push_back({"clearance " + std::to_string(k), segmentBox(r.onA, r.onB, width),
                              r.inCollision ? options.collisionColor : options.segmentColor});
         }
         return parts;

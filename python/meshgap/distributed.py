@@ -36,7 +36,7 @@ from . import _meshgap
 
 # The fields of Scene.distance, in the order they are packed in one float64 row per pose (an int64 obstacle index
 # and the booleans are exact in float64), with their dtype and width.
-FIELDS = (("distance", np.float64, 1), ("on_robot", np.float64, 3), ("on_obstacle", np.float64, 3),
+FIELDS = (("distance", np.float64, 1), ("on_a", np.float64, 3), ("on_b", np.float64, 3),
           ("obstacle", np.int64, 1), ("in_collision", np.bool_, 1), ("certified", np.bool_, 1),
           ("open_body", np.bool_, 1))
 DEFAULT_CHUNK = 16 * _meshgap.SCENE_BATCH_BLOCK  # rows per task: a multiple of the batch's block
@@ -201,8 +201,8 @@ def _fields(p):
     _, links, pairs = p.robot
     return (("distance", np.float64, 1, False), ("in_collision", np.bool_, 1, False),
             ("certified", np.bool_, 1, False), ("self_pair", np.bool_, 1, False), ("link", np.int64, 1, False),
-            ("obstacle", np.int64, 1, False), ("other_link", np.int64, 1, False), ("on_link", np.float64, 3, True),
-            ("on_other", np.float64, 3, True), ("link_clearance", np.float64, links, True),
+            ("obstacle", np.int64, 1, False), ("other_link", np.int64, 1, False), ("on_a", np.float64, 3, True),
+            ("on_b", np.float64, 3, True), ("link_clearance", np.float64, links, True),
             ("link_obstacle_distance", np.float64, links, True), ("self_pair_distance", np.float64, pairs, True))
 
 
@@ -458,6 +458,10 @@ def _store(out, params, p):
         if made.get("params") != params:
             raise ValueError("%s: a data set of other parameters %s (this run: %s); choose another out" % (
                 out, made.get("params"), params))
+        missing = [name for name, _, _ in FIELDS if name not in group]
+        if missing:  # an older meshgap's, whose witness points were on_robot and on_obstacle
+            raise ValueError("%s: a data set without the fields %s (made by an older meshgap); choose another out" % (
+                out, ", ".join(missing)))
         return group
     temporary = "%s.tmp-%d" % (out, os.getpid())
     shutil.rmtree(temporary, ignore_errors=True)

@@ -199,11 +199,11 @@ namespace meshgap
                 v.z() = 0.0;  // an SE(2) robot only moves in its plane
             return v;
         };
-        Eigen::Vector3d direction = flat(r.inCollision ? r.onObstacle - r.onRobot : r.onRobot - r.onObstacle);
+        Eigen::Vector3d direction = flat(r.inCollision ? r.onB - r.onA : r.onA - r.onB);
         const double radius = scene_->robot().radiusAboutOrigin();
         const double tiny = 1e-12 * (1.0 + radius + X.translation().norm());
         if (direction.norm() <= tiny)  // touching witnesses give no direction: move from the contact to the origin
-            direction = flat(X.translation() - r.onObstacle);
+            direction = flat(X.translation() - r.onB);
         if (direction.norm() <= tiny || !std::isfinite(r.distance))
             return false;
         direction.normalize();

@@ -211,10 +211,10 @@ namespace meshgap
                     break;
                 if (s.distance >= q.r.distance + 0.5 * alpha * norm * norm)
                     break;  // the direction raises the clearance as predicted: no hidden pair in the way
-                const Eigen::Vector3d d = s.onRobot - s.onObstacle;
+                const Eigen::Vector3d d = s.onA - s.onB;
                 if (d.norm() <= q.tiny)
                     break;
-                bundle.add(pairGradient(q.planar, Y.translation(), s.onRobot, d.normalized()), s.distance);
+                bundle.add(pairGradient(q.planar, Y.translation(), s.onA, d.normalized()), s.distance);
                 ++probed;
                 result = bundle.combine();
             }
@@ -279,11 +279,11 @@ namespace meshgap
         const GradientQuery q{
             scene, r, X, dim == 3, radius > 0.0 ? radius : 1.0, 1e-14 * (1.0 + radius + X.translation().norm())};
         const Eigen::Vector3d d0 =
-            r.inCollision ? Eigen::Vector3d(r.onObstacle - r.onRobot) : Eigen::Vector3d(r.onRobot - r.onObstacle);
+            r.inCollision ? Eigen::Vector3d(r.onB - r.onA) : Eigen::Vector3d(r.onA - r.onB);
         if (d0.norm() <= q.tiny)
             return r.distance;  // coincident witnesses: no direction
         Bundle bundle(q.planar, q.L);
-        bundle.add(pairGradient(q.planar, X.translation(), r.onRobot, d0.normalized()), r.distance);
+        bundle.add(pairGradient(q.planar, X.translation(), r.onA, d0.normalized()), r.distance);
         if (!r.inCollision)
             addTiedObstacles(q, options.tieTolerance >= 0.0 ? options.tieTolerance : 1e-9 * (1.0 + radius), bundle);
         out.hasDirection = true;

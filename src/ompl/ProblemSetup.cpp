@@ -33,8 +33,8 @@ namespace meshgap
             text.precision(6);
             text << "is in collision with obstacle " << r.obstacle << " of " << scene.obstacles().size()
                  << " (the world part whose bounding box is centred at " << point(box.center()) << ")";
-            if (r.onObstacle != Eigen::Vector3d::Zero() || r.onRobot != Eigen::Vector3d::Zero())
-                text << " near " << point(r.onObstacle);
+            if (r.onB != Eigen::Vector3d::Zero() || r.onA != Eigen::Vector3d::Zero())
+                text << " near " << point(r.onB);
             if (r.distance < 0.0)
                 text << ": signed distance " << r.distance << " (penetration depth " << -r.distance << ")";
             else

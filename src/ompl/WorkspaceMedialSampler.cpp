@@ -84,7 +84,7 @@ namespace meshgap
         request.upperBound = bound;
         SceneResult r;
         probe_->distance(Eigen::Isometry3d(Eigen::Translation3d(p)), request, r);
-        nearest = r.onObstacle;
+        nearest = r.onB;
         if (r.atLeast)
             return bound;
         return r.inCollision ? std::min(r.distance, 0.0) : r.distance;

@@ -25,14 +25,14 @@ namespace meshgap
                            Eigen::VectorXd &gradient)
     {
         gradient = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(robot.dimension()));
-        const Eigen::Vector3d gap = result.onLink - result.onOther;
+        const Eigen::Vector3d gap = result.onA - result.onB;
         if (result.inCollision || result.atLeast || !(result.distance > 0.0) || !(gap.norm() > 0.0))
             return false;
         const Eigen::Vector3d n = gap / gap.norm();
-        gradient = pointJacobian(robot, state, frames, scene.links()[result.link].frame, result.onLink).transpose() * n;
+        gradient = pointJacobian(robot, state, frames, scene.links()[result.link].frame, result.onA).transpose() * n;
         if (result.selfPair)
             gradient -=
-                pointJacobian(robot, state, frames, scene.links()[result.other].frame, result.onOther).transpose() * n;
+                pointJacobian(robot, state, frames, scene.links()[result.other].frame, result.onB).transpose() * n;
         return true;
     }
 
@@ -183,14 +183,14 @@ namespace meshgap
                                 Eigen::VectorXd &gradient)
     {
         gradient = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(robotTangentDimension(robot)));
-        const Eigen::Vector3d gap = result.onLink - result.onOther;
+        const Eigen::Vector3d gap = result.onA - result.onB;
         if (result.inCollision || result.atLeast || !(result.distance > 0.0) || !(gap.norm() > 0.0))
             return false;
         const Eigen::Vector3d n = gap / gap.norm();
-        gradient = robotPointJacobian(robot, frames, scene.links()[result.link].frame, result.onLink).transpose() * n;
+        gradient = robotPointJacobian(robot, frames, scene.links()[result.link].frame, result.onA).transpose() * n;
         if (result.selfPair)
             gradient -=
-                robotPointJacobian(robot, frames, scene.links()[result.other].frame, result.onOther).transpose() * n;
+                robotPointJacobian(robot, frames, scene.links()[result.other].frame, result.onB).transpose() * n;
         return true;
     }
 }  // namespace meshgap

@@ -19,8 +19,8 @@ namespace meshgap
             result.distance = std::numeric_limits<double>::infinity();
             result.selfPair = false;
             result.link = result.other = 0;
-            result.onLink.setZero();
-            result.onOther.setZero();
+            result.onA.setZero();
+            result.onB.setZero();
             result.inCollision = false;
             result.penetrationDepth = 0.0;
             result.certified = false;
@@ -165,10 +165,12 @@ namespace meshgap
     bool RobotScene::answerLink(std::size_t i, const RobotRequest &request, double bound, RobotWarmStart &warm,
                                 RobotPairAnswer &answer, RobotResult &best, bool &complete) const
     {
+        // The fields RobotRequest passes on (its seed, start, maxEvaluations, recordHistory and maxTests are ignored).
         SceneRequest sceneRequest;
         sceneRequest.stopBelow = request.stopBelow;
         sceneRequest.upperBound = bound;
         sceneRequest.computeDepth = request.computeDepth;
+        sceneRequest.outerBoundFirst = request.outerBoundFirst;
         SceneResult s;
         scenes_[i]->distance(warm.poses[i], sceneRequest, warm.links[i], s);
         best.pairsChecked += s.pairsChecked > 0 ? 1 : 0;
@@ -181,8 +183,8 @@ namespace meshgap
         best.selfPair = false;
         best.link = i;
         best.other = obstacle;
-        best.onLink = s.onRobot;
-        best.onOther = s.onObstacle;
+        best.onA = s.onA;
+        best.onB = s.onB;
         best.inCollision = s.inCollision;
         best.penetrationDepth = s.penetrationDepth;
         best.distance = s.distance;
@@ -199,10 +201,11 @@ namespace meshgap
             answer = {gap, RobotPairAnswer::Status::AT_LEAST, 0};
             return false;
         }
-        DistanceRequest pairRequest;
+        DistanceRequest pairRequest;  // as answerLink() passes them on
         pairRequest.stopBelow = request.stopBelow;
         pairRequest.upperBound = bound;
         pairRequest.computeDepth = request.computeDepth;
+        pairRequest.outerBoundFirst = request.outerBoundFirst;
         DistanceResult r;
         refineExact(*links_[a].body, *links_[b].body, warm.poses[a].inverse() * warm.poses[b], r, pairRequest,
                     &warm.self[p]);
@@ -219,8 +222,8 @@ namespace meshgap
         best.selfPair = true;
         best.link = a;
         best.other = b;
-        best.onLink = warm.poses[a] * r.onA;  // refineExact's witnesses are in a's frame
-        best.onOther = warm.poses[a] * r.onB;
+        best.onA = warm.poses[a] * r.onA;  // refineExact's witnesses are in a's frame
+        best.onB = warm.poses[a] * r.onB;
         best.inCollision = r.inCollision;
         best.penetrationDepth = r.penetrationDepth;
         best.distance = r.distance;

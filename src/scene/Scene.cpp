@@ -557,8 +557,8 @@ namespace meshgap
 
         result.distance = best.distance;
         result.obstacle = bestK;
-        result.onObstacle = best.onA;
-        result.onRobot = best.onB;
+        result.onA = best.onB;  // the pair was asked obstacle first (its A), the robot second
+        result.onB = best.onA;
         result.inCollision = best.inCollision;
         result.penetrationDepth = best.penetrationDepth;
         result.penetration = best.penetration;
@@ -628,8 +628,8 @@ namespace meshgap
             result.distance = deepest.distance;
             result.penetrationDepth = deepest.penetrationDepth;
             result.penetration = deepest.penetration;
-            result.onObstacle = deepest.onA;
-            result.onRobot = deepest.onB;
+            result.onA = deepest.onB;  // the pair was asked obstacle first (its A), the robot second
+            result.onB = deepest.onA;
         }
         result.obstacle = hit;
         result.inCollision = true;
@@ -714,8 +714,8 @@ namespace meshgap
 
         result.distance = best.distance;
         result.obstacle = bestK;
-        result.onObstacle = best.onA;
-        result.onRobot = best.onB;
+        result.onA = best.onB;  // the pair was asked obstacle first (its A), the robot second
+        result.onB = best.onA;
         result.warmStartHit = warmValid && bestK == warm.obstacle;
         warm.valid = true;
         warm.obstacle = bestK;

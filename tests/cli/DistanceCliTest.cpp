@@ -282,7 +282,7 @@ TEST(DistanceCli, CfgPosesGiveTheSceneAnswerWarmOrCold)
                 << " " << q.y() << " " << q.z() << " " << q.w() << "\n";
         }
     }
-    const std::string header = "index,distance,in_collision,certified,link,other_link,obstacle,witness_link_x,";
+    const std::string header = "index,distance,in_collision,certified,link,other_link,obstacle,witness_a_x,";
     const CliRun warm = run("--cfg " + cfg.string() + " --poses " + file + " -q");
     const CliRun cold = run("--cfg " + cfg.string() + " --poses " + file + " --cold -q");
     const CliRun json = run("--cfg " + cfg.string() + " --poses " + file + " --json -q");
@@ -328,9 +328,9 @@ TEST(DistanceCli, CfgPosesGiveTheSceneAnswerWarmOrCold)
         else
         {
             EXPECT_EQ(flat[i][1], w[i][1]);
-            const Eigen::Vector3d onRobot(std::stod(w[i][7]), std::stod(w[i][8]), std::stod(w[i][9]));
-            const Eigen::Vector3d onWorld(std::stod(w[i][10]), std::stod(w[i][11]), std::stod(w[i][12]));
-            EXPECT_NEAR((onRobot - onWorld).norm(), dw, 1e-9 * dw);
+            const Eigen::Vector3d onA(std::stod(w[i][7]), std::stod(w[i][8]), std::stod(w[i][9]));
+            const Eigen::Vector3d onB(std::stod(w[i][10]), std::stod(w[i][11]), std::stod(w[i][12]));
+            EXPECT_NEAR((onA - onB).norm(), dw, 1e-9 * dw);
         }
         colliding += w[i][collision] == "1";
 #ifdef MESHGAP_HAVE_FCL

@@ -89,12 +89,12 @@ TEST(ReportCli, PageDataIsTheSceneAndTheExactClearanceAlongThePath)
     EXPECT_NE(page.find("GLTFLoader"), std::string::npos);
 
     const std::vector<float> poses = floats(page, "poses"), clearance = floats(page, "clearance"),
-                             onRobot = floats(page, "onRobot");
+                             onA = floats(page, "onA");
     const std::string collide = base64Decode(field(page, "inCollision"));
     const std::size_t n = clearance.size();
     ASSERT_GT(n, 10u);
     ASSERT_EQ(poses.size(), 7 * n);
-    ASSERT_EQ(onRobot.size(), 3 * n);
+    ASSERT_EQ(onA.size(), 3 * n);
     ASSERT_EQ(collide.size(), n);
     EXPECT_NE(run.out.find("(" + std::to_string(n) + " dense states"), std::string::npos) << run.out;
 
@@ -175,7 +175,7 @@ TEST(ReportCli, ASingleBodyIsReportedAsARobotOfOneLink)
         text << std::ifstream(html).rdbuf();
         pages[k] = text.str();
     }
-    for (const char *key : {"poses", "arcLength", "clearance", "inCollision", "onRobot", "onObstacle", "glb"})
+    for (const char *key : {"poses", "arcLength", "clearance", "inCollision", "onA", "onB", "glb"})
     {
         EXPECT_FALSE(field(pages[0], key).empty()) << key;
         EXPECT_EQ(field(pages[0], key), field(pages[1], key)) << key;

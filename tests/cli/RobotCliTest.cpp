@@ -178,13 +178,13 @@ TEST_F(RobotCli, DistancePosesWritesCsvRowsThatAreTheLibrarysExactAnswers)
         EXPECT_EQ(row[4], scene.links()[r.link].name) << "row " << i;
         EXPECT_EQ(row[5], r.selfPair ? scene.links()[r.other].name : "") << "row " << i;
         EXPECT_EQ(row[6], r.selfPair ? "" : std::to_string(r.other)) << "row " << i;
-        const Eigen::Vector3d onLink(std::stod(row[7]), std::stod(row[8]), std::stod(row[9]));
-        const Eigen::Vector3d onOther(std::stod(row[10]), std::stod(row[11]), std::stod(row[12]));
-        EXPECT_LT((onLink - r.onLink).norm(), 1e-9) << "row " << i;
-        EXPECT_LT((onOther - r.onOther).norm(), 1e-9) << "row " << i;
+        const Eigen::Vector3d onA(std::stod(row[7]), std::stod(row[8]), std::stod(row[9]));
+        const Eigen::Vector3d onB(std::stod(row[10]), std::stod(row[11]), std::stod(row[12]));
+        EXPECT_LT((onA - r.onA).norm(), 1e-9) << "row " << i;
+        EXPECT_LT((onB - r.onB).norm(), 1e-9) << "row " << i;
         if (!r.inCollision)
         {
-            EXPECT_NEAR((onLink - onOther).norm(), least, 1e-9) << "row " << i;  // the witnesses attain it
+            EXPECT_NEAR((onA - onB).norm(), least, 1e-9) << "row " << i;  // the witnesses attain it
         }
         for (std::size_t l = 0; l < scene.links().size(); ++l)
             EXPECT_NEAR(std::stod(row[13 + l]), r.linkClearance[l], 1e-9) << "row " << i << " link " << l;

@@ -316,9 +316,9 @@ TEST(PenetrationDepth, OmplAppRandomCollidingPosesAreNegative)
             if (r.penetration != Penetration::DEEPEST_NODE)
                 continue;
             ++deep;
-            EXPECT_NEAR((r.onObstacle - r.onRobot).norm(), r.penetrationDepth, 1e-9 * world.size());
+            EXPECT_NEAR((r.onB - r.onA).norm(), r.penetrationDepth, 1e-9 * world.size());
             const Body &o = *scene->obstacles()[r.obstacle];
-            EXPECT_TRUE(containsPoint(o, r.onRobot) || containsPoint(scene->robot(), X.inverse() * r.onObstacle))
+            EXPECT_TRUE(containsPoint(o, r.onA) || containsPoint(scene->robot(), X.inverse() * r.onB))
                 << name << " pose " << i;
         }
         test::Note() << "[ depth    ] " << name << ": 150 random poses, " << collisions << " colliding, " << deep
@@ -478,7 +478,7 @@ TEST(PenetrationDepth, WarmStartGivesTheColdEstimateAlongCollidingMotions)
         scene->distance(states[i], SceneRequest(), cold);
         scene->distance(states[i], SceneRequest(), carried, hot);
         EXPECT_EQ(hot.distance, cold.distance) << i;
-        EXPECT_TRUE(hot.onObstacle == cold.onObstacle && hot.onRobot == cold.onRobot) << i;
+        EXPECT_TRUE(hot.onB == cold.onB && hot.onA == cold.onA) << i;
         EXPECT_EQ(hot.penetration, cold.penetration) << i;
     }
     test::Note() << "[ warm     ] bars: " << bars.colliding << " colliding poses, deepest node to the other body "

@@ -90,7 +90,7 @@ TEST(SceneExport, GlbReadsBackWithEveryMeshAndTriangle)
         Eigen::Vector3d mean = Eigen::Vector3d::Zero();
         for (unsigned int v = 0; v < segment.mNumVertices; ++v)
             mean += vertexOf(segment, v) / segment.mNumVertices;
-        EXPECT_LT((mean - 0.5 * (results[k].onRobot + results[k].onObstacle)).norm(), 1e-5);
+        EXPECT_LT((mean - 0.5 * (results[k].onA + results[k].onB)).norm(), 1e-5);
     }
     fs::remove(file);
 }

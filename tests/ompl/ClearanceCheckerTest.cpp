@@ -283,7 +283,7 @@ TEST(ClearanceChecker, FastModeDefaultsToWarmFastNeverBelowExact)
         }
         ++free;
         EXPECT_GE(r.distance, e.distance - 1e-12);
-        EXPECT_NEAR((r.onRobot - r.onObstacle).norm(), r.distance, 1e-9 * (1.0 + r.distance));
+        EXPECT_NEAR((r.onA - r.onB).norm(), r.distance, 1e-9 * (1.0 + r.distance));
         atExact += r.distance <= e.distance + 1e-9 * (1.0 + e.distance);
     }
     EXPECT_GT(free, 60);

@@ -24,7 +24,7 @@ import meshgap.distributed as md
 from conftest import MAPS, box, write_obj
 
 HAND_BOWL = MAPS / "hand_bowl" / "hand_bowl.cfg"
-FIELDS = {"distance", "on_robot", "on_obstacle", "obstacle", "in_collision", "certified", "open_body"}
+FIELDS = {"distance", "on_a", "on_b", "obstacle", "in_collision", "certified", "open_body"}
 
 
 def planar_cfg(folder, name="bars"):
@@ -150,7 +150,7 @@ def test_label_matches_and_resumes(client, tmp_path):
     for i in (3, 9):
         os.remove(out / "done" / str(i))
     group["distance"][750:900] = np.nan
-    group["on_robot"][750:800] = 0.0
+    group["on_a"][750:800] = 0.0
     assert md.label(cfg, 2300, out=out, chunk=250, progress=False)["computed"] == 2
     for name, values in reference.items():
         assert np.array_equal(zarr.open_group(str(out))[name][:], values), name
@@ -214,6 +214,9 @@ def test_bad_input(client, tmp_path):
     md.label(cfg, 10, out=out, chunk=5, progress=False)
     with pytest.raises(ValueError, match="labels.zarr: a data set of other parameters"):
         md.label(cfg, 20, out=out, chunk=5, progress=False)
+    zarr.open_group(str(out), mode="r+").move("on_a", "on_robot")  # as an older meshgap named it
+    with pytest.raises(ValueError, match="labels.zarr: a data set without the fields on_a \\(made by an older"):
+        md.label(cfg, 10, out=out, chunk=5, progress=False)
     with pytest.raises(ConnectionError, match="cannot reach the Dask scheduler at tcp://127.0.0.1:1 within 2 s"):
         md.connect("tcp://127.0.0.1:1", timeout=2)
 

@@ -179,8 +179,8 @@ def check_attaining_pair(r, i, boxes, names, pairs):
         h, c = WORLD[r["obstacle"][i]]
         second = (np.asarray(h), np.asarray(c))
         assert box_gap(boxes[names[link]], second)[0] == pytest.approx(d, rel=1e-9, abs=1e-9)
-    assert np.linalg.norm(r["on_link"][i] - r["on_other"][i]) == pytest.approx(d, rel=1e-9, abs=1e-9)
-    for point, (half, centre) in ((r["on_link"][i], boxes[names[link]]), (r["on_other"][i], second)):
+    assert np.linalg.norm(r["on_a"][i] - r["on_b"][i]) == pytest.approx(d, rel=1e-9, abs=1e-9)
+    for point, (half, centre) in ((r["on_a"][i], boxes[names[link]]), (r["on_b"][i], second)):
         local = np.abs(point - centre)
         assert np.all(local <= half + 1e-9) and np.any(np.abs(local - half) <= 1e-9)
 
@@ -356,7 +356,7 @@ def test_batch_equals_meshgap_distance_cli(files, tmp_path):
         assert row["link"] == scene.link_names[r["link"][i]]
         assert row["other_link"] == (scene.link_names[r["other_link"][i]] if r["self_pair"][i] else "")
         assert row["obstacle"] == ("" if r["self_pair"][i] else str(r["obstacle"][i]))
-        for side, key in (("link", "on_link"), ("other", "on_other")):
+        for side, key in (("a", "on_a"), ("b", "on_b")):
             np.testing.assert_allclose([float(row["witness_%s_%s" % (side, c)]) for c in "xyz"], r[key][i],
                                        rtol=1e-9, atol=1e-12)
         np.testing.assert_allclose([float(row["clearance_" + n]) for n in scene.link_names], r["link_clearance"][i],

@@ -47,9 +47,9 @@ def random_box_poses(rng, count, planar=False):
 
 def check_against_boxes(scene, poses, t, turns):
     r = scene.distance(poses)
-    assert set(r) == {"distance", "on_robot", "on_obstacle", "obstacle", "in_collision", "certified", "open_body"}
+    assert set(r) == {"distance", "on_a", "on_b", "obstacle", "in_collision", "certified", "open_body"}
     assert not r["open_body"].any()  # closed boxes
-    assert r["on_robot"].shape == (len(poses), 3) and r["distance"].dtype == np.float64
+    assert r["on_a"].shape == (len(poses), 3) and r["distance"].dtype == np.float64
     free = 0
     for i in range(len(poses)):
         half = ROBOT_HALF[[1, 0, 2]] if turns[i] % 2 else ROBOT_HALF
@@ -66,11 +66,11 @@ def check_against_boxes(scene, poses, t, turns):
         if abs(answers[0][0] - answers[1][0]) > 1e-6:
             assert r["obstacle"][i] == int(np.argmin([a for a, _ in answers]))
         # Witness points: as far apart as the distance, one on the robot box's surface, one on the obstacle's.
-        assert np.linalg.norm(r["on_robot"][i] - r["on_obstacle"][i]) == pytest.approx(d, rel=1e-9, abs=1e-9)
-        local = np.abs(r["on_robot"][i] - t[i])
+        assert np.linalg.norm(r["on_a"][i] - r["on_b"][i]) == pytest.approx(d, rel=1e-9, abs=1e-9)
+        local = np.abs(r["on_a"][i] - t[i])
         assert np.all(local <= half + 1e-9) and np.any(np.abs(local - half) <= 1e-9)
         h, c = WORLD[r["obstacle"][i]]
-        local = np.abs(r["on_obstacle"][i] - c)
+        local = np.abs(r["on_b"][i] - c)
         assert np.all(local <= np.asarray(h) + 1e-9) and np.any(np.abs(local - h) <= 1e-9)
     return free
 
@@ -148,7 +148,7 @@ def test_fast_mode_falls_back_to_the_exact_query(hand_bowl, stream, warm):
         poses = np.column_stack([rng.uniform(-276, 361, 120), rng.uniform(-276, 276, 120),
                                  rng.uniform(-126, 234, 120), q / np.linalg.norm(q, axis=1, keepdims=True)])
     exact, fast = hand_bowl.distance(poses), hand_bowl.distance(poses, exact=False, warm=warm)
-    for name in ("distance", "obstacle", "in_collision", "certified", "on_robot", "on_obstacle"):
+    for name in ("distance", "obstacle", "in_collision", "certified", "on_a", "on_b"):
         np.testing.assert_array_equal(fast[name], exact[name], err_msg=name)
     assert fast["certified"].all()
 
@@ -220,7 +220,7 @@ def test_open_meshes_are_counted_warned_and_flagged(capfd):
 
 def test_empty_batch(boxes):
     r = boxes.distance(np.zeros((0, 7)))
-    assert r["distance"].shape == (0,) and r["on_robot"].shape == (0, 3)
+    assert r["distance"].shape == (0,) and r["on_a"].shape == (0, 3)
     assert boxes.in_collision(np.zeros((0, 3))).shape == (0,)
 
 

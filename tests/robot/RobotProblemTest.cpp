@@ -313,7 +313,7 @@ namespace meshgap
                 EXPECT_TRUE(r.certified) << "pose " << i;
                 if (!s.inCollision)
                 {
-                    EXPECT_NEAR((r.onLink - r.onOther).norm(), s.distance, 1e-9 * size) << "pose " << i;
+                    EXPECT_NEAR((r.onA - r.onB).norm(), s.distance, 1e-9 * size) << "pose " << i;
                 }
                 colliding += s.inCollision ? 1 : 0;
             }

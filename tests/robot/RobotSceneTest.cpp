@@ -256,8 +256,8 @@ namespace meshgap
                 robotScene.distance(state.data(), state.size(), RobotRequest(), robotWarm, got);
                 ASSERT_EQ(got.distance, expected.distance) << n;
                 EXPECT_EQ(got.other, expected.obstacle);
-                EXPECT_EQ(got.onLink, expected.onRobot);
-                EXPECT_EQ(got.onOther, expected.onObstacle);
+                EXPECT_EQ(got.onA, expected.onA);
+                EXPECT_EQ(got.onB, expected.onB);
                 EXPECT_EQ(got.inCollision, expected.inCollision);
                 EXPECT_EQ(got.certified, expected.certified);
                 EXPECT_EQ(got.linkClearance[0], expected.distance);
@@ -392,6 +392,67 @@ namespace meshgap
         EXPECT_GT(apart, 100u);
         EXPECT_GT(within, 100u);
         EXPECT_GT(colliding, 0u);
+    }
+
+    TEST(RobotScene, RequestIsADistanceRequestWithTheSameDefaults)
+    {
+        const RobotRequest request;
+        const DistanceRequest &base = request;
+        EXPECT_EQ(base.stopBelow, -1.0);
+        EXPECT_EQ(base.upperBound, std::numeric_limits<double>::infinity());
+        EXPECT_TRUE(base.computeDepth);
+        EXPECT_EQ(base.maxTests, 0u);
+        EXPECT_FALSE(base.outerBoundFirst);
+        EXPECT_FALSE(request.everyPair);
+        EXPECT_TRUE(request.selfCollision);
+    }
+
+    TEST(RobotScene, OuterBoundsFirstChangeNoAnswer)
+    {
+        // RobotRequest::outerBoundFirst reaches every pair's question (links against the obstacles, self pairs) and
+        // changes its cost only: bounded queries, pruned and every pair, give the same answers bit for bit.
+        const UrdfRobotPtr robot = test::treeWithPayload();
+        const RobotScene scene(robot, test::postsAroundTree());
+        std::mt19937 rng(29);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        std::size_t below = 0, atLeast = 0;
+        for (int trial = 0; trial < test::scaled(200, 50); ++trial)
+        {
+            const std::vector<double> q = {3 * u(rng), 2.5 * u(rng), 0.05 + 0.05 * u(rng), 3 * u(rng), u(rng)};
+            for (int variant = 0; variant < 4; ++variant)
+            {
+                const bool everyPair = variant & 1;
+                RobotRequest plain;
+                plain.everyPair = everyPair;
+                plain.selfCollision = variant & 2;  // without self pairs, more answers lie beyond the bound
+                plain.upperBound = 0.05;
+                RobotRequest outer = plain;
+                outer.outerBoundFirst = true;
+                RobotResult expected, got;
+                scene.distance(q, plain, expected);
+                scene.distance(q, outer, got);
+                const std::string where = "trial " + std::to_string(trial) + ", variant " + std::to_string(variant);
+                EXPECT_EQ(got.distance, expected.distance) << where;
+                EXPECT_EQ(got.atLeast, expected.atLeast) << where;
+                EXPECT_EQ(got.certified, expected.certified) << where;
+                EXPECT_EQ(got.inCollision, expected.inCollision) << where;
+                EXPECT_EQ(got.selfPair, expected.selfPair) << where;
+                EXPECT_EQ(got.link, expected.link) << where;
+                EXPECT_EQ(got.other, expected.other) << where;
+                EXPECT_EQ(got.onA, expected.onA) << where;
+                EXPECT_EQ(got.onB, expected.onB) << where;
+                ASSERT_EQ(got.pairs.size(), expected.pairs.size());
+                for (std::size_t k = 0; k < got.pairs.size(); ++k)
+                {
+                    EXPECT_EQ(got.pairs[k].status, expected.pairs[k].status) << where << ", pair " << k;
+                    EXPECT_EQ(got.pairs[k].distance, expected.pairs[k].distance) << where << ", pair " << k;
+                }
+                (expected.atLeast ? atLeast : below)++;
+            }
+        }
+        test::Note() << below << " answers below the bound, " << atLeast << " at least it";
+        EXPECT_GT(below, 10u);
+        EXPECT_GT(atLeast, 10u);
     }
 
     TEST(RobotScene, ThreadsWithTheirOwnWarmStartsGiveTheSameAnswers)

@@ -60,8 +60,8 @@ TEST(SceneBatch, ThreadsGiveTheOneThreadAnswersBlockByBlock)
             EXPECT_EQ(got[i].distance, expected[i].distance) << threads << " threads, pose " << i;
             EXPECT_EQ(got[i].inCollision, expected[i].inCollision) << i;
             EXPECT_EQ(got[i].obstacle, expected[i].obstacle) << i;
-            EXPECT_EQ(got[i].onRobot, expected[i].onRobot) << i;
-            EXPECT_EQ(got[i].onObstacle, expected[i].onObstacle) << i;
+            EXPECT_EQ(got[i].onA, expected[i].onA) << i;
+            EXPECT_EQ(got[i].onB, expected[i].onB) << i;
             EXPECT_TRUE(got[i].certified) << i;
             colliding += threads == 1 && got[i].inCollision;
         }

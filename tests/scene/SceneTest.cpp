@@ -199,7 +199,7 @@ TEST(Scene, DistanceIsTheMinimumOverAllObstaclesAtRandomPoses)
             EXPECT_EQ(r.distance, r.penetrationDepth > 0.0 ? -r.penetrationDepth : CONTACT_DISTANCE);
             if (r.penetration == Penetration::DEEPEST_NODE)
             {
-                EXPECT_NEAR((r.onRobot - r.onObstacle).norm(), r.penetrationDepth, 1e-12);
+                EXPECT_NEAR((r.onA - r.onB).norm(), r.penetrationDepth, 1e-12);
             }
             continue;
         }
@@ -208,9 +208,9 @@ TEST(Scene, DistanceIsTheMinimumOverAllObstaclesAtRandomPoses)
         EXPECT_EQ(r.distance, oracle.distance);
         EXPECT_EQ(oracle.perObstacle[r.obstacle], r.distance);
         // Witness points, world frame: at the distance, on the obstacle's surface and on the placed robot's.
-        EXPECT_NEAR((r.onRobot - r.onObstacle).norm(), r.distance, 1e-12 * (1.0 + r.distance));
-        EXPECT_LT(distanceToSurface(scene->obstacles()[r.obstacle]->surface(), r.onObstacle), 1e-12);
-        EXPECT_LT(distanceToSurface(scene->robot().surface(), X.inverse() * r.onRobot), 1e-12);
+        EXPECT_NEAR((r.onA - r.onB).norm(), r.distance, 1e-12 * (1.0 + r.distance));
+        EXPECT_LT(distanceToSurface(scene->obstacles()[r.obstacle]->surface(), r.onB), 1e-12);
+        EXPECT_LT(distanceToSurface(scene->robot().surface(), X.inverse() * r.onA), 1e-12);
     }
     const double meanPairs = static_cast<double>(pairs) / 200.0;
     test::Note() << "[ scene    ] 200 random poses: " << collisions << " colliding, " << free
@@ -252,8 +252,8 @@ TEST(Scene, WarmStartNeverChangesTheAnswerAlongAMotion)
         EXPECT_EQ(w.distance, c.distance) << "pose " << i;
         // Witness points too; in collision the whole answer (signed distance, obstacle, depth) is a pure function
         // of the pose.
-        EXPECT_EQ(w.onRobot, c.onRobot) << "pose " << i;
-        EXPECT_EQ(w.onObstacle, c.onObstacle) << "pose " << i;
+        EXPECT_EQ(w.onA, c.onA) << "pose " << i;
+        EXPECT_EQ(w.onB, c.onB) << "pose " << i;
         if (c.inCollision)
         {
             EXPECT_LT(c.distance, 0.0) << "pose " << i;
@@ -326,7 +326,7 @@ TEST(Scene, InCollisionTheDeepestObstacleWinsWhateverTheWarmStartOrOrder)
             EXPECT_NEAR(r.distance, -0.15, 1e-12);
             EXPECT_EQ(r.obstacle, second);
             EXPECT_EQ(r.distance, answers[0].distance);
-            EXPECT_EQ(r.onRobot, answers[0].onRobot);
+            EXPECT_EQ(r.onA, answers[0].onA);
         }
         SceneRequest validity = request;
         validity.stopBelow = 0.0;
@@ -462,8 +462,8 @@ TEST(Scene, FastModeNeverCallsACollidingPoseFreeAndIsNeverBelowTheExactDistance)
         EXPECT_GE(r.distance, exact.distance);  // nodes lie on the surfaces
         EXPECT_GT(r.evaluations, 0u);
         // Witness points are nodes: at the distance reported, the robot's on the placed robot.
-        EXPECT_NEAR((r.onRobot - r.onObstacle).norm(), r.distance, 1e-12 * (1.0 + r.distance));
-        EXPECT_LT(distanceToSurface(scene->robot().surface(), X.inverse() * r.onRobot), 1e-9);
+        EXPECT_NEAR((r.onA - r.onB).norm(), r.distance, 1e-12 * (1.0 + r.distance));
+        EXPECT_LT(distanceToSurface(scene->robot().surface(), X.inverse() * r.onA), 1e-9);
         worstRatio = std::max(worstRatio, r.distance / exact.distance);
         // The same seed gives the same answer.
         SceneWarmStart cold3;
@@ -780,7 +780,7 @@ TEST(Scene, DepthSkippedGivesTheVerdictAndTheSameFreeAnswers)
                     if (exact || r == &v)
                     {
                         EXPECT_EQ(r->distance, f.distance) << "pose " << i;
-                        EXPECT_EQ(r->onRobot, f.onRobot) << "pose " << i;
+                        EXPECT_EQ(r->onA, f.onA) << "pose " << i;
                     }
                     continue;
                 }

@@ -104,7 +104,7 @@ namespace
             scene.distance(poses[i], SceneRequest(), c);
             EXPECT_EQ(w.inCollision, c.inCollision) << "pose " << i;
             EXPECT_EQ(w.distance, c.distance) << "pose " << i;
-            EXPECT_EQ(w.onRobot, c.onRobot) << "pose " << i;
+            EXPECT_EQ(w.onA, c.onA) << "pose " << i;
             cost.warm.push_back(static_cast<double>(w.boxTests + w.triangleTests));
             cost.cold.push_back(static_cast<double>(c.boxTests + c.triangleTests));
         }

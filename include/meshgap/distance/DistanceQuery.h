@@ -18,7 +18,8 @@ namespace meshgap
     };
 
     /** \brief What one query should do. The pose is not part of it: solvers take X_AB, the pose of body B in body
-        A's frame (the paper's eq. 4: only B's nodes are transformed). */
+        A's frame (the paper's eq. 4: only B's nodes are transformed). Every query's request extends it (SceneRequest,
+        RobotRequest), each saying how its fields apply there. */
     struct DistanceRequest
     {
         /** \brief Seed of the query's random numbers: the same seed gives the same result, bit for bit. */
@@ -74,7 +75,15 @@ namespace meshgap
         "in collision" (distance < 0 if and only if inCollision) while the magnitude claims no depth. */
     constexpr double CONTACT_DISTANCE = -std::numeric_limits<double>::min();
 
-    /** \brief What one query found, and what it cost. */
+    /** \brief What one query found, and what it cost.
+
+        Witness points, one naming for every pair query (DistanceResult, SceneResult, RobotResult): onA lies on the
+        side the question is asked about, onB on what it is measured against. Here A and B are the pair's bodies
+        (X_AB places B in A's frame); in a SceneResult A is the robot and B the obstacle of the answer; in a
+        RobotResult A is the link RobotResult::link and B what it is measured against, an obstacle or the link
+        RobotResult::other. Free, |onA - onB| is the distance and onA - onB points from B to A (the way A moves to
+        get away); in collision they are the deepest node and its nearest point on the other surface, or a touching
+        point (refineExact(), step 3). */
     struct DistanceResult
     {
         /** \brief Paper's flop estimate per d^2 evaluation (Section III-A, eq. 4). */
@@ -84,8 +93,8 @@ namespace meshgap
             exact stage; negative in collision once the exact stage has decided it (see inCollision). */
         double distance{std::numeric_limits<double>::infinity()};
         NodePair nodes;                                            ///< the node pair at that distance
-        /** \brief Witness points on A and on B, both expressed in A's frame (which is the world frame when A is
-            the world or any body at the identity pose, as in the command-line tools). */
+        /** \brief Witness points on A and on B (the naming above), both expressed in A's frame (which is the world
+            frame when A is the world or any body at the identity pose, as in the command-line tools). */
         Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};
         std::size_t evaluations{0};  ///< d^2 evaluations (the paper's cost unit)
         std::size_t localSteps{0};   ///< hill-climbing moves accepted

@@ -100,12 +100,12 @@ namespace meshgap
         double clearance(const ompl::base::State *state, ompl::base::State *validState,
                          bool &validStateAvailable) const override;
         /** \brief Fill \e out with \e state translated away from the nearest obstacle of \e r (the answer for
-            \e state): along onRobot - onObstacle, reversed in collision (so the robot moves out), or, where the
-            witness points coincide, from the witness point towards the robot's origin. The first translation tried
-            is |distance| plus a margin of 2% of the robot's radius, then doubled up to four times, each clamped to
-            the bounds; the first one that is valid, and (for a valid \e state) strictly clearer, is kept. Returns
-            false, leaving \e out unspecified, if none is; a true answer is always a valid state. The rotation is
-            kept; an SE(2) state moves in its plane. */
+            \e state): along onA - onB (from the obstacle's witness point to the robot's), reversed in collision
+            (so the robot moves out), or, where the witness points coincide, from the witness point towards the
+            robot's origin. The first translation tried is |distance| plus a margin of 2% of the robot's radius,
+            then doubled up to four times, each clamped to the bounds; the first one that is valid, and (for a valid
+            \e state) strictly clearer, is kept. Returns false, leaving \e out unspecified, if none is; a true answer
+            is always a valid state. The rotation is kept; an SE(2) state moves in its plane. */
         bool validStateAway(const ompl::base::State *state, const SceneResult &r, ompl::base::State *out) const;
 
         /** \brief Whether clearance() of a state in collision finds its penetration depth (true, the default: a

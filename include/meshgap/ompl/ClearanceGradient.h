@@ -27,15 +27,16 @@ namespace meshgap
        The exact (sub)gradient of the signed clearance (ClearanceChecker::clearance(), CERTIFIED mode) with respect
        to the robot's pose, in the coordinates of tangentDimension(): d clearance / d step of applyTangentStep() at
        step 0. From the answer ClearanceChecker::query() gives (warm-started per thread like clearance()):
-       - free: n = (onRobot - onObstacle) / |onRobot - onObstacle|, the unit vector from the obstacle's witness
-         point to the robot's; translating the robot by dt changes the distance by n . dt, and rotating it by a
-         world-frame rotation vector w about its origin x moves the witness point p = onRobot by w x (p - x), so the
-         gradient is (n, (p - x) x n). SE(2): (n.x, n.y, ((p - x) x n).z).
+       - free: n = (onA - onB) / |onA - onB| (SceneResult's witnesses: A on the robot, B on the obstacle), the
+         unit vector from the obstacle's witness point to the robot's; translating the robot by dt changes the
+         distance by n . dt, and rotating it by a world-frame rotation vector w about its origin x moves the
+         witness point p = onA by w x (p - x), so the gradient is (n, (p - x) x n). SE(2): (n.x, n.y,
+         ((p - x) x n).z).
        - in collision with a depth (Penetration::DEEPEST_NODE): the signed distance is minus the depth of the
-         deepest node, which onRobot - onObstacle pushes out when reversed (README "Penetration depth"); the same
-         formula with n = (onObstacle - onRobot) / |...| and p = onRobot (either the robot's node inside the obstacle
-         or the point of the robot's surface nearest the obstacle's node) is the derivative of that signed
-         distance. Other collisions have no depth (CONTACT_DISTANCE): gradient 0, hasDirection false.
+         deepest node, which onA - onB pushes out when reversed (README "Penetration depth"); the same formula
+         with n = (onB - onA) / |...| and p = onA (either the robot's node inside the obstacle or the point of the
+         robot's surface nearest the obstacle's node) is the derivative of that signed distance. Other collisions
+         have no depth (CONTACT_DISTANCE): gradient 0, hasDirection false.
        - ties: every other obstacle whose exact distance is within the tie tolerance of the minimum (refineExact()
          bounded by minimum + tolerance, so far obstacles cost a box test) contributes its own pair's gradient
          g_i, up to 8 pairs, the closest kept. The clearance is then the minimum of the pairs' smooth distances,

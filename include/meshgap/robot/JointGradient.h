@@ -18,8 +18,8 @@ namespace meshgap
                                    const Eigen::Vector3d &p);
 
     /** \brief The gradient in state space of the whole robot's clearance \e result (a free answer of
-        RobotScene::distance() at \e state, whose frame poses are \e frames): n . (J_link(onLink) -
-        J_other(onOther)), n the unit vector from the other witness to the link's, J_other zero for an obstacle.
+        RobotScene::distance() at \e state, whose frame poses are \e frames): n . (J_link(onA) - J_other(onB)), n
+        the unit vector from the other witness (onB) to the link's (onA), J_other zero for an obstacle.
         Returns false (and a zero gradient) when the answer is in collision, touching, or has no pair (atLeast): no
         direction is defined. */
     bool clearanceGradient(const RobotModel &robot, const RobotScene &scene, const std::vector<double> &state,
@@ -50,8 +50,8 @@ namespace meshgap
     std::vector<double> robotTangentLevers(const RobotModel &robot);
 
     /** \brief clearanceGradient() in the tangent coordinates of robotTangentDimension(), for every kind of robot:
-        n . (J_link(onLink) - J_other(onOther)) with robotPointJacobian(). Returns false (and a zero gradient) when
-        the answer is in collision, touching, or has no pair. */
+        n . (J_link(onA) - J_other(onB)) with robotPointJacobian(). Returns false (and a zero gradient) when the
+        answer is in collision, touching, or has no pair. */
     bool robotClearanceGradient(const RobotModel &robot, const RobotScene &scene,
                                 const std::vector<Eigen::Isometry3d> &frames, const RobotResult &result,
                                 Eigen::VectorXd &gradient);

@@ -16,21 +16,23 @@ namespace meshgap
 {
     MESHGAP_CLASS_FORWARD(RobotScene);
 
-    /** \brief What one whole-robot query should do (exact, certified answers). */
-    struct RobotRequest
+    /** \brief What one whole-robot query should do (exact, certified answers): a DistanceRequest, as SceneRequest
+        is, whose fields mean for the whole robot what they mean for one pair, and which pairs to answer.
+        - stopBelow: the query stops at the first pair at or below it (the answer then an upper bound, not
+          certified, and a collision without depth).
+        - upperBound: pairs at or above it are pruned; when none is below, RobotResult::atLeast says so. Must be
+          positive (else meshgap::Exception).
+        - computeDepth: in collision, each colliding pair's penetration depth (false: the verdict alone, a
+          colliding pair's distance CONTACT_DISTANCE).
+        - outerBoundFirst: asked of every pair (a link against the obstacles of its scene, a self pair), each
+          bounded by upperBound or, without everyPair, by the best distance so far.
+        - Ignored: seed, start, maxEvaluations and recordHistory (node-level: the whole-robot query is exact), and
+          maxTests (every pair is answered to the end; RobotScene::pairApart() takes a budget). */
+    struct RobotRequest : DistanceRequest
     {
-        /** \brief Stop as soon as a pair at or below this is known (a validity check needs no more): the answer
-            is then an upper bound, not certified, and a collision gets no depth. Negative: never stop early. */
-        double stopBelow{-1.0};
-        /** \brief Only a distance below this matters: pairs at or above it are pruned; when none is below, the
-            answer says so (RobotResult::atLeast). Must be positive. */
-        double upperBound{std::numeric_limits<double>::infinity()};
         /** \brief Answer every pair exactly (the clearance of every link and every pair, RobotResult::pairs),
             rather than pruning each pair at the best distance found so far (cheaper; the minimum is the same). */
         bool everyPair{false};
-        /** \brief In collision, estimate the penetration depth (the distance then minus it); false: the verdict
-            alone, the distance of a colliding pair CONTACT_DISTANCE (as DistanceRequest::computeDepth). */
-        bool computeDepth{true};
         /** \brief Check link against link (the pairs RobotModel::selfPairs() gives), not only against the world. */
         bool selfCollision{true};
     };
@@ -61,8 +63,9 @@ namespace meshgap
             against link \e other (selfPair true, link < other). Indices in RobotScene::links(), obstacles(). */
         bool selfPair{false};
         std::size_t link{0}, other{0};
-        Eigen::Vector3d onLink{Eigen::Vector3d::Zero()};   ///< witness points, world frame
-        Eigen::Vector3d onOther{Eigen::Vector3d::Zero()};
+        /** \brief Witness points, world frame: on the link \e link (A) and on what it is measured against (B: the
+            obstacle, or the link \e other), as DistanceResult names them. */
+        Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};
         bool inCollision{false};
         double penetrationDepth{0.0};  ///< in collision: the depth estimate behind distance (>= 0)
         bool certified{false};         ///< every pair completed (or a collision, proven)

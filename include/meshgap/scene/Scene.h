@@ -172,9 +172,10 @@ namespace meshgap
     {
         /** \brief Minimum over all robot/obstacle pairs; negative in collision (a signed distance). */
         double distance{std::numeric_limits<double>::infinity()};
-        std::size_t obstacle{0};                           ///< which obstacle is closest
-        Eigen::Vector3d onRobot{Eigen::Vector3d::Zero()};  ///< witness points, world frame
-        Eigen::Vector3d onObstacle{Eigen::Vector3d::Zero()};
+        std::size_t obstacle{0};  ///< which obstacle is closest
+        /** \brief Witness points, world frame: on the robot (A) and on the obstacle (B), as DistanceResult names
+            them. */
+        Eigen::Vector3d onA{Eigen::Vector3d::Zero()}, onB{Eigen::Vector3d::Zero()};
         /** \brief The robot collides with an obstacle (intersecting, touching or one inside the other, decided
             exactly). distance is then negative (a signed distance, see Scene::distance()). */
         bool inCollision{false};
