@@ -46,9 +46,10 @@ namespace meshgap
             Node-level solvers ignore it. */
         bool computeDepth{true};
         /** \brief Exact stage and scene, for bounded questions (a finite upperBound): give up on a pair after this
-            many box and triangle tests (bvhDistance()'s budget), the answer then not certified (and SceneResult::
-            atLeast not claimed): a caller that can ask a cheaper question instead (a smaller bound) saves the
-            price of one whose answer lies just beyond its bound. 0 (the default): no limit. */
+            many box and triangle tests (bvhDistance()'s budget), the answer then not certified (a Scene's
+            SceneResult::atLeast may still be set, with certified false: a caller reads both). A caller that can
+            ask a cheaper question instead (a smaller bound) saves the price of one whose answer lies just beyond
+            its bound. 0 (the default): no limit. */
         std::size_t maxTests{0};
         /** \brief Exact stage and scene, for bounded questions (a finite upperBound): first ask the bodies' convex
             outer bounds (a body's solids, Body::primitives(), else its hull grown by its margin, Body::convexHull())
