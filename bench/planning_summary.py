@@ -2,6 +2,11 @@
 """Summarise meshgap_benchmark .log files (OMPL's format) as a Markdown table, one row per problem and planner entry.
 
     python3 bench/planning_summary.py results/*.log
+    python3 bench/planning_summary.py --control results/*.log
+
+--control: for control problems (no planner reaches OMPL's default goal threshold, so runs end approximate), per
+problem a table of runs, exact and approximate solutions, the goal distance of each run (OMPL's "solution
+difference"), and the checker's validity calls and query time (medians).
 
 Valid paths per minute = runs with an exact solution that FCL finds collision-free at every densely interpolated
 state, divided by the planning time of all runs (OMPL's "time" property: solve() only, not simplification), in
@@ -85,7 +90,39 @@ def main(paths):
             '{:.4g}'.format(row['clearance']) if row['clearance'] is not None else '-'))
 
 
+def control(paths):
+    runs = defaultdict(list)
+    for path in paths:
+        for experiment, planner, planner_runs in read_log(path):
+            runs[(experiment, planner)].extend(planner_runs)
+    for problem in sorted({experiment for experiment, _ in runs}):
+        rows = sorted((planner, rs) for (experiment, planner), rs in runs.items() if experiment == problem)
+        print('%s (%d runs in all):' % (problem, sum(len(rs) for _, rs in rows)))
+        print()
+        print('| planner | runs | exact | approximate | goal distance per run | validity calls (median) | '
+              'query time (median) |')
+        print('|---|---|---|---|---|---|---|')
+        for planner, rs in rows:
+            exact = sum(1 for r in rs if r.get('solved BOOLEAN') == '1' and r.get('approximate solution BOOLEAN') != '1')
+            approximate = sum(1 for r in rs if r.get('approximate solution BOOLEAN') == '1')
+            goal = [number(r, 'solution difference REAL') for r in rs]
+            calls = [number(r, 'checker validity calls INTEGER') for r in rs]
+            query = [number(r, 'checker query time REAL') for r in rs]
+            print('| {} | {} | {} | {} | {} | {} | {} |'.format(
+                re.sub(r'^control_|\[.*\]$', '', planner), len(rs), exact, approximate,
+                ', '.join('{:.3g}'.format(g) if g is not None else '-' for g in goal),
+                '{:,.0f}'.format(statistics.median(c for c in calls if c is not None))
+                if any(c is not None for c in calls) else '-',
+                '{:.3g} s'.format(statistics.median(q for q in query if q is not None))
+                if any(q is not None for q in query) else '-'))
+        print()
+
+
 if __name__ == '__main__':
-    if len(sys.argv) < 2:
-        sys.exit('usage: planning_summary.py FILE.log...')
-    main(sys.argv[1:])
+    args = sys.argv[1:]
+    if not args or args == ['--control']:
+        sys.exit('usage: planning_summary.py [--control] FILE.log...')
+    if args[0] == '--control':
+        control(args[1:])
+    else:
+        main(args)

@@ -144,6 +144,10 @@ planning() {
 planning robot_checkers bench/robots.md 10 3 "TIME=10 CHECKERS=certified,certified-search,discrete,fcl PROBLEMS=arm_fixture"
 add robot_optimize_seeds bench/robots.md "meshgap_plan meshgap_bench_robot_path_check" \
     "bench/robot_optimize_seeds.sh $build 10 60 1e-4" "bench/robot_optimize_seeds.sh $build 2 10 1e-3"
+# The control problems: every control planner, the certified checker (about 12 minutes; BugTrap_dcar only with the
+# shared data).
+add control_problems bench/planning.md meshgap_benchmark \
+    "bench/control_table.sh $build 3 10 20" "bench/control_table.sh $build 1 2 2"
 if [ -d "$shared/omplapp" ]; then
     # Planning: RRTConnect with each checker; the samplers on slotted_wall; RRT* against RRTConnect on the maps; the
     # clearance optimiser. Each run's .log files go to a folder of its own under /tmp.
