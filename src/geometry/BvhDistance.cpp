@@ -215,7 +215,7 @@ namespace meshgap
                 bench/scaling.md) the heap grew to 190,000 pairs before its first pair of leaves: the heap's pushes and
                 pops, and the sort that turns it into a stack, then missed the caches on every step, and a cold query
                 cost five times the depth-first search it gives way to here. The field and protocol pairs stay below
-                the limit but for a few queries (bench/queries.md). */
+                the limit but for a few queries (bench/scaling.md, "The best-first heap"). */
             static constexpr std::size_t BEST_FIRST_OPEN_LIMIT = 4096;
 
             /** \brief Depth first from here on: the open pairs as a stack, the least bound on top. */
