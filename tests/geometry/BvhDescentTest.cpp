@@ -139,7 +139,8 @@ TEST(BvhDescent, BruteForcePairWhenTheBestFirstHeapOutgrowsItsLimit)
     for (std::uint32_t pose = 0; pose < static_cast<std::uint32_t>(test::scaled(3)); ++pose)
     {
         Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-        X.linear() = Eigen::AngleAxisd(0.3 * pose + 0.1, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+        X.linear() =
+            Eigen::AngleAxisd(0.3 * pose + 0.1, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
         X.translation() = Eigen::Vector3d(0.004 * pose, -0.003, 0.002);
         const Brute brute = bruteForce(ma, mb, X);
         BvhDistanceResult r;
