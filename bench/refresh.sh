@@ -160,6 +160,8 @@ if [ -d "$shared/omplapp" ]; then
     add clearance_maps bench/planning.md meshgap_benchmark \
         "PART=clearance bench/clearance_table.sh $build \$(mktemp -d)" \
         "PART=clearance RUNS=2 TIME=5 bench/clearance_table.sh $build \$(mktemp -d)"
+    add warm_start_counts bench/queries.md meshgap_plan \
+        "bench/warm_start_counts.sh $build 5" "bench/warm_start_counts.sh $build 1"
     add optimizer bench/planning.md meshgap_benchmark \
         "bench/optimizer_table.sh $build \$(mktemp -d)" \
         "RUNS=2 TIME_MAPS=5 TIME_PROBLEMS=3 TWISTY=1 TIME_TWISTY=20 bench/optimizer_table.sh $build \$(mktemp -d)"
