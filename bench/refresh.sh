@@ -160,6 +160,10 @@ if [ -d "$shared/omplapp" ]; then
     add clearance_maps bench/planning.md meshgap_benchmark \
         "PART=clearance bench/clearance_table.sh $build \$(mktemp -d)" \
         "PART=clearance RUNS=2 TIME=5 bench/clearance_table.sh $build \$(mktemp -d)"
+    if command -v valgrind > /dev/null; then
+        add instruction_counts bench/queries.md meshgap_bench_queries \
+            "bench/instruction_counts.sh $build" "bench/instruction_counts.sh $build Easy"
+    fi
     add warm_start_counts bench/queries.md meshgap_plan \
         "bench/warm_start_counts.sh $build 5" "bench/warm_start_counts.sh $build 1"
     add optimizer bench/planning.md meshgap_benchmark \
