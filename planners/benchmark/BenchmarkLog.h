@@ -4,6 +4,7 @@
 // meshgap_benchmark's .log files: OMPL's own writer, one file per (planner, checker[, sampler]) slice.
 
 #include <filesystem>
+#include <ompl/control/SimpleSetup.h>
 #include <ompl/tools/benchmark/Benchmark.h>
 #include <string>
 
@@ -28,6 +29,7 @@ namespace meshgap
         {
         public:
             explicit LogWriter(ompl::geometric::SimpleSetup &setup) : Benchmark(setup) {}
+            explicit LogWriter(ompl::control::SimpleSetup &setup) : Benchmark(setup) {}
 
             /** \brief Write \e experiment to \e path (whole, or not at all). */
             void write(const CompleteExperiment &experiment, const std::filesystem::path &path);

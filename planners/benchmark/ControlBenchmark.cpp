@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <vector>
 #include <ompl/tools/benchmark/Benchmark.h>
 
 #include "benchmark/BenchmarkLog.h"
@@ -38,18 +39,22 @@ namespace meshgap
                 return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
             }
 
-            /** \brief OMPL's Benchmark of every planner of \e grid with the checker in \e mode, its .log written. */
+            /** \brief OMPL's Benchmark of every planner of \e grid with the checker in \e mode, its .log written.
+                Each run is a Benchmark call of its own, as for geometric problems: OMPL's memory limit counts the
+                process's growth from the start of the call, so a single call over every planner and run would stop
+                the later runs at once (in a millisecond, "approximate", the goal where it started) once the earlier
+                runs' states, freed but still held by the allocator, add up to the limit. */
             void runChecker(const ProblemConfig &config, const Settings &settings, const ControlGrid &grid,
                             const std::string &checker)
             {
                 const OmplControlProblem problem = setupControlProblem(
                     config, checker == "certified" ? ClearanceChecker::Mode::CERTIFIED : ClearanceChecker::Mode::FAST);
                 ompl::tools::Benchmark benchmark(*problem.setup, config.name);
+                std::vector<ob::PlannerPtr> planners;
                 for (const std::string &name : grid.planners)
                 {
-                    const ob::PlannerPtr planner = allocControlPlanner(name, problem.setup->getSpaceInformation());
-                    planner->setName(planner->getName() + "[meshgap-" + checker + "]");
-                    benchmark.addPlanner(planner);
+                    planners.push_back(allocControlPlanner(name, problem.setup->getSpaceInformation()));
+                    planners.back()->setName(planners.back()->getName() + "[meshgap-" + checker + "]");
                 }
                 const auto start = std::chrono::steady_clock::now();
                 std::map<std::string, Tally> tallies;
@@ -83,14 +88,43 @@ namespace meshgap
                                      exact ? "exact" : found ? "approximate" : "no path", seconds,
                                      found ? gap : -1.0);
                     });
-                ompl::tools::Benchmark::Request request(settings.time, settings.memory, settings.runs);
+                ompl::tools::Benchmark::Request request(settings.time, settings.memory, 1);
                 request.displayProgress = false;
                 request.saveConsoleOutput = false;
-                benchmark.benchmark(request);
+                // The runs, one call each, gathered into one experiment: every planner's runs in the grid's order.
+                ompl::tools::Benchmark::CompleteExperiment all;
+                for (const ob::PlannerPtr &planner : planners)
+                {
+                    benchmark.clearPlanners();
+                    benchmark.addPlanner(planner);
+                    for (unsigned r = 0; r < settings.runs; ++r)
+                    {
+                        benchmark.benchmark(request);
+                        const ompl::tools::Benchmark::CompleteExperiment &e = benchmark.getRecordedExperimentData();
+                        if (e.planners.size() != 1 || e.planners[0].runs.size() != 1)
+                            throw Exception(planner->getName(), "OMPL's benchmark recorded no run");
+                        if (all.planners.empty() && r == 0)
+                        {
+                            all = e;  // the experiment's fields (name, seed, host, set-up) and the first run
+                            all.totalDuration = 0.0;
+                        }
+                        else if (r == 0)
+                            all.planners.push_back(e.planners[0]);
+                        else
+                        {
+                            ompl::tools::Benchmark::PlannerExperiment &mine = all.planners.back();
+                            mine.runs.push_back(e.planners[0].runs[0]);
+                            mine.runsProgressData.insert(mine.runsProgressData.end(),
+                                                         e.planners[0].runsProgressData.begin(),
+                                                         e.planners[0].runsProgressData.end());
+                        }
+                        all.totalDuration += e.totalDuration;
+                    }
+                }
+                all.runCount = settings.runs;
                 const std::filesystem::path log =
                     settings.outDir / (fileSafe(config.name) + ".control." + fileSafe(checker) + ".log");
-                if (!benchmark.saveResultsToFile(log.c_str()))
-                    throw Exception(log.string(), "cannot write the benchmark log");
+                LogWriter(*problem.setup).write(all, log);
                 std::fprintf(stderr, "wrote %s\n", log.c_str());
                 for (const auto &[name, t] : tallies)
                     std::fprintf(stderr, "%s: %zu runs, %zu exact, %zu approximate, median time %.3g s, median goal "
