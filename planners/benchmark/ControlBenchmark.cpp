@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <vector>
 #include <ompl/tools/benchmark/Benchmark.h>
+#include <vector>
 
 #include "benchmark/BenchmarkLog.h"
 #include "meshgap/Exception.h"
