@@ -39,11 +39,51 @@ namespace meshgap
                 return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
             }
 
-            /** \brief OMPL's Benchmark of every planner of \e grid with the checker in \e mode, its .log written.
-                Each run is a Benchmark call of its own, as for geometric problems: OMPL's memory limit counts the
-                process's growth from the start of the call, so a single call over every planner and run would stop
-                the later runs at once (in a millisecond, "approximate", the goal where it started) once the earlier
-                runs' states, freed but still held by the allocator, add up to the limit. */
+            /** \brief \e runs runs of each of \e planners, each run a call of \e benchmark of its own (as for
+                geometric problems), gathered into one experiment, every planner's runs in order. OMPL's memory limit
+                counts the process's growth from the start of a call, so a single call over every planner and run
+                would stop the later runs at once (in a millisecond, "approximate", the goal where it started) once
+                the earlier runs' states, freed but still held by the allocator, add up to the limit. */
+            ompl::tools::Benchmark::CompleteExperiment eachRunAlone(ompl::tools::Benchmark &benchmark,
+                                                                    const std::vector<ob::PlannerPtr> &planners,
+                                                                    const ompl::tools::Benchmark::Request &request,
+                                                                    unsigned runs)
+            {
+                ompl::tools::Benchmark::CompleteExperiment all;
+                for (const ob::PlannerPtr &planner : planners)
+                {
+                    benchmark.clearPlanners();
+                    benchmark.addPlanner(planner);
+                    for (unsigned r = 0; r < runs; ++r)
+                    {
+                        benchmark.benchmark(request);
+                        const ompl::tools::Benchmark::CompleteExperiment &e = benchmark.getRecordedExperimentData();
+                        if (e.planners.size() != 1 || e.planners[0].runs.size() != 1)
+                            throw Exception(planner->getName(), "OMPL's benchmark recorded no run");
+                        if (all.planners.empty() && r == 0)
+                        {
+                            all = e;  // the experiment's fields (name, seed, host, set-up) and the first run
+                            all.totalDuration = 0.0;
+                        }
+                        else if (r == 0)
+                            all.planners.push_back(e.planners[0]);
+                        else
+                        {
+                            ompl::tools::Benchmark::PlannerExperiment &mine = all.planners.back();
+                            mine.runs.push_back(e.planners[0].runs[0]);
+                            mine.runsProgressData.insert(mine.runsProgressData.end(),
+                                                         e.planners[0].runsProgressData.begin(),
+                                                         e.planners[0].runsProgressData.end());
+                        }
+                        all.totalDuration += e.totalDuration;
+                    }
+                }
+                all.runCount = runs;
+                return all;
+            }
+
+            /** \brief OMPL's Benchmark of every planner of \e grid with the checker in \e mode, its .log written;
+                each run alone (eachRunAlone()), so that the memory limit applies to each run. */
             void runChecker(const ProblemConfig &config, const Settings &settings, const ControlGrid &grid,
                             const std::string &checker)
             {
@@ -88,40 +128,11 @@ namespace meshgap
                                      exact ? "exact" : found ? "approximate" : "no path", seconds,
                                      found ? gap : -1.0);
                     });
-                ompl::tools::Benchmark::Request request(settings.time, settings.memory, 1);
+                ompl::tools::Benchmark::Request request(settings.time, settings.memory, 1);  // one run a call
                 request.displayProgress = false;
                 request.saveConsoleOutput = false;
-                // The runs, one call each, gathered into one experiment: every planner's runs in the grid's order.
-                ompl::tools::Benchmark::CompleteExperiment all;
-                for (const ob::PlannerPtr &planner : planners)
-                {
-                    benchmark.clearPlanners();
-                    benchmark.addPlanner(planner);
-                    for (unsigned r = 0; r < settings.runs; ++r)
-                    {
-                        benchmark.benchmark(request);
-                        const ompl::tools::Benchmark::CompleteExperiment &e = benchmark.getRecordedExperimentData();
-                        if (e.planners.size() != 1 || e.planners[0].runs.size() != 1)
-                            throw Exception(planner->getName(), "OMPL's benchmark recorded no run");
-                        if (all.planners.empty() && r == 0)
-                        {
-                            all = e;  // the experiment's fields (name, seed, host, set-up) and the first run
-                            all.totalDuration = 0.0;
-                        }
-                        else if (r == 0)
-                            all.planners.push_back(e.planners[0]);
-                        else
-                        {
-                            ompl::tools::Benchmark::PlannerExperiment &mine = all.planners.back();
-                            mine.runs.push_back(e.planners[0].runs[0]);
-                            mine.runsProgressData.insert(mine.runsProgressData.end(),
-                                                         e.planners[0].runsProgressData.begin(),
-                                                         e.planners[0].runsProgressData.end());
-                        }
-                        all.totalDuration += e.totalDuration;
-                    }
-                }
-                all.runCount = settings.runs;
+                const ompl::tools::Benchmark::CompleteExperiment all = eachRunAlone(benchmark, planners, request,
+                                                                                     settings.runs);
                 const std::filesystem::path log =
                     settings.outDir / (fileSafe(config.name) + ".control." + fileSafe(checker) + ".log");
                 LogWriter(*problem.setup).write(all, log);
