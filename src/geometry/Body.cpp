@@ -172,35 +172,39 @@ namespace meshgap
         order.resize(n);
         for (std::uint32_t i = 0; i < n; ++i)
             order[i] = i;
-        // Recursive median split along the longest axis of each range's box, leaves of at most LEAF nodes.
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> stack{{0u, n}};
-        while (!stack.empty())
+        // Recursive median split along the longest axis of each range's box, leaves of at most LEAF nodes, the
+        // upper half first; each range's ball (its box's centre, padded by a relative epsilon so rounding in a bound
+        // never prunes a node inside it) is an entry of the tree, in depth-first order.
+        auto split = [&](auto &self, std::uint32_t begin, std::uint32_t end) -> void
         {
-            const auto [begin, end] = stack.back();
-            stack.pop_back();
             Eigen::AlignedBox3d box;
             for (std::uint32_t k = begin; k < end; ++k)
                 box.extend(mesh.vertices[order[k]]);
+            const Eigen::Vector3d center = box.center();
+            double r2 = 0.0;
+            for (std::uint32_t k = begin; k < end; ++k)
+                r2 = std::max(r2, (mesh.vertices[order[k]] - center).squaredNorm());
+            const double radius = std::sqrt(r2) * (1.0 + 1e-12) + 1e-300;
+            const auto entry = static_cast<std::uint32_t>(layer.clusterTree.size());
+            const auto first = static_cast<std::uint32_t>(layer.clusters.size());
+            layer.clusterTree.push_back({center, radius, first, first, 0});
             if (end - begin <= LEAF)
+                layer.clusters.push_back({center, radius, begin, end});
+            else
             {
-                const Eigen::Vector3d center = box.center();
-                double r2 = 0.0;
-                for (std::uint32_t k = begin; k < end; ++k)
-                    r2 = std::max(r2, (mesh.vertices[order[k]] - center).squaredNorm());
-                // Pad by a relative epsilon so rounding in the bound never prunes a node that is inside it.
-                layer.clusters.push_back({center, std::sqrt(r2) * (1.0 + 1e-12) + 1e-300, begin, end});
-                continue;
+                int axis;
+                box.sizes().maxCoeff(&axis);
+                const std::uint32_t mid = begin + (end - begin) / 2;
+                std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
+                                 [&](std::uint32_t i, std::uint32_t j)
+                                 { return mesh.vertices[i][axis] < mesh.vertices[j][axis]; });
+                self(self, mid, end);
+                self(self, begin, mid);
             }
-            int axis;
-            box.sizes().maxCoeff(&axis);
-            const std::uint32_t mid = begin + (end - begin) / 2;
-            std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                             [&](std::uint32_t i, std::uint32_t j) {
-                                 return mesh.vertices[i][axis] < mesh.vertices[j][axis];
-                             });
-            stack.emplace_back(begin, mid);
-            stack.emplace_back(mid, end);
-        }
+            layer.clusterTree[entry].endCluster = static_cast<std::uint32_t>(layer.clusters.size());
+            layer.clusterTree[entry].skip = static_cast<std::uint32_t>(layer.clusterTree.size());
+        };
+        split(split, 0, n);
         layer.xs.resize(n);
         layer.ys.resize(n);
         layer.zs.resize(n);

@@ -147,3 +147,63 @@ TEST(BodyNodeLayer, BadAdaptiveRuleFailsAtBuild)
     options.adaptive.maxFraction = 0.1;
     EXPECT_THROW(Body::build(test::box(1.0, 1.0, 1.0), options), Exception);
 }
+
+// The ball tree over the node clusters, checked by brute force: clusters hold every node once, in at most 32 each;
+// each entry's ball holds every node of its clusters; the entries are depth first (a subtree's clusters are
+// consecutive, its entries end at skip), the leaves are the clusters in their order, and an inner entry's clusters
+// are exactly its children's.
+TEST(BodyNodeLayer, ClusterTreeBallsHoldTheirNodesAndCoverEveryClusterOnce)
+{
+    for (const Mesh &mesh : {test::icosphere(1.0, 3), test::box(2.0, 0.1, 0.7, 4), test::box(1.0, 1.0, 1.0, 1)})
+    {
+        const BodyPtr body = Body::build(mesh);
+        const std::vector<NodeCluster> &clusters = body->clusters();
+        const std::vector<ClusterBall> &tree = body->clusterTree();
+        std::vector<int> seen(body->numNodes(), 0);
+        for (const NodeCluster &c : clusters)
+        {
+            EXPECT_LE(c.end - c.begin, 32u);
+            for (std::uint32_t k = c.begin; k < c.end; ++k)
+                ++seen[body->clusterOrder()[k]];
+        }
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<long>(body->numNodes()));
+        ASSERT_FALSE(tree.empty());
+        EXPECT_EQ(tree[0].firstCluster, 0u);
+        EXPECT_EQ(tree[0].endCluster, clusters.size());
+        EXPECT_EQ(tree[0].skip, tree.size());
+        std::uint32_t leaves = 0;
+        for (std::uint32_t e = 0; e < tree.size(); ++e)
+        {
+            const ClusterBall &ball = tree[e];
+            ASSERT_GT(ball.skip, e);
+            ASSERT_LE(ball.skip, tree.size());
+            for (std::uint32_t c = ball.firstCluster; c < ball.endCluster; ++c)
+                for (std::uint32_t k = clusters[c].begin; k < clusters[c].end; ++k)
+                    EXPECT_LE((body->node(body->clusterOrder()[k]) - ball.center).norm(), ball.radius) << e;
+            if (ball.skip == e + 1)
+            {
+                // A leaf: the next cluster, its own ball.
+                EXPECT_EQ(ball.firstCluster, leaves);
+                EXPECT_EQ(ball.endCluster, leaves + 1);
+                EXPECT_EQ(ball.center, clusters[leaves].center);
+                EXPECT_EQ(ball.radius, clusters[leaves].radius);
+                ++leaves;
+                continue;
+            }
+            // Inner: its children follow it and tile its subtree and its clusters, in order.
+            std::uint32_t child = e + 1, cluster = ball.firstCluster;
+            int children = 0;
+            while (child < ball.skip)
+            {
+                EXPECT_EQ(tree[child].firstCluster, cluster) << e;
+                cluster = tree[child].endCluster;
+                child = tree[child].skip;
+                ++children;
+            }
+            EXPECT_EQ(child, ball.skip) << e;
+            EXPECT_EQ(cluster, ball.endCluster) << e;
+            EXPECT_EQ(children, 2) << e;
+        }
+        EXPECT_EQ(leaves, clusters.size());
+    }
+}

@@ -57,6 +57,17 @@ namespace meshgap
         std::uint32_t begin, end;  ///< range in Body::clusterOrder()
     };
 
+    /** \brief An entry of the ball tree over the node clusters, the median split that made them
+        (Body::clusterTree()): every node of the clusters [firstCluster, endCluster) of Body::clusters() lies within
+        radius of center. A leaf is one cluster (endCluster = firstCluster + 1, its own ball). */
+    struct ClusterBall
+    {
+        Eigen::Vector3d center;  ///< body frame
+        double radius;
+        std::uint32_t firstCluster, endCluster;
+        std::uint32_t skip;  ///< the entry after this one's subtree
+    };
+
     /** \brief A rigid body for distance queries: its surface as given (with a triangle BVH, for exact distance and
         collision), the refined mesh whose nodes the combinatorial solvers search, the surface graph Pi, mesh
         distances D/P, and node data laid out for fast enumeration. Immutable once built and safe to share between threads.
@@ -154,6 +165,9 @@ namespace meshgap
             that order are given as separate x, y, z arrays (structure of arrays). */
         const std::vector<NodeCluster> &clusters() const { return nodeLayer().clusters; }
         const std::vector<std::uint32_t> &clusterOrder() const { return nodeLayer().order; }
+        /** \brief The ball tree over clusters(), in depth-first order (the root first; an entry's subtree is the
+            entries up to its skip): a search that rules a ball out skips every cluster in it at once. */
+        const std::vector<ClusterBall> &clusterTree() const { return nodeLayer().clusterTree; }
         const std::vector<double> &xs() const { return nodeLayer().xs; }
         const std::vector<double> &ys() const { return nodeLayer().ys; }
         const std::vector<double> &zs() const { return nodeLayer().zs; }
@@ -173,6 +187,7 @@ namespace meshgap
             std::vector<std::uint32_t> triangleNeighbourOffsets, triangleNeighbours;
             std::shared_ptr<const SurfaceGraph> graph;
             std::vector<NodeCluster> clusters;
+            std::vector<ClusterBall> clusterTree;
             std::vector<std::uint32_t> order;
             std::vector<double> xs, ys, zs;
             double originRadius{0.0};
