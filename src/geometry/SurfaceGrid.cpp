@@ -56,7 +56,10 @@ namespace meshgap
         while (count(0) * count(1) * count(2) > limit)
             s *= 1.1;
         for (int k = 0; k < 3; ++k)
+        {
             grid.n_[k] = count(k);
+            grid.counts_[k] = double(grid.n_[k]);
+        }
         grid.size_ = s;
         grid.inverseSize_ = 1.0 / s;
         grid.origin_ = box.min() - Eigen::Vector3d::Constant(s);
@@ -85,9 +88,13 @@ namespace meshgap
             cell.lo = floatBelow(d - hd - widen);
             cell.hi = floatAbove(d + hd + widen);
             cell.side = d - widen > hd ? Side::UNKNOWN : Side::CROSSING;  // UNKNOWN: clear, side not decided yet
+            cell.triangle = r.triangle;
         }
         if (closed)
             grid.decideSides(tree);
+        for (const Cell &cell : grid.cells_)
+            if (cell.side == Side::OUTSIDE)
+                grid.outsideReach_ = std::max(grid.outsideReach_, double(cell.lo));
         return grid;
     }
 

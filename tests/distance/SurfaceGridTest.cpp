@@ -46,9 +46,19 @@ namespace
                 ++outsideGrid;
                 continue;
             }
+            // The same cell through the map to grid coordinates a caller folds into its own.
+            EXPECT_EQ(grid.cellAt(grid.toGrid() * p), cell) << name << " point " << i;
             const double d = bruteDistance(m, p);
             EXPECT_LE(cell->lo, d) << name << " point " << i;
             EXPECT_GE(cell->hi, d) << name << " point " << i;
+            // The triangle nearest to the cell's centre is within hi of every point of the cell.
+            EXPECT_LT(cell->triangle, m.triangles.size()) << name;
+            if (cell->triangle >= m.triangles.size())
+                continue;
+            const Triangle &t = m.triangles[cell->triangle];
+            Eigen::Vector3d on;
+            EXPECT_LE(pointTriangleDistance(p, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], on), cell->hi)
+                << name << " point " << i;
             if (cell->side == SurfaceGrid::Side::INSIDE || cell->side == SurfaceGrid::Side::OUTSIDE)
             {
                 ++decided;
@@ -62,6 +72,16 @@ namespace
             }
         }
         EXPECT_GT(outsideGrid, 0u) << name;  // the sampled box reaches beyond the grid: null cells are seen
+        // outsideReach(): the largest lo of a cell outside, counted over every cell.
+        double reach = 0.0;
+        for (const SurfaceGrid::Cell &cell : grid.cells())
+            if (cell.side == SurfaceGrid::Side::OUTSIDE)
+                reach = std::max(reach, double(cell.lo));
+        EXPECT_EQ(grid.outsideReach(), reach) << name;
+        if (body.isClosed())
+        {
+            EXPECT_GT(reach, 0.0) << name;
+        }
         return decided;
     }
 }  // namespace

@@ -41,6 +41,10 @@ namespace meshgap
             float lo;   ///< every point of the cell is at least lo from the surface
             float hi;   ///< and at most hi
             Side side;
+            /** \brief The surface triangle nearest to the cell's centre: its distance from any point of the cell is
+                at most hi (the centre's distance plus the half diagonal), a bound at the price of one
+                point-triangle distance. */
+            std::uint32_t triangle;
         };
 
         /** \brief The grid of \e tree's surface; \e closed: whether the surface is closed (sides decided). Cells of
@@ -51,19 +55,32 @@ namespace meshgap
         static constexpr std::size_t MAX_CELLS = 32768, MIN_CELLS = 512, CELLS_PER_TRIANGLE = 16;
 
         /** \brief The cell holding \e p (body frame), or null when \e p lies outside the grid. */
-        const Cell *cell(const Eigen::Vector3d &p) const
+        const Cell *cell(const Eigen::Vector3d &p) const { return cellAt((p - origin_) * inverseSize_); }
+
+        /** \brief The map from the body frame to grid coordinates, in which cell (i, j, k) is [i, i + 1) x [j, j + 1)
+            x [k, k + 1): a caller may fold it into its own transform and look cells up with cellAt(). */
+        Eigen::Affine3d toGrid() const
         {
-            const Eigen::Vector3d f = (p - origin_) * inverseSize_;
-            // Compared as doubles first (false for NaN): a cast of a value beyond the grid could overflow.
-            if (!(f.minCoeff() >= 0.0 && f.x() < double(n_[0]) && f.y() < double(n_[1]) && f.z() < double(n_[2])))
+            return Eigen::Scaling(inverseSize_) * Eigen::Translation3d(-origin_);
+        }
+
+        /** \brief The cell holding grid coordinates \e f (see toGrid()), or null when \e f lies outside the grid. */
+        const Cell *cellAt(const Eigen::Vector3d &f) const
+        {
+            // Compared as doubles first (false for NaN): a cast of a value beyond the grid could overflow. Within
+            // the grid each coordinate is below its count (at most MAX_CELLS), so its truncation is a valid index.
+            if (!(f.x() >= 0.0 && f.y() >= 0.0 && f.z() >= 0.0 && f.x() < counts_[0] && f.y() < counts_[1] &&
+                  f.z() < counts_[2]))
                 return nullptr;
-            const auto i = std::min(static_cast<std::size_t>(f.x()), n_[0] - 1),
-                       j = std::min(static_cast<std::size_t>(f.y()), n_[1] - 1),
-                       k = std::min(static_cast<std::size_t>(f.z()), n_[2] - 1);
-            return &cells_[(k * n_[1] + j) * n_[0] + i];
+            const auto i = static_cast<std::int32_t>(f.x()), j = static_cast<std::int32_t>(f.y()),
+                       k = static_cast<std::int32_t>(f.z());
+            return &cells_[(std::size_t(k) * n_[1] + std::size_t(j)) * n_[0] + std::size_t(i)];
         }
 
         double cellSize() const { return size_; }
+        /** \brief The largest lo of an OUTSIDE cell (0 when there is none): a ball of a larger radius is never wholly
+            outside by its cell. */
+        double outsideReach() const { return outsideReach_; }
         std::size_t numCells() const { return cells_.size(); }
         const std::vector<Cell> &cells() const { return cells_; }
         /** \brief Bytes held beyond the object itself. */
@@ -76,8 +93,9 @@ namespace meshgap
         void decideSides(const TriangleBvh &tree);
 
         Eigen::Vector3d origin_{Eigen::Vector3d::Zero()};  ///< the grid's lowest corner
-        double size_{1.0}, inverseSize_{1.0};
+        double size_{1.0}, inverseSize_{1.0}, outsideReach_{0.0};
         std::size_t n_[3]{0, 0, 0};
+        double counts_[3]{0.0, 0.0, 0.0};  ///< n_ as doubles
         std::vector<Cell> cells_;
     };
 }  // namespace meshgap
