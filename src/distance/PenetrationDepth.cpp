@@ -1,8 +1,10 @@
 #include "meshgap/distance/PenetrationDepth.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "meshgap/ThreadScratch.h"
@@ -98,6 +100,14 @@ namespace meshgap
             return side * orient < 0.0 ? -1 : 1;
         }
 
+        /** \brief A cluster of the mover placed in the host's frame, that may hold a node inside the host. */
+        struct Placed
+        {
+            Eigen::Vector3d centre;          ///< host frame
+            const SurfaceGrid::Cell *cell;   ///< the host grid's cell holding the centre, or null
+            std::uint32_t cluster;
+        };
+
         /** \brief The search for the nodes of \e mover (placed in the host's frame by \e X_HM) inside the closed
             \e host that are deeper than the deepest so far. Branch and bound over the mover's node clusters: a
             cluster (centre c, radius r) whose centre is at distance d from the host's surface holds no node deeper
@@ -120,7 +130,8 @@ namespace meshgap
             /** \brief \e nearest: a triangle of the host per position of the mover's clusterOrder(), and
                 \e clusterNearest one per cluster of the mover, or null (see PenetrationWarmStart::nearest). */
             NodeSearch(const Body &host, const Body &mover, const Eigen::Isometry3d &X_HM, bool hostIsA,
-                       PenetrationEstimate &estimate, std::uint32_t *nearest, std::uint32_t *clusterNearest)
+                       PenetrationEstimate &estimate, std::uint32_t *nearest, std::uint32_t *clusterNearest,
+                       std::vector<Placed> &placed)
                 : host_(host),
                   mover_(mover),
                   root_(host.bvh().nodes()[0]),
@@ -132,8 +143,54 @@ namespace meshgap
                   hostIsA_(hostIsA),
                   estimate_(estimate),
                   nearest_(nearest),
-                  clusterNearest_(clusterNearest)
+                  clusterNearest_(clusterNearest),
+                  placed_(placed)
             {
+            }
+
+            /** \brief The mover's clusters that may hold a node inside the host, placed (place() made once, before
+                seedFromGrid() and run()): a descent of the mover's cluster tree that skips every ball lying beyond
+                the host's box or wholly outside the host by its grid cell. Also notes the cluster whose centre the
+                grid finds deepest inside. */
+            void place()
+            {
+                placed_.clear();
+                gridDeepest_ = 0.0;
+                gridCluster_ = NONE;
+                const std::vector<ClusterBall> &tree = mover_.clusterTree();
+                // The maps from the mover's frame to the host's root box and to its grid, each folded into one.
+                const Eigen::Matrix3d boxAxes =
+                    root_.aligned ? Eigen::Matrix3d::Identity() : Eigen::Matrix3d(root_.axes.transpose());
+                const Eigen::Matrix3d Rbox = boxAxes * R_, Rgrid = grid_.toGrid().linear() * R_;
+                const Eigen::Vector3d tbox = boxAxes * (t_ - root_.center), tgrid = grid_.toGrid() * t_;
+                const double reach = grid_.outsideReach();
+                for (std::uint32_t e = 0; e < tree.size();)
+                {
+                    const ClusterBall &ball = tree[e];
+                    // Beyond the box, or wholly outside by its cell (looked up only where a cell can say so).
+                    const double beyond =
+                        ((Rbox * ball.center + tbox).cwiseAbs() - root_.half).cwiseMax(0.0).squaredNorm();
+                    const SurfaceGrid::Cell *cell = nullptr;
+                    const bool leaf = ball.skip == e + 1;
+                    if (leaf || pad(ball.radius) < reach)
+                        cell = grid_.cellAt(Rgrid * ball.center + tgrid);
+                    if (beyond > ball.radius * ball.radius ||
+                        (cell && cell->side == SurfaceGrid::Side::OUTSIDE && pad(ball.radius) < cell->lo))
+                    {
+                        e = ball.skip;
+                        continue;
+                    }
+                    if (leaf)
+                    {
+                        placed_.push_back({R_ * ball.center + t_, cell, ball.firstCluster});
+                        if (cell && cell->side == SurfaceGrid::Side::INSIDE && cell->lo > gridDeepest_)
+                        {
+                            gridDeepest_ = cell->lo;
+                            gridCluster_ = ball.firstCluster;
+                        }
+                    }
+                    ++e;
+                }
             }
 
             /** \brief Visit the nodes that may be deeper than \e best (its depth is a lower bound, found or not);
@@ -147,8 +204,8 @@ namespace meshgap
                 // Clusters next to each other in index order lie next to each other (a median split): the triangle
                 // nearest to one centre bounds the next centre's distance, and so its point query.
                 std::uint32_t hint = NONE;
-                for (std::uint32_t k = 0; k < mover_.clusters().size(); ++k)
-                    if (candidate(k, best.depth, next, hint))
+                for (const Placed &cluster : placed_)
+                    if (candidate(cluster, best.depth, next, hint))
                     {
                         candidates.push_back(next);
                         hint = next.nearest.triangle;
@@ -193,31 +250,26 @@ namespace meshgap
                 Eigen::Vector3d p;
                 BvhPointResult r;
                 std::uint32_t hint = NONE;
-                return candidate(k, 0.0, c, hint) && deeper(c, position, 0.0, p, r, hint) ? r.distance : 0.0;
+                const Eigen::Vector3d centre = R_ * mover_.clusters()[k].center + t_;
+                return !beyondBox(centre, mover_.clusters()[k].radius) &&
+                               candidate({centre, grid_.cell(centre), k}, 0.0, c, hint) &&
+                               deeper(c, position, 0.0, p, r, hint)
+                           ? r.distance
+                           : 0.0;
             }
 
             /** \brief A depth some node reaches, as run() finds it (0 if none is found): the node whose grid cell
-                is the deepest of those in the cluster whose centre lies deepest by the grid. A lower bound on what
-                run() finds, then, found with one cluster's point queries. */
-            double seedFromGrid()
+                is the deepest of those in the cluster whose centre lies deepest by the grid (after place()). A lower
+                bound on what run() finds, then, found with one cluster's point queries; 0 without them when that
+                node's cell says it lies no deeper than \e known (a depth already in hand). */
+            double seedFromGrid(double known)
             {
-                double deepest = 0.0;
-                std::uint32_t best = NONE;
-                const std::vector<NodeCluster> &clusters = mover_.clusters();
-                for (std::uint32_t k = 0; k < clusters.size(); ++k)
-                {
-                    const SurfaceGrid::Cell *cell = grid_.cell(R_ * clusters[k].center + t_);
-                    if (cell && cell->side == SurfaceGrid::Side::INSIDE && cell->lo > deepest)
-                    {
-                        deepest = cell->lo;
-                        best = k;
-                    }
-                }
-                if (best == NONE)
+                if (gridCluster_ == NONE)
                     return 0.0;
-                deepest = 0.0;
+                const NodeCluster &cluster = mover_.clusters()[gridCluster_];
+                double deepest = 0.0;
                 std::uint32_t position = NONE;
-                for (std::uint32_t k = clusters[best].begin; k < clusters[best].end; ++k)
+                for (std::uint32_t k = cluster.begin; k < cluster.end; ++k)
                 {
                     const SurfaceGrid::Cell *cell = grid_.cell(R_ * mover_.node(mover_.clusterOrder()[k]) + t_);
                     if (cell && cell->side == SurfaceGrid::Side::INSIDE && cell->lo >= deepest)
@@ -226,7 +278,7 @@ namespace meshgap
                         position = k;
                     }
                 }
-                return position == NONE ? 0.0 : depthOf(best, position);
+                return position == NONE || !(deepest > known) ? 0.0 : depthOf(gridCluster_, position);
             }
 
         private:
@@ -317,6 +369,10 @@ namespace meshgap
                 if (!c.oneSide && c.nearest.triangle != hint && c.nearest.triangle != cached &&
                     !boundedBy(c.nearest.triangle))
                     return false;
+                // The triangle nearest to the node's grid cell's centre, when none of those was it.
+                if (cell && cell->triangle != hint && cell->triangle != cached &&
+                    cell->triangle != c.nearest.triangle && !boundedBy(cell->triangle))
+                    return false;
                 ++estimate_.nodesTested;
                 bvhPointDistance(host_.bvh(), p, upper, floor, r);
                 if (!r.found)
@@ -337,17 +393,22 @@ namespace meshgap
                 return (pad(offset) < dc && centreInside(c)) || inside(p, r);
             }
 
-            /** \brief Cluster \e k as a candidate (false when none of its nodes can lie in the host's box, or be deeper
-                than \e floor). \e hint: a host triangle near the cluster, or NONE. */
-            bool candidate(std::uint32_t k, double floor, Candidate &out, std::uint32_t hint)
+            /** \brief A ball (host frame) that lies wholly beyond the host's bounding box: it holds no node inside. */
+            bool beyondBox(const Eigen::Vector3d &centre, double radius) const
             {
+                return (root_.local(centre).cwiseAbs() - root_.half).cwiseMax(0.0).norm() > radius;
+            }
+
+            /** \brief The placed cluster \e placed as a candidate (false when none of its nodes can be deeper than
+                \e floor, or inside). \e hint: a host triangle near the cluster, or NONE. */
+            bool candidate(const Placed &placed, double floor, Candidate &out, std::uint32_t hint)
+            {
+                const std::uint32_t k = placed.cluster;
                 const NodeCluster &cluster = mover_.clusters()[k];
-                out.centre = R_ * cluster.center + t_;
-                if ((root_.local(out.centre).cwiseAbs() - root_.half).cwiseMax(0.0).norm() > cluster.radius)
-                    return false;
+                out.centre = placed.centre;
                 // The grid's bounds: no node deeper than the cell's hi + r, none inside when the ball lies in a cell
                 // wholly outside more than r from the surface. Either way run() would skip the cluster.
-                const SurfaceGrid::Cell *cell = grid_.cell(out.centre);
+                const SurfaceGrid::Cell *cell = placed.cell;
                 if (cell && (pad(cell->hi + cluster.radius) <= floor ||
                              (cell->side == SurfaceGrid::Side::OUTSIDE && pad(cluster.radius) < cell->lo)))
                     return false;
@@ -361,7 +422,10 @@ namespace meshgap
                 // The triangle nearest to the centre at an earlier pose, and the hint: dc is at most their distances
                 // (the values the query would give them), which may settle the cluster at once, and bounds the query.
                 const std::uint32_t last = cached ? *cached : NONE, triangles = host_.surface().triangles.size();
-                for (const std::uint32_t t : {last, hint != last ? hint : NONE})
+                // and the triangle nearest to its grid cell's centre.
+                const std::uint32_t near = cell ? cell->triangle : NONE;
+                for (const std::uint32_t t :
+                     {last, hint != last ? hint : NONE, near != last && near != hint ? near : NONE})
                 {
                     if (t >= triangles)
                         continue;
@@ -417,6 +481,9 @@ namespace meshgap
             const bool hostIsA_;
             PenetrationEstimate &estimate_;
             std::uint32_t *const nearest_, *const clusterNearest_;
+            std::vector<Placed> &placed_;  ///< place()'s clusters
+            double gridDeepest_{0.0};       ///< the largest lo of a grid cell inside holding a placed centre
+            std::uint32_t gridCluster_{NONE};  ///< that centre's cluster, or NONE
         };
 
         /** \brief A surface triangle holding node \e i of \e body. */
@@ -470,21 +537,6 @@ namespace meshgap
         }
     }  // namespace
 
-    namespace
-    {
-        /** \brief Just below the deepest of the nodes the closed bodies' grids point to (NodeSearch::seedFromGrid()),
-            or 0: a depth below the answer's. \e search makes the search of each host. */
-        template <class Search>
-        double gridSeed(const Search &search, bool closedA, bool closedB)
-        {
-            double seed = 0.0;
-            for (const bool hostIsA : {true, false})
-                if (hostIsA ? closedA : closedB)
-                    seed = std::max(seed, search(hostIsA).seedFromGrid());
-            return seed > 0.0 ? std::nextafter(seed, 0.0) : 0.0;
-        }
-    }  // namespace
-
     PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB,
                                          PenetrationWarmStart *warm)
     {
@@ -503,48 +555,53 @@ namespace meshgap
                 warm->nearest.assign(slots, UINT32_MAX);  // first use only
             nearest = warm->nearest.data();
         }
-        auto search = [&](bool hostIsA)
-        {
-            if (!nearest)
-                return hostIsA ? NodeSearch(a, b, X_AB, true, estimate, nullptr, nullptr)
-                               : NodeSearch(b, a, X_BA, false, estimate, nullptr, nullptr);
-            return hostIsA ? NodeSearch(a, b, X_AB, true, estimate, nearest, nearest + nodes)
-                           : NodeSearch(b, a, X_BA, false, estimate, nearest + b.numNodes(),
-                                        nearest + nodes + b.clusters().size());
-        };
+        auto at = [nearest](std::size_t offset) { return nearest ? nearest + offset : nullptr; };
+        // The search in each closed host (B's nodes inside A, A's inside B), its clusters placed once.
+        ThreadScratch<std::array<std::vector<Placed>, 2>> scratch;  // a warmed-up thread allocates nothing here
+        std::optional<NodeSearch> searches[2];
+        if (closedA)
+            searches[0].emplace(a, b, X_AB, true, estimate, at(0), at(nodes), scratch.get()[0]);
+        if (closedB)
+            searches[1].emplace(b, a, X_BA, false, estimate, at(b.numNodes()), at(nodes + b.clusters().size()),
+                                scratch.get()[1]);
+        for (std::optional<NodeSearch> &search : searches)
+            if (search)
+                search->place();
 
-        // The last deepest node's depth at this pose, just below it: a lower bound to start from (NodeSearch says
-        // why the answer stays the cold one).
+        // A lower bound to start from, just below a depth found exactly as the search would find it (NodeSearch says
+        // why the answer stays the cold one): the last deepest node's depth at this pose, and the deepest node the
+        // grids point to, where its cell says it may lie deeper still (along a run of poses the carried node is as
+        // deep, and costs less; on poses far apart the grid's is the deeper).
         Deepest best;
-        if (warm && warm->valid && (warm->hostIsA ? closedA : closedB))
+        if (warm && warm->valid && searches[warm->hostIsA ? 0 : 1])
         {
             const Body &mover = warm->hostIsA ? b : a;
             if (warm->cluster < mover.clusters().size() && warm->position >= mover.clusters()[warm->cluster].begin &&
                 warm->position < mover.clusters()[warm->cluster].end)
             {
-                const double seed = search(warm->hostIsA).depthOf(warm->cluster, warm->position);
+                const double seed = searches[warm->hostIsA ? 0 : 1]->depthOf(warm->cluster, warm->position);
                 if (seed > 0.0)
                     best.depth = std::nextafter(seed, 0.0);
             }
         }
-        // Without a warm seed, a deep node the grids point to: its depth, found exactly as the search would, is a
-        // lower bound to start from too (the answer stays the same, as with a warm start's). Along a run of poses
-        // the carried node is as deep, and costs less.
-        if (!(best.depth > 0.0))
-            best.depth = gridSeed(search, closedA, closedB);
+        for (std::optional<NodeSearch> &search : searches)
+            if (search)
+            {
+                const double seed = search->seedFromGrid(best.depth);
+                if (seed > 0.0)
+                    best.depth = std::max(best.depth, std::nextafter(seed, 0.0));
+            }
         const bool seeded = best.depth > 0.0;
-        if (closedA)
-            search(true).run(best);
-        if (closedB)
-            search(false).run(best);
+        for (std::optional<NodeSearch> &search : searches)
+            if (search)
+                search->run(best);
         if (seeded && !best.found)
         {
             // Cannot happen (the seed itself is found); if it did, the cold search gives the answer.
             best = Deepest();
-            if (closedA)
-                search(true).run(best);
-            if (closedB)
-                search(false).run(best);
+            for (std::optional<NodeSearch> &search : searches)
+                if (search)
+                    search->run(best);
         }
         if (warm)
         {

@@ -62,11 +62,15 @@ namespace meshgap
         when three directions are all ambiguous). Candidates are visited by branch and bound over the node
         clusters (deepest possible first; a cluster whose ball the surface does not cross takes one inside test),
         and a local side test at the nearest surface point (angle-weighted pseudonormal) filters the inside tests.
-        Each closed body's SurfaceGrid (Body::surfaceGrid(), built on first use) bounds, at the price of a cell
-        look-up, how deep a cluster's nodes can be (the cell's hi plus the radius) and says when a ball lies wholly
-        outside: the search starts from the depth of the node the grid finds deepest (measured exactly, as the
-        search would) and skips without a point query every cluster that cannot beat it; the triangle found nearest
-        to the last cluster centre, and to the last node, bounds the next point query. A verdict-only query
+        The clusters are placed once per host, by a descent of the other body's cluster tree (Body::clusterTree())
+        that drops at once every ball beyond the host's bounding box or wholly outside it by the grid. Each closed
+        body's SurfaceGrid (Body::surfaceGrid(), built on first use) bounds, at the price of a cell look-up, how
+        deep a cluster's nodes can be (the cell's hi plus the radius) and says when a ball lies wholly outside: the
+        search starts from the depth of the node the grid finds deepest (measured exactly, as the search would) and
+        skips without a point query every cluster that cannot beat it. A point query starts from the least distance
+        to a few triangles near the point: the one nearest to its grid cell's centre, those found nearest to the last
+        cluster centre and the last node, and with a warm start the one found nearest to the same node or centre at
+        the last pose; often one of them settles the node or the cluster without a query. A verdict-only query
         (stopBelow >= 0, or computeDepth false) skips it all (its cost per colliding pair: bench/README.md,
         "Penetration depth").
 
@@ -94,7 +98,8 @@ namespace meshgap
         Thread-safe.
 
         Warm start. With \e warm (the caller's, from its last query of this pair), the last deepest node's depth at
-        this pose is a lower bound found first: the search then skips every cluster and node that cannot go deeper.
+        this pose is a lower bound found first, raised to the grid's deepest node's where that node's cell says it
+        may lie deeper (poses far apart): the search then skips every cluster and node that cannot go deeper.
         The answer is the same, bit for bit, as without it (the bound starts just below that depth, so a node tied
         with it and visited first still wins); only the cost falls along a run of nearby colliding poses. \e warm
         is then set to the node found (or marked invalid when none is inside). */
