@@ -111,14 +111,16 @@ namespace meshgap
         /** \brief The search for the nodes of \e mover (placed in the host's frame by \e X_HM) inside the closed
             \e host that are deeper than the deepest so far. Branch and bound over the mover's node clusters: a
             cluster (centre c, radius r) whose centre is at distance d from the host's surface holds no node deeper
-            than d + r, so clusters are visited in decreasing order of that bound until it falls to the deepest node
-            so far; and when d > r no surface crosses the cluster's ball, so all its nodes are on the same side as c:
-            one inside test for them all. Inside tests: localSide() first, a filter; what it calls outside is skipped,
+            than d + r. Clusters are visited in decreasing order of that bound as the grid gives it (the centre's cell's
+            hi for d: reach()) until it falls to the deepest node so far; a cluster's centre is measured when its turn
+            comes, and the cluster skipped when d + r (r - d, outside) does not beat the deepest; and when d > r no
+            surface crosses the cluster's ball, so all its nodes are on the same side as c: one inside test for them
+            all. Inside tests: localSide() first, a filter; what it calls outside is skipped,
             anything else is confirmed by insideClosedBody(). So no outside node ever counts; where the filter is wrong
             (overlapping shells, mixed winding) an inside node may be skipped, which only lowers the estimate.
 
             What run() returns is a function of the pose and of nothing else: the first node, in the visiting order
-            (clusters by decreasing bound, ties by index; nodes in clusterOrder()), of those it accepts at the largest
+            (clusters by decreasing reach(), ties by index; nodes in clusterOrder()), of those it accepts at the largest
             depth. Every node's depth and verdict are functions of the pose (bvhPointDistance() gives the same
             nearest triangle whatever bounds it is given, as long as the distance lies between them), and a bound
             prunes only with a pad above roundoff (pad()), so a node deeper than the deepest so far is never skipped.
@@ -197,47 +199,37 @@ namespace meshgap
                 \e best becomes the deepest found, if any is deeper. */
             void run(Deepest &best)
             {
-                ThreadScratch<std::vector<Candidate>> scratch;  // a warmed-up thread allocates nothing here
-                std::vector<Candidate> &candidates = scratch.get();
-                candidates.clear();
-                Candidate next;
-                // Clusters next to each other in index order lie next to each other (a median split): the triangle
-                // nearest to one centre bounds the next centre's distance, and so its point query.
-                std::uint32_t hint = NONE;
-                for (const Placed &cluster : placed_)
-                    if (candidate(cluster, best.depth, next, hint))
-                    {
-                        candidates.push_back(next);
-                        hint = next.nearest.triangle;
-                    }
-                // Largest bound first; ties by cluster index (a fixed order: the answer is a function of the pose).
-                std::sort(candidates.begin(), candidates.end(),
-                          [](const Candidate &x, const Candidate &y)
-                          { return x.bound > y.bound || (x.bound == y.bound && x.cluster < y.cluster); });
-                for (Candidate &candidate : candidates)
+                // The placed clusters by the grid's bound on how deep their nodes can lie (reach()), deepest first,
+                // ties by cluster index: a fixed order (the answer is a function of the pose). A cluster's centre is
+                // measured (candidate()) only when its turn comes and best is still below its reach.
+                ThreadScratch<std::vector<Reach>> scratch;  // a warmed-up thread allocates nothing here
+                std::vector<Reach> &order = scratch.get();
+                order.clear();
+                for (std::uint32_t i = 0; i < placed_.size(); ++i)
                 {
-                    if (pad(candidate.bound) <= best.depth)
+                    const double bound = reach(placed_[i]);
+                    if (pad(bound) > best.depth)
+                        order.push_back({bound, placed_[i].cluster, i});
+                }
+                std::sort(order.begin(), order.end(),
+                          [](const Reach &x, const Reach &y)
+                          { return x.bound > y.bound || (x.bound == y.bound && x.cluster < y.cluster); });
+                // The triangle nearest to the last centre measured (a deep one, as the next): it bounds the next
+                // centre's point query.
+                std::uint32_t hint = NONE;
+                Candidate candidate;
+                for (const Reach &next : order)
+                {
+                    if (pad(next.bound) <= best.depth)
                         break;  // neither this cluster nor any later one holds a deeper node
+                    if (!this->candidate(placed_[next.placed], best.depth, candidate, hint))
+                        continue;
+                    hint = candidate.nearest.triangle;
+                    if (pad(candidate.bound) <= best.depth)
+                        continue;  // not this cluster, measured
                     if (candidate.oneSide && !centreInside(candidate))
                         continue;  // a ball wholly outside
-                    const NodeCluster &cluster = mover_.clusters()[candidate.cluster];
-                    std::uint32_t last = NONE;  // the triangle nearest to the last node measured: near the next one
-                    for (std::uint32_t k = cluster.begin; k < cluster.end; ++k)
-                    {
-                        Eigen::Vector3d p;
-                        BvhPointResult r;
-                        if (!deeper(candidate, k, best.depth, p, r, last))
-                            continue;
-                        best.depth = r.distance;
-                        best.found = true;
-                        best.hostIsA = hostIsA_;
-                        best.node = mover_.clusterOrder()[k];
-                        best.position = k;
-                        best.cluster = candidate.cluster;
-                        best.triangle = r.triangle;
-                        best.point = p;
-                        best.closest = r.closest;
-                    }
+                    visit(candidate, best);
                 }
             }
 
@@ -317,6 +309,54 @@ namespace meshgap
                 bool centreOutside;
                 int inside{-1};  ///< the centre's inside test (insideClosedBody()), made when first needed: 0, 1
             };
+
+            /** \brief A placed cluster (index \e placed in place()'s list) and the grid's bound on how deep a node of
+                it can lie inside the host (reach()). */
+            struct Reach
+            {
+                double bound;
+                std::uint32_t cluster, placed;
+            };
+
+            /** \brief How deep, at most, a node of the placed cluster can lie inside the host, by its centre's grid
+                cell alone: every point of the ball is within r of the centre, whose distance to the surface is at
+                most the cell's hi; a centre outside the host (a cell wholly outside, at least lo from the surface, or
+                beyond the grid, which lies beyond the host's box) leaves r - lo, or r, for a node inside (the segment
+                from it to the centre crosses the surface). A function of the pose; a bound on the exact depth of
+                every node inside, and so (padded) on every depth run() accepts. */
+            double reach(const Placed &placed) const
+            {
+                const double r = mover_.clusters()[placed.cluster].radius;
+                if (!placed.cell)
+                    return r;
+                if (placed.cell->side == SurfaceGrid::Side::OUTSIDE)
+                    return r - placed.cell->lo;
+                return placed.cell->hi + r;
+            }
+
+            /** \brief The nodes of \e candidate's cluster deeper than \e best, in clusterOrder(): \e best becomes the
+                first of the deepest. */
+            void visit(Candidate &candidate, Deepest &best)
+            {
+                const NodeCluster &cluster = mover_.clusters()[candidate.cluster];
+                std::uint32_t last = NONE;  // the triangle nearest to the last node measured: near the next one
+                for (std::uint32_t k = cluster.begin; k < cluster.end; ++k)
+                {
+                    Eigen::Vector3d p;
+                    BvhPointResult r;
+                    if (!deeper(candidate, k, best.depth, p, r, last))
+                        continue;
+                    best.depth = r.distance;
+                    best.found = true;
+                    best.hostIsA = hostIsA_;
+                    best.node = mover_.clusterOrder()[k];
+                    best.position = k;
+                    best.cluster = candidate.cluster;
+                    best.triangle = r.triangle;
+                    best.point = p;
+                    best.closest = r.closest;
+                }
+            }
 
             /** \brief The centre's inside test, made once. */
             bool centreInside(Candidate &c)

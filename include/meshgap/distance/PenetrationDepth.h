@@ -60,7 +60,8 @@ namespace meshgap
         cannot be the deepest); only a candidate that would be the new deepest is tested for being inside (a ray
         cast through the BVH counting signed crossings, bvhRayWinding(), with containsPoint()'s winding number
         when three directions are all ambiguous). Candidates are visited by branch and bound over the node
-        clusters (deepest possible first; a cluster whose ball the surface does not cross takes one inside test),
+        clusters (deepest possible by the grid first, each cluster's centre measured when its turn comes; a cluster
+        whose ball the surface does not cross takes one inside test),
         and a local side test at the nearest surface point (angle-weighted pseudonormal) filters the inside tests.
         The clusters are placed once per host, by a descent of the other body's cluster tree (Body::clusterTree())
         that drops at once every ball beyond the host's bounding box or wholly outside it by the grid. Each closed
@@ -94,8 +95,8 @@ namespace meshgap
         Call it for colliding bodies only (it does not decide collision: separated bodies get NO_NODE_INSIDE, depth
         0, or a node "inside" a body it does not touch when one contains the other, which is a collision). A pure
         function of the bodies and the pose, warm start or not (deterministic ties: of the nodes at the largest
-        depth, the first in a fixed order wins: the order of the visit, clusters by decreasing bound then index).
-        Thread-safe.
+        depth, the first in a fixed order wins: the order of the visit, clusters by decreasing bound by the grid then
+        index). Thread-safe.
 
         Warm start. With \e warm (the caller's, from its last query of this pair), the last deepest node's depth at
         this pose is a lower bound found first, raised to the grid's deepest node's where that node's cell says it
