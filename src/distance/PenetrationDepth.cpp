@@ -103,8 +103,7 @@ namespace meshgap
         /** \brief A cluster of the mover placed in the host's frame, that may hold a node inside the host. */
         struct Placed
         {
-            Eigen::Vector3d centre;          ///< host frame
-            const SurfaceGrid::Cell *cell;   ///< the host grid's cell holding the centre, or null
+            const SurfaceGrid::Cell *cell;  ///< the host grid's cell holding the cluster's centre, or null
             std::uint32_t cluster;
         };
 
@@ -166,25 +165,37 @@ namespace meshgap
                 const Eigen::Matrix3d Rbox = boxAxes * R_, Rgrid = grid_.toGrid().linear() * R_;
                 const Eigen::Vector3d tbox = boxAxes * (t_ - root_.center), tgrid = grid_.toGrid() * t_;
                 const double reach = grid_.outsideReach();
+                // Entries before this one lie in a ball wholly inside the box: their nodes too, so no box test.
+                std::uint32_t inBox = 0;
                 for (std::uint32_t e = 0; e < tree.size();)
                 {
                     const ClusterBall &ball = tree[e];
-                    // Beyond the box, or wholly outside by its cell (looked up only where a cell can say so).
-                    const double beyond =
-                        ((Rbox * ball.center + tbox).cwiseAbs() - root_.half).cwiseMax(0.0).squaredNorm();
-                    const SurfaceGrid::Cell *cell = nullptr;
+                    const double r = ball.radius;
+                    if (e >= inBox)
+                    {
+                        // Beyond the box: skipped; wholly inside it: its subtree needs no box test.
+                        const Eigen::Vector3d q = (Rbox * ball.center + tbox).cwiseAbs() - root_.half;
+                        if (q.cwiseMax(0.0).squaredNorm() > r * r)
+                        {
+                            e = ball.skip;
+                            continue;
+                        }
+                        if (q.maxCoeff() <= -r)
+                            inBox = ball.skip;
+                    }
+                    // Wholly outside by its cell (looked up for every cluster, and for a larger ball where a cell can
+                    // say so: a radius below the largest lo of a cell outside).
                     const bool leaf = ball.skip == e + 1;
-                    if (leaf || pad(ball.radius) < reach)
-                        cell = grid_.cellAt(Rgrid * ball.center + tgrid);
-                    if (beyond > ball.radius * ball.radius ||
-                        (cell && cell->side == SurfaceGrid::Side::OUTSIDE && pad(ball.radius) < cell->lo))
+                    const SurfaceGrid::Cell *cell =
+                        leaf || pad(r) < reach ? grid_.cellAt(Rgrid * ball.center + tgrid) : nullptr;
+                    if (cell && cell->side == SurfaceGrid::Side::OUTSIDE && pad(r) < cell->lo)
                     {
                         e = ball.skip;
                         continue;
                     }
                     if (leaf)
                     {
-                        placed_.push_back({R_ * ball.center + t_, cell, ball.firstCluster});
+                        placed_.push_back({cell, ball.firstCluster});
                         if (cell && cell->side == SurfaceGrid::Side::INSIDE && cell->lo > gridDeepest_)
                         {
                             gridDeepest_ = cell->lo;
@@ -244,7 +255,7 @@ namespace meshgap
                 std::uint32_t hint = NONE;
                 const Eigen::Vector3d centre = R_ * mover_.clusters()[k].center + t_;
                 return !beyondBox(centre, mover_.clusters()[k].radius) &&
-                               candidate({centre, grid_.cell(centre), k}, 0.0, c, hint) &&
+                               candidate({grid_.cell(centre), k}, 0.0, c, hint) &&
                                deeper(c, position, 0.0, p, r, hint)
                            ? r.distance
                            : 0.0;
@@ -445,7 +456,7 @@ namespace meshgap
             {
                 const std::uint32_t k = placed.cluster;
                 const NodeCluster &cluster = mover_.clusters()[k];
-                out.centre = placed.centre;
+                out.centre = R_ * cluster.center + t_;
                 // The grid's bounds: no node deeper than the cell's hi + r, none inside when the ball lies in a cell
                 // wholly outside more than r from the surface. Either way run() would skip the cluster.
                 const SurfaceGrid::Cell *cell = placed.cell;
