@@ -233,7 +233,9 @@ namespace meshgap
                 {
                     if (pad(next.bound) <= best.depth)
                         break;  // neither this cluster nor any later one holds a deeper node
-                    if (!this->candidate(placed_[next.placed], best.depth, candidate, hint))
+                    if ((mover_.clusters()[next.cluster].radius > 2.0 * grid_.cellSize() &&
+                         !nodeCellsReach(next.cluster, best.depth)) ||
+                        !this->candidate(placed_[next.placed], best.depth, candidate, hint))
                         continue;
                     hint = candidate.nearest.triangle;
                     if (pad(candidate.bound) <= best.depth)
@@ -343,6 +345,22 @@ namespace meshgap
                 if (placed.cell->side == SurfaceGrid::Side::OUTSIDE)
                     return r - placed.cell->lo;
                 return placed.cell->hi + r;
+            }
+
+            /** \brief Whether a node of cluster \e k may lie inside the host deeper than \e floor by its own grid cell:
+                no node is deeper than its cell's hi, and none inside in an outside cell or beyond the grid (beyond the
+                host's box). A look-up per node, cheaper than measuring the centre, and tighter than the centre's cell
+                for a large cluster. */
+            bool nodeCellsReach(std::uint32_t k, double floor) const
+            {
+                const NodeCluster &cluster = mover_.clusters()[k];
+                for (std::uint32_t i = cluster.begin; i < cluster.end; ++i)
+                {
+                    const SurfaceGrid::Cell *cell = grid_.cell(R_ * mover_.node(mover_.clusterOrder()[i]) + t_);
+                    if (cell && cell->side != SurfaceGrid::Side::OUTSIDE && pad(cell->hi) > floor)
+                        return true;
+                }
+                return false;
             }
 
             /** \brief The nodes of \e candidate's cluster deeper than \e best, in clusterOrder(): \e best becomes the
