@@ -108,7 +108,7 @@ namespace
                       0.0);
     }
 
-    Primitive solid(Primitive::Kind kind, double x, double y, double z, const Isometry3d &pose)
+    Primitive placedSolid(Primitive::Kind kind, double x, double y, double z, const Isometry3d &pose)
     {
         Primitive p;
         p.kind = kind;
@@ -144,7 +144,7 @@ namespace
     /** \brief The distance of two bodies as refineExact() finds it, taken as the distance its witness points achieve
         (an upper bound of the true distance: for a curved solid, refineExact()'s distance is GJK's lower bound, which
         may lie below the truth by 1e-10 of the scale); 0 in collision. */
-    double exactDistance(const Body &a, const Body &b, const Isometry3d &X_AB)
+    double hullExactDistance(const Body &a, const Body &b, const Isometry3d &X_AB)
     {
         DistanceResult r;
         refineExact(a, b, X_AB, r);
@@ -323,10 +323,10 @@ TEST(ConvexHull, GapNeverExceedsTheMeshDistanceToASolid)
         for (std::size_t k = 0; k < 5; ++k)
             for (std::uint32_t seed = 0; seed < seeds; ++seed)
             {
-                const Primitive p = solid(kinds[k], 0.2, 0.5, 0.3, test::randomPose(1000 * k + seed, 0.1));
+                const Primitive p = placedSolid(kinds[k], 0.2, 0.5, 0.3, test::randomPose(1000 * k + seed, 0.1));
                 const BodyPtr obstacle = solidBody(p);
                 const Isometry3d X = test::randomPose(7 + 31 * seed + 1000 * i, 1.0);
-                const double exact = exactDistance(*body, *obstacle, X);
+                const double exact = hullExactDistance(*body, *obstacle, X);
                 const double gap = hullPrimitiveGap(*body->convexHull(), p, X);
                 ++poses;
                 apart += gap > 0.0 ? 1 : 0;
@@ -350,11 +350,11 @@ TEST(ConvexHull, GapNeverExceedsTheDistanceBetweenMeshes)
     for (std::uint32_t seed = 0; seed < seeds; ++seed)
     {
         const Isometry3d X = test::randomPose(seed, 1.2);
-        const double exact = exactDistance(*a, *b, X);
+        const double exact = hullExactDistance(*a, *b, X);
         const double gap = hullGap(*a->convexHull(), *b->convexHull(), X);
         apart += gap > 0.0 ? 1 : 0;
         ASSERT_LE(gap, exact * (1.0 + 1e-9) + 1e-12) << seed;
-        const double convex = exactDistance(*c, *c, X);  // two convex meshes: the bound is their distance
+        const double convex = hullExactDistance(*c, *c, X);  // two convex meshes: the bound is their distance
         const double both = hullGap(*c->convexHull(), *c->convexHull(), X);
         ASSERT_LE(both, convex * (1.0 + 1e-9) + 1e-12) << seed;
         EXPECT_GE(both, convex - 1e-9) << seed;
@@ -367,7 +367,7 @@ TEST(ConvexHull, BoundedQuestionsAnswerAsTheTraversal)
     // refineExact with the outer bound asked first: the same verdict ("nothing below the bound", or a pair below it)
     // as without, over random poses and bounds, with some answered by the outer bounds alone.
     const BodyPtr link = test::unrefinedBody(bumpySphere(0.3, 3, 4));
-    const Primitive table = solid(Primitive::Kind::BOX, 2.0, 2.0, 0.1, test::translation(0.0, 0.0, -0.05));
+    const Primitive table = placedSolid(Primitive::Kind::BOX, 2.0, 2.0, 0.1, test::translation(0.0, 0.0, -0.05));
     const BodyPtr tableBody = solidBody(table), other = test::unrefinedBody(lShape());
     std::size_t proofs = 0;
     for (std::uint32_t seed = 0; seed < 600; ++seed)
@@ -425,7 +425,7 @@ TEST(ConvexHull, SweptGapNeverExceedsTheChordsDistance)
         ASSERT_NE(body->convexHull(), nullptr);
         for (std::uint32_t seed = 0; seed < 150; ++seed)
         {
-            const Primitive box = solid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(500 + seed, 0.1));
+            const Primitive box = placedSolid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(500 + seed, 0.1));
             const Isometry3d X0 = test::randomPose(seed, 1.2);
             const Isometry3d X1 = test::randomPose(seed + 9000, 1.2);
             const double gap = sweptHullPrimitiveGap(*body->convexHull(), X0, X1, 0.0, box);
@@ -460,7 +460,7 @@ namespace
             {
                 const Isometry3d As = Eigen::Translation3d(s / 12.0 * da) * A0;
                 const Isometry3d Br = Eigen::Translation3d(r / 12.0 * db) * B0;
-                least = std::min(least, exactDistance(a, a, As.inverse() * Br));
+                least = std::min(least, hullExactDistance(a, a, As.inverse() * Br));
             }
         return least;
     }
@@ -555,7 +555,7 @@ TEST(ConvexHull, SweptGapFromAnyFirstAxisIsStillABound)
         ASSERT_NE(body->convexHull(), nullptr);
         for (std::uint32_t seed = 0; seed < 40; ++seed)
         {
-            const Primitive box = solid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(700 + seed, 0.1));
+            const Primitive box = placedSolid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(700 + seed, 0.1));
             const Isometry3d X0 = test::randomPose(seed + 50, 1.2), X1 = test::randomPose(seed + 9050, 1.2);
             double least = std::numeric_limits<double>::infinity();
             for (const Vector3d &p : chordPoints(meshes[m], X0, X1))
@@ -591,14 +591,14 @@ TEST(ConvexHull, SweptGapOfAHullThatStaysIsItsHullsGap)
         const double still = hullGap(ha, hb, X_AB);
         ASSERT_NEAR(stays, still, 1e-9) << seed;
         ASSERT_NEAR(stays, sweptHullGap(ha, X, hair * X, 0.0, hb, Y, hair * Y, 0.0), 1e-9) << seed;
-        ASSERT_LE(stays, std::max(0.0, exactDistance(*a, *b, X_AB)) * (1.0 + 1e-9) + 1e-12) << seed;
+        ASSERT_LE(stays, std::max(0.0, hullExactDistance(*a, *b, X_AB)) * (1.0 + 1e-9) + 1e-12) << seed;
         // One staying, the other moving: the same as its sweep with the first a hair apart.
         const Isometry3d Y1 = test::randomPose(seed + 2000, 1.0);
         ASSERT_NEAR(sweptHullGap(ha, X, X, 0.0, hb, Y, Y1, 0.0), sweptHullGap(ha, X, hair * X, 0.0, hb, Y, Y1, 0.0),
                     1e-9)
             << seed;
         // Against a solid, with a growth: the static gap less the growth.
-        const Primitive box = solid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(seed + 3000, 0.5));
+        const Primitive box = placedSolid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(seed + 3000, 0.5));
         ASSERT_NEAR(sweptHullPrimitiveGap(ha, X, X, 0.02, box),
                     std::max(0.0, hullPrimitiveGap(ha, box, X.inverse()) - 0.02), 1e-9)
             << seed;

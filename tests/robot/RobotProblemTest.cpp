@@ -25,7 +25,7 @@ namespace meshgap
     namespace
     {
         const std::string RESOURCES = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot";
-        const std::string ARM = RESOURCES + "/problems/arm2.urdf";
+        const std::string PROBLEM_ARM = RESOURCES + "/problems/arm2.urdf";
         const std::string CUBE = RESOURCES + "/meshgap_test_description/meshes/cube.obj";
 
         /** \brief A folder of its own per test process, with a world of two unit cubes (x in [2, 3] and [-3, -2]). */
@@ -92,7 +92,7 @@ namespace meshgap
         std::vector<std::string> armLines(const std::string &start, const std::string &extra = "")
         {
             return {"[problem]",
-                    "robot.urdf = " + ARM,
+                    "robot.urdf = " + PROBLEM_ARM,
                     "world = world.obj",
                     "start.joints = " + start,
                     "goal.joints = -0.5 0.25",
