@@ -65,7 +65,7 @@ namespace
                                            "huge_time_limit.cfg"};
 
     /** \brief The command lines that read a problem file \e cfg. */
-    std::vector<std::pair<std::string, std::string>> commandsFor(const std::string &cfg)
+    std::vector<std::pair<std::string, std::string>> hostileCommandsFor(const std::string &cfg)
     {
         const std::string f = "'" + cfg + "'";
         return {{"meshgap_distance", "--cfg " + f},
@@ -123,7 +123,7 @@ TEST(HostileInputCorpus, EveryToolGivesOneErrorNamingFileAndProblem)
             continue;  // reported by the test above
         std::vector<std::string> all = mentions;
         all.push_back(name);
-        for (const auto &[executable, args] : commandsFor(cfg.string()))
+        for (const auto &[executable, args] : hostileCommandsFor(cfg.string()))
             expectOneClearHostileError(executable + " " + args, meshgap::test::runExecutable(executable, args, 120),
                                        all);
     }

@@ -43,7 +43,7 @@ namespace
         std::vector<double> d;  ///< per triangle pair, row-major (A's triangle, B's triangle)
     };
 
-    Brute bruteForce(const Mesh &ma, const Mesh &mb, const Eigen::Isometry3d &X)
+    Brute descentBruteForce(const Mesh &ma, const Mesh &mb, const Eigen::Isometry3d &X)
     {
         Brute b;
         b.d.resize(ma.triangles.size() * mb.triangles.size());
@@ -95,7 +95,7 @@ TEST(BvhDescent, BruteForcePairColdAndWarmOnPlatesAndASphere)
         small.linear() = Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ()).toRotationMatrix();
         for (int pose = 0; pose < 6; ++pose, X = X * small)
         {
-            const Brute brute = bruteForce(ma, mb, X);
+            const Brute brute = descentBruteForce(ma, mb, X);
             const double tol = 1e-12 * (1.0 + X.translation().norm());
             const std::string what = "seed " + std::to_string(seed) + " pose " + std::to_string(pose);
             BvhDistanceResult cold, warm;
@@ -143,7 +143,7 @@ TEST(BvhDescent, BruteForcePairWhenTheBestFirstHeapOutgrowsItsLimit)
         X.linear() =
             Eigen::AngleAxisd(0.3 * pose + 0.1, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
         X.translation() = Eigen::Vector3d(0.004 * pose, -0.003, 0.002);
-        const Brute brute = bruteForce(ma, mb, X);
+        const Brute brute = descentBruteForce(ma, mb, X);
         BvhDistanceResult r;
         bvhDistance(a, b, X, std::numeric_limits<double>::infinity(), -1.0, r);
         expectCanonical(r, brute, ma, mb, 1e-12, "pose " + std::to_string(pose));

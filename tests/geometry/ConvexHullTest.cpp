@@ -25,7 +25,7 @@ namespace
 {
     /** \brief A sphere of \e r with every vertex pushed in by up to a fifth at random: non-convex, most vertices
         inside the hull. */
-    Mesh bumpySphere(double r, int level, std::uint32_t seed)
+    Mesh hullBumpySphere(double r, int level, std::uint32_t seed)
     {
         Mesh m = test::icosphere(r, level);
         std::mt19937 rng(seed);
@@ -118,7 +118,7 @@ namespace
     }
 
     /** \brief A body of the solid \e p (its mesh at its pose, as a MoveIt scene builds one). */
-    BodyPtr solidBody(const Primitive &p)
+    BodyPtr hullSolidBody(const Primitive &p)
     {
         Mesh m;
         switch (p.kind)
@@ -155,10 +155,10 @@ namespace
 TEST(ConvexHull, HoldsEveryVertex)
 {
     expectHolds(test::icosphere(0.3, 2), "icosphere");
-    expectHolds(bumpySphere(0.4, 3, 1), "bumpy sphere");
+    expectHolds(hullBumpySphere(0.4, 3, 1), "bumpy sphere");
     expectHolds(lShape(), "L of boxes");
     expectHolds(test::box(0.2, 0.3, 0.05, 6), "box of 6 x 6 squares a face");
-    expectHolds(test::transformed(bumpySphere(2e-3, 2, 5), test::translation(40.0, -30.0, 10.0)), "small, far");
+    expectHolds(test::transformed(hullBumpySphere(2e-3, 2, 5), test::translation(40.0, -30.0, 10.0)), "small, far");
     // Coplanar points are not vertices: a box of many squares a face has its 8 corners.
     EXPECT_EQ(ConvexHull::build(test::box(0.2, 0.3, 0.05, 6).vertices)->vertices().size(), 8u);
 }
@@ -184,7 +184,7 @@ TEST(ConvexHull, TheOracleCatchesAShrunkHull)
 {
     // A check that never fails proves nothing: with the margin made negative, or one vertex dropped, the brute-force
     // oracle of HoldsEveryVertex must find a mesh vertex outside.
-    const Mesh m = bumpySphere(0.4, 3, 1);
+    const Mesh m = hullBumpySphere(0.4, 3, 1);
     const std::shared_ptr<const ConvexHull> hull = ConvexHull::build(m.vertices);
     ASSERT_TRUE(hull);
     EXPECT_GT(worstExcess(hull->vertices(), -1e-6, m.vertices, directions(2000, 3)), 0.0);
@@ -264,7 +264,7 @@ namespace
 
 TEST(ConvexHull, SupportIsTheScansVertex)
 {
-    expectSupportIsTheScans(bumpySphere(0.4, 3, 1).vertices, "bumpy sphere");
+    expectSupportIsTheScans(hullBumpySphere(0.4, 3, 1).vertices, "bumpy sphere");
     expectSupportIsTheScans(test::icosphere(0.05, 5).vertices, "coarsened fine sphere");
     expectSupportIsTheScans(test::transformed(test::icosphere(2e-3, 3), test::translation(40.0, -30.0, 10.0)).vertices,
                             "small, far");
@@ -311,7 +311,7 @@ TEST(ConvexHull, DegenerateSetsHaveNoHull)
 
 TEST(ConvexHull, GapNeverExceedsTheMeshDistanceToASolid)
 {
-    const Mesh meshes[] = {bumpySphere(0.3, 3, 2), lShape(), test::icosphere(0.25, 2)};
+    const Mesh meshes[] = {hullBumpySphere(0.3, 3, 2), lShape(), test::icosphere(0.25, 2)};
     const Primitive::Kind kinds[] = {Primitive::Kind::BOX, Primitive::Kind::SPHERE, Primitive::Kind::CYLINDER,
                                      Primitive::Kind::CONE, Primitive::Kind::CAPSULE};
     std::size_t poses = 0, apart = 0;
@@ -324,7 +324,7 @@ TEST(ConvexHull, GapNeverExceedsTheMeshDistanceToASolid)
             for (std::uint32_t seed = 0; seed < seeds; ++seed)
             {
                 const Primitive p = placedSolid(kinds[k], 0.2, 0.5, 0.3, test::randomPose(1000 * k + seed, 0.1));
-                const BodyPtr obstacle = solidBody(p);
+                const BodyPtr obstacle = hullSolidBody(p);
                 const Isometry3d X = test::randomPose(7 + 31 * seed + 1000 * i, 1.0);
                 const double exact = hullExactDistance(*body, *obstacle, X);
                 const double gap = hullPrimitiveGap(*body->convexHull(), p, X);
@@ -343,7 +343,7 @@ TEST(ConvexHull, GapNeverExceedsTheMeshDistanceToASolid)
 
 TEST(ConvexHull, GapNeverExceedsTheDistanceBetweenMeshes)
 {
-    const BodyPtr a = test::unrefinedBody(bumpySphere(0.3, 3, 3)), b = test::unrefinedBody(lShape());
+    const BodyPtr a = test::unrefinedBody(hullBumpySphere(0.3, 3, 3)), b = test::unrefinedBody(lShape());
     const BodyPtr c = test::unrefinedBody(test::icosphere(0.25, 2));
     std::size_t apart = 0;
     const auto seeds = static_cast<std::uint32_t>(test::scaled(1000, 100));  // the count below in proportion
@@ -366,9 +366,9 @@ TEST(ConvexHull, BoundedQuestionsAnswerAsTheTraversal)
 {
     // refineExact with the outer bound asked first: the same verdict ("nothing below the bound", or a pair below it)
     // as without, over random poses and bounds, with some answered by the outer bounds alone.
-    const BodyPtr link = test::unrefinedBody(bumpySphere(0.3, 3, 4));
+    const BodyPtr link = test::unrefinedBody(hullBumpySphere(0.3, 3, 4));
     const Primitive table = placedSolid(Primitive::Kind::BOX, 2.0, 2.0, 0.1, test::translation(0.0, 0.0, -0.05));
-    const BodyPtr tableBody = solidBody(table), other = test::unrefinedBody(lShape());
+    const BodyPtr tableBody = hullSolidBody(table), other = test::unrefinedBody(lShape());
     std::size_t proofs = 0;
     for (std::uint32_t seed = 0; seed < 600; ++seed)
     {
@@ -417,7 +417,7 @@ TEST(ConvexHull, SweptGapNeverExceedsTheChordsDistance)
 {
     // Every vertex's straight line from its place at X0 to its place at X1 lies in the swept hull: its distance from
     // a box (analytic) bounds the swept gap from above, and a grown sweep's gap drops by the growth.
-    const Mesh meshes[] = {bumpySphere(0.3, 2, 4), lShape()};
+    const Mesh meshes[] = {hullBumpySphere(0.3, 2, 4), lShape()};
     std::size_t apart = 0, tight = 0;
     for (std::size_t i = 0; i < 2; ++i)
     {
@@ -548,7 +548,7 @@ TEST(ConvexHull, SweptGapFromAnyFirstAxisIsStillABound)
     EXPECT_EQ(provenFirst, apart);
 
     // Turning sweeps against a box: every vertex's chord bounds the gap from above (analytic), from any first axis.
-    const Mesh meshes[] = {bumpySphere(0.3, 2, 4), lShape()};
+    const Mesh meshes[] = {hullBumpySphere(0.3, 2, 4), lShape()};
     for (std::size_t m = 0; m < 2; ++m)
     {
         const BodyPtr body = test::unrefinedBody(meshes[m]);
@@ -578,7 +578,7 @@ TEST(ConvexHull, SweptGapOfAHullThatStaysIsItsHullsGap)
     // A hull whose two poses are the very same is placed once (one support call, not two): its swept gap must be
     // its static GJK gap (hullGap(), in the first body's frame), the same as a sweep between two poses a hair apart
     // (the two-placement path), and never above the meshes' exact distance.
-    const Mesh meshes[] = {bumpySphere(0.3, 2, 4), lShape()};
+    const Mesh meshes[] = {hullBumpySphere(0.3, 2, 4), lShape()};
     const BodyPtr a = test::unrefinedBody(meshes[0]), b = test::unrefinedBody(meshes[1]);
     const ConvexHull &ha = *a->convexHull(), &hb = *b->convexHull();
     const Isometry3d hair(Eigen::Translation3d(1e-13, -1e-13, 1e-13));

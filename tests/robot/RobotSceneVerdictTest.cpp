@@ -32,7 +32,7 @@ namespace meshgap
 {
     namespace
     {
-        Eigen::Matrix3d randomRotation(std::mt19937 &rng)
+        Eigen::Matrix3d verdictRandomRotation(std::mt19937 &rng)
         {
             std::normal_distribution<double> n(0.0, 1.0);
             return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
@@ -133,9 +133,9 @@ namespace meshgap
         std::size_t apart = 0, overlapping = 0, proven = 0;
         for (int trial = 0; trial < 3000; ++trial)
         {
-            WorldBox a{Eigen::Vector3d(offset(rng), offset(rng), offset(rng)), randomRotation(rng),
+            WorldBox a{Eigen::Vector3d(offset(rng), offset(rng), offset(rng)), verdictRandomRotation(rng),
                        Eigen::Vector3d(size(rng), size(rng), size(rng))};
-            WorldBox b{Eigen::Vector3d(offset(rng), offset(rng), offset(rng)), randomRotation(rng),
+            WorldBox b{Eigen::Vector3d(offset(rng), offset(rng), offset(rng)), verdictRandomRotation(rng),
                        Eigen::Vector3d(size(rng), size(rng), size(rng))};
             Primitive pa, pb;
             pa.size = 2.0 * a.half;

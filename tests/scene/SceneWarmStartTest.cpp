@@ -94,7 +94,7 @@ namespace
 
     /** \brief Every pose of \e poses asked warm (one warm start of \e capacity certificates carried along) and cold;
         the answers must agree bit for bit (verdict, signed distance, witnesses), and the work of each is kept. */
-    StreamCost run(const Scene &scene, const std::vector<Eigen::Isometry3d> &poses, std::size_t capacity)
+    StreamCost streamCostRun(const Scene &scene, const std::vector<Eigen::Isometry3d> &poses, std::size_t capacity)
     {
         StreamCost cost(capacity);
         for (std::size_t i = 0; i < poses.size(); ++i)
@@ -200,8 +200,8 @@ TEST(SceneWarmStart, NeverCostsMoreThanColdOnUnrelatedPosesAndPaysAlongPaths)
     std::ostringstream notes;
     for (std::size_t capacity : {1u, 4u})
     {
-        const StreamCost r = run(*scene, random, capacity), p = run(*scene, path, capacity),
-                         m = run(*scene, mixed, capacity), a = run(*scene, alternating, capacity);
+        const StreamCost r = streamCostRun(*scene, random, capacity), p = streamCostRun(*scene, path, capacity),
+                         m = streamCostRun(*scene, mixed, capacity), a = streamCostRun(*scene, alternating, capacity);
         note(notes, "random", capacity, r);
         note(notes, "path", capacity, p);
         note(notes, "mixed", capacity, m);
