@@ -58,6 +58,18 @@ namespace meshgap
             return runCommand(std::string(MESHGAP_BINARY_DIR) + "/planners/" + executable + " " + args, seconds);
         }
 
+        /** \brief Run meshgap_plan with \e args. */
+        inline CliRun runPlan(const std::string &args)
+        {
+            return runExecutable("meshgap_plan", args);
+        }
+
+        /** \brief Run meshgap_benchmark with \e args. */
+        inline CliRun runBenchmark(const std::string &args)
+        {
+            return runExecutable("meshgap_benchmark", args);
+        }
+
         /** \brief Lines of \e text that start with \e prefix. */
         inline int countLines(const std::string &text, const std::string &prefix)
         {

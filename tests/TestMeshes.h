@@ -156,6 +156,14 @@ namespace meshgap
             return X;
         }
 
+        /** \brief A concave body of three overlapping closed shells (a U): winding number 2 where they overlap. */
+        inline Mesh uShape()
+        {
+            Mesh m = merged(transformed(box(1.5, 0.2, 0.5, 3), translation(0, -1.0, 0)),
+                            transformed(box(0.2, 1.0, 0.5, 3), translation(-1.3, 0, 0)));
+            return merged(m, transformed(box(0.2, 1.0, 0.5, 3), translation(1.3, 0, 0)));
+        }
+
         /** \brief A body of the test mesh as it is (no refinement: gridSize 0). */
         inline BodyPtr unrefinedBody(const Mesh &m)
         {

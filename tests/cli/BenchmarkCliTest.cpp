@@ -22,10 +22,9 @@ namespace fs = std::filesystem;
 namespace
 {
     using meshgap::test::CliRun;
+    using meshgap::test::runBenchmark;
 
     CliRun shell(const std::string &command) { return meshgap::test::runCommand(command); }
-
-    CliRun benchmark(const std::string &args) { return meshgap::test::runExecutable("meshgap_benchmark", args); }
 
     const std::string MAPS = std::string(MESHGAP_SOURCE_DIR) + "/maps";
     const std::string CFG = MAPS + "/slotted_wall/slotted_wall.cfg";
@@ -133,9 +132,10 @@ namespace
             dir_ = fs::temp_directory_path() / ("meshgap_benchmark_logs_" + std::to_string(::getpid()));
             fs::remove_all(dir_);
             for (const char *shard : {"1/2", "2/2"})
-                shards_.push_back(benchmark("--cfg " + CFG + " --planner rrtconnect --checker certified,fcl"
-                                            " --runs 2 --time 120 --seed 7 --out " + dir_.string() + " --shard " +
-                                            shard));
+                shards_.push_back(runBenchmark("--cfg " + CFG +
+                                               " --planner rrtconnect --checker certified,fcl"
+                                               " --runs 2 --time 120 --seed 7 --out " +
+                                               dir_.string() + " --shard " + shard));
             for (const auto &entry : fs::directory_iterator(dir_))
                 if (entry.path().extension() == ".log")
                     logs_.push_back(entry.path());
@@ -179,7 +179,7 @@ TEST(BenchmarkCliErrors, BadInputGivesOneErrorAndExitOne)
     };
     for (const auto &[args, mention] : cases)
     {
-        const CliRun r = benchmark(args);
+        const CliRun r = runBenchmark(args);
         EXPECT_EQ(r.status, 1) << args << "\n" << r.err;
         EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << args << "\n" << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
@@ -304,7 +304,7 @@ TEST(BenchmarkCliErrors, ARobotsStartAndGoalAreCheckedAsASingleBodys)
     for (const auto &[cfg, mentions] : cases)
     {
         const CliRun r =
-            benchmark("--cfg " + cfg + " --planner rrtconnect --runs 1 --time 1 --out " + (dir / "logs").string());
+            runBenchmark("--cfg " + cfg + " --planner rrtconnect --runs 1 --time 1 --out " + (dir / "logs").string());
         EXPECT_EQ(r.status, 1) << cfg << "\n" << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << cfg << "\n" << r.err;
         for (const std::string &m : mentions)
@@ -360,8 +360,10 @@ TEST(BenchmarkCliControl, ControlProblemsRunWithTheControlPlannersAndWriteOMPLsL
     const fs::path dir = fs::temp_directory_path() / ("meshgap_benchmark_control_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     const std::string cfg = MAPS + "/blimp_window/blimp_window.cfg";
-    const CliRun r = benchmark("--cfg " + cfg + " --planner kpiece,RRT --checker certified --runs 2 --time 1 --seed 3"
-                               " --out " + dir.string());
+    const CliRun r = runBenchmark("--cfg " + cfg +
+                                  " --planner kpiece,RRT --checker certified --runs 2 --time 1 --seed 3"
+                                  " --out " +
+                                  dir.string());
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find("blimp_window (control: blimp): 2 planners x 1 checkers x 2 runs"), std::string::npos)
         << r.err;
@@ -393,7 +395,7 @@ TEST(BenchmarkCliControl, ControlProblemsRunWithTheControlPlannersAndWriteOMPLsL
     };
     for (const auto &[args, mention] : cases)
     {
-        const CliRun bad = benchmark("--cfg " + cfg + " --runs 1 --time 1 " + args);
+        const CliRun bad = runBenchmark("--cfg " + cfg + " --runs 1 --time 1 " + args);
         EXPECT_EQ(bad.status, 1) << args << "\n" << bad.err;
         EXPECT_NE(bad.err.find(mention), std::string::npos) << args << "\n" << bad.err;
     }

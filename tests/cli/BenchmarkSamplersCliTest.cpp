@@ -14,12 +14,9 @@ namespace fs = std::filesystem;
 
 namespace
 {
-    meshgap::test::CliRun benchmark(const std::string &args)
-    {
-        return meshgap::test::runExecutable("meshgap_benchmark", args);
-    }
+    using meshgap::test::runBenchmark;
 
-    const std::string CFG = std::string(MESHGAP_SOURCE_DIR) + "/maps/slotted_wall/slotted_wall.cfg";
+    const std::string SLOTTED_WALL_CFG = std::string(MESHGAP_SOURCE_DIR) + "/maps/slotted_wall/slotted_wall.cfg";
 }  // namespace
 
 TEST(BenchmarkSamplersCli, BadSamplersGiveOneErrorAndExitOne)
@@ -27,15 +24,15 @@ TEST(BenchmarkSamplersCli, BadSamplersGiveOneErrorAndExitOne)
     const fs::path dir = fs::temp_directory_path() / ("meshgap_bench_samplers_bad_" + std::to_string(::getpid()));
     for (const char *list : {"bogus", "uniform,uniform", "uniform,,bridge"})
     {
-        const auto r = benchmark("--cfg " + CFG +
-                                 " --planner prm --checker certified --runs 1 --time 0.1 "
-                                 "--sampler " +
-                                 list + " --out " + dir.string());
+        const auto r = runBenchmark("--cfg " + SLOTTED_WALL_CFG +
+                                    " --planner prm --checker certified --runs 1 --time 0.1 "
+                                    "--sampler " +
+                                    list + " --out " + dir.string());
         EXPECT_EQ(r.status, 1) << list << "\n" << r.err;
         EXPECT_NE(r.err.find("--sampler"), std::string::npos) << r.err;
         EXPECT_FALSE(fs::exists(dir) && !fs::is_empty(dir)) << "nothing written for " << list;
     }
-    const auto r = benchmark("--cfg " + CFG + " --sampler bogus");
+    const auto r = runBenchmark("--cfg " + SLOTTED_WALL_CFG + " --sampler bogus");
     EXPECT_NE(r.err.find("narrow_passage"), std::string::npos) << "the valid names are listed: " << r.err;
     fs::remove_all(dir);
 }
@@ -43,10 +40,10 @@ TEST(BenchmarkSamplersCli, BadSamplersGiveOneErrorAndExitOne)
 TEST(BenchmarkSamplersCli, EachSamplerIsItsOwnSlice)
 {
     const fs::path dir = fs::temp_directory_path() / ("meshgap_bench_samplers_" + std::to_string(::getpid()));
-    const auto r = benchmark("--cfg " + CFG +
-                             " --planner prm --checker certified --runs 1 --time 0.3 "
-                             "--seed 4 --sampler uniform,narrow_passage --out " +
-                             dir.string());
+    const auto r = runBenchmark("--cfg " + SLOTTED_WALL_CFG +
+                                " --planner prm --checker certified --runs 1 --time 0.3 "
+                                "--seed 4 --sampler uniform,narrow_passage --out " +
+                                dir.string());
     ASSERT_EQ(r.status, 0) << r.err;
     for (const std::string sampler : {"uniform", "narrow_passage"})
     {

@@ -20,7 +20,6 @@ namespace fs = std::filesystem;
 
 namespace
 {
-    test::CliRun plan(const std::string &args) { return test::runExecutable("meshgap_plan", args); }
 
     /** \brief The rows of a .path file. */
     std::vector<std::vector<double>> readRows(const std::string &file)
@@ -86,7 +85,7 @@ TEST(ControlPlanCli, KinematicCarAroundABoxHasAFreePath)
     {
         const std::string out = (dir / (planner + ".path")).string();
         const test::CliRun r =
-            plan("--cfg " + cfg + " --planner " + planner + " --time 2 --quiet --seed 3 --out " + out);
+            test::runPlan("--cfg " + cfg + " --planner " + planner + " --time 2 --quiet --seed 3 --out " + out);
         ASSERT_TRUE(r.status == 0 || r.status == 2) << r.err;
         EXPECT_NE(r.out.find("problem         box (control: kinematic_car)"), std::string::npos) << r.out;
         ASSERT_TRUE(r.out.find("solved          yes (exact)") != std::string::npos ||
@@ -98,13 +97,13 @@ TEST(ControlPlanCli, KinematicCarAroundABoxHasAFreePath)
         EXPECT_LT(std::hypot(last[0] - 3.0, last[1]), 6.0) << planner;
     }
     // Bad input: one error, exit 1.
-    const test::CliRun unknown = plan("--cfg " + cfg + " --planner rrtconnect --time 1");
+    const test::CliRun unknown = test::runPlan("--cfg " + cfg + " --planner rrtconnect --time 1");
     EXPECT_EQ(unknown.status, 1);
     EXPECT_NE(unknown.err.find("not a control planner (a control problem is planned by one of: kpiece, rrt, est, "
                                "pdst, sst)"),
               std::string::npos)
         << unknown.err;
-    const test::CliRun geometric = plan("--cfg " + cfg + " --objective length --time 1");
+    const test::CliRun geometric = test::runPlan("--cfg " + cfg + " --objective length --time 1");
     EXPECT_EQ(geometric.status, 1);
     EXPECT_NE(geometric.err.find("applies to geometric problems only"), std::string::npos) << geometric.err;
     fs::remove_all(dir);
@@ -117,7 +116,7 @@ TEST(ControlPlanCli, BugTrapDynamicCarWritesAFreePath)
     if (!fs::exists(cfg))
         GTEST_SKIP() << data << " is absent (OMPL.app's problems)";
     const std::string out = (fs::temp_directory_path() / ("meshgap_dcar_" + std::to_string(::getpid()) + ".path"));
-    const test::CliRun r = plan("--cfg " + cfg + " --planner kpiece --time 5 --quiet --seed 1 --out " + out);
+    const test::CliRun r = test::runPlan("--cfg " + cfg + " --planner kpiece --time 5 --quiet --seed 1 --out " + out);
     ASSERT_TRUE(r.status == 0 || r.status == 2) << r.err;
     ASSERT_TRUE(r.out.find("solved          yes (exact)") != std::string::npos ||
                 r.out.find("solved          approximate") != std::string::npos)

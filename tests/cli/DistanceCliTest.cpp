@@ -33,38 +33,39 @@ namespace
 
     CliRun run(const std::string &args) { return test::runExecutable("meshgap_distance", args); }
 
-    const std::string RES = MESHGAP_TEST_RESOURCES_DIR;
+    const std::string CLI_RES = MESHGAP_TEST_RESOURCES_DIR;
 }  // namespace
 
 TEST(DistanceCli, BadInputGivesOneErrorNamingTheFileAndExitOne)
 {
     std::vector<std::pair<std::string, std::string>> cases = {
-        {RES + "/cube.obj /nonexistent/mesh.obj", "/nonexistent/mesh.obj"},
+        {CLI_RES + "/cube.obj /nonexistent/mesh.obj", "/nonexistent/mesh.obj"},
         {"--cfg /nonexistent/problem.cfg", "/nonexistent/problem.cfg"},
-        {RES + "/cube.obj " + RES + "/cube.obj --algorithm comb-XX", "comb-XX"},
-        {RES + "/cube.obj " + RES + "/cube.obj --pose '1 2 3'", "--pose"},
-        {RES + "/cube.obj " + RES + "/cube.obj --grid -3", "--grid"},
-        {RES + "/cube.obj " + RES + "/cube.obj --sizing bogus", "bogus"},
-        {RES + "/cube.obj", "two mesh files"},
-        {RES + "/cube.obj " + RES + "/cube.obj --cold", "--cold"},  // the scene's answer only
+        {CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --algorithm comb-XX", "comb-XX"},
+        {CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --pose '1 2 3'", "--pose"},
+        {CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --grid -3", "--grid"},
+        {CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --sizing bogus", "bogus"},
+        {CLI_RES + "/cube.obj", "two mesh files"},
+        {CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --cold", "--cold"},  // the scene's answer only
         // A single body's state through the one-link robot: the count, and a quaternion that is no rotation.
-        {"--cfg " + std::string(MESHGAP_SOURCE_DIR) + "/maps/twisted/twisted.cfg --pose '1 2 3'", "--pose: a state of "
-                                                                                              "this problem has 7"},
+        {"--cfg " + std::string(MESHGAP_SOURCE_DIR) + "/maps/twisted/twisted.cfg --pose '1 2 3'",
+         "--pose: a state of "
+         "this problem has 7"},
         {"--cfg " + std::string(MESHGAP_SOURCE_DIR) + "/maps/twisted/twisted.cfg --pose '1 2 3 0 0 0 0'",
          "--pose: SE(3) state: the quaternion"},
         // Solver parameters: ALGORITHM.NAME=VALUE, as meshgap_plan's and meshgap_benchmark's PLANNER.NAME=VALUE.
-        {RES + "/cube.obj " + RES + "/cube.obj --algorithm comb-GA-wl --param comb-GA-wl.population=1",
+        {CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --algorithm comb-GA-wl --param comb-GA-wl.population=1",
          "not a valid parameter of comb-GA-wl"},  // comb-GA needs at least 2: the value reached the solver
-        {RES + "/cube.obj " + RES + "/cube.obj --algorithm comb-GA-wl --param population=10",
+        {CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --algorithm comb-GA-wl --param population=10",
          "is not ALGORITHM.NAME=VALUE"},
-        {RES + "/cube.obj " + RES + "/cube.obj --algorithm comb-GA-wl --param comb-SA-wl.population=10",
+        {CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --algorithm comb-GA-wl --param comb-SA-wl.population=10",
          "the algorithm is comb-GA-wl"},
-        {RES + "/cube.obj " + RES + "/cube.obj --algorithm comb-GA-wl --set population=10",
+        {CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --algorithm comb-GA-wl --set population=10",
          "--set: renamed: use --param ALGORITHM.NAME=VALUE"},
     };
-    for (const auto &entry : fs::directory_iterator(RES + "/bad"))
+    for (const auto &entry : fs::directory_iterator(CLI_RES + "/bad"))
         if (entry.path().extension() != ".cfg" && entry.path().filename() != "degenerate.obj")
-            cases.emplace_back(RES + "/cube.obj " + entry.path().string(), entry.path().filename().string());
+            cases.emplace_back(CLI_RES + "/cube.obj " + entry.path().string(), entry.path().filename().string());
     for (const auto &[args, mention] : cases)
     {
         const CliRun r = run(args);
@@ -78,7 +79,8 @@ TEST(DistanceCli, BadInputGivesOneErrorNamingTheFileAndExitOne)
 TEST(DistanceCli, ParamReachesTheSolver)
 {
     // comb-GA-wl with a population of 2 and no generations evaluates far fewer pairs than with its defaults (Table I).
-    const std::string args = RES + "/cube.obj " + RES + "/cube.obj --pose '3 0 0 0 0 0 1' --algorithm comb-GA-wl "
+    const std::string args = CLI_RES + "/cube.obj " + CLI_RES +
+                             "/cube.obj --pose '3 0 0 0 0 0 1' --algorithm comb-GA-wl "
                              "--seed 1 --json --grid 0";
     const CliRun byDefault = run(args),
                  small = run(args + " --param comb-GA-wl.population=2 --param comb-GA-wl.generations=0");
@@ -95,7 +97,7 @@ TEST(DistanceCli, ParamReachesTheSolver)
 
 TEST(DistanceCli, UnknownAlgorithmListsTheValidOnes)
 {
-    const CliRun r = run(RES + "/cube.obj " + RES + "/cube.obj --algorithm nope");
+    const CliRun r = run(CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --algorithm nope");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("enumeration"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("hill-climb"), std::string::npos) << r.err;
@@ -106,7 +108,7 @@ TEST(DistanceCli, PosesGiveCsvRowsThatMatchTheGeometry)
     // Two unit cubes (from cube.obj, [0,1]^3) side by side with gaps 0.5, 1.5, 2.5 along x.
     const std::string poses = (fs::temp_directory_path() / ("meshgap_cli_" + std::to_string(::getpid()) + ".path")).string();
     std::ofstream(poses) << "1.5 0 0 0 0 0 1\n2.5 0 0 0 0 0 1\n# comment\n3.5 0 0 0 0 0 1\n";
-    const CliRun r = run(RES + "/cube.obj " + RES + "/cube.obj --grid 0 --poses " + poses);
+    const CliRun r = run(CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --grid 0 --poses " + poses);
     ASSERT_EQ(r.status, 0) << r.err;
     std::istringstream in(r.out);
     std::string line;
@@ -142,7 +144,7 @@ TEST(DistanceCli, ExactAndCollisionColumns)
                          << "\n";
     for (const char *extra : {"", " --exact"})
     {
-        const CliRun r = run(RES + "/cube.obj " + RES + "/cube.obj --grid 0 --poses " + poses + extra);
+        const CliRun r = run(CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --grid 0 --poses " + poses + extra);
         ASSERT_EQ(r.status, 0) << r.err;
         std::istringstream in(r.out);
         std::string header, row;
@@ -191,7 +193,7 @@ TEST(DistanceCli, CollisionDistanceIsMinusThePenetrationDepth)
     for (const char *extra : {"", " --exact"})
     {
         const CliRun r =
-            run(RES + "/cube.obj " + RES + "/cube.obj --grid 0.1 --json --pose '" + pose.str() + "'" + extra);
+            run(CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --grid 0.1 --json --pose '" + pose.str() + "'" + extra);
         ASSERT_EQ(r.status, 0) << r.err;
         const std::string key = "\"distance\": ";
         const std::size_t at = r.out.find(key);
@@ -203,7 +205,7 @@ TEST(DistanceCli, CollisionDistanceIsMinusThePenetrationDepth)
 
 TEST(DistanceCli, JsonAndTextAgree)
 {
-    const std::string meshes = RES + "/cube.obj " + RES + "/cube.obj --pose '3 0 0 0 0 0 1' --grid 0";
+    const std::string meshes = CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --pose '3 0 0 0 0 0 1' --grid 0";
     const CliRun text = run(meshes), json = run(meshes + " --json");
     ASSERT_EQ(text.status, 0) << text.err;
     ASSERT_EQ(json.status, 0) << json.err;
@@ -354,12 +356,12 @@ TEST(DistanceCli, CfgPosesGiveTheSceneAnswerWarmOrCold)
 TEST(DistanceCli, AdaptiveSizingGivesTheEnumerationMinimumOverAdaptiveNodes)
 {
     const std::string pose = "3.1 0.2 0.3 0.1 0.2 0.3 0.927";
-    const CliRun r = run(RES + "/cube.obj " + RES + "/cube.obj --sizing adaptive --json --pose '" + pose + "'");
+    const CliRun r = run(CLI_RES + "/cube.obj " + CLI_RES + "/cube.obj --sizing adaptive --json --pose '" + pose + "'");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find("adaptive node sizing"), std::string::npos) << r.err;
     BodyOptions options;
     options.sizing = GridSizing::ADAPTIVE;
-    const Mesh cube = loadMesh(RES + "/cube.obj");
+    const Mesh cube = loadMesh(CLI_RES + "/cube.obj");
     const BodyPtr body = Body::build(cube, options);
     EXPECT_GT(body->numNodes(), cube.vertices.size());  // the rule refined it
     std::istringstream in(pose);

@@ -35,10 +35,10 @@ namespace fs = std::filesystem;
 namespace
 {
     const std::string HOSTILE = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/hostile";
-    const std::string MAPS = std::string(MESHGAP_SOURCE_DIR) + "/maps";
+    const std::string HOSTILE_CORPUS_MAPS = std::string(MESHGAP_SOURCE_DIR) + "/maps";
 
     /** \brief Every problem file of the corpus, and what its one error line must say beyond its own name. */
-    const std::map<std::string, std::vector<std::string>> PROBLEM = {
+    const std::map<std::string, std::vector<std::string>> HOSTILE_PROBLEM = {
         {"bare.cfg", {"bare.urdf", "robot 'bare' has no collision geometry"}},
         {"origin_typo.cfg",
          {"origin_typo.urdf:8", "link 'b'", "<origin xyz=\"0.25 0 O\">", "'O', not a finite number"}},
@@ -65,7 +65,7 @@ namespace
                                            "huge_time_limit.cfg"};
 
     /** \brief The command lines that read a problem file \e cfg. */
-    std::vector<std::pair<std::string, std::string>> commandsFor(const std::string &cfg)
+    std::vector<std::pair<std::string, std::string>> hostileCommandsFor(const std::string &cfg)
     {
         const std::string f = "'" + cfg + "'";
         return {{"meshgap_distance", "--cfg " + f},
@@ -74,7 +74,7 @@ namespace
                                           (fs::temp_directory_path() / "meshgap_hostile_corpus_logs").string()}};
     }
 
-    void expectOneClearError(const std::string &what, const CliRun &r, const std::vector<std::string> &mentions)
+    void expectOneClearHostileError(const std::string &what, const CliRun &r, const std::vector<std::string> &mentions)
     {
         ASSERT_NE(r.status, -1) << what << ": crashed (a signal)\n" << r.err;
         ASSERT_NE(r.status, 124) << what << ": did not finish in time";
@@ -103,28 +103,29 @@ TEST(HostileInputCorpus, EveryFileIsAnEntryOrSupport)
         if (entry.path().extension() == ".urdf" && !SUPPORT.count(name))
         {
             // A hostile URDF is read through the problem of the same stem.
-            EXPECT_TRUE(PROBLEM.count(entry.path().stem().string() + ".cfg")) << name << " has no problem file";
+            EXPECT_TRUE(HOSTILE_PROBLEM.count(entry.path().stem().string() + ".cfg")) << name << " has no problem file";
             continue;
         }
         if (SUPPORT.count(name))
             continue;
         ++entries;
-        EXPECT_TRUE(PROBLEM.count(name)) << name << " is in the corpus but not in this test's table";
+        EXPECT_TRUE(HOSTILE_PROBLEM.count(name)) << name << " is in the corpus but not in this test's table";
     }
-    EXPECT_EQ(entries, PROBLEM.size()) << "a file named in this test's table is missing from " << HOSTILE;
+    EXPECT_EQ(entries, HOSTILE_PROBLEM.size()) << "a file named in this test's table is missing from " << HOSTILE;
 }
 
 TEST(HostileInputCorpus, EveryToolGivesOneErrorNamingFileAndProblem)
 {
-    for (const auto &[name, mentions] : PROBLEM)
+    for (const auto &[name, mentions] : HOSTILE_PROBLEM)
     {
         const fs::path cfg = fs::path(HOSTILE) / name;
         if (!fs::exists(cfg))
             continue;  // reported by the test above
         std::vector<std::string> all = mentions;
         all.push_back(name);
-        for (const auto &[executable, args] : commandsFor(cfg.string()))
-            expectOneClearError(executable + " " + args, meshgap::test::runExecutable(executable, args, 120), all);
+        for (const auto &[executable, args] : hostileCommandsFor(cfg.string()))
+            expectOneClearHostileError(executable + " " + args, meshgap::test::runExecutable(executable, args, 120),
+                                       all);
     }
 }
 
@@ -170,15 +171,16 @@ TEST(HostileInputCorpus, HostileCommandLinesGetOneErrorEach)
          {"--memory-budget", "nan is not a size in MiB"}},
     };
     for (const auto &[executable, args, mentions] : lines)
-        expectOneClearError(executable + " " + args, meshgap::test::runExecutable(executable, args, 120), mentions);
+        expectOneClearHostileError(executable + " " + args, meshgap::test::runExecutable(executable, args, 120),
+                                   mentions);
 }
 
 TEST(HostileInputCorpus, PoseBeyondDoubleGeometryIsRefusedNotAnsweredWrong)
 {
-    const std::string cfg = MAPS + "/hand_bowl/hand_bowl.cfg";
+    const std::string cfg = HOSTILE_CORPUS_MAPS + "/hand_bowl/hand_bowl.cfg";
     const std::string args = "--cfg '" + cfg + "' --pose '1e300 0 0 0 0 0 1'";
-    expectOneClearError("meshgap_distance " + args, meshgap::test::runExecutable("meshgap_distance", args, 120),
-                        {"--pose", "state number 0 (robot.x) = 1e+300", "beyond 1e12"});
+    expectOneClearHostileError("meshgap_distance " + args, meshgap::test::runExecutable("meshgap_distance", args, 120),
+                               {"--pose", "state number 0 (robot.x) = 1e+300", "beyond 1e12"});
 }
 
 TEST_F(HostileCli, FifoAsProblemFileIsRefusedWithoutBlocking)
@@ -189,8 +191,8 @@ TEST_F(HostileCli, FifoAsProblemFileIsRefusedWithoutBlocking)
     {
         const std::string args = std::string("--cfg '") + fifo + "'" +
                                  (std::string(executable) == "meshgap_report" ? " --path x --out y.html" : "");
-        expectOneClearError(std::string(executable) + " " + args,
-                            meshgap::test::runExecutable(executable, args, 20), {fifo, "is not a regular file"});
+        expectOneClearHostileError(std::string(executable) + " " + args,
+                                   meshgap::test::runExecutable(executable, args, 20), {fifo, "is not a regular file"});
     }
 }
 
@@ -212,7 +214,7 @@ TEST_F(HostileCli, ReadmeRobotProblemRunsAsWritten)
     ASSERT_NE(example.find("robot.urdf = arm4.urdf "), std::string::npos) << example;
     ASSERT_NE(example.find("# "), std::string::npos) << "the example has no inline comment any more:\n" << example;
 
-    const fs::path arm = fs::path(MAPS) / "arm_fixture";
+    const fs::path arm = fs::path(HOSTILE_CORPUS_MAPS) / "arm_fixture";
     fs::copy_file(arm / "arm4.urdf", dir_ / "arm4.urdf");
     fs::copy_file(arm / "arm_fixture_world.obj", dir_ / "fixture.obj");
     fs::copy_file(arm / "arm_fixture_payload.obj", dir_ / "payload.obj");
@@ -251,9 +253,9 @@ TEST_F(HostileCli, FixedRobotIsReadAndPlanningSaysWhyNot)
     ASSERT_EQ(d.status, 0) << d.err;
     // The box [-0.5, 0.5]^3 and the block's face x = 5: 4.5 apart; the sphere about (0, 0, 2) is further.
     EXPECT_NE(d.out.find("clearance 4.5 "), std::string::npos) << d.out;
-    expectOneClearError("meshgap_plan --cfg fixed.cfg",
-                        meshgap::test::runExecutable("meshgap_plan", "--cfg '" + cfg + "' --time 1", 120),
-                        {"fixed.cfg", "no movable joint", "nothing to plan"});
+    expectOneClearHostileError("meshgap_plan --cfg fixed.cfg",
+                               meshgap::test::runExecutable("meshgap_plan", "--cfg '" + cfg + "' --time 1", 120),
+                               {"fixed.cfg", "no movable joint", "nothing to plan"});
 }
 
 // meshgap_report on a path that collides with its world: the report is written, but the tool says so (a warning
@@ -476,6 +478,6 @@ TEST_F(HostileCli, HugeValuesAreNotEchoedWhole)
 
     // The tools print the same short line.
     const CliRun r = meshgap::test::runExecutable("meshgap_distance", "'" + longPath + "' '" + cube + "'", 120);
-    expectOneClearError("meshgap_distance LONG_PATH cube.obj", r, {"mmm.obj"});
+    expectOneClearHostileError("meshgap_distance LONG_PATH cube.obj", r, {"mmm.obj"});
     EXPECT_LT(r.err.size(), BOUND) << r.err.substr(0, 2 * BOUND);
 }

@@ -19,17 +19,19 @@ namespace
     using meshgap::test::CliRun;
     using meshgap::test::runExecutable;
 
-    const std::string ARM = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/problems/arm2.urdf";
-    const std::string ARM_SRDF = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/problems/arm2.srdf";
+    const std::string CLI_ARM = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/problems/arm2.urdf";
+    const std::string CLI_ARM_SRDF = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/problems/arm2.srdf";
 
     /** \brief A box of edge 0.2 centred at (1.2, 0, 0.2): at the start (every joint 0) the fore link (x up to 0.9)
         is 0.2 from it, the nearest link. */
-    const char *const SCENE = "world:\n  collision_objects:\n    - id: block\n      primitives:\n        - type: box\n"
-                              "          dimensions: [0.2, 0.2, 0.2]\n      primitive_poses:\n"
-                              "        - position: [1.2, 0, 0.2]\n          orientation: [0, 0, 0, 1]\n";
-    const char *const REQUEST = "start_state:\n  joint_state:\n    name: [yaw, elbow]\n    position: [0, 0]\n"
-                                "goal_constraints:\n  - joint_constraints:\n      - joint_name: yaw\n"
-                                "        position: 1.5\n      - joint_name: elbow\n        position: -0.5\n";
+    const char *const CLI_SCENE =
+        "world:\n  collision_objects:\n    - id: block\n      primitives:\n        - type: box\n"
+        "          dimensions: [0.2, 0.2, 0.2]\n      primitive_poses:\n"
+        "        - position: [1.2, 0, 0.2]\n          orientation: [0, 0, 0, 1]\n";
+    const char *const CLI_REQUEST =
+        "start_state:\n  joint_state:\n    name: [yaw, elbow]\n    position: [0, 0]\n"
+        "goal_constraints:\n  - joint_constraints:\n      - joint_name: yaw\n"
+        "        position: 1.5\n      - joint_name: elbow\n        position: -0.5\n";
 
     class MoveItCli : public meshgap::test::FolderTest
     {
@@ -38,14 +40,14 @@ namespace
         void SetUp() override
         {
             FolderTest::SetUp();
-            scene_ = file("scene.yaml", SCENE);
-            request_ = file("request.yaml", REQUEST);
+            scene_ = file("scene.yaml", CLI_SCENE);
+            request_ = file("request.yaml", CLI_REQUEST);
         }
 
         /** \brief The four flags. */
         std::string flags() const
         {
-            return "--urdf " + ARM + " --srdf " + ARM_SRDF + " --scene " + scene_ + " --request " + request_;
+            return "--urdf " + CLI_ARM + " --srdf " + CLI_ARM_SRDF + " --scene " + scene_ + " --request " + request_;
         }
 
         std::string scene_, request_;
@@ -66,8 +68,9 @@ TEST_F(MoveItCli, DistanceHonoursTheAllowedCollisionMatrix)
     EXPECT_NEAR(valueAfter(r.out, "state 1: clearance"), 0.2, 1e-9) << r.out;
     EXPECT_NE(r.out.find("closest pair   link 'fore' and obstacle 0"), std::string::npos) << r.out;
     // fore and the block allowed by the scene's matrix: upper (x up to 0.5) against the block, 0.6.
-    scene_ = file("allowed.yaml", std::string(SCENE) + "allowed_collision_matrix:\n  entry_names: [fore, block]\n"
-                                                       "  entry_values: [[false, true], [true, false]]\n");
+    scene_ = file("allowed.yaml", std::string(CLI_SCENE) +
+                                      "allowed_collision_matrix:\n  entry_names: [fore, block]\n"
+                                      "  entry_values: [[false, true], [true, false]]\n");
     const CliRun allowed = runExecutable("meshgap_distance", flags());
     ASSERT_EQ(allowed.status, 0) << allowed.err;
     EXPECT_NEAR(valueAfter(allowed.out, "state 1: clearance"), 0.6, 1e-9) << allowed.out;
@@ -109,9 +112,11 @@ TEST_F(MoveItCli, BadCommandLinesGetOneClearErrorEach)
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"--scene " + scene_, "--urdf"},
         {"--cfg x.cfg " + flags(), "either --cfg or --urdf"},
-        {"--urdf " + ARM + " --scene " + file("bad.yaml", "world: [\n"), "bad.yaml:"},
-        {"--urdf " + ARM + " --scene " + scene_ + " --request " + file("r.yaml", "start_state: {joint_state: "
-                                                                                 "{name: [hip], position: [0]}}\n"),
+        {"--urdf " + CLI_ARM + " --scene " + file("bad.yaml", "world: [\n"), "bad.yaml:"},
+        {"--urdf " + CLI_ARM + " --scene " + scene_ + " --request " +
+             file("r.yaml",
+                  "start_state: {joint_state: "
+                  "{name: [hip], position: [0]}}\n"),
          "no joint 'hip'"}};
     for (const auto &[args, what] : cases)
         for (const char *tool : {"meshgap_distance", "meshgap_plan"})

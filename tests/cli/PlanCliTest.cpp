@@ -25,34 +25,34 @@ namespace
 {
     using PlanRun = test::CliRun;
 
-    PlanRun plan(const std::string &args) { return test::runExecutable("meshgap_plan", args); }
-
-    const std::string MAPS = std::string(MESHGAP_SOURCE_DIR) + "/maps";
+    const std::string PLAN_CLI_MAPS = std::string(MESHGAP_SOURCE_DIR) + "/maps";
 }  // namespace
 
 TEST(PlanCli, BadInputGivesOneErrorAndExitOne)
 {
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"--cfg /nonexistent/p.cfg", "/nonexistent/p.cfg"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner nope", "rrtconnect"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --checker sloppy", "--checker"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --mode fast", "--mode: renamed: use --checker certified|fast"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --objective speed", "max_min_clearance"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --objective length --weight 3", "--weight"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --objective weighted --weight -1", "--weight"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param rrtstar.speed=3", "use_k_nearest"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param rrtstar.range=far", "'far'"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param range", "PLANNER.NAME=VALUE"},
+        {"--cfg " + PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg --planner nope", "rrtconnect"},
+        {"--cfg " + PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg --checker sloppy", "--checker"},
+        {"--cfg " + PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg --mode fast",
+         "--mode: renamed: use --checker certified|fast"},
+        {"--cfg " + PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg --objective speed", "max_min_clearance"},
+        {"--cfg " + PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg --objective length --weight 3", "--weight"},
+        {"--cfg " + PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg --objective weighted --weight -1", "--weight"},
+        {"--cfg " + PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param rrtstar.speed=3",
+         "use_k_nearest"},
+        {"--cfg " + PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param rrtstar.range=far", "'far'"},
+        {"--cfg " + PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param range", "PLANNER.NAME=VALUE"},
         // The old form NAME=VALUE names the new one; a parameter of another planner is refused.
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param range=3",
+        {"--cfg " + PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param range=3",
          "is not PLANNER.NAME=VALUE (e.g. --param rrtstar.range=5)"},
-        {"--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param rrtconnect.range=3",
+        {"--cfg " + PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --param rrtconnect.range=3",
          "the planner is rrtstar"},
         {"", "--cfg"},
     };
     for (const auto &[args, mention] : cases)
     {
-        const PlanRun r = plan(args);
+        const PlanRun r = test::runPlan(args);
         EXPECT_EQ(r.status, 1) << args << "\n" << r.err;
         EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
         EXPECT_NE(r.err.find(mention), std::string::npos) << args << "\n" << r.err;
@@ -62,8 +62,8 @@ TEST(PlanCli, BadInputGivesOneErrorAndExitOne)
 TEST(PlanCli, ParamReachesThePlanner)
 {
     // RRT* says which neighbourhood it uses as it starts: k nearest by default, a radius with use_k_nearest=0.
-    const std::string args = "--cfg " + MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --time 0.2";
-    const PlanRun byDefault = plan(args), radius = plan(args + " --param rrtstar.use_k_nearest=0");
+    const std::string args = "--cfg " + PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg --planner rrtstar --time 0.2";
+    const PlanRun byDefault = test::runPlan(args), radius = test::runPlan(args + " --param rrtstar.use_k_nearest=0");
     // 0 (exact) or 2 (no exact solution in the time: a slow build, e.g. under a sanitizer), never 1 (bad input).
     for (const PlanRun *r : {&byDefault, &radius})
         ASSERT_TRUE(r->status == 0 || r->status == 2) << r->status << "\n" << r->err;
@@ -88,7 +88,7 @@ TEST(PlanCli, StartOrGoalInCollisionIsNamed)
                                      << "\nstart.y = 0\nstart.z = 0\ngoal.x = " << goal
                                      << "\ngoal.y = 0\ngoal.z = 0\nvolume.min.x = -20\nvolume.min.y = -20\n"
                                         "volume.min.z = -20\nvolume.max.x = 20\nvolume.max.y = 20\nvolume.max.z = 20\n";
-        const PlanRun r = plan("--cfg " + (dir / "p.cfg").string() + " --time 1");
+        const PlanRun r = test::runPlan("--cfg " + (dir / "p.cfg").string() + " --time 1");
         EXPECT_EQ(r.status, 1) << r.err;
         EXPECT_NE(r.err.find(std::string(label) + " is in collision with obstacle " + (label == std::string("start") ? "0" : "1")),
                   std::string::npos)
@@ -139,11 +139,11 @@ namespace
 
 TEST(PlanCli, PlansAPathWhoseEveryStateFclCallsFree)
 {
-    const std::string cfg = MAPS + "/hand_bowl/hand_bowl.cfg";
+    const std::string cfg = PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg";
     const std::string out = (fs::temp_directory_path() / ("meshgap_plan_" + std::to_string(::getpid()) + ".path")).string();
     const std::string csv = out + ".csv", summary = out + ".txt";
-    const PlanRun r = plan("--cfg " + cfg + " --planner rrtconnect --time 120 --seed 3 --out " + out +
-                           " --clearance-csv " + csv + " --summary " + summary);
+    const PlanRun r = test::runPlan("--cfg " + cfg + " --planner rrtconnect --time 120 --seed 3 --out " + out +
+                                    " --clearance-csv " + csv + " --summary " + summary);
     ASSERT_EQ(r.status, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("exact solution  yes"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("dense path free yes"), std::string::npos) << r.out;
@@ -170,7 +170,7 @@ TEST(PlanCli, PlansAPathWhoseEveryStateFclCallsFree)
 // runner: its clearance CSV has the single body's columns, and FCL's clearance at every state it checks.
 TEST(PlanCli, AOneBodyRobotWritesTheSingleBodyClearanceCsv)
 {
-    const std::string cfg = MAPS + "/hand_bowl/hand_bowl.cfg";
+    const std::string cfg = PLAN_CLI_MAPS + "/hand_bowl/hand_bowl.cfg";
     const ProblemConfig p = readProblemConfig(cfg);
     const fs::path dir = fs::temp_directory_path() / ("meshgap_plan_one_body_" + std::to_string(::getpid()));
     fs::create_directories(dir);
@@ -189,8 +189,8 @@ TEST(PlanCli, AOneBodyRobotWritesTheSingleBodyClearanceCsv)
         }
     }
     const std::string out = (dir / "p.path").string(), csv = (dir / "p.csv").string();
-    const PlanRun r = plan("--cfg " + (dir / "one_body.cfg").string() + " --time 120 --seed 3 --out " + out +
-                           " --clearance-csv " + csv);
+    const PlanRun r = test::runPlan("--cfg " + (dir / "one_body.cfg").string() + " --time 120 --seed 3 --out " + out +
+                                    " --clearance-csv " + csv);
     ASSERT_EQ(r.status, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("(robot problem)"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("clearance CSV   " + csv), std::string::npos) << r.out;

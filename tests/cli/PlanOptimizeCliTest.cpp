@@ -29,10 +29,6 @@ namespace fs = std::filesystem;
 
 namespace
 {
-    test::CliRun plan(const std::string &args)
-    {
-        return test::runExecutable("meshgap_plan", args);
-    }
 
     const std::string SLOTTED = std::string(MESHGAP_SOURCE_DIR) + "/maps/slotted_wall/slotted_wall.cfg";
 }  // namespace
@@ -52,7 +48,7 @@ TEST(PlanOptimizeCli, BadOptionsGiveOneErrorAndExitOne)
     };
     for (const auto &[args, mention] : cases)
     {
-        const test::CliRun r = plan("--cfg " + SLOTTED + " --time 0.1 " + args);
+        const test::CliRun r = test::runPlan("--cfg " + SLOTTED + " --time 0.1 " + args);
         EXPECT_EQ(r.status, 1) << args << "\n" << r.err;
         EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
         EXPECT_NE(r.err.find(mention), std::string::npos) << args << "\n" << r.err;
@@ -65,10 +61,10 @@ TEST(PlanOptimizeCli, OptimisedPathIsFreeAndAsClearAsSaid)
 {
     const std::string out =
         (fs::temp_directory_path() / ("meshgap_plan_opt_" + std::to_string(::getpid()) + ".path")).string();
-    const test::CliRun r = plan("--cfg " + SLOTTED +
-                                " --motion clearance --time 300 --seed 2 --optimize clearance "
-                                "--optimize-time 1 --out " +
-                                out);
+    const test::CliRun r = test::runPlan("--cfg " + SLOTTED +
+                                         " --motion clearance --time 300 --seed 2 --optimize clearance "
+                                         "--optimize-time 1 --out " +
+                                         out);
     ASSERT_EQ(r.status, 0) << r.out << r.err;
     std::smatch m;
     const std::string text = r.out;
@@ -170,13 +166,13 @@ TEST_F(BarriersProblem, DefaultMotionSettingsGiveACertifiedClearerPath)
     problem.setup->getSpaceInformation()->setup();
     // The planner's own path (default --motion discrete): some of its motions are refused by the certified validator.
     const std::string raw = (dir_ / "raw.path").string(), optimised = (dir_ / "optimised.path").string();
-    const test::CliRun r0 = plan("--cfg " + cfg_ + " --seed 3 --quiet --out " + raw);
+    const test::CliRun r0 = test::runPlan("--cfg " + cfg_ + " --seed 3 --quiet --out " + raw);
     ASSERT_EQ(r0.status, 0) << r0.out << r0.err;
     ASSERT_GT(refusedMotions(problem, raw), 0) << "the scene should make the sampled validator pass a motion the "
                                                   "certified one refuses";
 
     const test::CliRun r =
-        plan("--cfg " + cfg_ + " --seed 3 --quiet --optimize clearance --optimize-time 5 --out " + optimised);
+        test::runPlan("--cfg " + cfg_ + " --seed 3 --quiet --optimize clearance --optimize-time 5 --out " + optimised);
     ASSERT_EQ(r.status, 0) << r.out << r.err;
     std::smatch m;
     const std::string text = r.out;
@@ -230,9 +226,9 @@ TEST(PlanOptimizeCli, NamesTheMotionItCannotCertify)
     std::ofstream(cfg) << "[problem]\nname = ring\nrobot = ring_robot.obj\nworld = ring_env.obj\n"
                           "start.x = -3\nstart.y = -3\nstart.theta = 0\ngoal.x = 3\ngoal.y = 3\ngoal.theta = 0\n"
                           "volume.min.x = -5\nvolume.min.y = -5\nvolume.max.x = 5\nvolume.max.y = 5\n";
-    const test::CliRun r0 = plan("--cfg " + cfg + " --seed 1 --quiet --out " + raw);
+    const test::CliRun r0 = test::runPlan("--cfg " + cfg + " --seed 1 --quiet --out " + raw);
     ASSERT_EQ(r0.status, 0) << r0.out << r0.err;
-    const test::CliRun r = plan("--cfg " + cfg + " --seed 1 --quiet --optimize clearance --optimize-time 1");
+    const test::CliRun r = test::runPlan("--cfg " + cfg + " --seed 1 --quiet --optimize clearance --optimize-time 1");
     EXPECT_EQ(r.status, 2) << r.out << r.err;
     EXPECT_EQ(test::countLines(r.err, "error: --optimize clearance: "), 1) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;

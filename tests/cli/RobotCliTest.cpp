@@ -27,9 +27,9 @@ namespace
 {
     using meshgap::test::CliRun;
 
-    const std::string RES = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot";
-    const std::string CUBE = RES + "/meshgap_test_description/meshes/cube.obj";
-    const std::string MAPS = std::string(MESHGAP_SOURCE_DIR) + "/maps";
+    const std::string ROBOT_RES = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot";
+    const std::string CUBE = ROBOT_RES + "/meshgap_test_description/meshes/cube.obj";
+    const std::string ROBOT_CLI_MAPS = std::string(MESHGAP_SOURCE_DIR) + "/maps";
 
     /** \brief A folder of its own per test process. */
     class RobotCli : public meshgap::test::FolderTest
@@ -52,7 +52,7 @@ namespace
     };
 
     /** \brief The number after \e key on the line of \e text that starts with \e key. */
-    double valueAfter(const std::string &text, const std::string &key)
+    double valueAfterOnItsLine(const std::string &text, const std::string &key)
     {
         std::istringstream in(text);
         std::string line;
@@ -65,7 +65,7 @@ namespace
         return NAN;
     }
 
-    std::vector<std::vector<double>> readRows(const std::string &path)
+    std::vector<std::vector<double>> readPathRows(const std::string &path)
     {
         std::ifstream in(path);
         std::vector<std::vector<double>> rows;
@@ -108,24 +108,24 @@ TEST_F(RobotCli, DistanceGivesTheWholeRobotsClearanceItsPairAndEveryLink)
     // sqrt(1.5^2 + 0.3^2) from the world cube: the minimum is the pair of bodies, 0.8, and each body's clearance too.
     const CliRun r = meshgap::test::runExecutable("meshgap_distance", "--cfg " + twoCubes() + " --exact");
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_NEAR(valueAfter(r.out, "state 1: clearance"), 0.8, 1e-9) << r.out;
+    EXPECT_NEAR(valueAfterOnItsLine(r.out, "state 1: clearance"), 0.8, 1e-9) << r.out;
     EXPECT_NE(r.out.find("closest pair   links 'robot.1' and 'robot.2'"), std::string::npos) << r.out;
-    EXPECT_NEAR(valueAfter(r.out, "link robot.1"), 0.8, 1e-9) << r.out;
-    EXPECT_NEAR(valueAfter(r.out, "link robot.2"), 0.8, 1e-9) << r.out;
+    EXPECT_NEAR(valueAfterOnItsLine(r.out, "link robot.1"), 0.8, 1e-9) << r.out;
+    EXPECT_NEAR(valueAfterOnItsLine(r.out, "link robot.2"), 0.8, 1e-9) << r.out;
     // Body 2 moved away (y = 5): body 1's 1.5 to the world cube is the minimum.
     const CliRun far = meshgap::test::runExecutable(
         "meshgap_distance", "--cfg " + twoCubes() + " --pose '0 0 0.5 0 0 0 1 0 5 0.5 0 0 0 1'");
     ASSERT_EQ(far.status, 0) << far.err;
-    EXPECT_NEAR(valueAfter(far.out, "state 1: clearance"), 1.5, 1e-9) << far.out;
+    EXPECT_NEAR(valueAfterOnItsLine(far.out, "state 1: clearance"), 1.5, 1e-9) << far.out;
     EXPECT_NE(far.out.find("closest pair   link 'robot.1' and obstacle 0"), std::string::npos) << far.out;
-    EXPECT_NEAR(valueAfter(far.out, "link robot.2"), std::hypot(1.5, 3.5), 1e-9) << far.out;
+    EXPECT_NEAR(valueAfterOnItsLine(far.out, "link robot.2"), std::hypot(1.5, 3.5), 1e-9) << far.out;
 }
 
 TEST_F(RobotCli, DistancePosesWritesCsvRowsThatAreTheLibrarysExactAnswers)
 {
     // The arm with its payload (links against the fixture, and self pairs) at states from start to goal and past
     // them: some free, some in collision.
-    const std::string cfg = MAPS + "/arm_fixture/arm_fixture.cfg";
+    const std::string cfg = ROBOT_CLI_MAPS + "/arm_fixture/arm_fixture.cfg";
     const meshgap::RobotProblem problem = meshgap::readRobotProblem(cfg);
     const meshgap::RobotScene scene(problem.robot, problem.obstacles);
     std::vector<std::vector<double>> states;
@@ -198,12 +198,12 @@ TEST_F(RobotCli, PlanWritesThePathInTheProblemsStateNumbers)
 {
     const std::string path = (dir_ / "swap.path").string();
     const CliRun r = meshgap::test::runExecutable(
-        "meshgap_plan", "--cfg " + MAPS + "/swap_se2/swap_se2.cfg --seed 3 --time 20 -q --out " + path, 120);
+        "meshgap_plan", "--cfg " + ROBOT_CLI_MAPS + "/swap_se2/swap_se2.cfg --seed 3 --time 20 -q --out " + path, 120);
     ASSERT_EQ(r.status, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("dense path free yes"), std::string::npos) << r.out;
     // Two bodies moving at once: every motion certified by default (no resolution lets them pass through).
     EXPECT_NE(r.out.find("motion certified"), std::string::npos) << r.out;
-    const auto rows = readRows(path);
+    const auto rows = readPathRows(path);
     ASSERT_GE(rows.size(), 2u);
     for (const auto &row : rows)
         ASSERT_EQ(row.size(), 6u);  // x y theta of each body
@@ -215,9 +215,8 @@ TEST_F(RobotCli, PlanWritesThePathInTheProblemsStateNumbers)
         EXPECT_NEAR(rows.back()[k], goal[k], 1e-12) << k;
     }
     // meshgap_distance reads the path back: every state free.
-    const CliRun d = meshgap::test::runExecutable("meshgap_distance", "--cfg " + MAPS +
-                                                                         "/swap_se2/swap_se2.cfg --exact --poses " +
-                                                                         path);
+    const CliRun d = meshgap::test::runExecutable(
+        "meshgap_distance", "--cfg " + ROBOT_CLI_MAPS + "/swap_se2/swap_se2.cfg --exact --poses " + path);
     ASSERT_EQ(d.status, 0) << d.err;
     const auto table = csvTable(d.out);
     ASSERT_EQ(table.size(), rows.size() + 1) << d.out;
@@ -229,7 +228,8 @@ TEST_F(RobotCli, PlanWritesTheReportWithEveryLink)
 {
     const std::string report = (dir_ / "arm.html").string();
     const CliRun r = meshgap::test::runExecutable(
-        "meshgap_plan", "--cfg " + MAPS + "/arm_fixture/arm_fixture.cfg --seed 1 --time 20 -q --report " + report, 120);
+        "meshgap_plan",
+        "--cfg " + ROBOT_CLI_MAPS + "/arm_fixture/arm_fixture.cfg --seed 1 --time 20 -q --report " + report, 120);
     ASSERT_EQ(r.status, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("report written  " + report), std::string::npos) << r.out;
     EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
@@ -246,16 +246,20 @@ TEST_F(RobotCli, PlanOptimizesTheWholeRobotsClearanceAndNamesTheLimitingPair)
     // that fails anyway; under the sanitizers' scale, its first 4 rounds, which already raise it well over twice):
     // the dense path's exact minimum clearance rises, and the summary names the pair that limits it before and after.
     const int rounds = meshgap::test::scale() < 1.0 ? 4 : 1000;
-    const CliRun r = meshgap::test::runExecutable(
-        "meshgap_plan", "--cfg " + MAPS + "/arm_fixture/arm_fixture.cfg --seed 5 --time 300 -q --optimize clearance "
-                        "--optimize-time 300 --optimize-rounds " + std::to_string(rounds), 900);
+    const CliRun r =
+        meshgap::test::runExecutable("meshgap_plan",
+                                     "--cfg " + ROBOT_CLI_MAPS +
+                                         "/arm_fixture/arm_fixture.cfg --seed 5 --time 300 -q --optimize clearance "
+                                         "--optimize-time 300 --optimize-rounds " +
+                                         std::to_string(rounds),
+                                     900);
     ASSERT_EQ(r.status, 0) << r.out << r.err;
     std::smatch m;
     ASSERT_TRUE(std::regex_search(r.out, m, std::regex(", ([0-9]+) rounds \\("))) << r.out;
     EXPECT_LE(std::stoi(m[1]), rounds) << r.out;
-    const double before = valueAfter(r.out, "opt before"), after = valueAfter(r.out, "opt after");
+    const double before = valueAfterOnItsLine(r.out, "opt before"), after = valueAfterOnItsLine(r.out, "opt after");
     EXPECT_GT(after, 2.0 * before) << r.out;
-    EXPECT_NEAR(valueAfter(r.out, "min clearance"), after, 1e-12 * after) << r.out;
+    EXPECT_NEAR(valueAfterOnItsLine(r.out, "min clearance"), after, 1e-12 * after) << r.out;
     EXPECT_NE(r.out.find("dense path free yes"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("opt repair      none"), std::string::npos) << r.out;
     for (const char *key : {"opt before", "opt after"})
@@ -269,17 +273,21 @@ TEST_F(RobotCli, PlanOptimizesTheWholeRobotsClearanceAndNamesTheLimitingPair)
 
 TEST_F(RobotCli, PlanWithTheMaxMinObjectiveCostsItsLeastClearanceFromBoundedQueries)
 {
-    const CliRun r = meshgap::test::runExecutable(
-        "meshgap_plan", "--cfg " + MAPS + "/arm_fixture/arm_fixture.cfg --seed 1 --time 2 -q --planner rrtstar "
-                        "--objective max_min_clearance", 300);
+    const CliRun r =
+        meshgap::test::runExecutable("meshgap_plan",
+                                     "--cfg " + ROBOT_CLI_MAPS +
+                                         "/arm_fixture/arm_fixture.cfg --seed 1 --time 2 -q --planner rrtstar "
+                                         "--objective max_min_clearance",
+                                     300);
     ASSERT_NE(r.status, 1) << r.out << r.err;  // solved, or approximately within the 2 s
     EXPECT_NE(r.out.find("objective       max_min_clearance"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("cost queries"), std::string::npos) << r.out;
     // The cost is the least clearance at the objective's grid states: at least the dense path's exact minimum
     // less what lies between its states, never below 0 on a free path.
-    EXPECT_GT(valueAfter(r.out, "cost"), 0.0) << r.out;
+    EXPECT_GT(valueAfterOnItsLine(r.out, "cost"), 0.0) << r.out;
     const CliRun weight = meshgap::test::runExecutable(
-        "meshgap_plan", "--cfg " + MAPS + "/arm_fixture/arm_fixture.cfg --objective clearance --weight 2", 60);
+        "meshgap_plan", "--cfg " + ROBOT_CLI_MAPS + "/arm_fixture/arm_fixture.cfg --objective clearance --weight 2",
+        60);
     EXPECT_EQ(weight.status, 1);
     EXPECT_NE(weight.err.find("--weight: applies to --objective weighted only"), std::string::npos) << weight.err;
 }
@@ -290,7 +298,7 @@ TEST_F(RobotCli, BadInputGetsOneClearErrorEach)
     {
         std::string tool, args, expected;
     };
-    const std::string arm = "robot.urdf = " + RES + "/problems/arm2.urdf\nworld = " + CUBE + "\n";
+    const std::string arm = "robot.urdf = " + ROBOT_RES + "/problems/arm2.urdf\nworld = " + CUBE + "\n";
     const std::vector<Case> cases = {
         {"meshgap_distance", "--cfg " + twoCubes() + " --pose '1 2 3'", "--pose: a state of this problem has 14"},
         {"meshgap_distance", "--cfg " + twoCubes() + " --poses " + file("bad.path", "0 0 0.5 0 0 0 1\n"),
@@ -299,11 +307,10 @@ TEST_F(RobotCli, BadInputGetsOneClearErrorEach)
          "--cfg " + file("claw.cfg", "[problem]\n" + arm + "attach = " + CUBE +
                                          " claw 0 0 0 0 0 0 1\nstart.joints = 0 0\ngoal.joints = 1 0\n"),
          "claw.cfg:4: attach: the robot has no link 'claw'"},
-        {"meshgap_distance",
-         "--cfg " + file("wrong.cfg", "[problem]\n" + arm + "start.joints = 0 0 0\n"),
+        {"meshgap_distance", "--cfg " + file("wrong.cfg", "[problem]\n" + arm + "start.joints = 0 0 0\n"),
          "wrong.cfg:4: start.joints has 3 numbers"},
         {"meshgap_plan",
-         "--cfg " + file("missing.cfg", "[problem]\nrobot.urdf = " + RES + "/missing_mesh.urdf\nworld = " + CUBE +
+         "--cfg " + file("missing.cfg", "[problem]\nrobot.urdf = " + ROBOT_RES + "/missing_mesh.urdf\nworld = " + CUBE +
                                             "\nstart.joints = 0\ngoal.joints = 0\n"),
          "missing.cfg:2: robot.urdf:"}};
     for (const Case &c : cases)

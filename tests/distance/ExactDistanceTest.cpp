@@ -33,14 +33,6 @@ namespace
         options.gridSize = grid;
         return Body::build(m, options);
     }
-
-    // A concave body: a U of three boxes (not welded: three closed shells).
-    Mesh uShape()
-    {
-        Mesh m = test::merged(test::transformed(test::box(1.5, 0.2, 0.5, 3), test::translation(0, -1.0, 0)),
-                              test::transformed(test::box(0.2, 1.0, 0.5, 3), test::translation(-1.3, 0, 0)));
-        return test::merged(m, test::transformed(test::box(0.2, 1.0, 0.5, 3), test::translation(1.3, 0, 0)));
-    }
 }  // namespace
 
 TEST(ExactDistance, AnalyticGapBetweenBoxesWhatever)
@@ -89,7 +81,7 @@ TEST(ExactDistance, AnUpperBoundPrunesOnlyWhatCannotBeCloserAndNeverAContainment
 #ifdef MESHGAP_HAVE_FCL
 TEST(ExactDistance, EqualsFclOnRandomPosesAndAgreesOnCollision)
 {
-    const Mesh ma = uShape(), mb = test::icosphere(0.45, 2);
+    const Mesh ma = test::uShape(), mb = test::icosphere(0.45, 2);
     const BodyPtr a = body(ma), b = body(mb);
     const auto fa = test::fclModel(ma), fb = test::fclModel(mb);
     const ExactSolver exact;

@@ -26,15 +26,7 @@ namespace fs = std::filesystem;
 
 namespace
 {
-    // A concave body of three overlapping closed shells (a U): winding number 2 where they overlap.
-    Mesh uShape()
-    {
-        Mesh m = test::merged(test::transformed(test::box(1.5, 0.2, 0.5, 3), test::translation(0, -1.0, 0)),
-                              test::transformed(test::box(0.2, 1.0, 0.5, 3), test::translation(-1.3, 0, 0)));
-        return test::merged(m, test::transformed(test::box(0.2, 1.0, 0.5, 3), test::translation(1.3, 0, 0)));
-    }
-
-    DistanceResult exactAt(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)
+    DistanceResult exactResult(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB)
     {
         DistanceResult r;
         ExactSolver().solve(a, b, X_AB, DistanceRequest(), r);
@@ -70,7 +62,7 @@ TEST(PenetrationDepth, PointQueriesEqualBruteForce)
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> uni(-2.0, 2.0);
     std::size_t inside = 0, outside = 0;
-    for (const Mesh &m : {test::icosphere(1.0, 2), test::box(1.0, 0.5, 0.8, 3), uShape()})
+    for (const Mesh &m : {test::icosphere(1.0, 2), test::box(1.0, 0.5, 0.8, 3), test::uShape()})
     {
         const BodyPtr body = test::unrefinedBody(m);
         for (int i = 0; i < 1000; ++i)
@@ -118,7 +110,7 @@ TEST(PenetrationDepth, OverlappingSpheresWithinTheMeshResolutionOfTheTrueDepth)
             Eigen::Isometry3d X = test::translation(c * u.x(), c * u.y(), c * u.z());
             X.linear() = Eigen::AngleAxisd(0.3 * k, randomUnit(rng)).toRotationMatrix();
             const double truth = r1 + r2 - c;
-            const DistanceResult r = exactAt(*a, *b, X);
+            const DistanceResult r = exactResult(*a, *b, X);
             ASSERT_TRUE(r.inCollision);
             EXPECT_EQ(r.penetration, Penetration::DEEPEST_NODE);
             EXPECT_EQ(r.distance, -r.penetrationDepth);
@@ -143,13 +135,13 @@ TEST(PenetrationDepth, BoxPushedIntoABoxByAKnownAmount)
         {
             Eigen::Isometry3d X = test::translation(1.5 - delta, 0.1, -0.05);
             X.linear() = Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX()).toRotationMatrix();
-            const DistanceResult r = exactAt(*a, *b, X);
+            const DistanceResult r = exactResult(*a, *b, X);
             ASSERT_TRUE(r.inCollision);
             EXPECT_EQ(r.penetration, Penetration::DEEPEST_NODE);
             EXPECT_NEAR(r.distance, -delta, 1e-12) << delta << " " << angle;
             EXPECT_NEAR(std::abs((r.onA - r.onB).x()), delta, 1e-12);
             // And the same from B's side.
-            const DistanceResult s = exactAt(*b, *a, X.inverse());
+            const DistanceResult s = exactResult(*b, *a, X.inverse());
             EXPECT_NEAR(s.distance, -delta, 1e-12);
         }
 }
@@ -162,7 +154,7 @@ TEST(PenetrationDepth, SmallBodyWhollyInsideABigOne)
     const Mesh big = test::box(2.0, 2.0, 2.0, 2), small = test::icosphere(0.5, 2);
     const BodyPtr a = test::unrefinedBody(big), b = test::unrefinedBody(small);
     const Eigen::Isometry3d inside = test::translation(0.3, -0.2, 0.1);
-    for (const DistanceResult &r : {exactAt(*a, *b, inside), exactAt(*b, *a, inside.inverse())})
+    for (const DistanceResult &r : {exactResult(*a, *b, inside), exactResult(*b, *a, inside.inverse())})
     {
         ASSERT_TRUE(r.inCollision);
         EXPECT_EQ(r.penetration, Penetration::DEEPEST_NODE);
@@ -184,7 +176,7 @@ TEST(PenetrationDepth, ShallowCrossingWithNoNodeInsideIsStillNegative)
     const Mesh ma = test::box(1.0, 1.0, 1.0, 1), mb = test::box(0.5, 3.0, 0.5, 1);
     Eigen::Isometry3d X = test::translation(0.0, 0.2, 1.0 - eps + 0.5 * std::sqrt(2.0));
     X.linear() = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()).toRotationMatrix();
-    const DistanceResult coarse = exactAt(*test::unrefinedBody(ma), *test::unrefinedBody(mb), X);
+    const DistanceResult coarse = exactResult(*test::unrefinedBody(ma), *test::unrefinedBody(mb), X);
     ASSERT_TRUE(coarse.inCollision);
     EXPECT_EQ(coarse.penetration, Penetration::NO_NODE_INSIDE);
     EXPECT_EQ(coarse.penetrationDepth, 0.0);
@@ -193,7 +185,7 @@ TEST(PenetrationDepth, ShallowCrossingWithNoNodeInsideIsStillNegative)
     EXPECT_EQ(coarse.onA, coarse.onB);  // a touching point
     BodyOptions fine;
     fine.gridSize = 0.1;
-    const DistanceResult refined = exactAt(*Body::build(ma, fine), *Body::build(mb, fine), X);
+    const DistanceResult refined = exactResult(*Body::build(ma, fine), *Body::build(mb, fine), X);
     ASSERT_TRUE(refined.inCollision);
     EXPECT_EQ(refined.penetration, Penetration::DEEPEST_NODE);
     EXPECT_GT(refined.penetrationDepth, 0.0);
@@ -203,7 +195,7 @@ TEST(PenetrationDepth, ShallowCrossingWithNoNodeInsideIsStillNegative)
 #endif
     // Touching faces (boxes side by side, no overlap): in collision, depth 0.
     const BodyPtr cube = test::unrefinedBody(ma);
-    const DistanceResult touching = exactAt(*cube, *cube, test::translation(2.0, 0.3, 0));
+    const DistanceResult touching = exactResult(*cube, *cube, test::translation(2.0, 0.3, 0));
     EXPECT_TRUE(touching.inCollision);
     EXPECT_LT(touching.distance, 0.0);
     EXPECT_GE(touching.distance, -1e-12);
@@ -216,13 +208,13 @@ TEST(PenetrationDepth, OPEN_BODIES)
     Eigen::Isometry3d X = test::translation(0.5, 0.5, -0.5);
     X.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();  // the plane y = 0.5
     const BodyPtr s = test::unrefinedBody(sheet);
-    const DistanceResult r = exactAt(*s, *s, X);
+    const DistanceResult r = exactResult(*s, *s, X);
     ASSERT_TRUE(r.inCollision);
     EXPECT_EQ(r.penetration, Penetration::OPEN_BODIES);
     EXPECT_EQ(r.distance, CONTACT_DISTANCE);
     // A sheet through a closed box: its nodes inside the box count (an open body inside a closed one collides).
     const BodyPtr box = test::unrefinedBody(test::box(0.5, 0.5, 0.5, 1));
-    const DistanceResult through = exactAt(*box, *s, test::translation(-1.0, -0.5, 0.1));  // sheet at z = 0.1
+    const DistanceResult through = exactResult(*box, *s, test::translation(-1.0, -0.5, 0.1));  // sheet at z = 0.1
     ASSERT_TRUE(through.inCollision);
     EXPECT_EQ(through.penetration, Penetration::DEEPEST_NODE);
     EXPECT_GT(through.penetrationDepth, 0.0);
@@ -234,7 +226,7 @@ TEST(PenetrationDepth, IsALowerBoundAndNeverNonNegativeInCollision)
     // Random poses of a sphere around the U: whenever FCL (or containment) says collision the distance is < 0; and
     // the depth is a lower bound on the translational penetration depth: B moved by 0.999 depth in any direction
     // still collides.
-    const Mesh ma = uShape(), mb = test::icosphere(0.45, 2);
+    const Mesh ma = test::uShape(), mb = test::icosphere(0.45, 2);
     const BodyPtr a = test::unrefinedBody(ma), b = Body::build(mb);
 #ifdef MESHGAP_HAVE_FCL
     const auto fa = test::fclModel(ma), fb = test::fclModel(mb);
@@ -244,7 +236,7 @@ TEST(PenetrationDepth, IsALowerBoundAndNeverNonNegativeInCollision)
     for (std::uint32_t seed = 1; seed <= 300; ++seed)
     {
         const Eigen::Isometry3d X = test::randomPose(seed, 2.0);
-        const DistanceResult r = exactAt(*a, *b, X);
+        const DistanceResult r = exactResult(*a, *b, X);
         EXPECT_EQ(r.inCollision, r.distance < 0.0) << seed;
 #ifdef MESHGAP_HAVE_FCL
         if (test::fclCollide(fa, fb, X))
@@ -545,7 +537,7 @@ TEST(PenetrationDepth, DeepRandomPosesEqualBruteForceAndTheGridPrunes)
     // they overlap), a refined box, an icosphere, and a small sphere that fits wholly inside the box. Every depth
     // must equal brute force over every node and triangle (the largest over both bodies), the witness points must
     // be that far apart, and a warm start carried along must change nothing.
-    const BodyPtr u = Body::build(uShape()), box = Body::build(test::box(0.9, 0.7, 0.6, 3)),
+    const BodyPtr u = Body::build(test::uShape()), box = Body::build(test::box(0.9, 0.7, 0.6, 3)),
                   ball = Body::build(test::icosphere(0.6, 3)), pebble = Body::build(test::icosphere(0.2, 2));
     const std::vector<std::pair<const Body *, const Body *>> pairs = {
         {u.get(), box.get()}, {box.get(), ball.get()}, {ball.get(), u.get()}, {box.get(), pebble.get()}};

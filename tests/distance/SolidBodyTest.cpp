@@ -58,7 +58,7 @@ namespace
 
     /** \brief Brute force: the least primitiveTriangleGap() over every triangle of \e mesh and solid of \e solids
         (placed by X_MS in the mesh's frame). */
-    double bruteForce(const Body &mesh, const Body &solids, const Isometry3d &X_MS)
+    double solidsBruteForce(const Body &mesh, const Body &solids, const Isometry3d &X_MS)
     {
         double best = std::numeric_limits<double>::infinity();
         const Mesh &m = mesh.surface();
@@ -70,8 +70,8 @@ namespace
         return best;
     }
 
-    DistanceResult exact(const Body &a, const Body &b, const Isometry3d &X_AB,
-                         const DistanceRequest &request = DistanceRequest())
+    DistanceResult exactRefined(const Body &a, const Body &b, const Isometry3d &X_AB,
+                                const DistanceRequest &request = DistanceRequest())
     {
         DistanceResult r;
         refineExact(a, b, X_AB, r, request);
@@ -90,9 +90,9 @@ TEST(SolidBodyTest, DistanceIsTheLeastTriangleSolidDistance)
     for (std::uint32_t seed = 0; seed < static_cast<std::uint32_t>(seeds); ++seed)
     {
         const Isometry3d X = test::randomPose(seed, 1.0);
-        const double expected = bruteForce(*obstacle, *link, X);
-        const DistanceResult ab = exact(*obstacle, *link, X);
-        const DistanceResult ba = exact(*link, *obstacle, X.inverse());
+        const double expected = solidsBruteForce(*obstacle, *link, X);
+        const DistanceResult ab = exactRefined(*obstacle, *link, X);
+        const DistanceResult ba = exactRefined(*link, *obstacle, X.inverse());
         const bool collides = inCollision(*obstacle, *link, X);
         EXPECT_EQ(collides, inCollision(*link, *obstacle, X.inverse()));
         if (expected == 0.0)
@@ -110,7 +110,7 @@ TEST(SolidBodyTest, DistanceIsTheLeastTriangleSolidDistance)
         EXPECT_NEAR(ba.distance, expected, 1e-10) << seed;  // another frame: GJK to about 1e-11
         EXPECT_NEAR((ab.onA - ab.onB).norm(), expected, 1e-9) << seed;
         // The circumscribed mesh is a lower bound.
-        EXPECT_LE(exact(*obstacle, *test::unrefinedBody(link->surface()), X).distance, expected + 1e-12) << seed;
+        EXPECT_LE(exactRefined(*obstacle, *test::unrefinedBody(link->surface()), X).distance, expected + 1e-12) << seed;
     }
     EXPECT_GT(touching, 20 * seeds / 300);
 }
@@ -133,7 +133,7 @@ TEST(SolidBodyTest, TheSolidIsFreeWhereItsCircumscribedMeshTouches)
     X_WallBall.translation() = Vector3d(-0.1 - r - 0.5 * excess, 0.0, 0.0);
     EXPECT_TRUE(inCollision(*wall, *test::unrefinedBody(ball->surface()), X_WallBall)) << "the mesh collides";
     EXPECT_FALSE(inCollision(*wall, *ball, X_WallBall)) << "the sphere does not";
-    const DistanceResult d = exact(*wall, *ball, X_WallBall);
+    const DistanceResult d = exactRefined(*wall, *ball, X_WallBall);
     EXPECT_FALSE(d.inCollision);
     EXPECT_NEAR(d.distance, 0.5 * excess, 1e-12);
 }
@@ -143,18 +143,18 @@ TEST(SolidBodyTest, ContainmentEitherWayCollides)
     const BodyPtr room = test::unrefinedBody(test::box(2.0, 2.0, 2.0));  // closed, half-sizes 2
     const BodyPtr small = solidBody({solid(Primitive::Kind::CYLINDER, 0.2, 0.5)});
     EXPECT_TRUE(inCollision(*room, *small, test::translation(0.3, 0.2, 0.1)));
-    EXPECT_TRUE(exact(*room, *small, test::translation(0.3, 0.2, 0.1)).inCollision);
-    EXPECT_TRUE(exact(*small, *room, test::translation(0.3, 0.2, 0.1).inverse()).inCollision);
+    EXPECT_TRUE(exactRefined(*room, *small, test::translation(0.3, 0.2, 0.1)).inCollision);
+    EXPECT_TRUE(exactRefined(*small, *room, test::translation(0.3, 0.2, 0.1).inverse()).inCollision);
     // A small mesh inside a big box solid: every triangle touches the filled box.
     const BodyPtr block = solidBody({solid(Primitive::Kind::BOX, 4.0, 4.0, 4.0)});
     const BodyPtr pebble = test::unrefinedBody(test::icosphere(0.1, 1));
     EXPECT_TRUE(inCollision(*block, *pebble, test::translation(0.5, 0.0, 0.0)));
-    EXPECT_TRUE(exact(*pebble, *block, test::translation(-0.5, 0.0, 0.0)).inCollision);
+    EXPECT_TRUE(exactRefined(*pebble, *block, test::translation(-0.5, 0.0, 0.0)).inCollision);
     EXPECT_FALSE(inCollision(*block, *pebble, test::translation(2.2, 0.0, 0.0)));
     double lowest = 0.0;  // the pebble's least x
     for (const Vector3d &v : pebble->surface().vertices)
         lowest = std::min(lowest, v.x());
-    EXPECT_NEAR(exact(*block, *pebble, test::translation(2.2, 0.0, 0.0)).distance, 0.2 + lowest, 1e-12);
+    EXPECT_NEAR(exactRefined(*block, *pebble, test::translation(2.2, 0.0, 0.0)).distance, 0.2 + lowest, 1e-12);
 }
 
 TEST(SolidBodyTest, TwoSolidBodiesAndTheBoundsOfARequest)
@@ -163,15 +163,15 @@ TEST(SolidBodyTest, TwoSolidBodiesAndTheBoundsOfARequest)
         solidBody({solid(Primitive::Kind::CAPSULE, 0.1, 0.5), solid(Primitive::Kind::BOX, 0.2, 0.2, 0.2)});
     const BodyPtr b = solidBody({solid(Primitive::Kind::CONE, 0.2, 0.4)});
     const Isometry3d X = test::translation(0.0, 0.0, 0.8);  // the cone's base at 0.6, the capsule's top at 0.35
-    EXPECT_NEAR(exact(*a, *b, X).distance, 0.25, 1e-12);
+    EXPECT_NEAR(exactRefined(*a, *b, X).distance, 0.25, 1e-12);
     DistanceRequest below;
     below.upperBound = 0.2;  // nothing below: infinity, certified
-    const DistanceResult none = exact(*a, *b, X, below);
+    const DistanceResult none = exactRefined(*a, *b, X, below);
     EXPECT_EQ(none.distance, std::numeric_limits<double>::infinity());
     EXPECT_TRUE(none.certified);
     DistanceRequest early;
     early.stopBelow = 0.3;  // an answer at or below it, not certified
-    const DistanceResult stop = exact(*a, *b, X, early);
+    const DistanceResult stop = exactRefined(*a, *b, X, early);
     EXPECT_LE(stop.distance, 0.3);
     EXPECT_FALSE(stop.certified);
     EXPECT_TRUE(inCollision(*a, *b, test::translation(0.0, 0.0, 0.5)));
@@ -190,12 +190,12 @@ TEST(SolidBodyTest, ABoundedQuestionAtItsOwnStopFindsWhatIsBelowIt)
     bounded.computeDepth = false;
     for (const double z : {0.5, 0.6, 0.8})  // touching, 0.05 apart, 0.25 apart
     {
-        const DistanceResult ab = exact(*a, *b, test::translation(0.0, 0.0, z), bounded);
+        const DistanceResult ab = exactRefined(*a, *b, test::translation(0.0, 0.0, z), bounded);
         EXPECT_LE(ab.distance, 0.3) << z;
         EXPECT_EQ(ab.inCollision, z == 0.5) << z;
-        const DistanceResult am = exact(*mesh, *a, test::translation(0.0, 0.0, z + 0.1), bounded);
+        const DistanceResult am = exactRefined(*mesh, *a, test::translation(0.0, 0.0, z + 0.1), bounded);
         EXPECT_LE(am.distance, 0.3) << z;
-        const DistanceResult ma = exact(*a, *mesh, test::translation(0.0, 0.0, -z - 0.1), bounded);
+        const DistanceResult ma = exactRefined(*a, *mesh, test::translation(0.0, 0.0, -z - 0.1), bounded);
         EXPECT_LE(ma.distance, 0.3) << z;
     }
 }
@@ -213,7 +213,7 @@ TEST(SolidBodyTest, SceneAnswersARobotOfSolidsAsItsSolids)
         const Isometry3d X = test::randomPose(seed + 1000, 1.2);
         double expected = std::numeric_limits<double>::infinity();
         for (const BodyConstPtr &o : obstacles)
-            expected = std::min(expected, bruteForce(*o, *robot, X));
+            expected = std::min(expected, solidsBruteForce(*o, *robot, X));
         SceneRequest request;
         SceneResult cold, carried;
         scene.distance(X, request, cold);

@@ -1,9 +1,9 @@
 // The distance traversal's descent (BvhDistance.cpp): both nodes of a pair of inner nodes of like size split at once
 // while the search is best first (no bound yet), the node of larger sphere alone otherwise. The answer must stay the
 // brute-force minimum with the canonical pair (the smallest triangle pair among those tied within the rounding
-// slack), cold and warm alike, on flat slanted plates and on a round body, and when a cold search leaves best first for
-// depth first because its heap outgrew its limit; and the descent must bound fewer box pairs than splitting one node at
-// a time did on the same fixed poses (a count, not a time).
+// slack), cold and warm alike, on flat slanted plates and on a round body, and when a cold search leaves best
+// first for depth first because its heap outgrew its limit; and the descent must bound fewer box pairs than splitting
+// one node at a time did on the same fixed poses (a count, not a time).
 
 #include <gtest/gtest.h>
 
@@ -24,7 +24,7 @@ using namespace meshgap;
 namespace
 {
     /** \brief Three thin plates (the flat parts of a CAD body), tilted at random and placed near each other. */
-    Mesh plates(std::uint32_t seed)
+    Mesh descentPlates(std::uint32_t seed)
     {
         std::mt19937 rng(seed);
         std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -43,7 +43,7 @@ namespace
         std::vector<double> d;  ///< per triangle pair, row-major (A's triangle, B's triangle)
     };
 
-    Brute bruteForce(const Mesh &ma, const Mesh &mb, const Eigen::Isometry3d &X)
+    Brute descentBruteForce(const Mesh &ma, const Mesh &mb, const Eigen::Isometry3d &X)
     {
         Brute b;
         b.d.resize(ma.triangles.size() * mb.triangles.size());
@@ -85,7 +85,7 @@ TEST(BvhDescent, BruteForcePairColdAndWarmOnPlatesAndASphere)
     const Mesh sphere = test::icosphere(0.4, 2);
     for (std::uint32_t seed = 1; seed <= static_cast<std::uint32_t>(test::scaled(4)); ++seed)
     {
-        const Mesh ma = plates(seed), mb = seed % 2 ? plates(50 + seed) : sphere;
+        const Mesh ma = descentPlates(seed), mb = seed % 2 ? descentPlates(50 + seed) : sphere;
         const TriangleBvh a(ma), b(mb);
         BvhFront front;
         Eigen::Isometry3d X = test::randomPose(300 + seed, 1.5);
@@ -95,7 +95,7 @@ TEST(BvhDescent, BruteForcePairColdAndWarmOnPlatesAndASphere)
         small.linear() = Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ()).toRotationMatrix();
         for (int pose = 0; pose < 6; ++pose, X = X * small)
         {
-            const Brute brute = bruteForce(ma, mb, X);
+            const Brute brute = descentBruteForce(ma, mb, X);
             const double tol = 1e-12 * (1.0 + X.translation().norm());
             const std::string what = "seed " + std::to_string(seed) + " pose " + std::to_string(pose);
             BvhDistanceResult cold, warm;
@@ -115,8 +115,9 @@ TEST(BvhDescent, FewerBoxPairsThanOneNodeAtATime)
     // Fixed meshes and poses: the count is a function of them. Splitting the node of larger sphere one at a time
     // bounded 20,784 box pairs here; both nodes at once while best first, 19,578 (children bounded along the nearest
     // direction alone; with B's faces too, 19,772 and 18,534).
-    const Mesh ma = test::merged(plates(11), test::icosphere(0.3, 2));
-    const Mesh mb = test::merged(plates(12), test::transformed(test::box(0.2, 0.5, 0.1, 4), test::randomPose(5, 0.5)));
+    const Mesh ma = test::merged(descentPlates(11), test::icosphere(0.3, 2));
+    const Mesh mb =
+        test::merged(descentPlates(12), test::transformed(test::box(0.2, 0.5, 0.1, 4), test::randomPose(5, 0.5)));
     const TriangleBvh a(ma), b(mb);
     std::size_t boxTests = 0;
     for (std::uint32_t pose = 0; pose < 40; ++pose)
@@ -142,7 +143,7 @@ TEST(BvhDescent, BruteForcePairWhenTheBestFirstHeapOutgrowsItsLimit)
         X.linear() =
             Eigen::AngleAxisd(0.3 * pose + 0.1, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
         X.translation() = Eigen::Vector3d(0.004 * pose, -0.003, 0.002);
-        const Brute brute = bruteForce(ma, mb, X);
+        const Brute brute = descentBruteForce(ma, mb, X);
         BvhDistanceResult r;
         bvhDistance(a, b, X, std::numeric_limits<double>::infinity(), -1.0, r);
         expectCanonical(r, brute, ma, mb, 1e-12, "pose " + std::to_string(pose));

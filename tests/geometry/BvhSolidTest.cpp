@@ -44,14 +44,14 @@ namespace
     /** \brief Brute force over every triangle: the least triangle-solid gap (a lower bound of the distance, to
         GJK's convergence on curved solids) and the least distance between a gap's two witness points (real points:
         an upper bound). */
-    struct Brute
+    struct BruteBounds
     {
         double lower, upper;
     };
 
-    Brute bruteForce(const Mesh &mesh, const Primitive &p, const Isometry3d &X)
+    BruteBounds bruteForceBounds(const Mesh &mesh, const Primitive &p, const Isometry3d &X)
     {
-        Brute b{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+        BruteBounds b{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
         for (const Triangle &t : mesh.triangles)
         {
             const SolidGap g =
@@ -85,7 +85,7 @@ TEST(BvhSolid, DistanceAndCollisionAreBruteForcesOverEveryTriangle)
                                      std::to_string(p.size.x()) + ", trial " + std::to_string(trial);
             // The traversal's answer is a triangle's gap (never below the least) and a lower bound of the distance
             // (never above the upper bound): a triangle pruned by a bound above its distance breaks the second.
-            const Brute expected = bruteForce(mesh, p, X_MS);
+            const BruteBounds expected = bruteForceBounds(mesh, p, X_MS);
             const double tol = 1e-12 * (1.0 + expected.upper);
             BvhSolidResult r;
             bvhSolidDistance(bvh, p, X_MS, std::numeric_limits<double>::infinity(), -1.0, r);

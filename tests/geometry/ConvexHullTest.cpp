@@ -25,7 +25,7 @@ namespace
 {
     /** \brief A sphere of \e r with every vertex pushed in by up to a fifth at random: non-convex, most vertices
         inside the hull. */
-    Mesh bumpySphere(double r, int level, std::uint32_t seed)
+    Mesh hullBumpySphere(double r, int level, std::uint32_t seed)
     {
         Mesh m = test::icosphere(r, level);
         std::mt19937 rng(seed);
@@ -108,7 +108,7 @@ namespace
                       0.0);
     }
 
-    Primitive solid(Primitive::Kind kind, double x, double y, double z, const Isometry3d &pose)
+    Primitive placedSolid(Primitive::Kind kind, double x, double y, double z, const Isometry3d &pose)
     {
         Primitive p;
         p.kind = kind;
@@ -118,7 +118,7 @@ namespace
     }
 
     /** \brief A body of the solid \e p (its mesh at its pose, as a MoveIt scene builds one). */
-    BodyPtr solidBody(const Primitive &p)
+    BodyPtr hullSolidBody(const Primitive &p)
     {
         Mesh m;
         switch (p.kind)
@@ -144,7 +144,7 @@ namespace
     /** \brief The distance of two bodies as refineExact() finds it, taken as the distance its witness points achieve
         (an upper bound of the true distance: for a curved solid, refineExact()'s distance is GJK's lower bound, which
         may lie below the truth by 1e-10 of the scale); 0 in collision. */
-    double exactDistance(const Body &a, const Body &b, const Isometry3d &X_AB)
+    double hullExactDistance(const Body &a, const Body &b, const Isometry3d &X_AB)
     {
         DistanceResult r;
         refineExact(a, b, X_AB, r);
@@ -155,10 +155,10 @@ namespace
 TEST(ConvexHull, HoldsEveryVertex)
 {
     expectHolds(test::icosphere(0.3, 2), "icosphere");
-    expectHolds(bumpySphere(0.4, 3, 1), "bumpy sphere");
+    expectHolds(hullBumpySphere(0.4, 3, 1), "bumpy sphere");
     expectHolds(lShape(), "L of boxes");
     expectHolds(test::box(0.2, 0.3, 0.05, 6), "box of 6 x 6 squares a face");
-    expectHolds(test::transformed(bumpySphere(2e-3, 2, 5), test::translation(40.0, -30.0, 10.0)), "small, far");
+    expectHolds(test::transformed(hullBumpySphere(2e-3, 2, 5), test::translation(40.0, -30.0, 10.0)), "small, far");
     // Coplanar points are not vertices: a box of many squares a face has its 8 corners.
     EXPECT_EQ(ConvexHull::build(test::box(0.2, 0.3, 0.05, 6).vertices)->vertices().size(), 8u);
 }
@@ -184,7 +184,7 @@ TEST(ConvexHull, TheOracleCatchesAShrunkHull)
 {
     // A check that never fails proves nothing: with the margin made negative, or one vertex dropped, the brute-force
     // oracle of HoldsEveryVertex must find a mesh vertex outside.
-    const Mesh m = bumpySphere(0.4, 3, 1);
+    const Mesh m = hullBumpySphere(0.4, 3, 1);
     const std::shared_ptr<const ConvexHull> hull = ConvexHull::build(m.vertices);
     ASSERT_TRUE(hull);
     EXPECT_GT(worstExcess(hull->vertices(), -1e-6, m.vertices, directions(2000, 3)), 0.0);
@@ -264,7 +264,7 @@ namespace
 
 TEST(ConvexHull, SupportIsTheScansVertex)
 {
-    expectSupportIsTheScans(bumpySphere(0.4, 3, 1).vertices, "bumpy sphere");
+    expectSupportIsTheScans(hullBumpySphere(0.4, 3, 1).vertices, "bumpy sphere");
     expectSupportIsTheScans(test::icosphere(0.05, 5).vertices, "coarsened fine sphere");
     expectSupportIsTheScans(test::transformed(test::icosphere(2e-3, 3), test::translation(40.0, -30.0, 10.0)).vertices,
                             "small, far");
@@ -311,7 +311,7 @@ TEST(ConvexHull, DegenerateSetsHaveNoHull)
 
 TEST(ConvexHull, GapNeverExceedsTheMeshDistanceToASolid)
 {
-    const Mesh meshes[] = {bumpySphere(0.3, 3, 2), lShape(), test::icosphere(0.25, 2)};
+    const Mesh meshes[] = {hullBumpySphere(0.3, 3, 2), lShape(), test::icosphere(0.25, 2)};
     const Primitive::Kind kinds[] = {Primitive::Kind::BOX, Primitive::Kind::SPHERE, Primitive::Kind::CYLINDER,
                                      Primitive::Kind::CONE, Primitive::Kind::CAPSULE};
     std::size_t poses = 0, apart = 0;
@@ -323,10 +323,10 @@ TEST(ConvexHull, GapNeverExceedsTheMeshDistanceToASolid)
         for (std::size_t k = 0; k < 5; ++k)
             for (std::uint32_t seed = 0; seed < seeds; ++seed)
             {
-                const Primitive p = solid(kinds[k], 0.2, 0.5, 0.3, test::randomPose(1000 * k + seed, 0.1));
-                const BodyPtr obstacle = solidBody(p);
+                const Primitive p = placedSolid(kinds[k], 0.2, 0.5, 0.3, test::randomPose(1000 * k + seed, 0.1));
+                const BodyPtr obstacle = hullSolidBody(p);
                 const Isometry3d X = test::randomPose(7 + 31 * seed + 1000 * i, 1.0);
-                const double exact = exactDistance(*body, *obstacle, X);
+                const double exact = hullExactDistance(*body, *obstacle, X);
                 const double gap = hullPrimitiveGap(*body->convexHull(), p, X);
                 ++poses;
                 apart += gap > 0.0 ? 1 : 0;
@@ -343,18 +343,18 @@ TEST(ConvexHull, GapNeverExceedsTheMeshDistanceToASolid)
 
 TEST(ConvexHull, GapNeverExceedsTheDistanceBetweenMeshes)
 {
-    const BodyPtr a = test::unrefinedBody(bumpySphere(0.3, 3, 3)), b = test::unrefinedBody(lShape());
+    const BodyPtr a = test::unrefinedBody(hullBumpySphere(0.3, 3, 3)), b = test::unrefinedBody(lShape());
     const BodyPtr c = test::unrefinedBody(test::icosphere(0.25, 2));
     std::size_t apart = 0;
     const auto seeds = static_cast<std::uint32_t>(test::scaled(1000, 100));  // the count below in proportion
     for (std::uint32_t seed = 0; seed < seeds; ++seed)
     {
         const Isometry3d X = test::randomPose(seed, 1.2);
-        const double exact = exactDistance(*a, *b, X);
+        const double exact = hullExactDistance(*a, *b, X);
         const double gap = hullGap(*a->convexHull(), *b->convexHull(), X);
         apart += gap > 0.0 ? 1 : 0;
         ASSERT_LE(gap, exact * (1.0 + 1e-9) + 1e-12) << seed;
-        const double convex = exactDistance(*c, *c, X);  // two convex meshes: the bound is their distance
+        const double convex = hullExactDistance(*c, *c, X);  // two convex meshes: the bound is their distance
         const double both = hullGap(*c->convexHull(), *c->convexHull(), X);
         ASSERT_LE(both, convex * (1.0 + 1e-9) + 1e-12) << seed;
         EXPECT_GE(both, convex - 1e-9) << seed;
@@ -366,9 +366,9 @@ TEST(ConvexHull, BoundedQuestionsAnswerAsTheTraversal)
 {
     // refineExact with the outer bound asked first: the same verdict ("nothing below the bound", or a pair below it)
     // as without, over random poses and bounds, with some answered by the outer bounds alone.
-    const BodyPtr link = test::unrefinedBody(bumpySphere(0.3, 3, 4));
-    const Primitive table = solid(Primitive::Kind::BOX, 2.0, 2.0, 0.1, test::translation(0.0, 0.0, -0.05));
-    const BodyPtr tableBody = solidBody(table), other = test::unrefinedBody(lShape());
+    const BodyPtr link = test::unrefinedBody(hullBumpySphere(0.3, 3, 4));
+    const Primitive table = placedSolid(Primitive::Kind::BOX, 2.0, 2.0, 0.1, test::translation(0.0, 0.0, -0.05));
+    const BodyPtr tableBody = hullSolidBody(table), other = test::unrefinedBody(lShape());
     std::size_t proofs = 0;
     for (std::uint32_t seed = 0; seed < 600; ++seed)
     {
@@ -417,7 +417,7 @@ TEST(ConvexHull, SweptGapNeverExceedsTheChordsDistance)
 {
     // Every vertex's straight line from its place at X0 to its place at X1 lies in the swept hull: its distance from
     // a box (analytic) bounds the swept gap from above, and a grown sweep's gap drops by the growth.
-    const Mesh meshes[] = {bumpySphere(0.3, 2, 4), lShape()};
+    const Mesh meshes[] = {hullBumpySphere(0.3, 2, 4), lShape()};
     std::size_t apart = 0, tight = 0;
     for (std::size_t i = 0; i < 2; ++i)
     {
@@ -425,7 +425,7 @@ TEST(ConvexHull, SweptGapNeverExceedsTheChordsDistance)
         ASSERT_NE(body->convexHull(), nullptr);
         for (std::uint32_t seed = 0; seed < 150; ++seed)
         {
-            const Primitive box = solid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(500 + seed, 0.1));
+            const Primitive box = placedSolid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(500 + seed, 0.1));
             const Isometry3d X0 = test::randomPose(seed, 1.2);
             const Isometry3d X1 = test::randomPose(seed + 9000, 1.2);
             const double gap = sweptHullPrimitiveGap(*body->convexHull(), X0, X1, 0.0, box);
@@ -460,7 +460,7 @@ namespace
             {
                 const Isometry3d As = Eigen::Translation3d(s / 12.0 * da) * A0;
                 const Isometry3d Br = Eigen::Translation3d(r / 12.0 * db) * B0;
-                least = std::min(least, exactDistance(a, a, As.inverse() * Br));
+                least = std::min(least, hullExactDistance(a, a, As.inverse() * Br));
             }
         return least;
     }
@@ -548,14 +548,14 @@ TEST(ConvexHull, SweptGapFromAnyFirstAxisIsStillABound)
     EXPECT_EQ(provenFirst, apart);
 
     // Turning sweeps against a box: every vertex's chord bounds the gap from above (analytic), from any first axis.
-    const Mesh meshes[] = {bumpySphere(0.3, 2, 4), lShape()};
+    const Mesh meshes[] = {hullBumpySphere(0.3, 2, 4), lShape()};
     for (std::size_t m = 0; m < 2; ++m)
     {
         const BodyPtr body = test::unrefinedBody(meshes[m]);
         ASSERT_NE(body->convexHull(), nullptr);
         for (std::uint32_t seed = 0; seed < 40; ++seed)
         {
-            const Primitive box = solid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(700 + seed, 0.1));
+            const Primitive box = placedSolid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(700 + seed, 0.1));
             const Isometry3d X0 = test::randomPose(seed + 50, 1.2), X1 = test::randomPose(seed + 9050, 1.2);
             double least = std::numeric_limits<double>::infinity();
             for (const Vector3d &p : chordPoints(meshes[m], X0, X1))
@@ -578,7 +578,7 @@ TEST(ConvexHull, SweptGapOfAHullThatStaysIsItsHullsGap)
     // A hull whose two poses are the very same is placed once (one support call, not two): its swept gap must be
     // its static GJK gap (hullGap(), in the first body's frame), the same as a sweep between two poses a hair apart
     // (the two-placement path), and never above the meshes' exact distance.
-    const Mesh meshes[] = {bumpySphere(0.3, 2, 4), lShape()};
+    const Mesh meshes[] = {hullBumpySphere(0.3, 2, 4), lShape()};
     const BodyPtr a = test::unrefinedBody(meshes[0]), b = test::unrefinedBody(meshes[1]);
     const ConvexHull &ha = *a->convexHull(), &hb = *b->convexHull();
     const Isometry3d hair(Eigen::Translation3d(1e-13, -1e-13, 1e-13));
@@ -591,14 +591,14 @@ TEST(ConvexHull, SweptGapOfAHullThatStaysIsItsHullsGap)
         const double still = hullGap(ha, hb, X_AB);
         ASSERT_NEAR(stays, still, 1e-9) << seed;
         ASSERT_NEAR(stays, sweptHullGap(ha, X, hair * X, 0.0, hb, Y, hair * Y, 0.0), 1e-9) << seed;
-        ASSERT_LE(stays, std::max(0.0, exactDistance(*a, *b, X_AB)) * (1.0 + 1e-9) + 1e-12) << seed;
+        ASSERT_LE(stays, std::max(0.0, hullExactDistance(*a, *b, X_AB)) * (1.0 + 1e-9) + 1e-12) << seed;
         // One staying, the other moving: the same as its sweep with the first a hair apart.
         const Isometry3d Y1 = test::randomPose(seed + 2000, 1.0);
         ASSERT_NEAR(sweptHullGap(ha, X, X, 0.0, hb, Y, Y1, 0.0), sweptHullGap(ha, X, hair * X, 0.0, hb, Y, Y1, 0.0),
                     1e-9)
             << seed;
         // Against a solid, with a growth: the static gap less the growth.
-        const Primitive box = solid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(seed + 3000, 0.5));
+        const Primitive box = placedSolid(Primitive::Kind::BOX, 0.4, 0.3, 0.2, test::randomPose(seed + 3000, 0.5));
         ASSERT_NEAR(sweptHullPrimitiveGap(ha, X, X, 0.02, box),
                     std::max(0.0, hullPrimitiveGap(ha, box, X.inverse()) - 0.02), 1e-9)
             << seed;

@@ -18,7 +18,7 @@ using Eigen::Vector3d;
 // roundoff, and its witnesses must lie that far apart.
 namespace
 {
-    Primitive solid(Primitive::Kind kind, double x, double y = 0.0, double z = 0.0)
+    Primitive centredSolid(Primitive::Kind kind, double x, double y = 0.0, double z = 0.0)
     {
         Primitive p;
         p.kind = kind;
@@ -74,28 +74,28 @@ TEST(PrimitiveDistanceTest, TriangleAgainstEachSolidMatchesTheClosedForm)
     for (int trial = 0; trial < 200; ++trial)
     {
         const double h = gap(rng);
-        expectPlane(solid(Primitive::Kind::SPHERE, 0.4), Vector3d(0.0, 0.0, 0.4), Vector3d::UnitZ(), h, rng,
+        expectPlane(centredSolid(Primitive::Kind::SPHERE, 0.4), Vector3d(0.0, 0.0, 0.4), Vector3d::UnitZ(), h, rng,
                     "sphere");
-        expectPlane(solid(Primitive::Kind::CAPSULE, 0.3, 1.0), Vector3d(0.0, 0.0, 0.8), Vector3d::UnitZ(), h, rng,
-                    "capsule end");
-        expectPlane(solid(Primitive::Kind::CAPSULE, 0.3, 1.0), Vector3d(0.3, 0.0, 0.1), Vector3d::UnitX(), h, rng,
-                    "capsule side");
-        expectPlane(solid(Primitive::Kind::BOX, 0.4, 0.6, 1.0), Vector3d(0.0, 0.3, 0.0), Vector3d::UnitY(), h, rng,
-                    "box face");
-        expectPlane(solid(Primitive::Kind::BOX, 0.4, 0.6, 1.0), Vector3d(0.2, 0.3, 0.5), Vector3d(1, 1, 1), h, rng,
-                    "box corner");
-        expectPlane(solid(Primitive::Kind::CYLINDER, 0.3, 0.8), Vector3d(0.0, 0.0, 0.4), Vector3d::UnitZ(), h, rng,
-                    "cylinder cap");
-        expectPlane(solid(Primitive::Kind::CYLINDER, 0.3, 0.8), Vector3d(0.3, 0.0, 0.0), Vector3d::UnitX(), h, rng,
-                    "cylinder side");
-        expectPlane(solid(Primitive::Kind::CYLINDER, 0.3, 0.8), Vector3d(0.0, 0.3, 0.4), Vector3d(0, 1, 1), h, rng,
-                    "cylinder rim");
-        expectPlane(solid(Primitive::Kind::CONE, 0.3, 0.8), Vector3d(0.0, 0.0, 0.4), Vector3d::UnitZ(), h, rng,
+        expectPlane(centredSolid(Primitive::Kind::CAPSULE, 0.3, 1.0), Vector3d(0.0, 0.0, 0.8), Vector3d::UnitZ(), h,
+                    rng, "capsule end");
+        expectPlane(centredSolid(Primitive::Kind::CAPSULE, 0.3, 1.0), Vector3d(0.3, 0.0, 0.1), Vector3d::UnitX(), h,
+                    rng, "capsule side");
+        expectPlane(centredSolid(Primitive::Kind::BOX, 0.4, 0.6, 1.0), Vector3d(0.0, 0.3, 0.0), Vector3d::UnitY(), h,
+                    rng, "box face");
+        expectPlane(centredSolid(Primitive::Kind::BOX, 0.4, 0.6, 1.0), Vector3d(0.2, 0.3, 0.5), Vector3d(1, 1, 1), h,
+                    rng, "box corner");
+        expectPlane(centredSolid(Primitive::Kind::CYLINDER, 0.3, 0.8), Vector3d(0.0, 0.0, 0.4), Vector3d::UnitZ(), h,
+                    rng, "cylinder cap");
+        expectPlane(centredSolid(Primitive::Kind::CYLINDER, 0.3, 0.8), Vector3d(0.3, 0.0, 0.0), Vector3d::UnitX(), h,
+                    rng, "cylinder side");
+        expectPlane(centredSolid(Primitive::Kind::CYLINDER, 0.3, 0.8), Vector3d(0.0, 0.3, 0.4), Vector3d(0, 1, 1), h,
+                    rng, "cylinder rim");
+        expectPlane(centredSolid(Primitive::Kind::CONE, 0.3, 0.8), Vector3d(0.0, 0.0, 0.4), Vector3d::UnitZ(), h, rng,
                     "cone apex");
-        expectPlane(solid(Primitive::Kind::CONE, 0.3, 0.8), Vector3d(0.0, 0.0, -0.4), -Vector3d::UnitZ(), h, rng,
+        expectPlane(centredSolid(Primitive::Kind::CONE, 0.3, 0.8), Vector3d(0.0, 0.0, -0.4), -Vector3d::UnitZ(), h, rng,
                     "cone base");
         // A generator of the cone: from the rim point (0.3, 0, -0.4) to the apex; normal (0.8, 0, 0.3).
-        expectPlane(solid(Primitive::Kind::CONE, 0.3, 0.8), Vector3d(0.15, 0.0, 0.0), Vector3d(0.8, 0.0, 0.3), h,
+        expectPlane(centredSolid(Primitive::Kind::CONE, 0.3, 0.8), Vector3d(0.15, 0.0, 0.0), Vector3d(0.8, 0.0, 0.3), h,
                     rng, "cone slant");
     }
 }
@@ -109,11 +109,11 @@ TEST(PrimitiveDistanceTest, SolidPairsMatchTheClosedForm)
     {
         const double h = gap(rng);
         const Isometry3d X = randomMotion(rng);
-        const Primitive sphere = solid(Primitive::Kind::SPHERE, 0.25);
-        const Primitive capsule = solid(Primitive::Kind::CAPSULE, 0.2, 1.0);
-        const Primitive box = solid(Primitive::Kind::BOX, 0.4, 0.6, 1.0);
-        const Primitive cylinder = solid(Primitive::Kind::CYLINDER, 0.3, 0.8);
-        const Primitive cone = solid(Primitive::Kind::CONE, 0.3, 0.8);
+        const Primitive sphere = centredSolid(Primitive::Kind::SPHERE, 0.25);
+        const Primitive capsule = centredSolid(Primitive::Kind::CAPSULE, 0.2, 1.0);
+        const Primitive box = centredSolid(Primitive::Kind::BOX, 0.4, 0.6, 1.0);
+        const Primitive cylinder = centredSolid(Primitive::Kind::CYLINDER, 0.3, 0.8);
+        const Primitive cone = centredSolid(Primitive::Kind::CONE, 0.3, 0.8);
         const Vector3d side = Vector3d(u(rng), u(rng), 0.0).normalized();
         expectGap(primitiveGap(sphere, X, sphere, X * pose(Vector3d(0.5 + h, 0, 0))), h, "sphere-sphere");
         expectGap(primitiveGap(capsule, X, capsule, X * pose((0.4 + h) * side)), h, "capsule-capsule parallel");
@@ -135,7 +135,7 @@ TEST(PrimitiveDistanceTest, TouchingAndOverlappingSolidsAreAtZero)
 {
     std::mt19937 rng(3);
     const Isometry3d X = randomMotion(rng);
-    const Primitive box = solid(Primitive::Kind::BOX, 1.0, 1.0, 1.0);
+    const Primitive box = centredSolid(Primitive::Kind::BOX, 1.0, 1.0, 1.0);
     Vector3d t[3];
     // A triangle wholly inside the box, one crossing its face, one inside a cylinder and a cone.
     planeTriangle(Vector3d(0.1, 0.0, 0.0), Vector3d::UnitZ(), 0.2, t);
@@ -143,19 +143,22 @@ TEST(PrimitiveDistanceTest, TouchingAndOverlappingSolidsAreAtZero)
     planeTriangle(Vector3d(0.5, 0.0, 0.0), Vector3d(1, 2, 3), 0.3, t);
     EXPECT_EQ(primitiveTriangleGap(box, X, X * t[0], X * t[1], X * t[2]).distance, 0.0);
     planeTriangle(Vector3d(0.0, 0.0, 0.1), Vector3d(1, 2, 3), 0.05, t);
-    const Primitive cylinder = solid(Primitive::Kind::CYLINDER, 0.3, 0.8);
+    const Primitive cylinder = centredSolid(Primitive::Kind::CYLINDER, 0.3, 0.8);
     EXPECT_EQ(primitiveTriangleGap(cylinder, X, X * t[0], X * t[1], X * t[2]).distance, 0.0);
-    EXPECT_EQ(primitiveTriangleGap(solid(Primitive::Kind::CONE, 0.3, 0.8), X, X * t[0], X * t[1], X * t[2]).distance,
-              0.0);
+    EXPECT_EQ(
+        primitiveTriangleGap(centredSolid(Primitive::Kind::CONE, 0.3, 0.8), X, X * t[0], X * t[1], X * t[2]).distance,
+        0.0);
     // Solids: nested, crossing, touching along a face.
     const Isometry3d inner = X * Isometry3d(Eigen::Translation3d(0.1, 0.0, 0.0));
-    EXPECT_EQ(primitiveGap(box, X, solid(Primitive::Kind::SPHERE, 0.1), inner).distance, 0.0);
-    EXPECT_EQ(primitiveGap(solid(Primitive::Kind::CYLINDER, 0.3, 0.8), X, solid(Primitive::Kind::CONE, 0.2, 0.4), inner)
+    EXPECT_EQ(primitiveGap(box, X, centredSolid(Primitive::Kind::SPHERE, 0.1), inner).distance, 0.0);
+    EXPECT_EQ(primitiveGap(centredSolid(Primitive::Kind::CYLINDER, 0.3, 0.8), X,
+                           centredSolid(Primitive::Kind::CONE, 0.2, 0.4), inner)
                   .distance,
               0.0);
     const Isometry3d touching = X * Isometry3d(Eigen::Translation3d(1.0, 0.3, 0.2));
     EXPECT_EQ(primitiveGap(box, X, box, touching).distance, 0.0);
-    EXPECT_EQ(primitiveGap(solid(Primitive::Kind::CYLINDER, 0.5, 1.0), X, solid(Primitive::Kind::CYLINDER, 0.5, 1.0),
+    EXPECT_EQ(primitiveGap(centredSolid(Primitive::Kind::CYLINDER, 0.5, 1.0), X,
+                           centredSolid(Primitive::Kind::CYLINDER, 0.5, 1.0),
                            X * Isometry3d(Eigen::Translation3d(1.0, 0.0, 0.2)))
                   .distance,
               0.0);
@@ -167,8 +170,8 @@ TEST(PrimitiveDistanceTest, GjkBoundsBracketTheDistance)
     // relative, or, where roundoff in the simplex stops GJK first, to 1e-10 of the scale (the solids' reach from the
     // origin, here at most 5; measured up to 2e-11 of it).
     std::mt19937 rng(5);
-    const Primitive cylinder = solid(Primitive::Kind::CYLINDER, 0.3, 0.8);
-    const Primitive cone = solid(Primitive::Kind::CONE, 0.4, 0.5);
+    const Primitive cylinder = centredSolid(Primitive::Kind::CYLINDER, 0.3, 0.8);
+    const Primitive cone = centredSolid(Primitive::Kind::CONE, 0.4, 0.5);
     int iterations = 0;
     for (int trial = 0; trial < 2000; ++trial)
     {
@@ -184,13 +187,13 @@ TEST(PrimitiveDistanceTest, GjkBoundsBracketTheDistance)
 
 TEST(PrimitiveDistanceTest, BadSizesAreRefusedByName)
 {
-    EXPECT_THROW(checkPrimitive(solid(Primitive::Kind::SPHERE, -1.0)), Exception);
-    EXPECT_THROW(checkPrimitive(solid(Primitive::Kind::CYLINDER, 1.0, std::nan(""))), Exception);
-    EXPECT_THROW(checkPrimitive(solid(Primitive::Kind::BOX, 1.0, 0.0, 1.0)), Exception);
-    EXPECT_NO_THROW(checkPrimitive(solid(Primitive::Kind::CAPSULE, 1.0, 0.0)));
+    EXPECT_THROW(checkPrimitive(centredSolid(Primitive::Kind::SPHERE, -1.0)), Exception);
+    EXPECT_THROW(checkPrimitive(centredSolid(Primitive::Kind::CYLINDER, 1.0, std::nan(""))), Exception);
+    EXPECT_THROW(checkPrimitive(centredSolid(Primitive::Kind::BOX, 1.0, 0.0, 1.0)), Exception);
+    EXPECT_NO_THROW(checkPrimitive(centredSolid(Primitive::Kind::CAPSULE, 1.0, 0.0)));
     try
     {
-        checkPrimitive(solid(Primitive::Kind::CONE, 0.2, -3.0));
+        checkPrimitive(centredSolid(Primitive::Kind::CONE, 0.2, -3.0));
         FAIL();
     }
     catch (const Exception &e)

@@ -74,7 +74,7 @@ namespace
     }
 
     /** \brief Tallies of a comparison with FCL. */
-    struct Tally
+    struct PrimitiveFclTally
     {
         int poses{0}, touching{0}, fclShort{0};
     };
@@ -85,7 +85,7 @@ namespace
         that far apart, which proves FCL's answer too large; those poses are counted. The collision verdicts agree
         wherever FCL's distance is clear of its tolerance. */
     void expectAgrees(double ours, bool oursCollides, bool witnessesReal, double witnessGap, double fcl,
-                      bool fclCollides, const std::string &what, Tally &tally)
+                      bool fclCollides, const std::string &what, PrimitiveFclTally &tally)
     {
         const double fclClamped = std::max(fcl, 0.0), tolerance = FCL_TOLERANCE * std::max(1.0, fclClamped);
         ++tally.poses;
@@ -119,7 +119,7 @@ TEST(PrimitiveFclTest, EachSolidAgainstATriangleMeshAgreesWithFcl)
     const auto model = test::fclModel(mesh);
     const fcl::CollisionObjectd meshObject(model, fcl::Transform3d::Identity());
     std::mt19937 rng(2024);
-    Tally tally;
+    PrimitiveFclTally tally;
     // 10,000 poses a solid (test::scaled: fewer under the sanitizers, the counts below in proportion).
     const int trials = test::scaled(10000, 1000);
     for (const Primitive &p : shapes())
@@ -156,7 +156,7 @@ TEST(PrimitiveFclTest, SolidPairsAgreeWithFcl)
 {
     const std::vector<Primitive> all = shapes();
     std::mt19937 rng(77);
-    Tally tally;
+    PrimitiveFclTally tally;
     for (std::size_t i = 0; i < all.size(); ++i)
         for (std::size_t j = i; j < all.size(); ++j)
         {

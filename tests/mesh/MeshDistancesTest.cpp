@@ -151,15 +151,15 @@ namespace
     }
 
     /** \brief Collects OMPL warnings while alive (the test main sets the log level to LOG_WARN). */
-    class WarningCapture : public ompl::msg::OutputHandler
+    class MentionedWarningCapture : public ompl::msg::OutputHandler
     {
     public:
-        WarningCapture() : previousLevel_(ompl::msg::getLogLevel())
+        MentionedWarningCapture() : previousLevel_(ompl::msg::getLogLevel())
         {
             ompl::msg::useOutputHandler(this);
             ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
         }
-        ~WarningCapture() override
+        ~MentionedWarningCapture() override
         {
             ompl::msg::restorePreviousOutputHandler();
             ompl::msg::setLogLevel(previousLevel_);
@@ -633,7 +633,7 @@ protected:
         const auto g = graphOf(mesh);
         const std::string file = distanceCachePath(dir_.string(), graphHash(*g));
         {
-            WarningCapture capture;
+            MentionedWarningCapture capture;
             const auto md = MeshDistances::build(g, cached(dir_));
             EXPECT_FALSE(md->fromCache());
             EXPECT_TRUE(capture.mentions(file)) << "no warning naming " << file;
@@ -663,7 +663,7 @@ TEST_F(MeshDistancesCache, WritesThenReadsIdenticalTable)
     EXPECT_EQ(filesIn(dir), 1u);  // no temporary left behind
     EXPECT_EQ(fs::file_size(file), 48 + MeshDistances::denseTableBytes(g->numNodes()));
 
-    WarningCapture capture;
+    MentionedWarningCapture capture;
     const auto second = MeshDistances::build(g, cached(dir));
     EXPECT_TRUE(second->fromCache());
     EXPECT_TRUE(capture.warnings.empty());
@@ -748,7 +748,7 @@ TEST_F(MeshDistancesCache, UnwritableFolderWarnsAndStillWorks)
     std::ofstream(blocker) << "not a folder";
     const Mesh mesh = test::grid(3, 2, 6, 4);
     const auto g = graphOf(mesh);
-    WarningCapture capture;
+    MentionedWarningCapture capture;
     const auto md = MeshDistances::build(g, cached(blocker / "cache"));  // cannot be created: parent is a file
     EXPECT_TRUE(md->isDense());
     EXPECT_FALSE(md->fromCache());

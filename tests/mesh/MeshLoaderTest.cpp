@@ -15,14 +15,14 @@ namespace fs = std::filesystem;
 
 namespace
 {
-    const std::string RES = MESHGAP_TEST_RESOURCES_DIR;
+    const std::string LOADER_RES = MESHGAP_TEST_RESOURCES_DIR;
 
     void expectUnitCube(const std::string &file)
     {
         LoadReport report;
         LoadOptions centre;
         centre.omplAppCenter = true;
-        const Mesh m = loadMesh(RES + "/" + file, &report, centre);
+        const Mesh m = loadMesh(LOADER_RES + "/" + file, &report, centre);
         EXPECT_EQ(m.vertices.size(), 8u) << file;
         EXPECT_EQ(m.triangles.size(), 12u) << file;
         EXPECT_EQ(report.components, 1u) << file;
@@ -53,8 +53,8 @@ TEST(MeshLoader, OmplAppsNormalsStepChangesOnlyTheCentre)
     // copies alone: every mesh file of the tests, maps/ and (when present) ../shared/data must load to the same
     // vertices, in the same order, the same triangles and the same report counts either way.
     std::vector<fs::path> files;
-    for (const fs::path &root : {fs::path(RES), fs::path(MESHGAP_SOURCE_DIR) / "maps",
-                                 fs::path(MESHGAP_SHARED_DATA_DIR)})
+    for (const fs::path &root :
+         {fs::path(LOADER_RES), fs::path(MESHGAP_SOURCE_DIR) / "maps", fs::path(MESHGAP_SHARED_DATA_DIR)})
     {
         if (!fs::exists(root))
             continue;
@@ -92,8 +92,8 @@ TEST(MeshLoader, OmplAppsNormalsStepChangesOnlyTheCentre)
 
 TEST(MeshLoader, ColladaNodeTransformAndUpAxisAreApplied)
 {
-    const Mesh m = loadMesh(RES + "/cube.dae");
-    std::ifstream in(RES + "/cube.dae.expected");
+    const Mesh m = loadMesh(LOADER_RES + "/cube.dae");
+    std::ifstream in(LOADER_RES + "/cube.dae.expected");
     std::vector<Eigen::Vector3d> expected;
     double x, y, z;
     while (in >> x >> y >> z)
@@ -112,7 +112,7 @@ TEST(MeshLoader, ColladaNodeTransformAndUpAxisAreApplied)
 TEST(MeshLoader, SeparatePartsAreSeparateComponents)
 {
     LoadReport report;
-    const Mesh m = loadMesh(RES + "/two_parts.obj", &report);
+    const Mesh m = loadMesh(LOADER_RES + "/two_parts.obj", &report);
     EXPECT_EQ(m.vertices.size(), 8u);
     EXPECT_EQ(m.triangles.size(), 8u);
     EXPECT_EQ(report.components, 2u);
@@ -121,7 +121,7 @@ TEST(MeshLoader, SeparatePartsAreSeparateComponents)
 TEST(MeshLoader, DegenerateTrianglesAreDroppedNotFatal)
 {
     LoadReport report;
-    const Mesh m = loadMesh(RES + "/bad/degenerate.obj", &report);
+    const Mesh m = loadMesh(LOADER_RES + "/bad/degenerate.obj", &report);
     EXPECT_EQ(m.triangles.size(), 12u);
     EXPECT_EQ(report.clean.degenerate, 2u);
     EXPECT_EQ(m.vertices.size(), 8u);
@@ -133,7 +133,7 @@ TEST(MeshLoader, BadFilesThrowOneErrorNamingTheFile)
         {"nan.obj", "NaN"}, {"inf.obj", "NaN or infinite"}, {"empty.obj", ""}, {"points.ply", "triangles"},
         {"badindex.obj", ""}, {"garbage.obj", ""}, {"truncated.stl", ""}, {"corrupt.dae", ""}};
     int tried = 0;
-    for (const auto &entry : std::filesystem::directory_iterator(RES + "/bad"))
+    for (const auto &entry : std::filesystem::directory_iterator(LOADER_RES + "/bad"))
     {
         const std::string name = entry.path().filename().string();
         if (name == "degenerate.obj" || entry.path().extension() == ".cfg")

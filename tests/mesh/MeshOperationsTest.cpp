@@ -20,7 +20,7 @@ using namespace meshgap;
 namespace
 {
     /** \brief Random triangles over \e n vertices (some vertices in no triangle), fixed seed. */
-    Mesh randomSoup(std::uint32_t seed, std::uint32_t n, std::size_t triangles)
+    Mesh randomIndexedSoup(std::uint32_t seed, std::uint32_t n, std::size_t triangles)
     {
         std::mt19937 rng(seed);
         std::uniform_int_distribution<std::uint32_t> pick(0, n - 1);
@@ -50,7 +50,7 @@ TEST(MeshOperations, LabelComponentsMatchesBoostGraph)
 {
     for (std::uint32_t seed = 1; seed <= 30; ++seed)
     {
-        const Mesh m = randomSoup(seed, 40, seed % 20);
+        const Mesh m = randomIndexedSoup(seed, 40, seed % 20);
         int expected = 0;
         const std::vector<int> oracle = boostComponents(m, expected);
         std::uint32_t count = 0;

@@ -33,7 +33,7 @@ namespace
     using Eigen::Vector2d;
     using Eigen::Vector3d;
 
-    constexpr double pi = 3.14159265358979323846;
+    constexpr double PI = 3.14159265358979323846;
 
     /** \brief Every undirected edge in exactly two triangles and every directed edge in at most one (so the two
         triangles at an edge run it in opposite directions: one consistent winding). */
@@ -87,7 +87,7 @@ namespace
             {
                 const Vector3d u = m.vertices[t[(k + 1) % 3]] - m.vertices[t[k]];
                 const Vector3d v = m.vertices[t[(k + 2) % 3]] - m.vertices[t[k]];
-                smallest = std::min(smallest, std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / pi);
+                smallest = std::min(smallest, std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / PI);
             }
         return smallest;
     }
@@ -115,14 +115,14 @@ namespace
             const double r0 = profile[i].x(), r1 = profile[i + 1].x();
             v += (profile[i + 1].y() - profile[i].y()) * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0;
         }
-        return pi * std::abs(v);
+        return PI * std::abs(v);
     }
 
     /** \brief A solid of revolution whose circles are regular n-gons has every horizontal section a regular n-gon
         (annulus) of the circle's radius, so its volume is the round solid's times area(n-gon)/area(circle). */
     double polygonFactor(unsigned int n)
     {
-        return n / (2.0 * pi) * std::sin(2.0 * pi / n);
+        return n / (2.0 * PI) * std::sin(2.0 * PI / n);
     }
 
     /** \brief Volume of one polyhedral hemisphere cap as tubePolyhedron builds it: rings at latitudes
@@ -132,7 +132,7 @@ namespace
         std::vector<Vector2d> profile;
         for (unsigned int l = 0; l <= rings; ++l)
         {
-            const double phi = 0.5 * pi * l / rings;
+            const double phi = 0.5 * PI * l / rings;
             profile.emplace_back(r * std::cos(phi), r * std::sin(phi));
         }
         profile.emplace_back(0.0, r);
@@ -260,7 +260,7 @@ TEST(Shapes, CapsuleHasPrismPlusTwoPolyhedralCaps)
     const unsigned int n = 12, rings = 4;
     const Vector3d a(1.0, -2.0, 0.5), b = a + length * Vector3d(1.0, 2.0, 2.0).normalized();
     const Mesh m = meshgap::makeCapsule(a, b, r, n, rings, h);
-    const double prism = 0.5 * n * r * r * std::sin(2.0 * pi / n) * length;
+    const double prism = 0.5 * n * r * r * std::sin(2.0 * PI / n) * length;
     expectSolid(m, prism + 2.0 * capVolume(r, n, rings), h);
     // Every node lies on or inside the round capsule (corners on it, face nodes on chords).
     for (const Vector3d &p : m.vertices)
@@ -281,7 +281,7 @@ TEST(Shapes, BentTubeVolumeIsSectionTimesPathLengthPlusCaps)
     for (std::size_t i = 0; i + 1 < path.size(); ++i)
         length += (path[i + 1] - path[i]).norm();
     const Mesh m = meshgap::makeTube(path, r, n, rings, meshgap::uniformSizing(0.8));
-    expectSolid(m, 0.5 * n * r * r * std::sin(2.0 * pi / n) * length + 2.0 * capVolume(r, n, rings), 0.8);
+    expectSolid(m, 0.5 * n * r * r * std::sin(2.0 * PI / n) * length + 2.0 * capVolume(r, n, rings), 0.8);
 }
 
 TEST(Shapes, BossesAndPocketsAddAndRemoveTheirPrisms)
@@ -388,7 +388,7 @@ namespace
         double startGap;  // the cfg start's exact distance when it is not the first pose (a design value); 0: it is
     };
 
-    std::vector<Eigen::Isometry3d> readPoses(const std::string &path)
+    std::vector<Eigen::Isometry3d> readPoseLines(const std::string &path)
     {
         std::vector<Eigen::Isometry3d> poses;
         std::ifstream in(path);
@@ -477,7 +477,7 @@ TEST(Maps, GeneratedScenesAreClosedAndSeparatedAtTheirPoses)
         // B is stored with the mean of its unique vertices at the origin.
         EXPECT_LT(meshgap::vertexMean(b).norm(), 1e-9 * b.size());
 
-        const std::vector<Eigen::Isometry3d> poses = readPoses((dir / (spec.name + ".poses")).string());
+        const std::vector<Eigen::Isometry3d> poses = readPoseLines((dir / (spec.name + ".poses")).string());
         ASSERT_EQ(poses.size(), spec.gaps.size());
         // The .cfg's states are OMPL.app states: read with meshgap's problem reader and robot loader (OMPL.app's
         // centre shift), the start state must put every robot node where the first pose puts B's node (or, for a
@@ -578,7 +578,7 @@ TEST(Maps, TwistedPathIsFreeAndCloseToTheChannel)
     }
     EXPECT_GE(slivers, b.triangles.size() / 3);
 
-    const std::vector<Eigen::Isometry3d> poses = readPoses((dir / "twisted.poses").string());
+    const std::vector<Eigen::Isometry3d> poses = readPoseLines((dir / "twisted.poses").string());
     ASSERT_GE(poses.size(), 100u);
     const meshgap::ProblemConfig cfg = meshgap::readProblemConfig((dir / "twisted.cfg").string());
     const Mesh robot = meshgap::loadRobotMesh(cfg.robot), raw = meshgap::loadMesh(cfg.robot);

@@ -40,16 +40,16 @@ namespace
     const ob::PlannerTerminationCondition UNTIL_ROUNDS_END = ob::plannerNonTerminatingCondition();
 
     /** \brief An SE(3) problem on \e scene in the box [-4, 4]^3, the clearance checker and validator installed. */
-    struct Problem
+    struct PathProblem
     {
         og::SimpleSetupPtr setup;
         ClearanceCheckerPtr checker;
     };
 
-    Problem makeProblem(const ScenePtr &scene, double extent = 4.0)
+    PathProblem makeProblem(const ScenePtr &scene, double extent = 4.0)
     {
         auto space = test::se3Space(extent);
-        Problem p;
+        PathProblem p;
         p.setup = std::make_shared<og::SimpleSetup>(space);
         const ob::SpaceInformationPtr si = p.setup->getSpaceInformation();
         p.checker = std::make_shared<ClearanceChecker>(si, scene);
@@ -94,7 +94,7 @@ TEST(ClearancePathOptimizer, NeverLessClearAndEveryAcceptedMotionIsFree)
     const int seeds = test::scaled(10, 4);  // raw and simplified inputs either way
     for (int seed = 1; seed <= seeds; ++seed)
     {
-        Problem p = makeProblem(scene);
+        PathProblem p = makeProblem(scene);
         const ob::SpaceInformationPtr si = p.setup->getSpaceInformation();
         ob::ScopedState<ob::SE3StateSpace> start(si->getStateSpace()), goal(si->getStateSpace());
         start->setXYZ(-3, -0.5, 0.3);
@@ -150,7 +150,7 @@ TEST(ClearancePathOptimizer, ReachesTheMiddleOfACorridor)
     octahedron.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
     const Mesh walls = test::merged(test::transformed(test::box(4.0, 0.5, 2.0, 2), test::translation(0, 1.5, 0)),
                                     test::transformed(test::box(4.0, 0.5, 2.0, 2), test::translation(0, -1.5, 0)));
-    Problem p = makeProblem(Scene::fromMeshes(octahedron, walls));
+    PathProblem p = makeProblem(Scene::fromMeshes(octahedron, walls));
     const ob::SpaceInformationPtr si = p.setup->getSpaceInformation();
     si->setup();
     og::PathGeometric path(si);
@@ -180,7 +180,7 @@ TEST(ClearancePathOptimizer, ReachesTheMiddleOfACorridor)
 TEST(ClearancePathOptimizer, RepeatableWithASeed)
 {
     const ScenePtr scene = slotScene();
-    Problem p = makeProblem(scene);
+    PathProblem p = makeProblem(scene);
     const ob::SpaceInformationPtr si = p.setup->getSpaceInformation();
     ob::ScopedState<ob::SE3StateSpace> start(si->getStateSpace()), goal(si->getStateSpace());
     start->setXYZ(-3, -0.5, 0.3);
@@ -209,7 +209,7 @@ TEST(ClearancePathOptimizer, RepeatableWithASeed)
 
 TEST(ClearancePathOptimizer, RefusesAnInvalidInputPath)
 {
-    Problem p = makeProblem(slotScene());
+    PathProblem p = makeProblem(slotScene());
     const ob::SpaceInformationPtr si = p.setup->getSpaceInformation();
     si->setup();
     ClearancePathOptimizer optimizer(si, p.checker);
@@ -283,7 +283,7 @@ TEST(ClearancePathOptimizer, RrtConnectPlusOptIsOnePlanner)
     const ScenePtr scene = slotScene();
     for (const ClearanceChecker::Mode mode : {ClearanceChecker::Mode::CERTIFIED, ClearanceChecker::Mode::FAST})
     {
-        Problem p = makeProblem(scene);
+        PathProblem p = makeProblem(scene);
         const ob::SpaceInformationPtr si = p.setup->getSpaceInformation();
         if (mode == ClearanceChecker::Mode::FAST)
         {

@@ -93,7 +93,7 @@ namespace meshgap
             std::vector<std::shared_ptr<test::FclModel>> links_, obstacles_;
         };
 
-        struct Tally
+        struct FclSceneTally
         {
             std::size_t states{0}, colliding{0}, free{0};
         };
@@ -101,7 +101,7 @@ namespace meshgap
         /** \brief FclRobotScene on the surfaces answers as FCL pair by pair: the same verdict, the same least
             distance. */
         void expectPairByPair(const RobotScenePtr &scene, const std::vector<std::vector<double>> &states,
-                              Tally &tally)
+                              FclSceneTally &tally)
         {
             const FclRobotScene fcl(scene, false);
             EXPECT_EQ(fcl.numLinkObjects(), scene->links().size());
@@ -204,7 +204,7 @@ namespace meshgap
     {
         const RobotProblem problem = armFixture();
         const std::vector<std::vector<double>> states = armStates(problem, 400, 11);
-        Tally tally;
+        FclSceneTally tally;
         expectPairByPair(std::make_shared<RobotScene>(problem.robot, problem.obstacles), states, tally);
         // A collision matrix that allows every link against the first obstacle: those pairs are never asked.
         std::vector<LinkPair> allowed;
@@ -252,7 +252,7 @@ namespace meshgap
             const double spread = 0.05 * config.volume->diagonal().norm();
             std::mt19937 rng(17);
             std::normal_distribution<double> near(0.0, 1.0);
-            Tally tally;
+            FclSceneTally tally;
             for (std::size_t n = 0; n < 300; ++n)
             {
                 Eigen::Vector3d t = config.start.translation();
@@ -338,7 +338,7 @@ namespace meshgap
         // FCL's distance between the UR5's meshes costs a large part of a second a state: a few states.
         const std::vector<std::vector<double>> states =
             armStates(problem, static_cast<std::size_t>(test::scaled(12, 8)), 14);
-        Tally tally;
+        FclSceneTally tally;
         expectPairByPair(scene, states, tally);
         EXPECT_GE(tally.colliding, 2u);
         EXPECT_GE(tally.free, 2u);  // the start and the goal, at least

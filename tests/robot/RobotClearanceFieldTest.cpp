@@ -35,7 +35,7 @@ namespace meshgap
     namespace
     {
         /** \brief OMPL's seed for the generators made from now on (OMPL's complaint that others exist silenced). */
-        void seed(std::uint_fast32_t value)
+        void seedOmpl(std::uint_fast32_t value)
         {
             const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
             ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
@@ -81,7 +81,7 @@ namespace meshgap
             at least \e least free states and 90 % of them matching. */
         void expectGradientMatches(const Field &f, unsigned seed, std::size_t least)
         {
-            meshgap::seed(seed);
+            meshgap::seedOmpl(seed);
             ob::StateSamplerPtr sampler = f.si->allocStateSampler();
             ob::State *s = f.si->allocState(), *t = f.si->allocState();
             const ob::StateSpace &space = *f.si->getStateSpace();
@@ -162,7 +162,7 @@ namespace meshgap
         const Field f(test::treeWithPayload(), test::postsAroundTree());
         MaxMinClearanceObjective ours(f.si);
         ob::MaximizeMinClearanceObjective ompls(f.si);
-        seed(6);
+        seedOmpl(6);
         ob::StateSamplerPtr sampler = f.si->allocStateSampler();
         ob::State *a = f.si->allocState(), *b = f.si->allocState();
         int free = 0, compared = 0;
@@ -199,7 +199,7 @@ namespace meshgap
         const Field f(problem.robot, problem.obstacles);
         const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
         ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
-        seed(1);
+        seedOmpl(1);
         og::SimpleSetup setup(f.si);
         ob::ScopedState<> start(f.si), goal(f.si);
         robotStateFromVector(*f.si->getStateSpace(), problem.start, start.get());

@@ -25,8 +25,8 @@ namespace meshgap
     namespace
     {
         const std::string RESOURCES = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot";
-        const std::string ARM = RESOURCES + "/problems/arm2.urdf";
-        const std::string CUBE = RESOURCES + "/meshgap_test_description/meshes/cube.obj";
+        const std::string PROBLEM_ARM = RESOURCES + "/problems/arm2.urdf";
+        const std::string PROBLEM_CUBE = RESOURCES + "/meshgap_test_description/meshes/cube.obj";
 
         /** \brief A folder of its own per test process, with a world of two unit cubes (x in [2, 3] and [-3, -2]). */
         class RobotProblemFiles : public ::testing::Test
@@ -92,7 +92,7 @@ namespace meshgap
         std::vector<std::string> armLines(const std::string &start, const std::string &extra = "")
         {
             return {"[problem]",
-                    "robot.urdf = " + ARM,
+                    "robot.urdf = " + PROBLEM_ARM,
                     "world = world.obj",
                     "start.joints = " + start,
                     "goal.joints = -0.5 0.25",
@@ -110,7 +110,7 @@ namespace meshgap
 
     TEST_F(RobotProblemFiles, UrdfProblemYieldsTheArmItsPayloadStatesAndWorld)
     {
-        auto lines = armLines("0.3 -0.7", "attach = " + CUBE + " hand 0.01 0 0 0 0 0.6 0.8");
+        auto lines = armLines("0.3 -0.7", "attach = " + PROBLEM_CUBE + " hand 0.01 0 0 0 0 0.6 0.8");
         lines.insert(lines.begin() + 2, "robot.srdf = " + RESOURCES + "/problems/arm2.srdf");
         const RobotProblem p = readRobotProblem(cfg(lines));
         ASSERT_TRUE(p.urdf);
@@ -164,12 +164,26 @@ namespace meshgap
 
     TEST_F(RobotProblemFiles, NumberedBodiesInSE3AreCentredAndPosedAsOmplAppDoes)
     {
-        const std::string path = cfg({"[problem]", "name = swap", "robot.1 = " + CUBE, "robot.2 = " + CUBE,
-                                      "world = world.obj", "start.1.x = -1", "start.1.y = 0", "start.1.z = 0.5",
-                                      "start.1.theta = 1.5707963267948966", "start.1.axis.x = 0",
-                                      "start.1.axis.z = 2", "start.2.x = 1", "start.2.y = 0", "start.2.z = 0.5",
-                                      "goal.1.x = 1", "goal.1.y = 0", "goal.1.z = 0.5", "goal.2.x = -1",
-                                      "goal.2.y = 0", "goal.2.z = 0.5"});
+        const std::string path = cfg({"[problem]",
+                                      "name = swap",
+                                      "robot.1 = " + PROBLEM_CUBE,
+                                      "robot.2 = " + PROBLEM_CUBE,
+                                      "world = world.obj",
+                                      "start.1.x = -1",
+                                      "start.1.y = 0",
+                                      "start.1.z = 0.5",
+                                      "start.1.theta = 1.5707963267948966",
+                                      "start.1.axis.x = 0",
+                                      "start.1.axis.z = 2",
+                                      "start.2.x = 1",
+                                      "start.2.y = 0",
+                                      "start.2.z = 0.5",
+                                      "goal.1.x = 1",
+                                      "goal.1.y = 0",
+                                      "goal.1.z = 0.5",
+                                      "goal.2.x = -1",
+                                      "goal.2.y = 0",
+                                      "goal.2.z = 0.5"});
         const RobotProblem p = readRobotProblem(path);
         EXPECT_FALSE(p.urdf);
         EXPECT_FALSE(p.planar);
@@ -197,9 +211,9 @@ namespace meshgap
     TEST_F(RobotProblemFiles, NumberedBodiesWithoutZAreSE2)
     {
         const RobotProblem p = readRobotProblem(
-            cfg({"[problem]", "robot.1 = " + CUBE, "robot.2 = " + CUBE, "world = world.obj", "start.1.x = -1",
-                 "start.1.y = 0.5", "start.1.theta = 0.25", "start.2.x = 1", "start.2.y = -0.5", "volume.min.x = -4",
-                 "volume.min.y = -2", "volume.max.x = 4", "volume.max.y = 2"}));
+            cfg({"[problem]", "robot.1 = " + PROBLEM_CUBE, "robot.2 = " + PROBLEM_CUBE, "world = world.obj",
+                 "start.1.x = -1", "start.1.y = 0.5", "start.1.theta = 0.25", "start.2.x = 1", "start.2.y = -0.5",
+                 "volume.min.x = -4", "volume.min.y = -2", "volume.max.x = 4", "volume.max.y = 2"}));
         EXPECT_TRUE(p.planar);
         const auto *robot = dynamic_cast<const MultiBodyRobot *>(p.robot.get());
         ASSERT_NE(robot, nullptr);
@@ -222,7 +236,7 @@ namespace meshgap
         EXPECT_TRUE(has(e, "problem.cfg:4:") && has(e, "'x' is not a finite number")) << e;
         e = robotError(cfg(armLines("0.3 2.5")));
         EXPECT_TRUE(has(e, "problem.cfg:4:") && has(e, "joint 'elbow'") && has(e, "outside its limits")) << e;
-        e = robotError(cfg(armLines("0 0", "attach = " + CUBE + " claw 0 0 0 0 0 0 1")));
+        e = robotError(cfg(armLines("0 0", "attach = " + PROBLEM_CUBE + " claw 0 0 0 0 0 0 1")));
         EXPECT_TRUE(has(e, "problem.cfg:6: attach: the robot has no link 'claw'")) << e;
         e = robotError(cfg(armLines("0 0", "attach = nothing.obj hand 0 0 0 0 0 0 1")));
         EXPECT_TRUE(has(e, "problem.cfg:6:") && has(e, "nothing.obj' does not exist")) << e;
@@ -233,10 +247,11 @@ namespace meshgap
         lines[1] = "robot.urdf = no_such.urdf";
         e = robotError(cfg(lines));
         EXPECT_TRUE(has(e, "problem.cfg:2:") && has(e, "no_such.urdf' does not exist")) << e;
-        e = robotError(cfg({"[problem]", "robot.1 = " + CUBE, "robot.3 = " + CUBE, "world = world.obj",
+        e = robotError(cfg({"[problem]", "robot.1 = " + PROBLEM_CUBE, "robot.3 = " + PROBLEM_CUBE, "world = world.obj",
                             "start.1.x = 0", "start.1.y = 0"}));
         EXPECT_TRUE(has(e, "robot.3 is given but robot.2 is not")) << e;
-        e = robotError(cfg({"[problem]", "robot = " + CUBE, "world = world.obj", "start.x = 0", "start.y = 0"}));
+        e = robotError(
+            cfg({"[problem]", "robot = " + PROBLEM_CUBE, "world = world.obj", "start.x = 0", "start.y = 0"}));
         EXPECT_TRUE(has(e, "problem.cfg:2:") && has(e, "single-body problem")) << e;
     }
 
@@ -258,8 +273,8 @@ namespace meshgap
                       std::string::npos)
                 << e.what();
         }
-        const std::string single =
-            cfg({"[problem]", "robot = " + CUBE, "world = world.obj", "start.x = 0", "start.y = 0"}, "single.cfg");
+        const std::string single = cfg(
+            {"[problem]", "robot = " + PROBLEM_CUBE, "world = world.obj", "start.x = 0", "start.y = 0"}, "single.cfg");
         const Problem asSingle = readProblem(single);
         ASSERT_TRUE(asSingle.rigidBody);
         EXPECT_FALSE(asSingle.robot);
@@ -336,20 +351,19 @@ namespace meshgap
 
     TEST_F(RobotProblemFiles, APlanarSingleBodyIsARobotOfOneLinkInSE2)
     {
-        const std::string path = cfg({"[problem]", "robot = " + CUBE, "world = world.obj", "start.x = -0.5",
-                                      "start.y = 0.5", "start.theta = 0.3", "goal.x = 0.5", "goal.y = 0.5",
-                                      "goal.theta = 2.5", "volume.min.x = -5", "volume.min.y = -5",
-                                      "volume.max.x = 5", "volume.max.y = 5"},
-                                     "planar.cfg");
+        const std::string path =
+            cfg({"[problem]", "robot = " + PROBLEM_CUBE, "world = world.obj", "start.x = -0.5", "start.y = 0.5",
+                 "start.theta = 0.3", "goal.x = 0.5", "goal.y = 0.5", "goal.theta = 2.5", "volume.min.x = -5",
+                 "volume.min.y = -5", "volume.max.x = 5", "volume.max.y = 5"},
+                "planar.cfg");
         const ProblemConfig config = readProblemConfig(path);
         ASSERT_TRUE(config.planar);
         expectOneLinkRobotAnswersAsTheScene(config, 80, 2);
         EXPECT_EQ(readAnyRobotProblem(path).robot->description(), "one body in SE(2)");
         // A control problem's body is a robot of one link too: its pose, the geometric part of the car's state.
-        const std::string car =
-            cfg({"[problem]", "robot = " + CUBE, "world = world.obj", "start.x = 0", "start.y = 0.5",
-                 "start.theta = 0.1", "control = kinematic_car"},
-                "car.cfg");
+        const std::string car = cfg({"[problem]", "robot = " + PROBLEM_CUBE, "world = world.obj", "start.x = 0",
+                                     "start.y = 0.5", "start.theta = 0.1", "control = kinematic_car"},
+                                    "car.cfg");
         const RobotProblem asCar = readAnyRobotProblem(car);
         EXPECT_EQ(asCar.robot->description(), "one body in SE(2)");
         ASSERT_EQ(asCar.start.size(), 3u);

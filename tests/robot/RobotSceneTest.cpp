@@ -30,7 +30,7 @@ namespace meshgap
     namespace
     {
         /** \brief A C-shaped plate (concave), \e size across, opening towards +x, \e size / 4 thick, centred. */
-        Mesh cShape(double size)
+        Mesh cShapeFixture(double size)
         {
             const double w = size, t = size / 4;
             const Polygon2d outer = {{0, 0}, {w, 0}, {w, t}, {t, t}, {t, w - t}, {w, w - t}, {w, w}, {0, w}};
@@ -39,7 +39,7 @@ namespace meshgap
             return m;
         }
 
-        Eigen::Isometry3d pose(const Eigen::Matrix3d &R, const Eigen::Vector3d &p)
+        Eigen::Isometry3d robotScenePose(const Eigen::Matrix3d &R, const Eigen::Vector3d &p)
         {
             Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
             X.linear() = R;
@@ -51,9 +51,10 @@ namespace meshgap
             pillar and a plate. Nothing in it is fitted to one robot. */
         std::vector<BodyConstPtr> world(double r, const Eigen::Vector3d &at)
         {
-            Mesh fixture = cShape(0.5 * r);
-            transformMesh(fixture, pose(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix(),
-                                        at + Eigen::Vector3d(0.55 * r, 0.0, 0.3 * r)));
+            Mesh fixture = cShapeFixture(0.5 * r);
+            transformMesh(fixture,
+                          robotScenePose(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix(),
+                                         at + Eigen::Vector3d(0.55 * r, 0.0, 0.3 * r)));
             Mesh pillar = makeBox(Eigen::Vector3d(0.15 * r, 0.15 * r, 0.8 * r), 0.2 * r);
             transformMesh(pillar, test::translation(at.x() - 0.4 * r, at.y() + 0.5 * r, at.z() + 0.4 * r));
             Mesh plate = makeBox(Eigen::Vector3d(0.4 * r, 0.6 * r, 0.03 * r), 0.2 * r);
@@ -227,7 +228,7 @@ namespace meshgap
 
     TEST(RobotScene, OneRigidBodyGivesTodaysSceneAnswers)
     {
-        const BodyConstPtr robotBody = Body::build(cShape(1.0));
+        const BodyConstPtr robotBody = Body::build(cShapeFixture(1.0));
         // Lowered so that the plane z = 0, where an SE(2) robot moves, cuts every obstacle.
         const std::vector<BodyConstPtr> obstacles = world(2.0, Eigen::Vector3d(0.0, 0.0, -0.5));
         const Scene scene(robotBody, obstacles);
@@ -276,7 +277,7 @@ namespace meshgap
 #else
         Mesh plain = test::box(0.3, 0.2, 0.1);
         const auto robot = std::make_shared<MultiBodyRobot>(std::vector<MultiBodyRobot::Part>{
-            {"c", Body::build(cShape(1.0)), RigidSpace::SE3}, {"box", Body::build(plain), RigidSpace::SE2}});
+            {"c", Body::build(cShapeFixture(1.0)), RigidSpace::SE3}, {"box", Body::build(plain), RigidSpace::SE2}});
         ASSERT_EQ(robot->dimension(), 10u);
         const RobotScene scene(robot, world(2.0, Eigen::Vector3d::Zero()));
         ASSERT_EQ(scene.selfPairs().size(), 1u);
@@ -305,7 +306,7 @@ namespace meshgap
         options.solids = false;  // the oracle is FCL on the same triangles
         const UrdfRobotPtr robot = UrdfRobot::load(
             std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot/meshgap_test_description/urdf/tree.urdf", options);
-        Mesh payload = cShape(0.1);
+        Mesh payload = cShapeFixture(0.1);
         robot->attach("payload", payload, "tool", test::translation(0.0, 0.0, 0.05));
         const std::vector<std::vector<double>> states = randomJointStates(*robot, test::scaled(300, 40), 5);
         const RobotScene scene(robot, world(reach(*robot, std::vector<double>(5, 0.0)), Eigen::Vector3d::Zero()));
@@ -336,7 +337,7 @@ namespace meshgap
         readSrdf(*robot, srdf);
         const std::vector<double> zero(robot->dimension(), 0.0);
         const double r = reach(*robot, zero);
-        robot->attach("payload", cShape(0.15 * r), "tool0", test::translation(0.0, 0.0, 0.1 * r));
+        robot->attach("payload", cShapeFixture(0.15 * r), "tool0", test::translation(0.0, 0.0, 0.1 * r));
         // MESHGAP_ROBOT_STATES sets the count (10,000 for the full check; 1,000 by default, 40 under test::scale() < 1:
         // each state is every pair's exact distance and FCL's).
         const char *count = std::getenv("MESHGAP_ROBOT_STATES");

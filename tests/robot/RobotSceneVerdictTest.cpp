@@ -32,7 +32,7 @@ namespace meshgap
 {
     namespace
     {
-        Eigen::Matrix3d randomRotation(std::mt19937 &rng)
+        Eigen::Matrix3d verdictRandomRotation(std::mt19937 &rng)
         {
             std::normal_distribution<double> n(0.0, 1.0);
             return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
@@ -60,7 +60,7 @@ namespace meshgap
         }
 
         /** \brief How the verdict compared with the exact query over a set of states. */
-        struct Tally
+        struct VerdictTally
         {
             std::size_t states{0}, colliding{0}, free{0}, pairs{0}, pairsColliding{0};
         };
@@ -69,7 +69,7 @@ namespace meshgap
             answered exactly: its sign is the pair's verdict). States within \e grazing of a contact are not
             called either way. */
         void expectVerdictIsExact(const RobotScene &scene, const std::vector<double> &q, RobotWarmStart &warm,
-                                  Tally &tally, double grazing = 1e-9, bool pairByPair = true)
+                                  VerdictTally &tally, double grazing = 1e-9, bool pairByPair = true)
         {
             RobotRequest every;
             every.everyPair = pairByPair;
@@ -133,9 +133,9 @@ namespace meshgap
         std::size_t apart = 0, overlapping = 0, proven = 0;
         for (int trial = 0; trial < 3000; ++trial)
         {
-            WorldBox a{Eigen::Vector3d(offset(rng), offset(rng), offset(rng)), randomRotation(rng),
+            WorldBox a{Eigen::Vector3d(offset(rng), offset(rng), offset(rng)), verdictRandomRotation(rng),
                        Eigen::Vector3d(size(rng), size(rng), size(rng))};
-            WorldBox b{Eigen::Vector3d(offset(rng), offset(rng), offset(rng)), randomRotation(rng),
+            WorldBox b{Eigen::Vector3d(offset(rng), offset(rng), offset(rng)), verdictRandomRotation(rng),
                        Eigen::Vector3d(size(rng), size(rng), size(rng))};
             Primitive pa, pb;
             pa.size = 2.0 * a.half;
@@ -182,7 +182,7 @@ namespace meshgap
         std::mt19937 rng(31);
         std::uniform_real_distribution<double> u(-1.0, 1.0);
         RobotWarmStart warm;
-        Tally tally, near;
+        VerdictTally tally, near;
         std::vector<std::vector<double>> free, hit;
         for (int trial = 0; trial < test::scaled(400, 120); ++trial)
         {
@@ -236,7 +236,7 @@ namespace meshgap
 #endif
             std::mt19937 rng(5);
             RobotWarmStart warm;
-            Tally tally, near;
+            VerdictTally tally, near;
             std::vector<std::vector<double>> free, hit;
             const std::size_t n = problem.robot->dimension();
             for (int trial = 0; trial < test::scaled(150, 30); ++trial)

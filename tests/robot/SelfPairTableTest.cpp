@@ -39,7 +39,7 @@ namespace meshgap
         }
 
         /** \brief A state within the robot's limits (an angle without limits within [-pi, pi)). */
-        std::vector<double> randomState(const RobotModel &robot, std::mt19937 &rng)
+        std::vector<double> selfPairRandomState(const RobotModel &robot, std::mt19937 &rng)
         {
             std::vector<double> q(robot.dimension());
             for (std::size_t v = 0; v < q.size(); ++v)
@@ -76,7 +76,7 @@ namespace meshgap
                 std::vector<double> claimed, hit;
                 for (int s = 0; s < states; ++s)
                 {
-                    const std::vector<double> q = randomState(robot, rng);
+                    const std::vector<double> q = selfPairRandomState(robot, rng);
                     const double d = pairDistance(scene, p, q);
                     const bool says = table.apartAt(p, q.data());
                     ++seen.states;
@@ -109,7 +109,7 @@ namespace meshgap
                 {
                     // A segment through a random state, up to a radian long in each number (an angle's across
                     // -pi and pi too): where claimed, free at 24 states along it, its ends included.
-                    const std::vector<double> middle = randomState(robot, rng);
+                    const std::vector<double> middle = selfPairRandomState(robot, rng);
                     std::vector<double> step(middle.size());
                     for (double &x : step)
                         x = std::uniform_real_distribution<double>(-1.0, 1.0)(rng);
@@ -133,7 +133,7 @@ namespace meshgap
                 }
                 for (int s = 0; s < states / 8; ++s)
                 {
-                    const std::vector<double> middle = randomState(robot, rng);
+                    const std::vector<double> middle = selfPairRandomState(robot, rng);
                     std::vector<double> reach(middle.size());
                     for (double &r : reach)
                         r = std::uniform_real_distribution<double>(0.0, 0.3)(rng);
@@ -179,7 +179,7 @@ namespace meshgap
             std::size_t colliding = 0;
             for (int s = 0; s < states; ++s)
             {
-                const std::vector<double> q = randomState(with.robot(), rng);
+                const std::vector<double> q = selfPairRandomState(with.robot(), rng);
                 const bool hit = without.inCollision(q.data(), q.size(), w2);
                 colliding += hit;
                 ASSERT_EQ(with.inCollision(q.data(), q.size(), w1), hit) << "state " << s;

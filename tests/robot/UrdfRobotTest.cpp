@@ -22,8 +22,8 @@ namespace meshgap
 {
     namespace
     {
-        const std::string RESOURCES = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot";
-        const std::string TREE = RESOURCES + "/meshgap_test_description/urdf/tree.urdf";
+        const std::string URDF_RESOURCES = std::string(MESHGAP_TEST_RESOURCES_DIR) + "/robot";
+        const std::string TREE = URDF_RESOURCES + "/meshgap_test_description/urdf/tree.urdf";
 
         // Rotations written out element by element, and the Rodrigues formula, independent of Eigen's geometry.
         Eigen::Matrix3d rotX(double a)
@@ -45,7 +45,7 @@ namespace meshgap
             return R;
         }
         /** \brief URDF's rpy: roll about x, then pitch about y, then yaw about z, all fixed axes. */
-        Eigen::Matrix3d rpy(double r, double p, double y)
+        Eigen::Matrix3d rpyMatrix(double r, double p, double y)
         {
             return rotZ(y) * rotY(p) * rotX(r);
         }
@@ -57,7 +57,7 @@ namespace meshgap
             return Eigen::Matrix3d::Identity() + std::sin(a) * K + (1 - std::cos(a)) * K * K;
         }
         /** \brief The homogeneous matrix of rotation R then translation p. */
-        Eigen::Matrix4d T(const Eigen::Matrix3d &R, double x, double y, double z)
+        Eigen::Matrix4d homogeneous(const Eigen::Matrix3d &R, double x, double y, double z)
         {
             Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
             M.block<3, 3>(0, 0) = R;
@@ -66,13 +66,13 @@ namespace meshgap
             M(2, 3) = z;
             return M;
         }
-        Eigen::Matrix4d T(double x, double y, double z)
+        Eigen::Matrix4d homogeneous(double x, double y, double z)
         {
-            return T(Eigen::Matrix3d::Identity(), x, y, z);
+            return homogeneous(Eigen::Matrix3d::Identity(), x, y, z);
         }
-        Eigen::Matrix4d R(const Eigen::Matrix3d &rotation)
+        Eigen::Matrix4d rotationOnly(const Eigen::Matrix3d &rotation)
         {
-            return T(rotation, 0, 0, 0);
+            return homogeneous(rotation, 0, 0, 0);
         }
 
         /** \brief tree.urdf's frames at q = (wrist_roll, shoulder, extend, spin, tilt), composed by hand from the
@@ -82,16 +82,19 @@ namespace meshgap
             const double wr = q[0], sh = q[1], ex = q[2], sp = q[3], ti = q[4];
             std::map<std::string, Eigen::Matrix4d> X;
             X["base"] = Eigen::Matrix4d::Identity();
-            X["arm"] = T(rotZ(0.5), 0, 0, 0.1) * R(rotZ(sh));
-            X["slider"] = X["arm"] * T(rotX(0.3), 0.05, 0, 0.45) * T(ex, 0, 0);
-            X["wrist"] = X["slider"] * T(rotY(0.4), 0.2, 0, 0.05) * R(rotAxis(Eigen::Vector3d(1, 0, 1), wr));
-            X["tool"] = X["wrist"] * T(rpy(0.1, 0.2, 0.3), 0, 0, 0.06);
-            X["flange"] = X["tool"] * T(0.02, 0, 0);
-            X["finger"] = X["flange"] * T(0, 0.05, 0.02) * R(rotX(-0.5 * sh + 0.2));  // mimics shoulder
-            X["follower"] = X["arm"] * T(0, -0.1, 0) * T(0, 0, 2 * ex + 0.01);      // mimics extend; unit axis
-            X["camera"] = T(rotZ(1.0), 0.15, 0.1, 0.1);
-            X["spinner"] = X["camera"] * T(0, 0, 0.03) * R(rotZ(sp));
-            X["tip"] = X["spinner"] * T(rotY(-0.2), 0.03, 0, 0) * R(rotY(ti));
+            X["arm"] = homogeneous(rotZ(0.5), 0, 0, 0.1) * rotationOnly(rotZ(sh));
+            X["slider"] = X["arm"] * homogeneous(rotX(0.3), 0.05, 0, 0.45) * homogeneous(ex, 0, 0);
+            X["wrist"] = X["slider"] * homogeneous(rotY(0.4), 0.2, 0, 0.05) *
+                         rotationOnly(rotAxis(Eigen::Vector3d(1, 0, 1), wr));
+            X["tool"] = X["wrist"] * homogeneous(rpyMatrix(0.1, 0.2, 0.3), 0, 0, 0.06);
+            X["flange"] = X["tool"] * homogeneous(0.02, 0, 0);
+            X["finger"] =
+                X["flange"] * homogeneous(0, 0.05, 0.02) * rotationOnly(rotX(-0.5 * sh + 0.2));  // mimics shoulder
+            X["follower"] =
+                X["arm"] * homogeneous(0, -0.1, 0) * homogeneous(0, 0, 2 * ex + 0.01);  // mimics extend; unit axis
+            X["camera"] = homogeneous(rotZ(1.0), 0.15, 0.1, 0.1);
+            X["spinner"] = X["camera"] * homogeneous(0, 0, 0.03) * rotationOnly(rotZ(sp));
+            X["tip"] = X["spinner"] * homogeneous(rotY(-0.2), 0.03, 0, 0) * rotationOnly(rotY(ti));
             return X;
         }
 
@@ -172,7 +175,7 @@ namespace meshgap
         const std::vector<double> q = {1, 2, 3, 0, 0, 2, 0, 0.1, 0.2, 0.05, 0.3, 0.4};
         std::vector<Eigen::Isometry3d> frames;
         robot->framePoses(q.data(), q.size(), frames);
-        const Eigen::Matrix4d base = T(rotZ(M_PI), 1, 2, 3);
+        const Eigen::Matrix4d base = homogeneous(rotZ(M_PI), 1, 2, 3);
         const auto hand = handFrames({0.1, 0.2, 0.05, 0.3, 0.4});
         for (std::size_t f = 0; f < frames.size(); ++f)
             EXPECT_LT((frames[f].matrix() - base * hand.at(robot->frames()[f].name)).cwiseAbs().maxCoeff(), 1e-12)
@@ -246,7 +249,7 @@ namespace meshgap
         EXPECT_FALSE(robot->isAllowed(payload, robot->findLink("arm")));
         const std::vector<double> q = {0.3, -0.2, 0.1, 0.5, 0.6};
         const std::vector<Eigen::Isometry3d> links = robot->linkPoses(q);
-        const Eigen::Matrix4d hand = handFrames(q).at("tool") * T(rotY(0.7), 0.01, 0.02, 0.03);
+        const Eigen::Matrix4d hand = handFrames(q).at("tool") * homogeneous(rotY(0.7), 0.01, 0.02, 0.03);
         EXPECT_LT((links[payload].matrix() - hand).cwiseAbs().maxCoeff(), 1e-12);
         // On a link with geometry: that link.
         const std::size_t second = robot->attach("part2", test::box(0.01, 0.01, 0.01), "arm", X);
@@ -257,7 +260,7 @@ namespace meshgap
 
     TEST(UrdfRobot, PackageUrisResolveThroughTheSearchPathThenTheDescriptionsFolders)
     {
-        const std::string package = RESOURCES + "/meshgap_test_description";
+        const std::string package = URDF_RESOURCES + "/meshgap_test_description";
         const std::string folder = package + "/urdf";
         const std::string cube = "package://meshgap_test_description/meshes/cube.obj";
         // From the URDF's folder and its parents, with no search path.
@@ -332,7 +335,7 @@ namespace meshgap
         expectError("not_xml.urdf", "<robot name=\"x\"><link name=\"a\">", "cannot read the URDF");
 
         // A missing mesh names the link and the file it looked for (the package is found beside the resources).
-        const std::string missing = RESOURCES + "/missing_mesh.urdf";
+        const std::string missing = URDF_RESOURCES + "/missing_mesh.urdf";
         const std::string message = errorOf([&] { UrdfRobot::load(missing); });
         EXPECT_NE(message.find(missing), std::string::npos) << message;
         EXPECT_NE(message.find("link 'body'"), std::string::npos) << message;

@@ -17,16 +17,16 @@ namespace fs = std::filesystem;
 
 namespace
 {
-    struct Problem
+    struct AppProblem
     {
         std::string name;
         ProblemConfig config;
         std::vector<Eigen::Isometry3d> path;
     };
 
-    std::vector<Problem> problemsWithPaths()
+    std::vector<AppProblem> problemsWithPaths()
     {
-        std::vector<Problem> problems;
+        std::vector<AppProblem> problems;
         const fs::path dir = fs::path(MESHGAP_SHARED_DATA_DIR) / "omplapp";
         for (const char *name : {"Easy", "cubicles", "Twistycool"})
             if (fs::exists(dir / (std::string(name) + ".cfg")) && fs::exists(dir / (std::string(name) + ".path")))
@@ -43,7 +43,7 @@ TEST(OmplAppProblems, SolutionPathsAreCollisionFreeWithOurMeshesAndConventions)
     if (problems.empty())
         GTEST_SKIP() << "OMPL.app problems not found under " << MESHGAP_SHARED_DATA_DIR << "; skipping";
     std::size_t uncenteredCollisions = 0;
-    for (const Problem &p : problems)
+    for (const AppProblem &p : problems)
     {
         const Mesh world = loadMesh(p.config.world), robot = loadRobotMesh(p.config.robot);
         const auto fw = test::fclModel(world), fr = test::fclModel(robot);
@@ -63,7 +63,7 @@ TEST(OmplAppProblems, EnumerationAtStartIsNeverBelowTheExactDistance)
     const auto problems = problemsWithPaths();
     if (problems.empty())
         GTEST_SKIP() << "OMPL.app problems not found under " << MESHGAP_SHARED_DATA_DIR << "; skipping";
-    for (const Problem &p : problems)
+    for (const AppProblem &p : problems)
     {
         const Mesh world = loadMesh(p.config.world), robot = loadRobotMesh(p.config.robot);
         const BodyPtr a = Body::build(world), b = Body::build(robot);  // default grid size

@@ -75,7 +75,7 @@ namespace
         std::vector<double> perObstacle;
     };
 
-    BruteForce bruteForce(const Scene &scene, const Eigen::Isometry3d &X_WR)
+    BruteForce sceneBruteForce(const Scene &scene, const Eigen::Isometry3d &X_WR)
     {
         BruteForce b;
         for (const BodyConstPtr &obstacle : scene.obstacles())
@@ -175,7 +175,7 @@ TEST(Scene, DistanceIsTheMinimumOverAllObstaclesAtRandomPoses)
     std::size_t collisions = 0, free = 0, pairs = 0;
     for (const Eigen::Isometry3d &X : randomPoses(1, 200))
     {
-        const BruteForce oracle = bruteForce(*scene, X);
+        const BruteForce oracle = sceneBruteForce(*scene, X);
         SceneWarmStart cold;
         SceneResult r;
         scene->distance(X, SceneRequest(), cold, r);
@@ -634,7 +634,7 @@ TEST(Scene, ARobotSharingAnotherScenesObstaclesGetsTheBruteForceAnswers)
     for (const Eigen::Isometry3d &X : randomPoses(11, 120))
         for (const Scene *scene : std::initializer_list<const Scene *>{first.get(), &second})
         {
-            const BruteForce oracle = bruteForce(*scene, X);
+            const BruteForce oracle = sceneBruteForce(*scene, X);
             SceneResult r;
             scene->distance(X, SceneRequest(), warm, r);
             ASSERT_EQ(r.inCollision, oracle.inCollision);

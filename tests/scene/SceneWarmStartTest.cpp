@@ -17,8 +17,8 @@ using namespace meshgap;
 
 namespace
 {
-    Eigen::Isometry3d pose(double x, double y, double z, double angle = 0.0,
-                           const Eigen::Vector3d &axis = Eigen::Vector3d::UnitZ())
+    Eigen::Isometry3d warmPose(double x, double y, double z, double angle = 0.0,
+                               const Eigen::Vector3d &axis = Eigen::Vector3d::UnitZ())
     {
         Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
         X.translation() = Eigen::Vector3d(x, y, z);
@@ -30,15 +30,15 @@ namespace
     ScenePtr clutter()
     {
         const Mesh robot = test::merged(test::box(0.8, 0.15, 0.2, 2),
-                                        test::transformed(test::box(0.15, 0.6, 0.2, 2), pose(0.65, 0.45, 0)));
+                                        test::transformed(test::box(0.15, 0.6, 0.2, 2), warmPose(0.65, 0.45, 0)));
         std::mt19937 rng(5);
         std::uniform_real_distribution<double> u(-5.0, 5.0), s(0.3, 1.0);
         Mesh world = test::icosphere(1.0, 2);
         for (int i = 0; i < 11; ++i)
         {
             const Mesh part = i % 2 ? test::box(s(rng), s(rng), s(rng), 2) : test::icosphere(s(rng), 2);
-            world = test::merged(world, test::transformed(part, pose(u(rng), u(rng), u(rng), u(rng),
-                                                                      Eigen::Vector3d(u(rng), u(rng), 1.0))));
+            world = test::merged(world, test::transformed(part, warmPose(u(rng), u(rng), u(rng), u(rng),
+                                                                         Eigen::Vector3d(u(rng), u(rng), 1.0))));
         }
         BodyOptions options;
         options.gridSize = 0.3;
@@ -94,7 +94,7 @@ namespace
 
     /** \brief Every pose of \e poses asked warm (one warm start of \e capacity certificates carried along) and cold;
         the answers must agree bit for bit (verdict, signed distance, witnesses), and the work of each is kept. */
-    StreamCost run(const Scene &scene, const std::vector<Eigen::Isometry3d> &poses, std::size_t capacity)
+    StreamCost streamCostRun(const Scene &scene, const std::vector<Eigen::Isometry3d> &poses, std::size_t capacity)
     {
         StreamCost cost(capacity);
         for (std::size_t i = 0; i < poses.size(); ++i)
@@ -132,7 +132,7 @@ TEST(SceneWarmStart, ChoosesTheNearestCertificateByTheMotionBound)
     const double near = 0.9 * SceneWarmStart::COHERENCE, far = 1.5 * SceneWarmStart::COHERENCE;
     SceneWarmStart warm(2);
     using Use = SceneWarmStart::Use;
-    auto at = [](double x, double y) { return pose(x, y, 0.0); };
+    auto at = [](double x, double y) { return warmPose(x, y, 0.0); };
     EXPECT_EQ(warm.choose(at(0, 0), centre, 1.0), Use::COLD);  // nothing known: cold, and nothing written
     EXPECT_EQ(warm.choose(at(near, 0), centre, 1.0), Use::WRITE);  // near the last pose: a run starts
     warm.stamp(at(near, 0));
@@ -149,7 +149,7 @@ TEST(SceneWarmStart, ChoosesTheNearestCertificateByTheMotionBound)
     EXPECT_TRUE(warm.pose.isApprox(at(10 + near, 0)));
     warm.stamp(at(10 + near, near / 2));
     // A rotation counts by the distance it moves the sphere's points: a quarter turn moves them sqrt(2) radii.
-    EXPECT_EQ(warm.choose(pose(10 + near, near / 2, 0, M_PI / 2), centre, 1.0), Use::COLD);
+    EXPECT_EQ(warm.choose(warmPose(10 + near, near / 2, 0, M_PI / 2), centre, 1.0), Use::COLD);
     // A third region with capacity 2: the least recently used certificate (the first region's) goes.
     EXPECT_EQ(warm.choose(at(-10, 0), centre, 1.0), Use::COLD);
     EXPECT_EQ(warm.choose(at(-10, far - near), centre, 1.0), Use::WRITE);
@@ -187,8 +187,8 @@ TEST(SceneWarmStart, NeverCostsMoreThanColdOnUnrelatedPosesAndPaysAlongPaths)
     }
     // Alternating: two motions in two regions, queried in turn (RRTConnect's two trees).
     std::vector<Eigen::Isometry3d> alternating;
-    const auto first = line(pose(-5, -4, -3, 0.2), pose(-2, -1, -3, 1.0), 300),
-               second = line(pose(4, 3, 2, -0.5), pose(1, 4, 3, 0.3), 300);
+    const auto first = line(warmPose(-5, -4, -3, 0.2), warmPose(-2, -1, -3, 1.0), 300),
+               second = line(warmPose(4, 3, 2, -0.5), warmPose(1, 4, 3, 0.3), 300);
     for (std::size_t i = 0; i < first.size(); ++i)
     {
         alternating.push_back(first[i]);
@@ -200,8 +200,8 @@ TEST(SceneWarmStart, NeverCostsMoreThanColdOnUnrelatedPosesAndPaysAlongPaths)
     std::ostringstream notes;
     for (std::size_t capacity : {1u, 4u})
     {
-        const StreamCost r = run(*scene, random, capacity), p = run(*scene, path, capacity),
-                         m = run(*scene, mixed, capacity), a = run(*scene, alternating, capacity);
+        const StreamCost r = streamCostRun(*scene, random, capacity), p = streamCostRun(*scene, path, capacity),
+                         m = streamCostRun(*scene, mixed, capacity), a = streamCostRun(*scene, alternating, capacity);
         note(notes, "random", capacity, r);
         note(notes, "path", capacity, p);
         note(notes, "mixed", capacity, m);
