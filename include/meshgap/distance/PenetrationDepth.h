@@ -68,7 +68,8 @@ namespace meshgap
         body's SurfaceGrid (Body::surfaceGrid(), built on first use) bounds, at the price of a cell look-up, how
         deep a cluster's nodes can be (the cell's hi plus the radius) and says when a ball lies wholly outside: the
         search starts from the depth of the node the grid finds deepest (measured exactly, as the search would) and
-        skips without a point query every cluster that cannot beat it. A point query starts from the least distance
+        skips without a point query every cluster that cannot beat it (a cluster wider than two cells, unless one of
+        its nodes' own cells reaches deeper). A point query starts from the least distance
         to a few triangles near the point: the one nearest to its grid cell's centre, those found nearest to the last
         cluster centre and the last node, and with a warm start the one found nearest to the same node or centre at
         the last pose; often one of them settles the node or the cluster without a query. A verdict-only query
