@@ -11,8 +11,8 @@
 #   bench/refresh.sh --dry-run    every block written from made-up output into copies of the pages, then checked
 #                                 (no build, no benchmark run: what the ctest entry runs)
 #
-# --quick: small counts, about a quarter of an hour in all on 2 cores; without it the counts of the by-hand tables
-# (two hours or so: the planning, optimiser and MotionBenchMaker blocks take most of it).
+# --quick: small counts, about half an hour in all on 2 cores; without it the counts of the by-hand tables (three
+# hours or so: the planning, samplers', optimiser and MotionBenchMaker blocks take most of it).
 # The shared data (../shared/data) is optional: without it the query table runs on maps/ alone and the load table on
 # the test meshes, and the blocks that need its robots, MotionBenchMaker's problems or OMPL.app's cubicles (the Python
 # blocks) are left out, as is the Dask block where /usr/bin/python3 has no `distributed`.
@@ -157,6 +157,18 @@ if [ -d "$shared/omplapp" ]; then
     add sampler_slotted_wall bench/planning.md meshgap_benchmark \
         "PLANNER=biest bench/sampler_table.sh $build \$(mktemp -d)" \
         "PLANNER=biest RUNS=1 TIME=5 bench/sampler_table.sh $build \$(mktemp -d)"
+    # RRTConnect on every problem and map within each cfg's limit (Abstract and bugtrap: 300 s a run), every path
+    # checked by FCL; the samplers on Abstract (BKPIECE) and on bugtrap (PRM, stopped at its first exact solution).
+    add solve_problems bench/planning.md meshgap_benchmark \
+        "PART=solve RUNS=5 JOBS=2 bench/clearance_table.sh $build \$(mktemp -d)" \
+        "PART=solve RUNS=2 JOBS=2 SOLVE_TIME=30 bench/clearance_table.sh $build \$(mktemp -d)"
+    add sampler_abstract bench/planning.md meshgap_benchmark \
+        "PLANNER=bkpiece PROBLEMS=Abstract RUNS=3 TIME=300 SHARDS=2 bench/sampler_table.sh $build \$(mktemp -d)" \
+        "PLANNER=bkpiece PROBLEMS=Abstract RUNS=1 TIME=60 SHARDS=1 bench/sampler_table.sh $build \$(mktemp -d)"
+    st="bench/sampler_table.sh $build \$(mktemp -d)"
+    add sampler_bugtrap bench/planning.md meshgap_benchmark \
+        "FIRST=1 PLANNER=prm PROBLEMS=bugtrap RUNS=3 TIME=300 SHARDS=2 $st" \
+        "FIRST=1 PLANNER=prm PROBLEMS=bugtrap SAMPLERS=workspace_medial,uniform RUNS=2 TIME=90 SHARDS=2 $st"
     add clearance_maps bench/planning.md meshgap_benchmark \
         "PART=clearance bench/clearance_table.sh $build \$(mktemp -d)" \
         "PART=clearance RUNS=2 TIME=5 bench/clearance_table.sh $build \$(mktemp -d)"
