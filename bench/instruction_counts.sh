@@ -3,10 +3,12 @@
 # 300 path states and warm on 1,000, and over FCL's fcl::distance on the same 1,000 states, on OMPL.app problems and
 # on the maps in maps/ (meshgap_bench_queries' own path streams); a table of millions of instructions, the warm
 # query's share spent on penetration depth (the colliding states' depth estimate) and warm over FCL; the collision-only
-# test (Scene::inCollision) against FCL's fcl::collide on the same 1,000 states. Then, where ../shared/data holds the
-# fanuc's and the UR5's meshes, mesh pairs on 200 random poses (meshgap_bench_queries --robot/--world --streams
-# random): the cold certified query, the same without the depth of colliding poses, and the collision-only test, each
-# against FCL's call.
+# test (Scene::inCollision) against FCL's collide (test::fclCollide, which calls fcl::collide: that name would match
+# the nested fcl::collide<double, solver> too, and a toggle there turns collection off) on the same 1,000 states.
+# Each count from a run of its own where toggles could interfere.
+# Then, where ../shared/data holds the fanuc's and the UR5's meshes, mesh pairs on 200 random poses
+# (meshgap_bench_queries --robot/--world --streams random): the cold certified query, the same without the depth of
+# colliding poses, and the collision-only test, each against FCL's call.
 #
 #   bench/instruction_counts.sh [BUILD (build)] [PROBLEMS (Easy Twistycool cubicles battery_fixture slotted_wall)]
 #   PAIRS=0 bench/instruction_counts.sh ...   # without the mesh pairs' table
@@ -35,16 +37,18 @@ for p in $problems; do
         "${q[@]}" --states 300 --skip "warm,$others" > /dev/null 2>&1
     valgrind --tool=callgrind --toggle-collect='meshgap::Scene::distance*' --toggle-collect='*fcl::distance<*' \
         --callgrind-out-file="$out/$p.warm" "${q[@]}" --states 1000 --skip "cold,$others" > /dev/null 2>&1
-    valgrind --tool=callgrind --toggle-collect='meshgap::Scene::inCollision*' --toggle-collect='*fcl::collide<*' \
-        --callgrind-out-file="$out/$p.coll" "${q[@]}" --states 1000 --skip "cold,warm,${others/collision,/}" \
-        > /dev/null 2>&1
+    valgrind --tool=callgrind --toggle-collect='meshgap::Scene::inCollision*' --callgrind-out-file="$out/$p.coll" \
+        "${q[@]}" --states 1000 --skip "cold,warm,${others/collision,/}" > /dev/null 2>&1
+    # FCL's collide alone: with another toggle in the same run, some streams lose their counts.
+    valgrind --tool=callgrind --toggle-collect='meshgap::test::fclCollide*' --callgrind-out-file="$out/$p.fclc" \
+        "${q[@]}" --states 1000 --skip "cold,warm,$others" > /dev/null 2>&1
     cold[$p]=$(count "$out/$p.cold" 'meshgap::Scene::distance\(')
     warm[$p]=$(count "$out/$p.warm" 'meshgap::Scene::distance\(')
     depth[$p]=$(count "$out/$p.warm" 'meshgap::penetrationDepth\(')
     depth[$p]=${depth[$p]:-0.0}  # no colliding state: never called
     fcl[$p]=$(count "$out/$p.warm" 'fcl::distance<')
     coll[$p]=$(count "$out/$p.coll" 'meshgap::Scene::inCollision\(')
-    fclc[$p]=$(count "$out/$p.coll" 'fcl::collide<')
+    fclc[$p]=$(count "$out/$p.fclc" 'meshgap::test::fclCollide\(')
     [ -n "${cold[$p]}" ] && [ -n "${warm[$p]}" ] && [ -n "${fcl[$p]}" ] && [ -n "${coll[$p]}" ] &&
         [ -n "${fclc[$p]}" ] ||
         { echo "bench/instruction_counts.sh: no count for $p (callgrind outputs in $out)" >&2; exit 1; }
@@ -84,20 +88,25 @@ if [ "${PAIRS:-1}" = 1 ] && [ ${#pairs[@]} -gt 0 ]; then
         echo "== $name" >&2
         q=("$build/bench/meshgap_bench_queries" --robot "$robot" --world "$world" --states 200 --random 200
            --streams random --load-repeats 1)
-        for column in cold cold-nodepth collision; do
+        # One run a column (FCL's two columns always run): cold with FCL's distance, FCL's collide alone.
+        for column in cold cold-nodepth collision fcl-collide; do
             skip=$(echo "cold,warm,cold-nodepth,warm-nodepth,fast,collision,collision-warm,enumeration" |
                    tr ',' '\n' | grep -vx -- "$column" | paste -sd,)
-            valgrind --tool=callgrind --toggle-collect='meshgap::Scene::distance*' \
-                --toggle-collect='meshgap::Scene::inCollision*' --toggle-collect='*fcl::distance<*' \
-                --toggle-collect='*fcl::collide<*' --callgrind-out-file="$out/pair.$column" "${q[@]}" --skip "$skip" \
-                > "$out/pair.$column.stdout" 2>&1
+            case $column in
+                cold) toggles=(--toggle-collect='meshgap::Scene::distance*' --toggle-collect='*fcl::distance<*') ;;
+                cold-nodepth) toggles=(--toggle-collect='meshgap::Scene::distance*') ;;
+                collision) toggles=(--toggle-collect='meshgap::Scene::inCollision*') ;;
+                fcl-collide) toggles=(--toggle-collect='meshgap::test::fclCollide*') ;;
+            esac
+            valgrind --tool=callgrind "${toggles[@]}" --callgrind-out-file="$out/pair.$column" "${q[@]}" \
+                --skip "$skip" > "$out/pair.$column.stdout" 2>&1
         done
         colliding=$(grep -o 'colliding ([0-9]*)' "$out/pair.cold.stdout" | head -1 | tr -dc 0-9)
         c=$(count "$out/pair.cold" 'meshgap::Scene::distance\(')
         n=$(count "$out/pair.cold-nodepth" 'meshgap::Scene::distance\(')
         k=$(count "$out/pair.collision" 'meshgap::Scene::inCollision\(')
         fd=$(count "$out/pair.cold" 'fcl::distance<')
-        fc=$(count "$out/pair.cold" 'fcl::collide<')
+        fc=$(count "$out/pair.fcl-collide" 'meshgap::test::fclCollide\(')
         [ -n "$c" ] && [ -n "$n" ] && [ -n "$k" ] && [ -n "$fd" ] && [ -n "$fc" ] ||
             { echo "bench/instruction_counts.sh: no count for $name (callgrind outputs in $out)" >&2; exit 1; }
         row "${name//\~/ }" "${colliding:-0}" "$c ($(ratio "$c" "$fd"))" "$n ($(ratio "$n" "$fd"))" \
