@@ -1,7 +1,6 @@
 #include "meshgap/distance/PenetrationDepth.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -9,6 +8,7 @@
 
 #include "meshgap/ThreadScratch.h"
 #include "meshgap/distance/ExactDistance.h"
+#include "meshgap/distance/RecentInsideTests.h"
 #include "meshgap/geometry/SurfaceGrid.h"
 #include "meshgap/geometry/TriangleDistance.h"
 
@@ -115,7 +115,8 @@ namespace meshgap
             comes, and the cluster skipped when d + r (r - d, outside) does not beat the deepest; and when d > r no
             surface crosses the cluster's ball, so all its nodes are on the same side as c: one inside test for them
             all. Inside tests: localSide() first, a filter; what it calls outside is skipped,
-            anything else is confirmed by insideClosedBody(). So no outside node ever counts; where the filter is wrong
+            anything else is confirmed by insideClosedBody() (or by a grid cell or an earlier test whose ball free of
+            surface holds the point: RecentInsideTests). So no outside node ever counts; where the filter is wrong
             (overlapping shells, mixed winding) an inside node may be skipped, which only lowers the estimate.
 
             What run() returns is a function of the pose and of nothing else: the first node, in the visiting order
@@ -145,7 +146,8 @@ namespace meshgap
                   estimate_(estimate),
                   nearest_(nearest),
                   clusterNearest_(clusterNearest),
-                  placed_(placed)
+                  placed_(placed),
+                  sides_(slack_)
             {
             }
 
@@ -391,10 +393,7 @@ namespace meshgap
             bool centreInside(Candidate &c)
             {
                 if (c.inside < 0)
-                {
-                    ++estimate_.insideTests;
-                    c.inside = insideClosedBody(host_, c.centre) ? 1 : 0;
-                }
+                    c.inside = sides_.inside(host_, c.centre, c.centreDistance, estimate_.insideTests) ? 1 : 0;
                 return c.inside == 1;
             }
 
@@ -455,11 +454,11 @@ namespace meshgap
                 if (c.centreOutside)
                     // Beyond the bound of an outside centre no node counts, whatever its own test says: the bound
                     // that prunes is then part of the verdict, so a pruned node is never one that would count.
-                    return !(r.distance > pad(beyond)) && (!c.oneSide && inside(p, r));
+                    return !(r.distance > pad(beyond)) && (!c.oneSide && inside(p, r, cell));
                 if (c.oneSide)
                     return centreInside(c);  // the whole ball is on the centre's side
                 // Within dc of an inside centre there is no surface between: inside too.
-                return (pad(offset) < dc && centreInside(c)) || inside(p, r);
+                return (pad(offset) < dc && centreInside(c)) || inside(p, r, cell);
             }
 
             /** \brief A ball (host frame) that lies wholly beyond the host's bounding box: it holds no node inside. */
@@ -533,12 +532,16 @@ namespace meshgap
                 return true;
             }
 
-            bool inside(const Eigen::Vector3d &p, const BvhPointResult &nearest)
+            /** \brief Whether the point \e p, whose nearest surface point is \e nearest, in grid cell \e cell (or
+                null) counts as inside: not if localSide() says outside, else by insideClosedBody(), whose answer a
+                cell the surface does not reach already holds. */
+            bool inside(const Eigen::Vector3d &p, const BvhPointResult &nearest, const SurfaceGrid::Cell *cell)
             {
                 if (localSide(host_, p, nearest.triangle, nearest.closest, orient_) > 0)
                     return false;
-                ++estimate_.insideTests;
-                return insideClosedBody(host_, p);
+                if (cell && (cell->side == SurfaceGrid::Side::INSIDE || cell->side == SurfaceGrid::Side::OUTSIDE))
+                    return cell->side == SurfaceGrid::Side::INSIDE;
+                return sides_.inside(host_, p, nearest.distance, estimate_.insideTests);
             }
 
             const Body &host_, &mover_;
@@ -550,9 +553,10 @@ namespace meshgap
             const bool hostIsA_;
             PenetrationEstimate &estimate_;
             std::uint32_t *const nearest_, *const clusterNearest_;
-            std::vector<Placed> &placed_;  ///< place()'s clusters
-            double gridDeepest_{0.0};       ///< the largest lo of a grid cell inside holding a placed centre
+            std::vector<Placed> &placed_;      ///< place()'s clusters
+            double gridDeepest_{0.0};          ///< the largest lo of a grid cell inside holding a placed centre
             std::uint32_t gridCluster_{NONE};  ///< that centre's cluster, or NONE
+            RecentInsideTests<8> sides_;       ///< the inside tests made, the last few kept
         };
 
         /** \brief A surface triangle holding node \e i of \e body. */
