@@ -77,9 +77,10 @@ pairs=()
 [ -d "$ur5" ] && pairs+=("forearm~vs~upperarm~+~base~(UR5) $ur5/forearm.stl $ur5/upperarm.stl,$ur5/base.stl")
 if [ "${PAIRS:-1}" = 1 ] && [ ${#pairs[@]} -gt 0 ]; then
     echo
-    echo "Mesh pairs, 200 random poses (\`meshgap_bench_queries --robot R --world W --states 200 --random 200"
-    echo "--streams random\`), millions of instructions and the ratio to FCL's call (distance; collision-only to"
-    echo "collide):"
+    # One line: the table's caption.
+    printf '%s%s%s\n' "Mesh pairs, 200 random poses (\`meshgap_bench_queries --robot R --world W --states 200" \
+        " --random 200 --streams random\`), millions of instructions and the ratio to FCL's call (distance;" \
+        " collision-only to collide):"
     echo
     row "pair" "colliding" "cold certified" "cold, no depth" "collision-only" "FCL distance" "FCL collide"
     row "---" "---:" "---:" "---:" "---:" "---:" "---:"
