@@ -151,11 +151,12 @@ namespace meshgap
             {
             }
 
-            /** \brief The mover's clusters that may hold a node inside the host, placed (place() made once, before
-                seedFromGrid() and run()): a descent of the mover's cluster tree that skips every ball lying beyond
-                the host's box or wholly outside the host by its grid cell. Also notes the cluster whose centre the
-                grid finds deepest inside. */
-            void place()
+            /** \brief The mover's clusters that may hold a node inside the host deeper than \e floor (a depth in
+                hand, or 0), placed (place() made once, before seedFromGrid() and run()): a descent of the mover's
+                cluster tree that skips every ball lying beyond the host's box, wholly outside the host by its grid
+                cell, or no deeper than \e floor by that cell (run() would skip its clusters: their nodes cannot win).
+                Also notes the cluster whose centre the grid finds deepest inside. */
+            void place(double floor)
             {
                 placed_.clear();
                 gridDeepest_ = 0.0;
@@ -166,7 +167,7 @@ namespace meshgap
                     root_.aligned ? Eigen::Matrix3d::Identity() : Eigen::Matrix3d(root_.axes.transpose());
                 const Eigen::Matrix3d Rbox = boxAxes * R_, Rgrid = grid_.toGrid().linear() * R_;
                 const Eigen::Vector3d tbox = boxAxes * (t_ - root_.center), tgrid = grid_.toGrid() * t_;
-                const double reach = grid_.outsideReach();
+                const double outsideReach = grid_.outsideReach();
                 // Entries before this one lie in a ball wholly inside the box: their nodes too, so no box test.
                 std::uint32_t inBox = 0;
                 for (std::uint32_t e = 0; e < tree.size();)
@@ -185,12 +186,13 @@ namespace meshgap
                         if (q.maxCoeff() <= -r)
                             inBox = ball.skip;
                     }
-                    // Wholly outside by its cell (looked up for every cluster, and for a larger ball where a cell can
-                    // say so: a radius below the largest lo of a cell outside).
-                    const bool leaf = ball.skip == e + 1;
-                    const SurfaceGrid::Cell *cell =
-                        leaf || pad(r) < reach ? grid_.cellAt(Rgrid * ball.center + tgrid) : nullptr;
-                    if (cell && cell->side == SurfaceGrid::Side::OUTSIDE && pad(r) < cell->lo)
+                    // Wholly outside by its cell, or no deeper than floor (looked up for every cluster, and for a
+                    // larger ball where a cell can say so: a radius below the largest lo of a cell outside, or below
+                    // floor).
+                    const bool leaf = ball.skip == e + 1, looked = leaf || pad(r) < outsideReach || r < floor;
+                    const SurfaceGrid::Cell *cell = looked ? grid_.cellAt(Rgrid * ball.center + tgrid) : nullptr;
+                    if ((cell && cell->side == SurfaceGrid::Side::OUTSIDE && pad(r) < cell->lo) ||
+                        (looked && pad(reach(cell, r)) <= floor))
                     {
                         e = ball.skip;
                         continue;
@@ -341,12 +343,17 @@ namespace meshgap
                 every node inside, and so (padded) on every depth run() accepts. */
             double reach(const Placed &placed) const
             {
-                const double r = mover_.clusters()[placed.cluster].radius;
-                if (!placed.cell)
+                return reach(placed.cell, mover_.clusters()[placed.cluster].radius);
+            }
+
+            /** \brief The same for a ball of radius \e r whose centre lies in \e cell (null: beyond the grid). */
+            static double reach(const SurfaceGrid::Cell *cell, double r)
+            {
+                if (!cell)
                     return r;
-                if (placed.cell->side == SurfaceGrid::Side::OUTSIDE)
-                    return r - placed.cell->lo;
-                return placed.cell->hi + r;
+                if (cell->side == SurfaceGrid::Side::OUTSIDE)
+                    return r - cell->lo;
+                return cell->hi + r;
             }
 
             /** \brief Whether a node of cluster \e k may lie inside the host deeper than \e floor by its own grid cell:
@@ -608,6 +615,18 @@ namespace meshgap
             estimate.witnessFound = true;
             ++estimate.triangleTests;
         }
+
+        /** \brief Just below the depth of the node \e warm names (a node of \e mover, searched for by \e search) at
+            this pose, found as the search would find it; 0 when \e warm names no node of \e mover or it is not
+            inside. */
+        double warmSeed(const PenetrationWarmStart &warm, const Body &mover, NodeSearch &search)
+        {
+            if (warm.cluster >= mover.clusters().size() || warm.position < mover.clusters()[warm.cluster].begin ||
+                warm.position >= mover.clusters()[warm.cluster].end)
+                return 0.0;
+            const double seed = search.depthOf(warm.cluster, warm.position);
+            return seed > 0.0 ? std::nextafter(seed, 0.0) : 0.0;
+        }
     }  // namespace
 
     PenetrationEstimate penetrationDepth(const Body &a, const Body &b, const Eigen::Isometry3d &X_AB,
@@ -637,29 +656,18 @@ namespace meshgap
         if (closedB)
             searches[1].emplace(b, a, X_BA, false, estimate, at(b.numNodes()), at(nodes + b.clusters().size()),
                                 scratch.get()[1]);
-        for (std::optional<NodeSearch> &search : searches)
-            if (search)
-                search->place();
-
         // A lower bound to start from, just below a depth found exactly as the search would find it (NodeSearch says
         // why the answer stays the cold one): the last deepest node's depth at this pose, and the deepest node the
         // grids point to, where its cell says it may lie deeper still (along a run of poses the carried node is as
-        // deep, and costs less; on poses far apart the grid's is the deeper).
+        // deep, and costs less; on poses far apart the grid's is the deeper). Each search places its clusters with
+        // the bound in hand, so that the second skips what the first's seed rules out.
         Deepest best;
         if (warm && warm->valid && searches[warm->hostIsA ? 0 : 1])
-        {
-            const Body &mover = warm->hostIsA ? b : a;
-            if (warm->cluster < mover.clusters().size() && warm->position >= mover.clusters()[warm->cluster].begin &&
-                warm->position < mover.clusters()[warm->cluster].end)
-            {
-                const double seed = searches[warm->hostIsA ? 0 : 1]->depthOf(warm->cluster, warm->position);
-                if (seed > 0.0)
-                    best.depth = std::nextafter(seed, 0.0);
-            }
-        }
+            best.depth = warmSeed(*warm, warm->hostIsA ? b : a, *searches[warm->hostIsA ? 0 : 1]);
         for (std::optional<NodeSearch> &search : searches)
             if (search)
             {
+                search->place(best.depth);
                 const double seed = search->seedFromGrid(best.depth);
                 if (seed > 0.0)
                     best.depth = std::max(best.depth, std::nextafter(seed, 0.0));
@@ -674,7 +682,10 @@ namespace meshgap
             best = Deepest();
             for (std::optional<NodeSearch> &search : searches)
                 if (search)
+                {
+                    search->place(0.0);
                     search->run(best);
+                }
         }
         if (warm)
         {
