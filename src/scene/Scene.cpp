@@ -232,17 +232,18 @@ namespace meshgap
             }
         if (lastPoses.size() != capacity_)
             lastPoses.resize(capacity_);  // once: a warm start that never chooses allocates nothing
-        bool nearRecent = false;  // near one of the last capacity() queries' poses
-        for (std::size_t i = 0; i < posesSeen && i < lastPoses.size(); ++i)
-            nearRecent = nearRecent || motion(lastPoses[i]) <= limit;
-        lastPoses[posesSeen++ % lastPoses.size()] = X_WR;
         if (nearest <= limit)
         {
+            lastPoses[posesSeen++ % lastPoses.size()] = X_WR;
             if (chosen < recent.size())
                 std::swap(static_cast<SceneCertificate &>(*this), recent[chosen]);
             ++carried;
             return Use::CARRY;
         }
+        bool nearRecent = false;  // near one of the last capacity() queries' poses (asked only when not carrying)
+        for (std::size_t i = 0; i < posesSeen && i < lastPoses.size() && !nearRecent; ++i)
+            nearRecent = motion(lastPoses[i]) <= limit;
+        lastPoses[posesSeen++ % lastPoses.size()] = X_WR;
         if (!nearRecent)
         {
             ++cold;
