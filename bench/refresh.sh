@@ -154,24 +154,20 @@ if [ -d "$shared/omplapp" ]; then
     each="CHECKERS=fcl,certified-cmv,certified,fast PROBLEMS='cubicles Easy battery_fixture'"
     planning rrtconnect_checkers bench/planning.md 10 3 "TIME=10 $each"
     planning rrtstar_checkers bench/planning.md 3 1 "TIME=5 PLANNERS=rrtstar ARGS='--objective max_min_clearance' $each"
-    add sampler_slotted_wall bench/planning.md meshgap_benchmark \
-        "PLANNER=biest bench/sampler_table.sh $build \$(mktemp -d)" \
-        "PLANNER=biest RUNS=1 TIME=5 bench/sampler_table.sh $build \$(mktemp -d)"
+    # A table script as a block of planning.md: NAME SCRIPT, its settings in full and in --quick.
+    table() {
+        local run="bench/$2 $build \$(mktemp -d)"
+        add "$1" bench/planning.md meshgap_benchmark "$3 $run" "$4 $run"
+    }
+    table sampler_slotted_wall sampler_table.sh "PLANNER=biest" "PLANNER=biest RUNS=1 TIME=5"
     # RRTConnect on every problem and map within each cfg's limit (Abstract and bugtrap: 300 s a run), every path
     # checked by FCL; the samplers on Abstract (BKPIECE) and on bugtrap (PRM, stopped at its first exact solution).
-    add solve_problems bench/planning.md meshgap_benchmark \
-        "PART=solve RUNS=5 JOBS=2 bench/clearance_table.sh $build \$(mktemp -d)" \
-        "PART=solve RUNS=2 JOBS=2 SOLVE_TIME=30 bench/clearance_table.sh $build \$(mktemp -d)"
-    add sampler_abstract bench/planning.md meshgap_benchmark \
-        "PLANNER=bkpiece PROBLEMS=Abstract RUNS=3 TIME=300 SHARDS=2 bench/sampler_table.sh $build \$(mktemp -d)" \
-        "PLANNER=bkpiece PROBLEMS=Abstract RUNS=1 TIME=60 SHARDS=1 bench/sampler_table.sh $build \$(mktemp -d)"
-    st="bench/sampler_table.sh $build \$(mktemp -d)"
-    add sampler_bugtrap bench/planning.md meshgap_benchmark \
-        "FIRST=1 PLANNER=prm PROBLEMS=bugtrap RUNS=3 TIME=300 SHARDS=2 $st" \
-        "FIRST=1 PLANNER=prm PROBLEMS=bugtrap SAMPLERS=workspace_medial,uniform RUNS=2 TIME=90 SHARDS=2 $st"
-    add clearance_maps bench/planning.md meshgap_benchmark \
-        "PART=clearance bench/clearance_table.sh $build \$(mktemp -d)" \
-        "PART=clearance RUNS=2 TIME=5 bench/clearance_table.sh $build \$(mktemp -d)"
+    table solve_problems clearance_table.sh "PART=solve RUNS=5 JOBS=2" "PART=solve RUNS=2 JOBS=2 SOLVE_TIME=30"
+    table sampler_abstract sampler_table.sh "PLANNER=bkpiece PROBLEMS=Abstract RUNS=3 TIME=300 SHARDS=2" \
+        "PLANNER=bkpiece PROBLEMS=Abstract RUNS=1 TIME=60 SHARDS=1"
+    table sampler_bugtrap sampler_table.sh "FIRST=1 PLANNER=prm PROBLEMS=bugtrap RUNS=3 TIME=300 SHARDS=2" \
+        "FIRST=1 PLANNER=prm PROBLEMS=bugtrap SAMPLERS=workspace_medial,uniform RUNS=2 TIME=90 SHARDS=2"
+    table clearance_maps clearance_table.sh "PART=clearance" "PART=clearance RUNS=2 TIME=5"
     if command -v valgrind > /dev/null; then
         add instruction_counts bench/queries.md meshgap_bench_queries \
             "bench/instruction_counts.sh $build" "bench/instruction_counts.sh $build Easy"
