@@ -201,7 +201,11 @@ namespace
         return std::max(0.0, elapsed - clockCost);
     }
 
-    double median(std::vector<double> v);
+    double median(std::vector<double> v)
+    {
+        std::sort(v.begin(), v.end());
+        return v.empty() ? 0.0 : v[v.size() / 2];
+    }
 
     /** \brief Sets clockCost: the median time of an empty call, timed as timed() times a query. Reading the
         thread's CPU clock is a system call (about 0.6 µs here, against 0.03 for the wall clock), as long as a
@@ -213,12 +217,6 @@ namespace
         for (double &x : t)
             x = timed([] { asm volatile("" ::: "memory"); });
         clockCost = median(t);
-    }
-
-    double median(std::vector<double> v)
-    {
-        std::sort(v.begin(), v.end());
-        return v.empty() ? 0.0 : v[v.size() / 2];
     }
 
     /** \brief One SE(2) state per line, "x y theta" (OMPL.app's 2D .path), as a pose in the plane z = 0. */
